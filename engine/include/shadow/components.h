@@ -1,0 +1,178 @@
+// The scene's components: plain structs, no registration, no GL types.
+//
+// Conventions (see design.md): metres, seconds, radians; +Y up, right-handed; lights and
+// cameras look along their node's -Z.
+#pragma once
+
+#include <shadow/ecs.h>
+#include <shadow/math.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace shadow {
+
+/// A readable name, used for GPU labels (`Shadow/<name>/layer<N>`) and messages.
+struct Name {
+    std::string value;
+};
+
+/// Local placement relative to `parent` (or the world when `parent` is null). Double precision
+/// so that large coordinates keep their precision until made camera-relative.
+struct Transform {
+    glm::dvec3 translation{0.0};
+    glm::dquat rotation{1.0, 0.0, 0.0, 0.0};  // w, x, y, z
+    glm::dvec3 scale{1.0};
+    Entity parent;
+};
+
+/// Written by `updateTransforms`; read by everything after it.
+struct WorldTransform {
+    glm::dmat4 worldFromLocal{1.0};
+    /// The matrix differs from last frame's (or the entity is new this frame).
+    bool movedThisFrame = true;
+    /// False when the matrix has a NaN or Inf; such entities are skipped by rendering.
+    bool finite = true;
+};
+
+/// Triangle mesh on the CPU. Shared between mesh instances; uploaded once by the renderer.
+struct MeshData {
+    std::string name;
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;  // one per position
+    std::vector<std::uint32_t> indices;  // triangle list
+    Aabb bounds;  // of `positions`
+};
+
+/// Computes `bounds` from `positions`.
+void computeBounds(MeshData& mesh);
+/// Replaces a mesh by one with flat normals: every triangle gets its own three vertices.
+void makeFlatNormals(MeshData& mesh);
+
+/// A drawable mesh instance. `castShadows`/`receiveShadows` come from glTF
+/// `extras.shadow = {"cast": bool, "receive": bool}`.
+struct Mesh {
+    std::shared_ptr<const MeshData> data;
+    bool castShadows = true;
+    bool receiveShadows = true;
+};
+
+/// World-space bounds of a mesh instance, written by `updateTransforms`.
+struct WorldBounds {
+    DAabb box;
+};
+
+/// Blinn-Phong material.
+struct Material {
+    glm::vec3 albedo{0.8f};     ///< diffuse reflectance, linear RGB in [0,1]
+    glm::vec3 specular{0.04f};  ///< specular reflectance, linear RGB in [0,1]
+    float shininess = 32.0f;    ///< Blinn-Phong exponent, [1, 4096]
+};
+
+enum class LightType : std::uint8_t { Directional, Spot, Point };
+
+/// A punctual light with the physical size of its emitter (the truth soft shadows approximate).
+struct Light {
+    LightType type = LightType::Point;
+    glm::vec3 color{1.0f};  ///< linear RGB
+    /// Point/spot: luminous intensity (cd); directional: illuminance (lux), as KHR_lights_punctual.
+    float intensity = 1.0f;
+    /// Distance where the light's influence ends (m); 0 = infinite. Point and spot only.
+    float range = 0.0f;
+    float innerConeAngle = 0.0f;           ///< spot: full-intensity half-angle (rad), [0, outer)
+    float outerConeAngle = 0.7853981634f;  ///< spot: cut-off half-angle (rad), (0, pi/2)
+    /// Spot: radius (m) of the emitting disk perpendicular to the axis. Point: radius (m) of
+    /// the emitting sphere. 0 = a hard shadow. Range [0, 1e3].
+    float radius = 0.0f;
+    /// Directional: half-angle (rad) of the emitting cone; 0 = a hard shadow. The sun is
+    /// about 0.00465. Range [0, 0.2].
+    float angularRadius = 0.0f;
+};
+
+/// How a light's visibility is computed from its shadow map.
+enum class ShadowTechnique : std::uint8_t {
+    None,  ///< no shadow map; visibility 1
+    Hard,  ///< one depth comparison (with hardware 2x2 bilinear PCF)
+    Pcf,   ///< fixed-radius percentage-closer filtering
+    Pcss,  ///< blocker search, penumbra estimate, then PCF
+};
+
+/// Per-light shadow settings. A light with no `Shadow` component, or technique `None`, gets no
+/// shadow map at all. Values out of range are clamped to the stated range by the shadow system
+/// and the clamp is reported in stats.json.
+struct Shadow {
+    ShadowTechnique technique = ShadowTechnique::Hard;
+    /// Edge of one shadow-map layer in texels, [1, GL_MAX_TEXTURE_SIZE]. Default 1024.
+    int mapSize = 1024;
+    /// Constant depth bias (m), [0, 10]. Default 0.002.
+    float constantBias = 0.002f;
+    /// Slope-scaled bias in shadow-map texels: the depth offset grows with the texel's world
+    /// footprint times tan(angle between normal and light), [0, 16]. Default 1.5.
+    float slopeBias = 1.5f;
+    /// Normal offset in shadow-map texels: the receiver point moves along its normal by this
+    /// many texel footprints, scaled by sin(angle), [0, 16]. Default 1.0.
+    float normalOffset = 1.0f;
+    /// PCF filter radius (m) at the receiver, [0, 10]. Default 0.05.
+    float pcfRadius = 0.05f;
+    /// Taps of the PCF filter, [1, 64]. Default 16.
+    int pcfSamples = 16;
+    /// Taps of the PCSS blocker search, [1, 64]. Default 16.
+    int blockerSamples = 16;
+    /// Largest PCSS filter radius in texels (the clamp of the penumbra), [1, 256]. Default 32.
+    float maxFilterTexels = 32.0f;
+    /// Directional: number of cascades, [1, 4]. Default 1.
+    int cascades = 1;
+    /// Directional: blend between uniform (0) and logarithmic (1) cascade splits, [0, 1].
+    float cascadeSplitLambda = 0.75f;
+    /// Directional: how far from the camera shadows are drawn (m), 0 = the camera's far plane.
+    float shadowDistance = 0.0f;
+    /// Spot/point: near plane of the shadow projection (m), (0, range). 0 = automatic.
+    float nearPlane = 0.0f;
+};
+
+/// A perspective camera looking along its node's -Z.
+struct Camera {
+    float yfov = 0.8f;   ///< vertical field of view (rad), (0, pi)
+    float znear = 0.05f;  ///< near plane (m), > 0
+    float zfar = 500.0f;  ///< far plane (m), > znear
+    /// Width / height; 0 = take it from the output image.
+    float aspectRatio = 0.0f;
+};
+
+/// One keyframed channel of a glTF animation, targeting the entity that owns it.
+struct AnimationChannel {
+    enum class Path : std::uint8_t { Translation, Rotation, Scale };
+    enum class Interpolation : std::uint8_t { Linear, Step, CubicSpline };
+    Path path = Path::Translation;
+    Interpolation interpolation = Interpolation::Linear;
+    std::vector<float> times;  ///< strictly increasing key times (s)
+    /// Key values: xyz (w unused) or quaternion xyzw. CUBICSPLINE stores three per key:
+    /// in-tangent, value, out-tangent.
+    std::vector<glm::vec4> values;
+};
+
+/// Keyframed animation of one entity's `Transform`. The clip loops with period `duration`.
+struct Animation {
+    std::vector<AnimationChannel> channels;
+    double duration = 0.0;  ///< loop period (s); the clip's last key time
+};
+
+/// Procedural motion of one entity's `Transform`, evaluated at absolute time `t` (s).
+struct ProceduralMotion {
+    enum class Kind : std::uint8_t {
+        Orbit,  ///< translation = center + radius * (cos, 0, sin)(speed * t + phase) around +Y
+        Bob,    ///< translation = center + axis * amplitude * sin(speed * t + phase)
+        Spin,   ///< rotation = angle-axis(speed * t + phase, axis); translation kept
+    };
+    Kind kind = Kind::Spin;
+    glm::dvec3 center{0.0};
+    glm::dvec3 axis{0.0, 1.0, 0.0};
+    double radius = 1.0;
+    double amplitude = 1.0;
+    double speed = 1.0;  ///< rad/s
+    double phase = 0.0;  ///< rad
+};
+
+}  // namespace shadow

@@ -1,0 +1,63 @@
+// OpenGL contexts and loading the engine's GL function table.
+//
+// A game that owns its context calls `loadGl` once with its own getProcAddress after making the
+// context current (OpenGL 4.5 core). The samples use one of the backends below, each in its
+// own library so that a binary links exactly one GL provider (libOSMesa and libGL must not
+// share a process):
+//   shadow_osmesa  headless, software (Mesa llvmpipe); the default of the samples and tests
+//   shadow_glfw    a window (the viewer)
+//   shadow_egl     headless on a GPU through EGL (optional)
+#pragma once
+
+#include <shadow/result.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace shadow {
+
+/// Resolves one GL entry point by name; returns null when the context lacks it.
+using GlProcLoader = std::function<void*(const char* name)>;
+
+/// Fills the engine's GL table from `loader`. Fails naming the first missing entry point, or
+/// when the current context is older than OpenGL 4.5.
+[[nodiscard]] Status loadGl(const GlProcLoader& loader);
+
+/// Facts about the current context, read after `loadGl`.
+struct GlInfo {
+    std::string vendor;
+    std::string renderer;  ///< GL_RENDERER, named next to every timing
+    std::string version;
+    int maxTextureSize = 0;
+    int maxArrayLayers = 0;
+    int maxTextureUnits = 0;  ///< fragment-shader texture image units
+    /// True for CPU rasterisers (llvmpipe, softpipe, swrast), where timer queries do not
+    /// measure rasterisation and passes are timed by wall clock between fences.
+    bool softwareRenderer = false;
+};
+
+/// Queries `GlInfo` from the current context. Requires `loadGl`.
+[[nodiscard]] GlInfo queryGlInfo();
+
+/// An OpenGL context owned by one of the backends.
+class GlContext {
+public:
+    virtual ~GlContext() = default;
+    /// Makes the context current on the calling thread.
+    virtual void makeCurrent() = 0;
+    /// Resolves entry points of this context (pass to `loadGl`).
+    [[nodiscard]] virtual GlProcLoader loader() const = 0;
+    /// Which backend made it ("osmesa", "glfw", "egl").
+    [[nodiscard]] virtual const char* backend() const = 0;
+};
+
+/// A headless OSMesa OpenGL 4.5 core context, current and loaded on return
+/// (link `shadow_osmesa`).
+[[nodiscard]] Result<std::unique_ptr<GlContext>> createOsMesaContext();
+
+/// A headless EGL (surfaceless/pbuffer) OpenGL 4.5 core context, current and loaded on return
+/// (link `shadow_egl`).
+[[nodiscard]] Result<std::unique_ptr<GlContext>> createEglContext();
+
+}  // namespace shadow

@@ -1,0 +1,100 @@
+// Small geometric types shared by every subsystem.
+//
+// World-space positions and matrices are kept in double on the CPU so that a scene far from
+// the origin (10^5 m) keeps millimetre precision; the GPU only ever sees float values made
+// relative to the camera or the light.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <cmath>
+#include <limits>
+
+namespace shadow {
+
+/// Axis-aligned box. Default-constructed boxes are empty (min > max).
+template <typename Vec>
+struct BasicAabb {
+    using Scalar = typename Vec::value_type;
+    Vec min{std::numeric_limits<Scalar>::max()};
+    Vec max{std::numeric_limits<Scalar>::lowest()};
+
+    [[nodiscard]] bool empty() const { return min.x > max.x || min.y > max.y || min.z > max.z; }
+    void extend(const Vec& p) {
+        min = glm::min(min, p);
+        max = glm::max(max, p);
+    }
+    void extend(const BasicAabb& b) {
+        if (b.empty()) return;
+        extend(b.min);
+        extend(b.max);
+    }
+    [[nodiscard]] Vec center() const { return (min + max) * Scalar(0.5); }
+    [[nodiscard]] Vec extent() const { return max - min; }
+    /// The eight corners, bit k of the index choosing max over min on axis k.
+    [[nodiscard]] Vec corner(int i) const {
+        return Vec((i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z);
+    }
+};
+
+using Aabb = BasicAabb<glm::vec3>;
+using DAabb = BasicAabb<glm::dvec3>;
+
+/// Bounds of `box` after the affine transform `m` (exact for the box's corners).
+inline DAabb transformBounds(const glm::dmat4& m, const Aabb& box) {
+    DAabb out;
+    if (box.empty()) return out;
+    for (int i = 0; i < 8; ++i) {
+        const glm::dvec3 c(box.corner(i));
+        out.extend(glm::dvec3(m * glm::dvec4(c, 1.0)));
+    }
+    return out;
+}
+
+/// True when every element of the matrix is finite.
+inline bool isFinite(const glm::dmat4& m) {
+    for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r) {
+            if (!std::isfinite(m[c][r])) return false;
+        }
+    }
+    return true;
+}
+
+/// A unit vector perpendicular to `axis` that is stable when `axis` is close to any
+/// coordinate axis (picks the world axis least aligned with `axis` to cross with).
+inline glm::dvec3 anyPerpendicular(const glm::dvec3& axis) {
+    const glm::dvec3 a = glm::abs(axis);
+    const glm::dvec3 pick = (a.x <= a.y && a.x <= a.z) ? glm::dvec3(1, 0, 0)
+                            : (a.y <= a.z)             ? glm::dvec3(0, 1, 0)
+                                                       : glm::dvec3(0, 0, 1);
+    return glm::normalize(glm::cross(axis, pick));
+}
+
+/// View matrix looking from `eye` along unit `forward`, robust for any `forward` including
+/// straight up or down: the up vector is world +Y unless `forward` is within ~0.6 degrees of
+/// it, then a perpendicular axis is chosen instead.
+inline glm::dmat4 lookAlong(const glm::dvec3& eye, const glm::dvec3& forward) {
+    const glm::dvec3 f = glm::normalize(forward);
+    glm::dvec3 up(0, 1, 0);
+    if (std::abs(glm::dot(f, up)) > 0.99995) up = anyPerpendicular(f);
+    const glm::dvec3 s = glm::normalize(glm::cross(f, up));
+    const glm::dvec3 u = glm::cross(s, f);
+    glm::dmat4 m(1.0);
+    m[0][0] = s.x;
+    m[1][0] = s.y;
+    m[2][0] = s.z;
+    m[0][1] = u.x;
+    m[1][1] = u.y;
+    m[2][1] = u.z;
+    m[0][2] = -f.x;
+    m[1][2] = -f.y;
+    m[2][2] = -f.z;
+    m[3][0] = -glm::dot(s, eye);
+    m[3][1] = -glm::dot(u, eye);
+    m[3][2] = glm::dot(f, eye);
+    return m;
+}
+
+}  // namespace shadow

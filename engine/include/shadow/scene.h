@@ -1,0 +1,74 @@
+// Scenes and the CPU systems that run on them each frame.
+//
+// Frame order (fixed): animate -> updateTransforms -> ShadowSystem::prepare ->
+// ShadowSystem::render -> Renderer::render.
+#pragma once
+
+#include <shadow/components.h>
+#include <shadow/ecs.h>
+#include <shadow/result.h>
+
+#include <string>
+#include <vector>
+
+namespace shadow {
+
+/// A loaded or built scene: the world plus the orderings the outputs rely on.
+struct Scene {
+    World world;
+    std::string name;
+    /// Light instances in glTF node order; index `i` names `visibility_<i>.exr`.
+    std::vector<Entity> lights;
+    /// Camera instances in glTF node order; `--camera N` picks one.
+    std::vector<Entity> cameras;
+    /// Longest animation clip (s); 0 when nothing is keyframed.
+    double animationDuration = 0.0;
+};
+
+/// Animation system: writes local `Transform`s from `Animation` and `ProceduralMotion` at
+/// absolute time `t` (s). Keyframed clips loop; time is kept in double so `t = 1e7` s works.
+/// Non-finite or negative `t` is treated as 0.
+void animate(World& world, double t);
+
+/// Counters of the transform system for one frame.
+struct TransformStats {
+    int updated = 0;     ///< entities with a world matrix
+    int moved = 0;       ///< of those, moved this frame
+    int nonFinite = 0;   ///< skipped because their matrix is not finite
+};
+
+/// Transform system: world matrices parent-first, world bounds of meshes, moved flags.
+/// An entity whose matrix is not finite is flagged (`WorldTransform::finite = false`) and so
+/// are its descendants; it does not affect other entities.
+TransformStats updateTransforms(World& world);
+
+/// Camera pose and projection for one frame, derived from a camera entity.
+struct CameraView {
+    glm::dvec3 wsPosition{0.0};
+    glm::dmat4 viewFromWorld{1.0};
+    float yfov = 0.8f;
+    float aspect = 1.0f;
+    float znear = 0.05f;
+    float zfar = 500.0f;
+};
+
+/// The view of camera `camera` (an entity with `Camera` and `WorldTransform`) for an image of
+/// the given aspect ratio (used when the camera's own is 0). Scale in the node is ignored.
+[[nodiscard]] CameraView makeCameraView(const World& world, Entity camera, float imageAspect);
+
+/// A camera looking at the scene's bounds from above and to the side; for scenes without one.
+[[nodiscard]] Entity addDefaultCamera(Scene& scene);
+
+/// Loads `SCENE` as the CLI names it: a `.gltf`/`.glb` path or `builtin:NAME`.
+[[nodiscard]] Result<Scene> loadScene(const std::string& spec);
+
+/// Loads a glTF 2.0 file (`.gltf` with embedded or external buffers, or `.glb`).
+[[nodiscard]] Result<Scene> loadGltf(const std::string& path);
+
+/// Names of the built-in procedural scenes.
+[[nodiscard]] std::vector<std::string> builtinSceneNames();
+
+/// Builds a built-in scene by name (without the `builtin:` prefix).
+[[nodiscard]] Result<Scene> makeBuiltinScene(const std::string& name);
+
+}  // namespace shadow

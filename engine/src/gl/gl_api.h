@@ -1,0 +1,115 @@
+// The OpenGL function table.
+//
+// The engine never links libGL or libOSMesa: every GL entry point is resolved at run time from
+// the current context's getProcAddress (OSMesaGetProcAddress, glfwGetProcAddress,
+// eglGetProcAddress, or the game's own). Engine code calls `gl.Clear(...)`.
+// Only core-profile 4.5 functions the engine uses are listed; `loadGl` fails with the name of
+// the first one the context lacks.
+#pragma once
+
+#include <GL/glcorearb.h>
+
+#include <shadow/context.h>
+
+namespace shadow::gpu {
+
+// X(type, name) for every entry point; `name` is the GL name without its `gl` prefix.
+#define SHADOW_GL_FUNCTIONS(X)                                                  \
+    X(PFNGLGETERRORPROC, GetError)                                              \
+    X(PFNGLGETINTEGERVPROC, GetIntegerv)                                        \
+    X(PFNGLGETFLOATVPROC, GetFloatv)                                            \
+    X(PFNGLGETSTRINGPROC, GetString)                                            \
+    X(PFNGLENABLEPROC, Enable)                                                  \
+    X(PFNGLDISABLEPROC, Disable)                                                \
+    X(PFNGLVIEWPORTPROC, Viewport)                                              \
+    X(PFNGLSCISSORPROC, Scissor)                                                \
+    X(PFNGLDEPTHFUNCPROC, DepthFunc)                                            \
+    X(PFNGLDEPTHMASKPROC, DepthMask)                                            \
+    X(PFNGLCOLORMASKPROC, ColorMask)                                            \
+    X(PFNGLCULLFACEPROC, CullFace)                                              \
+    X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                                    \
+    X(PFNGLBLENDFUNCPROC, BlendFunc)                                            \
+    X(PFNGLBLENDEQUATIONPROC, BlendEquation)                                    \
+    X(PFNGLFINISHPROC, Finish)                                                  \
+    X(PFNGLFLUSHPROC, Flush)                                                    \
+    X(PFNGLPIXELSTOREIPROC, PixelStorei)                                        \
+    X(PFNGLREADPIXELSPROC, ReadPixels)                                          \
+    X(PFNGLDRAWELEMENTSPROC, DrawElements)                                      \
+    X(PFNGLDRAWARRAYSPROC, DrawArrays)                                          \
+    X(PFNGLCREATEBUFFERSPROC, CreateBuffers)                                    \
+    X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                                    \
+    X(PFNGLNAMEDBUFFERSTORAGEPROC, NamedBufferStorage)                          \
+    X(PFNGLNAMEDBUFFERSUBDATAPROC, NamedBufferSubData)                          \
+    X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                                  \
+    X(PFNGLBINDBUFFERRANGEPROC, BindBufferRange)                                \
+    X(PFNGLCREATEVERTEXARRAYSPROC, CreateVertexArrays)                          \
+    X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                          \
+    X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                                \
+    X(PFNGLVERTEXARRAYVERTEXBUFFERPROC, VertexArrayVertexBuffer)                \
+    X(PFNGLVERTEXARRAYELEMENTBUFFERPROC, VertexArrayElementBuffer)              \
+    X(PFNGLENABLEVERTEXARRAYATTRIBPROC, EnableVertexArrayAttrib)                \
+    X(PFNGLVERTEXARRAYATTRIBFORMATPROC, VertexArrayAttribFormat)                \
+    X(PFNGLVERTEXARRAYATTRIBBINDINGPROC, VertexArrayAttribBinding)              \
+    X(PFNGLCREATETEXTURESPROC, CreateTextures)                                  \
+    X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                  \
+    X(PFNGLTEXTURESTORAGE2DPROC, TextureStorage2D)                              \
+    X(PFNGLTEXTURESTORAGE3DPROC, TextureStorage3D)                              \
+    X(PFNGLTEXTUREPARAMETERIPROC, TextureParameteri)                            \
+    X(PFNGLTEXTUREPARAMETERFVPROC, TextureParameterfv)                          \
+    X(PFNGLBINDTEXTUREUNITPROC, BindTextureUnit)                                \
+    X(PFNGLGETTEXTURESUBIMAGEPROC, GetTextureSubImage)                          \
+    X(PFNGLCREATEFRAMEBUFFERSPROC, CreateFramebuffers)                          \
+    X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                          \
+    X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                                \
+    X(PFNGLNAMEDFRAMEBUFFERTEXTUREPROC, NamedFramebufferTexture)                \
+    X(PFNGLNAMEDFRAMEBUFFERTEXTURELAYERPROC, NamedFramebufferTextureLayer)      \
+    X(PFNGLNAMEDFRAMEBUFFERDRAWBUFFERPROC, NamedFramebufferDrawBuffer)          \
+    X(PFNGLNAMEDFRAMEBUFFERDRAWBUFFERSPROC, NamedFramebufferDrawBuffers)        \
+    X(PFNGLNAMEDFRAMEBUFFERREADBUFFERPROC, NamedFramebufferReadBuffer)          \
+    X(PFNGLCHECKNAMEDFRAMEBUFFERSTATUSPROC, CheckNamedFramebufferStatus)        \
+    X(PFNGLCLEARNAMEDFRAMEBUFFERFVPROC, ClearNamedFramebufferfv)                \
+    X(PFNGLCREATESHADERPROC, CreateShader)                                      \
+    X(PFNGLSHADERSOURCEPROC, ShaderSource)                                      \
+    X(PFNGLCOMPILESHADERPROC, CompileShader)                                    \
+    X(PFNGLGETSHADERIVPROC, GetShaderiv)                                        \
+    X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)                              \
+    X(PFNGLDELETESHADERPROC, DeleteShader)                                      \
+    X(PFNGLCREATEPROGRAMPROC, CreateProgram)                                    \
+    X(PFNGLATTACHSHADERPROC, AttachShader)                                      \
+    X(PFNGLLINKPROGRAMPROC, LinkProgram)                                        \
+    X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                                      \
+    X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                            \
+    X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                                    \
+    X(PFNGLUSEPROGRAMPROC, UseProgram)                                          \
+    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                          \
+    X(PFNGLPROGRAMUNIFORM1IPROC, ProgramUniform1i)                              \
+    X(PFNGLPROGRAMUNIFORM1IVPROC, ProgramUniform1iv)                            \
+    X(PFNGLPROGRAMUNIFORM1FPROC, ProgramUniform1f)                              \
+    X(PFNGLPROGRAMUNIFORM3FVPROC, ProgramUniform3fv)                            \
+    X(PFNGLPROGRAMUNIFORM4FVPROC, ProgramUniform4fv)                            \
+    X(PFNGLPROGRAMUNIFORMMATRIX4FVPROC, ProgramUniformMatrix4fv)                \
+    X(PFNGLPUSHDEBUGGROUPPROC, PushDebugGroup)                                  \
+    X(PFNGLPOPDEBUGGROUPPROC, PopDebugGroup)                                    \
+    X(PFNGLOBJECTLABELPROC, ObjectLabel)                                        \
+    X(PFNGLFENCESYNCPROC, FenceSync)                                            \
+    X(PFNGLCLIENTWAITSYNCPROC, ClientWaitSync)                                  \
+    X(PFNGLDELETESYNCPROC, DeleteSync)                                          \
+    X(PFNGLCREATEQUERIESPROC, CreateQueries)                                    \
+    X(PFNGLDELETEQUERIESPROC, DeleteQueries)                                    \
+    X(PFNGLBEGINQUERYPROC, BeginQuery)                                          \
+    X(PFNGLENDQUERYPROC, EndQuery)                                              \
+    X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)
+
+/// Resolved GL entry points of the current context.
+struct Api {
+#define SHADOW_GL_MEMBER(type, name) type name = nullptr;
+    SHADOW_GL_FUNCTIONS(SHADOW_GL_MEMBER)
+#undef SHADOW_GL_MEMBER
+};
+
+}  // namespace shadow::gpu
+
+namespace shadow {
+/// The engine's GL table; filled by `loadGl`.
+extern gpu::Api gl;
+}  // namespace shadow
