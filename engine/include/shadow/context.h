@@ -13,9 +13,17 @@
 
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 namespace shadow {
+
+/// A GL error, a shader that failed to compile or link (naming the shader file and line), or an
+/// incomplete framebuffer. Thrown by GL-side calls; the samples turn it into a message.
+class GlError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
 
 /// Resolves one GL entry point by name; returns null when the context lacks it.
 using GlProcLoader = std::function<void*(const char* name)>;

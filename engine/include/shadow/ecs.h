@@ -14,9 +14,10 @@
 //   - `f` may read and write the components it receives;
 //   - `f` may remove components from, or destroy, the entity it is visiting;
 //   - `f` may create entities and emplace components on any entity; such new elements are not
-//     visited by the running iteration;
-//   - `f` must not remove components of the viewed types from *other* entities (asserted in
-//     debug builds through the dense-size check).
+//     visited by the running iteration. Emplacing a component of type T may reallocate T's
+//     storage: references to T components that `f` holds are invalid afterwards;
+//   - `f` must not remove components of the viewed types from *other* entities (iteration
+//     then skips or revisits elements; it does not crash).
 // Iteration runs over the dense array of the smallest viewed pool from back to front, which is
 // what makes removing the visited element safe (swap-and-pop only moves already-visited ones).
 //
@@ -26,6 +27,7 @@
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <memory>
 #include <tuple>
 #include <type_traits>
@@ -104,13 +106,19 @@ public:
         assert(!contains(e));
         const std::uint32_t i = e.index();
         if (i >= sparse_.size()) sparse_.resize(i + 1, kAbsent);
-        sparse_[i] = static_cast<std::uint32_t>(owners_.size());
-        owners_.push_back(e);
+        // Build the component first: if its constructor throws, nothing is recorded.
         if constexpr (std::is_aggregate_v<T>) {
             components_.push_back(T{std::forward<Args>(args)...});
         } else {
             components_.emplace_back(std::forward<Args>(args)...);
         }
+        try {
+            owners_.push_back(e);
+        } catch (...) {
+            components_.pop_back();
+            throw;
+        }
+        sparse_[i] = static_cast<std::uint32_t>(owners_.size() - 1);
         return components_.back();
     }
 
@@ -289,13 +297,13 @@ public:
     template <typename T>
     [[nodiscard]] T& get(Entity e) {
         T* c = tryGet<T>(e);
-        assert(c != nullptr);
+        if (c == nullptr) missingComponent();
         return *c;
     }
     template <typename T>
     [[nodiscard]] const T& get(Entity e) const {
         const T* c = tryGet<T>(e);
-        assert(c != nullptr);
+        if (c == nullptr) missingComponent();
         return *c;
     }
 
@@ -327,6 +335,12 @@ public:
 
 private:
     static constexpr std::uint32_t kRetired = 0xffffffffu;
+
+    /// `get` of a component the entity lacks: a broken invariant of the caller.
+    [[noreturn]] static void missingComponent() {
+        assert(!"World::get: the entity has no such component");
+        std::abort();
+    }
 
     template <typename T>
     [[nodiscard]] bool hasOne(Entity e) const {

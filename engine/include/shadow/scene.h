@@ -72,3 +72,32 @@ struct CameraView {
 [[nodiscard]] Result<Scene> makeBuiltinScene(const std::string& name);
 
 }  // namespace shadow
+
+namespace shadow {
+
+// ---- Building scenes in code (built-in scenes, tests, games) ----
+
+/// An axis-aligned box of the given half extents centred on the origin, flat normals.
+[[nodiscard]] std::shared_ptr<MeshData> makeBoxMesh(const glm::vec3& halfExtents);
+/// A square in the XZ plane (normal +Y), `halfSize` from the centre, `cells` x `cells` quads.
+[[nodiscard]] std::shared_ptr<MeshData> makePlaneMesh(float halfSize, int cells = 1);
+/// A UV sphere with smooth normals.
+[[nodiscard]] std::shared_ptr<MeshData> makeSphereMesh(float radius, int segments = 32, int rings = 16);
+
+/// The rotation that makes a node's -Z point along unit `direction` (robust for straight up/down).
+[[nodiscard]] glm::dquat rotationLookingAlong(const glm::dvec3& direction);
+
+/// Adds a mesh instance with a name, transform and material; returns its entity.
+Entity addMeshInstance(World& world, const std::string& name, std::shared_ptr<const MeshData> mesh,
+                       const Transform& transform, const Material& material = {});
+
+/// Adds a light at `position` shining along `direction`, with `shadow` settings (technique None
+/// adds no `Shadow` component), and appends it to `scene.lights`.
+Entity addLight(Scene& scene, const std::string& name, const Light& light, const Shadow& shadow,
+                const glm::dvec3& position, const glm::dvec3& direction);
+
+/// Adds a camera at `position` looking at `target`, and appends it to `scene.cameras`.
+Entity addCamera(Scene& scene, const std::string& name, const Camera& camera, const glm::dvec3& position,
+                 const glm::dvec3& target);
+
+}  // namespace shadow

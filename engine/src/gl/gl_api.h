@@ -21,6 +21,8 @@ namespace shadow::gpu {
     X(PFNGLGETSTRINGPROC, GetString)                                            \
     X(PFNGLENABLEPROC, Enable)                                                  \
     X(PFNGLDISABLEPROC, Disable)                                                \
+    X(PFNGLENABLEIPROC, Enablei)                                                \
+    X(PFNGLDISABLEIPROC, Disablei)                                              \
     X(PFNGLVIEWPORTPROC, Viewport)                                              \
     X(PFNGLSCISSORPROC, Scissor)                                                \
     X(PFNGLDEPTHFUNCPROC, DepthFunc)                                            \
@@ -58,6 +60,12 @@ namespace shadow::gpu {
     X(PFNGLTEXTUREPARAMETERFVPROC, TextureParameterfv)                          \
     X(PFNGLBINDTEXTUREUNITPROC, BindTextureUnit)                                \
     X(PFNGLGETTEXTURESUBIMAGEPROC, GetTextureSubImage)                          \
+    X(PFNGLCREATESAMPLERSPROC, CreateSamplers)                                  \
+    X(PFNGLDELETESAMPLERSPROC, DeleteSamplers)                                  \
+    X(PFNGLSAMPLERPARAMETERIPROC, SamplerParameteri)                            \
+    X(PFNGLSAMPLERPARAMETERFVPROC, SamplerParameterfv)                          \
+    X(PFNGLBINDSAMPLERPROC, BindSampler)                                        \
+    X(PFNGLCLEARTEXSUBIMAGEPROC, ClearTexSubImage)                              \
     X(PFNGLCREATEFRAMEBUFFERSPROC, CreateFramebuffers)                          \
     X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                          \
     X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                                \
@@ -88,6 +96,7 @@ namespace shadow::gpu {
     X(PFNGLPROGRAMUNIFORM3FVPROC, ProgramUniform3fv)                            \
     X(PFNGLPROGRAMUNIFORM4FVPROC, ProgramUniform4fv)                            \
     X(PFNGLPROGRAMUNIFORMMATRIX4FVPROC, ProgramUniformMatrix4fv)                \
+    X(PFNGLPROGRAMUNIFORMMATRIX3FVPROC, ProgramUniformMatrix3fv)                \
     X(PFNGLPUSHDEBUGGROUPPROC, PushDebugGroup)                                  \
     X(PFNGLPOPDEBUGGROUPPROC, PopDebugGroup)                                    \
     X(PFNGLOBJECTLABELPROC, ObjectLabel)                                        \

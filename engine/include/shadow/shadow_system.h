@@ -1,0 +1,135 @@
+// The shadow subsystem: every shadowed light gets its own depth texture array
+// (directional: cascades as layers; spot: one layer; point: six cube faces).
+//
+// Two phases per frame, after `updateTransforms`:
+//   prepare  (CPU only, testable without GL) decides what this frame needs: which lights are
+//            shadowed and can affect the view, each light's layers and matrices, which casters
+//            fall in each layer's frustum, which layers are dirty, and the array sizes. The
+//            result is a `ShadowFrame`, the hand-off to the GPU phase.
+//   render   draws only the dirty layers, depth only; clears the layers with no caster; leaves
+//            every other layer as last frame left it.
+// A light with no `Shadow` component or technique None gets no map. Settings out of their
+// documented range are clamped and reported in `ShadowFrame::warnings`.
+//
+// What this does not do (yet): no atlas packing across lights, no GPU-driven culling.
+#pragma once
+
+#include <shadow/components.h>
+#include <shadow/scene.h>
+#include <shadow/stats.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace shadow {
+
+class MeshCache;
+
+/// One layer of a light's array as decided by `prepare`.
+struct ShadowLayerPlan {
+    /// World -> light view (m; the light looks down -Z), in double. The GPU gets it made
+    /// relative to the camera.
+    glm::dmat4 lightFromWorld{1.0};
+    glm::dmat4 clipFromLight{1.0};
+    bool orthographic = false;
+    float depthScale = 1.0f;  ///< stored depth = lsDepth / depthScale
+    float depthNear = 0.0f;   ///< near plane (m)
+    float splitFar = 0.0f;    ///< directional: camera distance where the cascade ends (m)
+    /// Casters whose world bounds meet this layer's frustum, in entity order.
+    std::vector<Entity> casters;
+    /// Must be drawn this frame: matrices, caster set, a caster's transform or the allocation
+    /// changed (or caching is off).
+    bool dirty = true;
+};
+
+/// One shadowed light as decided by `prepare`.
+struct ShadowLightPlan {
+    Entity entity;
+    int sceneIndex = -1;  ///< position in `Scene::lights`
+    std::string name;
+    Light light;          ///< with the emitter size clamped
+    Shadow settings;      ///< clamped to the documented ranges
+    int mapSize = 0;      ///< texels per layer edge
+    std::vector<ShadowLayerPlan> layers;
+    bool affectsView = true;
+};
+
+/// The hand-off from `prepare` to `render` and to the renderer.
+struct ShadowFrame {
+    std::vector<ShadowLightPlan> lights;  ///< shadowed lights only, in scene order
+    std::vector<std::string> warnings;
+};
+
+/// Limits of the GL implementation the planner must respect.
+struct ShadowLimits {
+    int maxTextureSize = 16384;
+    int maxArrayLayers = 2048;
+};
+
+/// Clamps `s` (and the emitter size in `light`) to the documented ranges; appends one warning
+/// per clamped field, prefixed by `who`.
+void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, const std::string& who,
+                         std::vector<std::string>& warnings);
+
+/// CPU half of the shadow system. Keeps last frame's decisions to find what changed.
+class ShadowPlanner {
+public:
+    /// Decides this frame's layers. `lights` is the scene's light order.
+    const ShadowFrame& prepare(World& world, const CameraView& camera, const std::vector<Entity>& lights);
+    /// The last prepared frame.
+    [[nodiscard]] const ShadowFrame& frame() const { return frame_; }
+    /// With caching off every layer is dirty every frame (reference for cache tests).
+    void setCaching(bool enabled) { caching_ = enabled; }
+    void setLimits(const ShadowLimits& limits) { limits_ = limits; }
+
+private:
+    struct LayerMemory {
+        glm::dmat4 lightFromWorld{0.0};
+        glm::dmat4 clipFromLight{0.0};
+        std::vector<Entity> casters;
+    };
+    struct LightMemory {
+        int mapSize = 0;
+        std::vector<LayerMemory> layers;
+    };
+    void markDirty(World& world, ShadowLightPlan& plan);
+
+    ShadowFrame frame_;
+    std::vector<std::pair<Entity, LightMemory>> memory_;
+    ShadowLimits limits_;
+    bool caching_ = true;
+};
+
+/// GPU resources of the shadow system (opaque outside the engine).
+struct ShadowGpu;
+
+/// The shadow subsystem: the planner plus each light's depth texture array.
+class ShadowSystem {
+public:
+    ShadowSystem();
+    ~ShadowSystem();
+    ShadowSystem(const ShadowSystem&) = delete;
+    ShadowSystem& operator=(const ShadowSystem&) = delete;
+
+    /// CPU phase (see the header comment). Requires a current GL context only for the limits
+    /// read at construction.
+    const ShadowFrame& prepare(World& world, const CameraView& camera, const std::vector<Entity>& lights);
+    /// GPU phase: draws the dirty layers of the last prepared frame. Adds timings and counters.
+    void render(World& world, MeshCache& meshes, FrameStats& stats);
+
+    [[nodiscard]] const ShadowFrame& frame() const { return planner_.frame(); }
+    [[nodiscard]] ShadowPlanner& planner() { return planner_; }
+
+    /// The GL texture name of the array of frame light `i` (for the renderer and debug views).
+    [[nodiscard]] unsigned textureOf(std::size_t i) const;
+    /// Reads layer `layer` of frame light `i` as linear depth in metres (debug views, tests).
+    [[nodiscard]] std::vector<float> readLayerDepth(std::size_t i, int layer) const;
+
+private:
+    ShadowPlanner planner_;
+    std::unique_ptr<ShadowGpu> gpu_;
+};
+
+}  // namespace shadow

@@ -1,0 +1,101 @@
+// Thin RAII owners of GL objects. Move-only; the destructor deletes the object. Every object
+// gets a label (`Shadow/sun/array`) so GPU debuggers and error messages can name it.
+#pragma once
+
+#include "gl/gl_api.h"
+
+#include <string_view>
+#include <utility>
+
+namespace shadow::gpu {
+
+/// Owns one GL name of kind `Kind`.
+template <typename Kind>
+class Object {
+public:
+    Object() = default;
+    explicit Object(GLuint name) : name_(name) {}
+    ~Object() { reset(); }
+    Object(const Object&) = delete;
+    Object& operator=(const Object&) = delete;
+    Object(Object&& o) noexcept : name_(std::exchange(o.name_, 0)) {}
+    Object& operator=(Object&& o) noexcept {
+        if (this != &o) {
+            reset();
+            name_ = std::exchange(o.name_, 0);
+        }
+        return *this;
+    }
+
+    [[nodiscard]] GLuint get() const { return name_; }
+    explicit operator bool() const { return name_ != 0; }
+    void reset() {
+        if (name_ != 0) Kind::destroy(name_);
+        name_ = 0;
+    }
+    /// Names the object for debuggers (glObjectLabel).
+    void label(std::string_view text) const {
+        if (name_ != 0) {
+            gl.ObjectLabel(Kind::kIdentifier, name_, static_cast<GLsizei>(text.size()), text.data());
+        }
+    }
+
+private:
+    GLuint name_ = 0;
+};
+
+struct BufferKind {
+    static constexpr GLenum kIdentifier = GL_BUFFER;
+    static void destroy(GLuint n) { gl.DeleteBuffers(1, &n); }
+};
+struct TextureKind {
+    static constexpr GLenum kIdentifier = GL_TEXTURE;
+    static void destroy(GLuint n) { gl.DeleteTextures(1, &n); }
+};
+struct FramebufferKind {
+    static constexpr GLenum kIdentifier = GL_FRAMEBUFFER;
+    static void destroy(GLuint n) { gl.DeleteFramebuffers(1, &n); }
+};
+struct VertexArrayKind {
+    static constexpr GLenum kIdentifier = GL_VERTEX_ARRAY;
+    static void destroy(GLuint n) { gl.DeleteVertexArrays(1, &n); }
+};
+struct SamplerKind {
+    static constexpr GLenum kIdentifier = GL_SAMPLER;
+    static void destroy(GLuint n) { gl.DeleteSamplers(1, &n); }
+};
+struct ProgramKind {
+    static constexpr GLenum kIdentifier = GL_PROGRAM;
+    static void destroy(GLuint n) { gl.DeleteProgram(n); }
+};
+
+using Buffer = Object<BufferKind>;
+using Texture = Object<TextureKind>;
+using Framebuffer = Object<FramebufferKind>;
+using VertexArray = Object<VertexArrayKind>;
+using Program = Object<ProgramKind>;
+using Sampler = Object<SamplerKind>;
+
+/// Makes an immutable buffer holding `bytes` bytes of `data` (may be null), labelled.
+Buffer makeBuffer(std::string_view label, GLsizeiptr bytes, const void* data, GLbitfield flags);
+/// Makes a texture of `target` with immutable storage left to the caller, labelled.
+Texture makeTexture(std::string_view label, GLenum target);
+/// Makes a framebuffer, labelled.
+Framebuffer makeFramebuffer(std::string_view label);
+
+/// A debug group around a pass (glPushDebugGroup / glPopDebugGroup), named for captures.
+class DebugGroup {
+public:
+    explicit DebugGroup(std::string_view name) {
+        gl.PushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, static_cast<GLsizei>(name.size()),
+                          name.data());
+    }
+    ~DebugGroup() { gl.PopDebugGroup(); }
+    DebugGroup(const DebugGroup&) = delete;
+    DebugGroup& operator=(const DebugGroup&) = delete;
+};
+
+/// Throws `GlError` naming `where` and the error if the GL error flag is set.
+void checkGlError(std::string_view where);
+
+}  // namespace shadow::gpu

@@ -1,0 +1,131 @@
+#include "gl/program.h"
+
+#include "gl/shader_sources.h"
+
+#include <algorithm>
+#include <regex>
+#include <sstream>
+
+namespace shadow::gpu {
+
+const char* findShaderSource(std::string_view name) {
+    for (const ShaderSource& s : embeddedShaderSources()) {
+        if (name == s.name) return s.text;
+    }
+    return nullptr;
+}
+
+namespace {
+
+constexpr const char* kVersion = "#version 450 core\n";
+
+/// Appends `file` to `out`, replacing each `#include "x"` line by x's expansion.
+void expandInto(const std::string& file, ExpandedSource& out, std::vector<std::string>& stack) {
+    const char* text = findShaderSource(file);
+    if (text == nullptr) {
+        throw GlError("shader file '" + file + "' not found" +
+                      (stack.empty() ? std::string() : " (included from " + stack.back() + ")"));
+    }
+    if (std::find(stack.begin(), stack.end(), file) != stack.end()) {
+        throw GlError("shader include cycle through '" + file + "'");
+    }
+    stack.push_back(file);
+    const auto fileIndex = static_cast<int>(out.files.size());
+    out.files.push_back(file);
+    out.text += "#line 1 " + std::to_string(fileIndex) + "\n";
+
+    std::istringstream lines(text);
+    std::string line;
+    int lineNo = 0;
+    static const std::regex kInclude(R"re(^\s*#\s*include\s*"([^"]+)"\s*$)re");
+    std::smatch m;
+    while (std::getline(lines, line)) {
+        ++lineNo;
+        if (std::regex_match(line, m, kInclude)) {
+            expandInto(m[1].str(), out, stack);
+            out.text += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(fileIndex) + "\n";
+        } else {
+            out.text += line;
+            out.text += '\n';
+        }
+    }
+    stack.pop_back();
+}
+
+GLuint compileStage(GLenum stage, const ExpandedSource& src, const std::string& label) {
+    const GLuint shader = gl.CreateShader(stage);
+    const char* text = src.text.c_str();
+    gl.ShaderSource(shader, 1, &text, nullptr);
+    gl.CompileShader(shader);
+    GLint ok = GL_FALSE;
+    gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (ok == GL_TRUE) return shader;
+    GLint length = 0;
+    gl.GetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+    std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+    gl.GetShaderInfoLog(shader, length, nullptr, log.data());
+    gl.DeleteShader(shader);
+    throw GlError("shader compile failed for " + label + ":\n" + mapShaderLog(log.c_str(), src.files));
+}
+
+}  // namespace
+
+ExpandedSource expandShader(const std::string& file, const std::vector<std::string>& defines) {
+    ExpandedSource out;
+    out.text = kVersion;
+    for (const std::string& d : defines) out.text += "#define " + d + "\n";
+    std::vector<std::string> stack;
+    expandInto(file, out, stack);
+    return out;
+}
+
+std::string mapShaderLog(const std::string& log, const std::vector<std::string>& files) {
+    // Mesa prints "F:L(C): ", NVIDIA "F(L) : ". Both start with the file number.
+    static const std::regex kPrefix(R"((^|\n)(\d+)([:(]))");
+    std::string out;
+    auto begin = std::sregex_iterator(log.begin(), log.end(), kPrefix);
+    std::size_t last = 0;
+    for (auto it = begin; it != std::sregex_iterator(); ++it) {
+        const std::smatch& m = *it;
+        const auto index = static_cast<std::size_t>(std::stoul(m[2].str()));
+        out.append(log, last, static_cast<std::size_t>(m.position(0)) - last);
+        out += m[1].str();
+        out += index < files.size() ? files[index] : m[2].str();
+        out += m[3].str();
+        last = static_cast<std::size_t>(m.position(0) + m.length(0));
+    }
+    out.append(log, last, std::string::npos);
+    return out;
+}
+
+Program buildProgram(const ProgramDesc& desc) {
+    const ExpandedSource vs = expandShader(desc.vertexFile, desc.defines);
+    const ExpandedSource fs = expandShader(desc.fragmentFile, desc.defines);
+    const GLuint v = compileStage(GL_VERTEX_SHADER, vs, desc.label + " (" + desc.vertexFile + ")");
+    GLuint f = 0;
+    try {
+        f = compileStage(GL_FRAGMENT_SHADER, fs, desc.label + " (" + desc.fragmentFile + ")");
+    } catch (...) {
+        gl.DeleteShader(v);
+        throw;
+    }
+    Program program(gl.CreateProgram());
+    gl.AttachShader(program.get(), v);
+    gl.AttachShader(program.get(), f);
+    gl.LinkProgram(program.get());
+    gl.DeleteShader(v);
+    gl.DeleteShader(f);
+    GLint ok = GL_FALSE;
+    gl.GetProgramiv(program.get(), GL_LINK_STATUS, &ok);
+    if (ok != GL_TRUE) {
+        GLint length = 0;
+        gl.GetProgramiv(program.get(), GL_INFO_LOG_LENGTH, &length);
+        std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+        gl.GetProgramInfoLog(program.get(), length, nullptr, log.data());
+        throw GlError("shader link failed for " + desc.label + ":\n" + mapShaderLog(log.c_str(), fs.files));
+    }
+    program.label(desc.label);
+    return program;
+}
+
+}  // namespace shadow::gpu

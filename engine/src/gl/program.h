@@ -1,0 +1,39 @@
+// Shader programs built from the embedded GLSL with `#define` variants.
+//
+// Sources may `#include "file"` other files of shaders/. The builder expands includes and
+// emits `#line N F` directives, F indexing the file table, so that a compiler message such as
+// `0:12(5): error` is reported as `shadow_sampling.glsl:12(5): error`.
+#pragma once
+
+#include "gl/objects.h"
+
+#include <string>
+#include <vector>
+
+namespace shadow::gpu {
+
+/// What to build: a vertex and a fragment shader file of shaders/ and the defines of the variant.
+struct ProgramDesc {
+    std::string label;           ///< object label, e.g. "Main/Lit[PCF,PCSS]"
+    std::string vertexFile;      ///< e.g. "lit.vert.glsl"
+    std::string fragmentFile;    ///< e.g. "lit.frag.glsl"
+    std::vector<std::string> defines;  ///< "NAME" or "NAME VALUE"
+};
+
+/// Compiles and links; throws `GlError` naming the file and line of the first error.
+Program buildProgram(const ProgramDesc& desc);
+
+/// One preprocessed shader stage: the text handed to GL and the file table for messages.
+struct ExpandedSource {
+    std::string text;
+    std::vector<std::string> files;  ///< index = the file number of `#line`
+};
+
+/// Expands `#include`s of `file` below a `#version` line and the defines. Throws `GlError` for a
+/// missing file or an include cycle.
+ExpandedSource expandShader(const std::string& file, const std::vector<std::string>& defines);
+
+/// Rewrites `F:LINE(COL)` prefixes of a compiler log into `name:LINE(COL)`.
+std::string mapShaderLog(const std::string& log, const std::vector<std::string>& files);
+
+}  // namespace shadow::gpu

@@ -1,0 +1,54 @@
+// FrameRunner: the frame in its documented order (design.md, "The frame, as data flows").
+#include <shadow/context.h>
+#include <shadow/renderer.h>
+
+#include <chrono>
+
+namespace shadow {
+namespace {
+double msSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+struct FrameRunner::Impl {
+    ShadowSystem shadows;
+    Renderer renderer;
+    CameraView camera;
+    std::string rendererName = queryGlInfo().renderer;
+};
+
+FrameRunner::FrameRunner() : impl_(std::make_unique<Impl>()) {}
+FrameRunner::~FrameRunner() = default;
+
+ShadowSystem& FrameRunner::shadows() { return impl_->shadows; }
+Renderer& FrameRunner::renderer() { return impl_->renderer; }
+const CameraView& FrameRunner::lastCamera() const { return impl_->camera; }
+
+FrameStats FrameRunner::runFrame(Scene& scene, double t, Entity camera, const RenderOptions& options) {
+    FrameStats stats;
+    stats.renderer = impl_->rendererName;
+    auto t0 = std::chrono::steady_clock::now();
+    animate(scene.world, t);
+    stats.cpuAnimateMs = msSince(t0);
+
+    t0 = std::chrono::steady_clock::now();
+    const TransformStats ts = updateTransforms(scene.world);
+    stats.cpuTransformsMs = msSince(t0);
+    stats.entitiesSkippedNonFinite = ts.nonFinite;
+
+    const float aspect = static_cast<float>(options.width) / static_cast<float>(std::max(options.height, 1));
+    impl_->camera = makeCameraView(scene.world, camera, aspect);
+
+    t0 = std::chrono::steady_clock::now();
+    impl_->shadows.prepare(scene.world, impl_->camera, scene.lights);
+    stats.cpuShadowPrepareMs = msSince(t0);
+
+    t0 = std::chrono::steady_clock::now();
+    impl_->shadows.render(scene.world, impl_->renderer.meshes(), stats);
+    impl_->renderer.render(scene.world, impl_->camera, scene.lights, impl_->shadows, options, stats);
+    stats.cpuRenderSubmitMs = msSince(t0);
+    return stats;
+}
+
+}  // namespace shadow

@@ -1,0 +1,156 @@
+// Built-in procedural scenes, so the main job and the tests need no asset files.
+#include <shadow/scene.h>
+
+#include <functional>
+#include <map>
+
+namespace shadow {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Material matte(float r, float g, float b) {
+    Material m;
+    m.albedo = {r, g, b};
+    m.specular = glm::vec3(0.04f);
+    m.shininess = 24.0f;
+    return m;
+}
+
+Transform at(double x, double y, double z) {
+    Transform t;
+    t.translation = {x, y, z};
+    return t;
+}
+
+/// The animated default scene: a ground, casters of several heights, three moving objects,
+/// and a PCSS sun, a PCF spot light and a hard point light.
+Scene makeDefault() {
+    Scene scene;
+    scene.name = "default";
+    World& w = scene.world;
+    addMeshInstance(w, "ground", makePlaneMesh(12.0f, 8), at(0, 0, 0), matte(0.75f, 0.75f, 0.72f));
+
+    const auto unitBox = makeBoxMesh(glm::vec3(0.5f));
+    struct Pillar {
+        const char* name;
+        double x, z, height;
+    };
+    for (const Pillar& p : {Pillar{"pillar short", -3.0, -2.0, 0.6}, Pillar{"pillar mid", 2.5, -3.0, 1.6},
+                            Pillar{"pillar tall", -1.0, 3.0, 3.2}}) {
+        Transform t = at(p.x, 0.5 * p.height, p.z);
+        t.scale = {0.8, p.height, 0.8};
+        addMeshInstance(w, p.name, unitBox, t, matte(0.8f, 0.55f, 0.35f));
+    }
+    // A plate on thin legs: a blocker well above the ground, for soft penumbrae.
+    Transform plate = at(3.0, 1.4, 2.0);
+    plate.scale = {1.6, 0.08, 1.2};
+    addMeshInstance(w, "table top", unitBox, plate, matte(0.35f, 0.55f, 0.8f));
+
+    // Moving casters.
+    const Entity orbiter = addMeshInstance(w, "orbiting box", makeBoxMesh(glm::vec3(0.4f)), at(0, 0.4, 0),
+                                           matte(0.85f, 0.25f, 0.25f));
+    ProceduralMotion orbit;
+    orbit.kind = ProceduralMotion::Kind::Orbit;
+    orbit.center = {0.0, 0.4, 0.0};
+    orbit.radius = 4.0;
+    orbit.speed = 0.6;
+    w.emplace<ProceduralMotion>(orbiter, orbit);
+
+    const Entity bobber = addMeshInstance(w, "bobbing sphere", makeSphereMesh(0.5f, 32, 16), at(-3.5, 1.5, 1.5),
+                                          matte(0.3f, 0.75f, 0.35f));
+    ProceduralMotion bob;
+    bob.kind = ProceduralMotion::Kind::Bob;
+    bob.center = {-3.5, 1.6, 1.5};
+    bob.axis = {0.0, 1.0, 0.0};
+    bob.amplitude = 0.9;
+    bob.speed = 1.3;
+    w.emplace<ProceduralMotion>(bobber, bob);
+
+    Transform spinT = at(1.0, 1.0, -0.5);
+    spinT.scale = {1.6, 0.3, 0.3};
+    const Entity spinner = addMeshInstance(w, "spinning bar", unitBox, spinT, matte(0.9f, 0.8f, 0.3f));
+    ProceduralMotion spin;
+    spin.kind = ProceduralMotion::Kind::Spin;
+    spin.axis = {0.0, 1.0, 0.0};
+    spin.speed = 0.8;
+    w.emplace<ProceduralMotion>(spinner, spin);
+
+    // Lights of all three types, each with its own technique.
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.color = {1.0f, 0.96f, 0.9f};
+    sun.intensity = 2.5f;
+    sun.angularRadius = 0.02f;
+    Shadow sunShadow;
+    sunShadow.technique = ShadowTechnique::Pcss;
+    sunShadow.mapSize = 1024;
+    addLight(scene, "sun", sun, sunShadow, {0, 20, 0}, glm::normalize(glm::dvec3(0.55, -1.0, -0.35)));
+
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.color = {0.6f, 0.75f, 1.0f};
+    spot.intensity = 60.0f;
+    spot.range = 30.0f;
+    spot.outerConeAngle = static_cast<float>(kPi / 5.0);
+    spot.innerConeAngle = static_cast<float>(kPi / 7.0);
+    spot.radius = 0.15f;
+    Shadow spotShadow;
+    spotShadow.technique = ShadowTechnique::Pcf;
+    spotShadow.mapSize = 1024;
+    spotShadow.pcfRadius = 0.06f;
+    addLight(scene, "spot", spot, spotShadow, {6, 6, 5}, glm::normalize(glm::dvec3(-6, -6, -5)));
+
+    Light bulb;
+    bulb.type = LightType::Point;
+    bulb.color = {1.0f, 0.7f, 0.45f};
+    bulb.intensity = 12.0f;
+    bulb.range = 20.0f;
+    bulb.radius = 0.05f;
+    Shadow bulbShadow;
+    bulbShadow.technique = ShadowTechnique::Hard;
+    bulbShadow.mapSize = 512;
+    addLight(scene, "bulb", bulb, bulbShadow, {-1.5, 2.6, -1.0}, {0, -1, 0});
+
+    Camera camera;
+    camera.yfov = 0.75f;
+    camera.znear = 0.1f;
+    camera.zfar = 100.0f;
+    addCamera(scene, "camera", camera, {9.0, 7.5, 11.0}, {0.0, 0.5, 0.0});
+    // The orbit's period: one loop of the animation.
+    scene.animationDuration = 2.0 * kPi / orbit.speed;
+    return scene;
+}
+
+const std::map<std::string, std::function<Scene()>>& registry() {
+    static const std::map<std::string, std::function<Scene()>> scenes = {
+        {"default", makeDefault},
+    };
+    return scenes;
+}
+
+}  // namespace
+
+std::vector<std::string> builtinSceneNames() {
+    std::vector<std::string> names;
+    for (const auto& [name, make] : registry()) names.push_back(name);
+    return names;
+}
+
+Result<Scene> makeBuiltinScene(const std::string& name) {
+    const auto it = registry().find(name);
+    if (it == registry().end()) {
+        std::string known;
+        for (const std::string& n : builtinSceneNames()) known += (known.empty() ? "" : ", ") + n;
+        return Error{"builtin:" + name + ": no such built-in scene (known: " + known + ")"};
+    }
+    return it->second();
+}
+
+Result<Scene> loadScene(const std::string& spec) {
+    const std::string prefix = "builtin:";
+    if (spec.rfind(prefix, 0) == 0) return makeBuiltinScene(spec.substr(prefix.size()));
+    return loadGltf(spec);
+}
+
+}  // namespace shadow

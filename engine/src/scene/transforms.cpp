@@ -1,0 +1,90 @@
+// The transform system: world matrices parent-first, world bounds, moved flags.
+#include <shadow/scene.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <vector>
+
+namespace shadow {
+namespace {
+
+enum class Visit : std::uint8_t { NotYet, InProgress, Done };
+
+glm::dmat4 localMatrix(const Transform& t) {
+    glm::dquat q = t.rotation;
+    const double len = glm::length(q);
+    q = (len > 0.0 && std::isfinite(len)) ? q / len : glm::dquat(1.0, 0.0, 0.0, 0.0);
+    glm::dmat4 m = glm::mat4_cast(q);
+    m[0] *= t.scale.x;
+    m[1] *= t.scale.y;
+    m[2] *= t.scale.z;
+    m[3] = glm::dvec4(t.translation, 1.0);
+    return m;
+}
+
+struct Resolver {
+    World& world;
+    std::vector<Visit>& state;  // by entity index; reused across frames
+    TransformStats stats;
+
+    /// Resolves `e` and its ancestors. Returns false when `e`'s matrix is not finite.
+    bool resolve(Entity e) {
+        const std::uint32_t i = e.index();
+        if (state[i] == Visit::Done) return world.get<WorldTransform>(e).finite;
+        if (state[i] == Visit::InProgress) return false;  // a parent cycle: no finite answer
+        state[i] = Visit::InProgress;
+        const Transform t = world.get<Transform>(e);
+        glm::dmat4 parentMatrix(1.0);
+        bool parentFinite = true;
+        if (!t.parent.isNull()) {
+            if (world.has<Transform, WorldTransform>(t.parent)) {
+                parentFinite = resolve(t.parent);
+                parentMatrix = world.get<WorldTransform>(t.parent).worldFromLocal;
+            }
+        }
+        WorldTransform& wt = world.get<WorldTransform>(e);
+        const glm::dmat4 next = parentMatrix * localMatrix(t);
+        const bool finite = parentFinite && isFinite(next);
+        wt.movedThisFrame = wt.movedThisFrame || next != wt.worldFromLocal || finite != wt.finite;
+        wt.worldFromLocal = next;
+        wt.finite = finite;
+        state[i] = Visit::Done;
+        ++stats.updated;
+        if (wt.movedThisFrame) ++stats.moved;
+        if (!finite) ++stats.nonFinite;
+        return finite;
+    }
+};
+
+}  // namespace
+
+TransformStats updateTransforms(World& world) {
+    // The moved flag speaks of this frame only.
+    world.view<WorldTransform>().each([](Entity, WorldTransform& wt) { wt.movedThisFrame = false; });
+    // New entities get their components first (moved = true), before any reference is held.
+    std::vector<Entity> missing;
+    world.view<Transform>().each([&](Entity e, Transform&) {
+        if (!world.has<WorldTransform>(e)) missing.push_back(e);
+    });
+    for (Entity e : missing) world.emplace<WorldTransform>(e);  // movedThisFrame starts true
+    missing.clear();
+    world.view<Mesh>().each([&](Entity e, Mesh&) {
+        if (!world.has<WorldBounds>(e)) missing.push_back(e);
+    });
+    for (Entity e : missing) world.emplace<WorldBounds>(e);
+
+    static thread_local std::vector<Visit> state;
+    std::uint32_t maxIndex = 0;
+    world.view<Transform>().each([&](Entity e, Transform&) { maxIndex = std::max(maxIndex, e.index()); });
+    state.assign(static_cast<std::size_t>(maxIndex) + 1, Visit::NotYet);
+    Resolver resolver{world, state, {}};
+    world.view<Transform, WorldTransform>().each([&](Entity e, Transform&, WorldTransform&) { resolver.resolve(e); });
+
+    world.view<Mesh, WorldTransform, WorldBounds>().each([](Entity, Mesh& mesh, WorldTransform& wt, WorldBounds& wb) {
+        wb.box = (wt.finite && mesh.data != nullptr) ? transformBounds(wt.worldFromLocal, mesh.data->bounds) : DAabb{};
+    });
+    return resolver.stats;
+}
+
+}  // namespace shadow

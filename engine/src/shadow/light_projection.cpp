@@ -1,0 +1,234 @@
+#include "shadow/light_projection.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace shadow {
+namespace {
+
+/// Rounds `x` > 0 up to a multiple of a power of two near x/16, so that values differing by
+/// rounding noise (a camera that only rotated) give the same result.
+double quantizeUp(double x) {
+    if (!(x > 0.0)) return 1e-6;
+    const double step = std::exp2(std::floor(std::log2(x)) - 4.0);
+    return std::ceil(x / step) * step;
+}
+
+/// Light-space bounds of a world box under the affine `lightFromWorld`.
+DAabb toLightSpace(const glm::dmat4& lightFromWorld, const DAabb& box) {
+    DAabb out;
+    if (box.empty()) return out;
+    for (int i = 0; i < 8; ++i) out.extend(glm::dvec3(lightFromWorld * glm::dvec4(box.corner(i), 1.0)));
+    return out;
+}
+
+std::vector<Entity> castersIn(const glm::dmat4& clipFromWorld, const SceneGeometry& g) {
+    const Frustum f = Frustum::fromMatrix(clipFromWorld);
+    std::vector<Entity> out;
+    for (const BoundedEntity& c : g.casters) {
+        if (f.intersects(c.bounds)) out.push_back(c.entity);
+    }
+    return out;
+}
+
+/// Distance from `p` to the box (0 inside).
+double distanceToBox(const glm::dvec3& p, const DAabb& box) {
+    const glm::dvec3 q = glm::max(glm::max(box.min - p, p - box.max), glm::dvec3(0.0));
+    return glm::length(q);
+}
+
+double farthestCorner(const glm::dvec3& p, const DAabb& box) {
+    double d = 0.0;
+    if (box.empty()) return d;
+    for (int i = 0; i < 8; ++i) d = std::max(d, glm::distance(p, box.corner(i)));
+    return d;
+}
+
+/// Camera-frustum slice [a, b] (view distance) corners in world space.
+std::array<glm::dvec3, 8> sliceCorners(const CameraView& cam, double a, double b) {
+    const glm::dmat4 worldFromView = glm::inverse(cam.viewFromWorld);
+    const double ty = std::tan(0.5 * static_cast<double>(cam.yfov));
+    const double tx = ty * static_cast<double>(cam.aspect);
+    std::array<glm::dvec3, 8> out{};
+    for (int i = 0; i < 8; ++i) {
+        const double z = (i & 4) ? b : a;
+        const glm::dvec4 v((i & 1 ? 1.0 : -1.0) * tx * z, (i & 2 ? 1.0 : -1.0) * ty * z, -z, 1.0);
+        out[i] = glm::dvec3(worldFromView * v);
+    }
+    return out;
+}
+
+/// Casters' light-space boxes overlapping the light-space column [lo, hi] in x and y.
+void zRangeOfColumn(const glm::dmat4& rotation, const SceneGeometry& g, const glm::dvec2& lo,
+                    const glm::dvec2& hi, double& zTop, double& zBottom) {
+    for (const BoundedEntity& c : g.casters) {
+        const DAabb ls = toLightSpace(rotation, c.bounds);
+        if (ls.max.x < lo.x || ls.min.x > hi.x || ls.max.y < lo.y || ls.min.y > hi.y) continue;
+        zTop = std::max(zTop, ls.max.z);
+        zBottom = std::min(zBottom, ls.min.z);
+    }
+}
+
+std::vector<ShadowLayerPlan> planDirectional(const ShadowLightPlan& plan, const LightPose& pose,
+                                             const CameraView& cam, const SceneGeometry& g) {
+    const Shadow& s = plan.settings;
+    const glm::dmat4 rotation = lookAlong(glm::dvec3(0.0), pose.wsDirection);
+    double distance = s.shadowDistance > 0.0f ? std::min<double>(s.shadowDistance, cam.zfar) : cam.zfar;
+    // No receiver lies beyond the farthest corner of their bounds: do not spread texels there.
+    const double toFarthestReceiver = farthestCorner(cam.wsPosition, g.receivers);
+    distance = std::clamp(toFarthestReceiver, 2.0 * static_cast<double>(cam.znear), distance);
+    const std::vector<double> splits = cascadeSplits(cam.znear, distance, s.cascades, s.cascadeSplitLambda);
+    const DAabb lsReceivers = toLightSpace(rotation, g.receivers);
+
+    std::vector<ShadowLayerPlan> layers;
+    for (int k = 0; k < s.cascades; ++k) {
+        // Bounding sphere of the slice: invariant under camera rotation, so the texel size
+        // stays fixed while the camera turns (no shimmering).
+        const auto corners = sliceCorners(cam, splits[k], splits[k + 1]);
+        glm::dvec3 center(0.0);
+        for (const glm::dvec3& c : corners) center += c / 8.0;
+        double radius = 0.0;
+        for (const glm::dvec3& c : corners) radius = std::max(radius, glm::distance(c, center));
+        radius = quantizeUp(radius);
+        glm::dvec2 lsCenter(rotation * glm::dvec4(center, 1.0));
+        double extent = 2.0 * radius;
+        // When every receiver fits inside the sphere's square, fit the receivers instead:
+        // tighter, and just as stable since they only move when the scene does.
+        const glm::dvec3 recvSize = lsReceivers.extent();
+        if (!lsReceivers.empty() && std::max(recvSize.x, recvSize.y) <= extent) {
+            extent = quantizeUp(std::max({recvSize.x, recvSize.y, 1e-3}));
+            lsCenter = glm::dvec2(lsReceivers.center());
+        }
+        // Snap to whole texels so a moving camera moves the map by whole texels only.
+        const double texel = extent / plan.mapSize;
+        lsCenter = glm::floor(lsCenter / texel) * texel;
+        const glm::dvec2 lo = lsCenter - 0.5 * extent;
+        const glm::dvec2 hi = lsCenter + 0.5 * extent;
+
+        double zTop = lsReceivers.empty() ? 0.0 : lsReceivers.max.z;
+        double zBottom = lsReceivers.empty() ? -1.0 : lsReceivers.min.z;
+        zRangeOfColumn(rotation, g, lo, hi, zTop, zBottom);
+        const double step = std::exp2(std::ceil(std::log2(std::max(zTop - zBottom, 1e-3) / 8.0)));
+        zTop = (std::floor(zTop / step) + 1.0) * step;
+        zBottom = (std::ceil(zBottom / step) - 1.0) * step;
+
+        ShadowLayerPlan layer;
+        layer.orthographic = true;
+        layer.lightFromWorld = glm::translate(glm::dmat4(1.0), -glm::dvec3(lsCenter, zTop)) * rotation;
+        const double depthRange = zTop - zBottom;
+        layer.clipFromLight = glm::ortho(-0.5 * extent, 0.5 * extent, -0.5 * extent, 0.5 * extent, 0.0, depthRange);
+        layer.depthScale = static_cast<float>(depthRange);
+        layer.depthNear = 0.0f;
+        layer.splitFar = static_cast<float>(splits[k + 1]);
+        layer.casters = castersIn(layer.clipFromLight * layer.lightFromWorld, g);
+        layers.push_back(std::move(layer));
+    }
+    return layers;
+}
+
+/// Near and far planes of a perspective light at `position`: far covers the light's range (or
+/// the scene), near sits just before the nearest caster unless the settings fix it.
+void perspectiveRange(const ShadowLightPlan& plan, const glm::dvec3& position, const SceneGeometry& g,
+                      double& near, double& far) {
+    far = plan.light.range > 0.0f ? plan.light.range : farthestCorner(position, g.everything);
+    far = std::max(far, 1e-3);
+    if (plan.settings.nearPlane > 0.0f) {
+        near = std::min<double>(plan.settings.nearPlane, 0.5 * far);
+        return;
+    }
+    double nearest = far;
+    for (const BoundedEntity& c : g.casters) nearest = std::min(nearest, distanceToBox(position, c.bounds));
+    near = std::clamp(0.9 * nearest, far * 1e-6, 0.5 * far);
+}
+
+ShadowLayerPlan perspectiveLayer(const glm::dvec3& position, const glm::dvec3& direction, double tanHalf,
+                                 double near, double far, const SceneGeometry& g) {
+    ShadowLayerPlan layer;
+    layer.orthographic = false;
+    layer.lightFromWorld = lookAlong(position, direction);
+    layer.clipFromLight = glm::perspective(2.0 * std::atan(tanHalf), 1.0, near, far);
+    // Stored depth is the distance from the light; the farthest point of the frustum is a
+    // far-plane corner.
+    layer.depthScale = static_cast<float>(far * std::sqrt(1.0 + 2.0 * tanHalf * tanHalf));
+    layer.depthNear = static_cast<float>(near);
+    layer.casters = castersIn(layer.clipFromLight * layer.lightFromWorld, g);
+    return layer;
+}
+
+}  // namespace
+
+SceneGeometry gatherGeometry(World& world) {
+    SceneGeometry g;
+    world.view<Mesh, WorldTransform, WorldBounds>().each(
+        [&](Entity e, Mesh& mesh, WorldTransform& wt, WorldBounds& wb) {
+            if (!wt.finite || wb.box.empty() || mesh.data == nullptr) return;
+            g.everything.extend(wb.box);
+            if (mesh.castShadows) g.casters.push_back({e, wb.box});
+            if (mesh.receiveShadows) g.receivers.extend(wb.box);
+        });
+    // Views walk back to front; entity order keeps caster lists comparable frame to frame.
+    std::sort(g.casters.begin(), g.casters.end(),
+              [](const BoundedEntity& a, const BoundedEntity& b) { return a.entity < b.entity; });
+    return g;
+}
+
+LightPose lightPose(const WorldTransform& wt) {
+    LightPose pose;
+    pose.wsPosition = glm::dvec3(wt.worldFromLocal[3]);
+    const glm::dvec3 forward = -glm::dvec3(wt.worldFromLocal[2]);
+    const double len = glm::length(forward);
+    if (std::isfinite(len) && len > 1e-12) pose.wsDirection = forward / len;
+    return pose;
+}
+
+glm::dmat4 cameraClipFromWorld(const CameraView& camera) {
+    return glm::perspective(static_cast<double>(camera.yfov), static_cast<double>(camera.aspect),
+                            static_cast<double>(camera.znear), static_cast<double>(camera.zfar)) *
+           camera.viewFromWorld;
+}
+
+bool lightAffectsView(const Light& light, const LightPose& pose, const Frustum& cameraFrustum) {
+    if (light.type == LightType::Directional || light.range <= 0.0f) return true;
+    return cameraFrustum.intersectsSphere(pose.wsPosition, light.range);
+}
+
+std::vector<double> cascadeSplits(double near, double far, int count, double lambda) {
+    std::vector<double> splits(static_cast<std::size_t>(count) + 1);
+    near = std::max(near, 1e-6);
+    far = std::max(far, near * (1.0 + 1e-6));
+    for (int i = 0; i <= count; ++i) {
+        const double f = static_cast<double>(i) / count;
+        const double logSplit = near * std::pow(far / near, f);
+        const double uniformSplit = near + (far - near) * f;
+        splits[static_cast<std::size_t>(i)] = lambda * logSplit + (1.0 - lambda) * uniformSplit;
+    }
+    splits.front() = near;
+    splits.back() = far;
+    return splits;
+}
+
+std::vector<ShadowLayerPlan> planLayers(const ShadowLightPlan& plan, const LightPose& pose,
+                                        const CameraView& camera, const SceneGeometry& geometry) {
+    if (plan.light.type == LightType::Directional) return planDirectional(plan, pose, camera, geometry);
+    double near = 0.0;
+    double far = 0.0;
+    perspectiveRange(plan, pose.wsPosition, geometry, near, far);
+    // Two texels of margin on each side keep bilinear taps at the edge inside the map.
+    const double margin = 1.0 + 4.0 / plan.mapSize;
+    std::vector<ShadowLayerPlan> layers;
+    if (plan.light.type == LightType::Spot) {
+        const double tanHalf = std::tan(static_cast<double>(plan.light.outerConeAngle)) * margin;
+        layers.push_back(perspectiveLayer(pose.wsPosition, pose.wsDirection, tanHalf, near, far, geometry));
+        return layers;
+    }
+    // Point: cube faces +X, -X, +Y, -Y, +Z, -Z, the order the shader's cubeFace() uses.
+    static const glm::dvec3 kFaces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (const glm::dvec3& dir : kFaces) {
+        layers.push_back(perspectiveLayer(pose.wsPosition, dir, margin, near, far, geometry));
+    }
+    return layers;
+}
+
+}  // namespace shadow

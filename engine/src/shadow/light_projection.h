@@ -1,0 +1,56 @@
+// Per-light projections and layer fitting: directional cascades, spot frusta, cube faces.
+// Pure CPU, in double precision.
+#pragma once
+
+#include <shadow/shadow_system.h>
+
+#include "shadow/frustum.h"
+
+#include <vector>
+
+namespace shadow {
+
+/// Largest spot half-angle a shadow map can cover (rad); wider cones are clamped (85 degrees).
+inline constexpr float kMaxSpotHalfAngle = 1.4835298642f;
+
+/// A caster or receiver instance with its world bounds.
+struct BoundedEntity {
+    Entity entity;
+    DAabb bounds;
+};
+
+/// The scene's shadow-relevant geometry for one frame.
+struct SceneGeometry {
+    std::vector<BoundedEntity> casters;  ///< finite meshes with castShadows, entity order
+    DAabb receivers;                     ///< union of finite meshes with receiveShadows
+    DAabb everything;                    ///< union of all finite meshes
+};
+
+/// Collects casters and receivers from meshes with finite world transforms.
+SceneGeometry gatherGeometry(World& world);
+
+/// Where a light is and where it points, in world space.
+struct LightPose {
+    glm::dvec3 wsPosition{0.0};
+    glm::dvec3 wsDirection{0.0, 0.0, -1.0};  ///< unit, the node's -Z
+};
+
+LightPose lightPose(const WorldTransform& wt);
+
+/// The camera's clip-from-world matrix in double (absolute world space).
+glm::dmat4 cameraClipFromWorld(const CameraView& camera);
+
+/// False when the light's range sphere misses the camera frustum (only lights with a range).
+bool lightAffectsView(const Light& light, const LightPose& pose, const Frustum& cameraFrustum);
+
+/// Fits the layers of a light: cascades (directional), one frustum (spot), six faces (point),
+/// each with the casters that fall in it.
+std::vector<ShadowLayerPlan> planLayers(const ShadowLightPlan& plan, const LightPose& pose,
+                                        const CameraView& camera, const SceneGeometry& geometry);
+
+/// Cascade split distances (m from the camera) for `count` cascades over [near, far]:
+/// lambda * logarithmic + (1 - lambda) * uniform (the "practical" scheme). Returns count + 1
+/// values, first = near, last = far.
+std::vector<double> cascadeSplits(double near, double far, int count, double lambda);
+
+}  // namespace shadow

@@ -1,0 +1,192 @@
+// ShadowSystem: the GPU "do" phase. Each shadowed light owns one GL_TEXTURE_2D_ARRAY of
+// GL_DEPTH_COMPONENT32F layers holding linear depth (see shaders/shadow_depth.frag.glsl).
+#include <shadow/context.h>
+#include <shadow/renderer.h>
+#include <shadow/shadow_system.h>
+
+#include "gl/objects.h"
+#include "gl/program.h"
+#include "render/pass_timer.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+
+namespace shadow {
+
+namespace {
+
+/// One shadowed light's depth texture array and the framebuffer its layers are drawn through.
+struct ShadowMapGpu {
+    gpu::Texture array;
+    gpu::Framebuffer framebuffer;
+    int mapSize = 0;
+    int layers = 0;
+};
+
+/// The depth-only program shared by every light type.
+struct DepthProgram {
+    gpu::Program program;
+    GLint lightFromLocal = -1;
+    GLint clipFromLight = -1;
+    GLint depthScale = -1;
+    GLint orthographic = -1;
+
+    DepthProgram() {
+        program = gpu::buildProgram({"Shadow/Depth", "shadow_depth.vert.glsl", "shadow_depth.frag.glsl", {}});
+        lightFromLocal = gl.GetUniformLocation(program.get(), "uLightFromLocal");
+        clipFromLight = gl.GetUniformLocation(program.get(), "uClipFromLight");
+        depthScale = gl.GetUniformLocation(program.get(), "uDepthScale");
+        orthographic = gl.GetUniformLocation(program.get(), "uOrthographic");
+    }
+};
+
+std::unique_ptr<ShadowMapGpu> allocate(const ShadowLightPlan& plan) {
+    auto map = std::make_unique<ShadowMapGpu>();
+    const std::string label = "Shadow/" + plan.name;
+    map->mapSize = plan.mapSize;
+    map->layers = static_cast<int>(plan.layers.size());
+    map->array = gpu::makeTexture(label + "/array", GL_TEXTURE_2D_ARRAY);
+    gl.TextureStorage3D(map->array.get(), 1, GL_DEPTH_COMPONENT32F, map->mapSize, map->mapSize, map->layers);
+    gl.TextureParameteri(map->array.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TextureParameteri(map->array.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    map->framebuffer = gpu::makeFramebuffer(label + "/framebuffer");
+    gl.NamedFramebufferDrawBuffer(map->framebuffer.get(), GL_NONE);
+    gl.NamedFramebufferReadBuffer(map->framebuffer.get(), GL_NONE);
+    gpu::checkGlError("allocating " + label);
+    return map;
+}
+
+std::string layerName(const ShadowLightPlan& plan, std::size_t k) {
+    return "Shadow/" + plan.name + "/layer" + std::to_string(k);
+}
+
+}  // namespace
+
+struct ShadowGpu {
+    DepthProgram depth;
+    bool softwareRenderer = false;
+    /// Maps in the order of the last frame's lights.
+    std::vector<std::pair<Entity, std::unique_ptr<ShadowMapGpu>>> maps;
+};
+
+ShadowSystem::ShadowSystem() : gpu_(std::make_unique<ShadowGpu>()) {
+    const GlInfo info = queryGlInfo();
+    planner_.setLimits({info.maxTextureSize, info.maxArrayLayers});
+    gpu_->softwareRenderer = info.softwareRenderer;
+}
+
+ShadowSystem::~ShadowSystem() = default;
+
+const ShadowFrame& ShadowSystem::prepare(World& world, const CameraView& camera,
+                                         const std::vector<Entity>& lights) {
+    return planner_.prepare(world, camera, lights);
+}
+
+void ShadowSystem::render(World& world, MeshCache& meshes, FrameStats& stats) {
+    const ShadowFrame& frame = planner_.frame();
+    gpu::PassTimer timer(gpu_->softwareRenderer);
+    auto& maps = gpu_->maps;
+    // Keep GPU maps in the order of the frame's lights; drop those of lights that are gone.
+    std::vector<std::pair<Entity, std::unique_ptr<ShadowMapGpu>>> next;
+    next.reserve(frame.lights.size());
+    for (const ShadowLightPlan& plan : frame.lights) {
+        auto it = std::find_if(maps.begin(), maps.end(), [&](const auto& m) { return m.first == plan.entity; });
+        std::unique_ptr<ShadowMapGpu> map = it != maps.end() ? std::move(it->second) : nullptr;
+        if (!map || map->mapSize != plan.mapSize || map->layers != static_cast<int>(plan.layers.size())) {
+            map = allocate(plan);
+        }
+        next.emplace_back(plan.entity, std::move(map));
+    }
+    maps = std::move(next);
+    for (const std::string& w : frame.warnings) stats.warnings.push_back(w);
+
+    DepthProgram& program = gpu_->depth;
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LESS);
+    gl.DepthMask(GL_TRUE);
+    gl.Disable(GL_CULL_FACE);  // open meshes (planes) cast from both sides
+    gl.Disable(GL_BLEND);
+    gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+
+    for (std::size_t i = 0; i < frame.lights.size(); ++i) {
+        const ShadowLightPlan& plan = frame.lights[i];
+        ShadowMapGpu& map = *maps[i].second;
+        LightShadowStats ls;
+        ls.sceneIndex = plan.sceneIndex;
+        ls.name = plan.name;
+        ls.mapSize = plan.mapSize;
+        ls.layers = static_cast<int>(plan.layers.size());
+        ls.affectsView = plan.affectsView;
+        for (std::size_t k = 0; k < plan.layers.size(); ++k) {
+            const ShadowLayerPlan& layer = plan.layers[k];
+            if (!layer.dirty) {
+                ++ls.layersReused;
+                continue;
+            }
+            const float far = 1.0f;
+            if (layer.casters.empty()) {
+                // Nothing casts into this layer: clear it to the far depth, draw nothing.
+                gl.ClearTexSubImage(map.array.get(), 0, 0, 0, static_cast<GLint>(k), map.mapSize, map.mapSize, 1,
+                                    GL_DEPTH_COMPONENT, GL_FLOAT, &far);
+                ++ls.layersCleared;
+                continue;
+            }
+            gpu::ScopedPass pass(timer, layerName(plan, k));
+            gl.NamedFramebufferTextureLayer(map.framebuffer.get(), GL_DEPTH_ATTACHMENT, map.array.get(), 0,
+                                            static_cast<GLint>(k));
+            gl.BindFramebuffer(GL_FRAMEBUFFER, map.framebuffer.get());
+            gl.Viewport(0, 0, map.mapSize, map.mapSize);
+            gl.ClearNamedFramebufferfv(map.framebuffer.get(), GL_DEPTH, 0, &far);
+            gl.UseProgram(program.program.get());
+            gl.ProgramUniformMatrix4fv(program.program.get(), program.clipFromLight, 1, GL_FALSE,
+                                       glm::value_ptr(glm::mat4(layer.clipFromLight)));
+            gl.ProgramUniform1f(program.program.get(), program.depthScale, layer.depthScale);
+            gl.ProgramUniform1i(program.program.get(), program.orthographic, layer.orthographic ? 1 : 0);
+            for (Entity caster : layer.casters) {
+                const Mesh* mesh = world.tryGet<Mesh>(caster);
+                const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
+                if (mesh == nullptr || wt == nullptr || !wt->finite || mesh->data == nullptr) continue;
+                // Composed in double: light-relative float values stay precise far from the origin.
+                const glm::mat4 lightFromLocal(layer.lightFromWorld * wt->worldFromLocal);
+                gl.ProgramUniformMatrix4fv(program.program.get(), program.lightFromLocal, 1, GL_FALSE,
+                                           glm::value_ptr(lightFromLocal));
+                const int count = meshes.bind(mesh->data);
+                gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+                ++ls.castersDrawn;
+            }
+            ++ls.layersDrawn;
+        }
+        stats.shadowLayersDrawn += ls.layersDrawn;
+        stats.shadowLayersReused += ls.layersReused;
+        stats.shadowLayersCleared += ls.layersCleared;
+        stats.shadowDrawCalls += ls.castersDrawn;
+        stats.lights.push_back(std::move(ls));
+    }
+    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl.BindVertexArray(0);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gpu::checkGlError("shadow pass");
+    timer.collect(stats);
+}
+
+unsigned ShadowSystem::textureOf(std::size_t i) const {
+    const auto& maps = gpu_->maps;
+    return i < maps.size() && maps[i].second ? maps[i].second->array.get() : 0u;
+}
+
+std::vector<float> ShadowSystem::readLayerDepth(std::size_t i, int layer) const {
+    const ShadowFrame& frame = planner_.frame();
+    const auto& maps = gpu_->maps;
+    if (i >= maps.size() || i >= frame.lights.size()) return {};
+    const ShadowMapGpu& map = *maps[i].second;
+    if (layer < 0 || layer >= map.layers) return {};
+    std::vector<float> depth(static_cast<std::size_t>(map.mapSize) * map.mapSize);
+    gl.GetTextureSubImage(map.array.get(), 0, 0, 0, layer, map.mapSize, map.mapSize, 1, GL_DEPTH_COMPONENT, GL_FLOAT,
+                          static_cast<GLsizei>(depth.size() * sizeof(float)), depth.data());
+    const float scale = frame.lights[i].layers[static_cast<std::size_t>(layer)].depthScale;
+    for (float& d : depth) d *= scale;
+    return depth;
+}
+
+}  // namespace shadow

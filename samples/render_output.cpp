@@ -1,0 +1,203 @@
+#include "render_output.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <unistd.h>
+
+namespace shadow::samples {
+
+Result<OutputSelection> parseAovList(const std::string& list) {
+    OutputSelection s{false, false, false, false};
+    std::stringstream in(list);
+    std::string item;
+    bool any = false;
+    while (std::getline(in, item, ',')) {
+        if (item == "color") s.color = true;
+        else if (item == "visibility") s.visibility = true;
+        else if (item == "position") s.position = true;
+        else if (item == "depth") s.depth = true;
+        else return Error{"--aov: unknown output '" + item + "' (known: color, visibility, position, depth)"};
+        any = true;
+    }
+    if (!any) return Error{"--aov: empty list (known: color, visibility, position, depth)"};
+    return s;
+}
+
+Status prepareOutputDir(const std::string& dir) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) return Error{"--out " + dir + ": cannot create folder: " + ec.message()};
+    if (!fs::is_directory(dir, ec)) return Error{"--out " + dir + ": not a folder"};
+    const fs::path probe = fs::path(dir) / (".write-probe-" + std::to_string(::getpid()));
+    {
+        std::ofstream out(probe);
+        if (!out || !(out << "probe") || !(out.flush())) {
+            return Error{"--out " + dir + ": folder is not writable"};
+        }
+    }
+    fs::remove(probe, ec);
+    return Ok{};
+}
+
+Status writeFrameImages(const std::string& dir, const FrameImages& images, const OutputSelection& selection,
+                        float exposure) {
+    const std::string base = dir + "/";
+    if (selection.color) {
+        const std::vector<std::uint8_t> srgb = toneMapToSrgb8(images.color, exposure);
+        if (Status s = writePng(base + "color.png", images.color.width, images.color.height, 3, srgb); !s) return s;
+        if (Status s = writeExr(base + "color.exr", images.color, {"R", "G", "B"}, ExrPixelType::Half); !s) return s;
+    }
+    if (selection.position && images.position.width > 0) {
+        if (Status s = writeExr(base + "position.exr", images.position, {"R", "G", "B", "A"}); !s) return s;
+    }
+    if (selection.depth && images.depth.width > 0) {
+        if (Status s = writeExr(base + "depth.exr", images.depth, {"Y"}); !s) return s;
+    }
+    if (selection.visibility) {
+        for (std::size_t i = 0; i < images.visibility.size(); ++i) {
+            const std::string path = base + "visibility_" + std::to_string(i) + ".exr";
+            if (Status s = writeExr(path, images.visibility[i], {"Y"}); !s) return s;
+        }
+    }
+    return Ok{};
+}
+
+Spread spreadOf(std::vector<double> values) {
+    Spread s;
+    if (values.empty()) return s;
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    s.median = n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+    s.min = values.front();
+    s.max = values.back();
+    return s;
+}
+
+const char* lightTypeName(LightType t) {
+    switch (t) {
+        case LightType::Directional: return "directional";
+        case LightType::Spot: return "spot";
+        case LightType::Point: return "point";
+    }
+    return "point";
+}
+
+const char* techniqueName(ShadowTechnique t) {
+    switch (t) {
+        case ShadowTechnique::None: return "none";
+        case ShadowTechnique::Hard: return "hard";
+        case ShadowTechnique::Pcf: return "pcf";
+        case ShadowTechnique::Pcss: return "pcss";
+    }
+    return "none";
+}
+
+Result<ShadowTechnique> parseTechnique(const std::string& name) {
+    for (ShadowTechnique t : {ShadowTechnique::None, ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss}) {
+        if (name == techniqueName(t)) return t;
+    }
+    return Error{"unknown technique '" + name + "' (known: none, hard, pcf, pcss)"};
+}
+
+namespace {
+
+nlohmann::json spreadJson(const std::vector<double>& values) {
+    const Spread s = spreadOf(values);
+    return {{"median", s.median}, {"min", s.min}, {"max", s.max}, {"samples", values.size()}};
+}
+
+nlohmann::json lightsJson(const Scene& scene, const FrameStats& last) {
+    nlohmann::json lights = nlohmann::json::array();
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+        const Entity e = scene.lights[i];
+        const World& w = scene.world;
+        const Name* name = w.tryGet<Name>(e);
+        const Light* light = w.tryGet<Light>(e);
+        const Shadow* shadow = w.tryGet<Shadow>(e);
+        nlohmann::json j;
+        j["index"] = i;
+        j["node"] = name != nullptr ? name->value : "";
+        j["type"] = light != nullptr ? lightTypeName(light->type) : "";
+        j["technique"] = shadow != nullptr ? techniqueName(shadow->technique) : "none";
+        j["visibility"] = "visibility_" + std::to_string(i) + ".exr";
+        for (const LightShadowStats& ls : last.lights) {
+            if (ls.sceneIndex != static_cast<int>(i)) continue;
+            j["shadow"] = {{"mapSize", ls.mapSize},           {"layers", ls.layers},
+                           {"layersDrawn", ls.layersDrawn},   {"layersReused", ls.layersReused},
+                           {"layersCleared", ls.layersCleared}, {"castersDrawn", ls.castersDrawn},
+                           {"affectsView", ls.affectsView}};
+        }
+        lights.push_back(j);
+    }
+    return lights;
+}
+
+}  // namespace
+
+std::string statsJson(const Scene& scene, const std::vector<FrameStats>& frames, int width, int height,
+                      const std::string& technique) {
+    nlohmann::json j;
+    const FrameStats& last = frames.back();
+    j["scene"] = scene.name;
+    j["renderer"] = last.renderer;
+    j["timingMethod"] = last.timingMethod;
+    j["size"] = {width, height};
+    j["frames"] = frames.size();
+    j["techniqueOverride"] = technique;
+    j["lights"] = lightsJson(scene, last);
+
+    // Timings: every frame after the first (warm-up: shader compilation, first uploads).
+    const std::size_t first = frames.size() > 1 ? 1 : 0;
+    std::map<std::string, std::vector<double>> passes;
+    std::vector<double> animate, transforms, prepare, submit, shadowTotal, mainTotal;
+    for (std::size_t f = first; f < frames.size(); ++f) {
+        std::map<std::string, double> perFrame;
+        for (const PassTiming& p : frames[f].passes) perFrame[p.name] += p.ms;
+        for (const auto& [name, ms] : perFrame) passes[name].push_back(ms);
+        animate.push_back(frames[f].cpuAnimateMs);
+        transforms.push_back(frames[f].cpuTransformsMs);
+        prepare.push_back(frames[f].cpuShadowPrepareMs);
+        submit.push_back(frames[f].cpuRenderSubmitMs);
+        shadowTotal.push_back(frames[f].passMs("Shadow/"));
+        mainTotal.push_back(frames[f].passMs("Main/"));
+    }
+    nlohmann::json timings;
+    timings["warmupFramesExcluded"] = first;
+    for (const auto& [name, values] : passes) timings["passes"][name] = spreadJson(values);
+    timings["shadowPassesTotal"] = spreadJson(shadowTotal);
+    timings["mainPassesTotal"] = spreadJson(mainTotal);
+    timings["cpu"] = {{"animate", spreadJson(animate)},
+                      {"transforms", spreadJson(transforms)},
+                      {"shadowPrepare", spreadJson(prepare)},
+                      {"renderSubmit", spreadJson(submit)}};
+    j["timingsMs"] = timings;
+
+    j["counters"] = {{"shadowLayersDrawn", last.shadowLayersDrawn},
+                     {"shadowLayersReused", last.shadowLayersReused},
+                     {"shadowLayersCleared", last.shadowLayersCleared},
+                     {"shadowDrawCalls", last.shadowDrawCalls},
+                     {"mainDrawCalls", last.mainDrawCalls},
+                     {"mainPasses", last.mainPasses},
+                     {"programsCompiled", last.programsCompiled},
+                     {"entitiesSkippedNonFinite", last.entitiesSkippedNonFinite}};
+    nlohmann::json perFrame = nlohmann::json::array();
+    for (const FrameStats& f : frames) {
+        perFrame.push_back({{"shadowLayersDrawn", f.shadowLayersDrawn},
+                            {"shadowLayersReused", f.shadowLayersReused},
+                            {"shadowLayersCleared", f.shadowLayersCleared},
+                            {"programsCompiled", f.programsCompiled},
+                            {"shadowMs", f.passMs("Shadow/")},
+                            {"mainMs", f.passMs("Main/")}});
+    }
+    j["perFrame"] = perFrame;
+    j["warnings"] = last.warnings;
+    return j.dump(2) + "\n";
+}
+
+}  // namespace shadow::samples

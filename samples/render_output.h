@@ -1,0 +1,51 @@
+// Writing a rendered frame to a folder as the CLI contract (design.md) names it, and
+// stats.json. Shared by shadow_render and the benchmarks.
+#pragma once
+
+#include <shadow/renderer.h>
+#include <shadow/result.h>
+#include <shadow/scene.h>
+#include <shadow/stats.h>
+
+#include <string>
+#include <vector>
+
+namespace shadow::samples {
+
+/// Which outputs to write.
+struct OutputSelection {
+    bool color = true;
+    bool visibility = true;
+    bool position = true;
+    bool depth = true;
+    [[nodiscard]] bool anyAov() const { return visibility || position || depth; }
+};
+
+/// Parses "color,visibility,position,depth" (any subset, any order).
+[[nodiscard]] Result<OutputSelection> parseAovList(const std::string& list);
+
+/// Creates `dir` if needed and proves it writable (writes and removes a probe file).
+[[nodiscard]] Status prepareOutputDir(const std::string& dir);
+
+/// Writes color.png, color.exr, visibility_<i>.exr, position.exr, depth.exr as selected.
+[[nodiscard]] Status writeFrameImages(const std::string& dir, const FrameImages& images,
+                                      const OutputSelection& selection, float exposure);
+
+/// Median, minimum and maximum of `values` (0 for none).
+struct Spread {
+    double median = 0.0, min = 0.0, max = 0.0;
+};
+[[nodiscard]] Spread spreadOf(std::vector<double> values);
+
+/// stats.json: the light mapping, the last frame's counters, and per-pass timing spreads over
+/// `frames` (the first, warm-up frame left out when there are more).
+[[nodiscard]] std::string statsJson(const Scene& scene, const std::vector<FrameStats>& frames, int width,
+                                    int height, const std::string& technique);
+
+/// "directional" / "spot" / "point"; "none" / "hard" / "pcf" / "pcss".
+[[nodiscard]] const char* lightTypeName(LightType t);
+[[nodiscard]] const char* techniqueName(ShadowTechnique t);
+/// Parses a technique name; error names the value.
+[[nodiscard]] Result<ShadowTechnique> parseTechnique(const std::string& name);
+
+}  // namespace shadow::samples

@@ -1,0 +1,227 @@
+// shadow_render: renders a scene headless (OSMesa) and writes images, AOVs and stats.json.
+//
+//   shadow_render SCENE [--out DIR] [--size WxH] [--camera N] [--time T] [--frames N --dt S]
+//                 [--technique none|hard|pcf|pcss] [--aov color,visibility,position,depth]
+//                 [--debug NAME] [--debug-light I] [--frame-images] [--no-cache]
+//
+// SCENE is a .gltf/.glb path or builtin:NAME. With --frames N the scene is animated from
+// --time T in steps of --dt S; the images are those of the last frame and the timings in
+// stats.json are medians over the frames after the first. --frame-images also writes every
+// frame's colour as frames/color_<k>.png. Bad input: one message, exit code 2.
+#include <shadow/context.h>
+#include <shadow/renderer.h>
+#include <shadow/scene.h>
+
+#include "render_output.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <regex>
+
+namespace {
+
+using namespace shadow;
+
+constexpr int kExitBadInput = 2;
+constexpr int kExitFailure = 1;
+
+struct Options {
+    std::string scene;
+    std::string out = "out";
+    std::string size = "640x360";
+    int camera = -1;
+    double time = 0.0;
+    int frames = 1;
+    double dt = 1.0 / 30.0;
+    std::string technique;
+    std::string aov = "color,visibility,position,depth";
+    std::string debug;
+    int debugLight = 0;
+    bool frameImages = false;
+    bool noCache = false;
+    float exposure = 1.0f;
+};
+
+int fail(int code, const std::string& message) {
+    std::cerr << "shadow_render: " << message << "\n";
+    return code;
+}
+
+Result<std::pair<int, int>> parseSize(const std::string& text) {
+    static const std::regex kSize(R"((\d{1,5})x(\d{1,5}))");
+    std::smatch m;
+    if (!std::regex_match(text, m, kSize)) return Error{"--size '" + text + "': expected WxH, e.g. 640x360"};
+    const int w = std::stoi(m[1].str());
+    const int h = std::stoi(m[2].str());
+    if (w < 1 || h < 1 || w > 16384 || h > 16384) {
+        return Error{"--size '" + text + "': width and height must be in [1, 16384]"};
+    }
+    return std::make_pair(w, h);
+}
+
+Result<DebugView> parseDebug(const std::string& name) {
+    if (name.empty()) return DebugView::None;
+    if (name == "cascade") return DebugView::Cascade;
+    if (name == "blocker") return DebugView::BlockerDepth;
+    if (name == "penumbra") return DebugView::Penumbra;
+    if (name == "visibility") return DebugView::Visibility;
+    if (name == "shadowmap") return DebugView::None;  // written from the maps themselves
+    return Error{"--debug '" + name + "': unknown view (known: shadowmap, cascade, blocker, penumbra, visibility)"};
+}
+
+/// Writes every layer of every shadow map as linear depth (EXR, metres) and a grey PNG.
+Status writeShadowMaps(const std::string& dir, const ShadowSystem& shadows) {
+    const ShadowFrame& frame = shadows.frame();
+    for (std::size_t i = 0; i < frame.lights.size(); ++i) {
+        const ShadowLightPlan& plan = frame.lights[i];
+        for (std::size_t k = 0; k < plan.layers.size(); ++k) {
+            const std::vector<float> depth = shadows.readLayerDepth(i, static_cast<int>(k));
+            ImageF img = makeImage(plan.mapSize, plan.mapSize, 1);
+            const float scale = plan.layers[k].depthScale;
+            std::vector<std::uint8_t> grey(depth.size());
+            for (int y = 0; y < plan.mapSize; ++y) {
+                for (int x = 0; x < plan.mapSize; ++x) {
+                    // Texture rows start at the bottom; images at the top.
+                    const float d = depth[static_cast<std::size_t>(plan.mapSize - 1 - y) * plan.mapSize + x];
+                    img.at(x, y, 0) = d;
+                    grey[static_cast<std::size_t>(y) * plan.mapSize + x] =
+                        static_cast<std::uint8_t>(std::lround(255.0f * std::clamp(d / scale, 0.0f, 1.0f)));
+                }
+            }
+            const std::string stem = dir + "/shadowmap_" + std::to_string(plan.sceneIndex) + "_layer" + std::to_string(k);
+            if (Status s = writeExr(stem + ".exr", img, {"Y"}); !s) return s;
+            std::vector<std::uint8_t> rgb(grey.size() * 3);
+            for (std::size_t p = 0; p < grey.size(); ++p) rgb[3 * p] = rgb[3 * p + 1] = rgb[3 * p + 2] = grey[p];
+            if (Status s = writePng(stem + ".png", plan.mapSize, plan.mapSize, 3, rgb); !s) return s;
+        }
+    }
+    return Ok{};
+}
+
+int run(const Options& o) {
+    auto size = parseSize(o.size);
+    if (!size) return fail(kExitBadInput, size.error().message);
+    auto selection = samples::parseAovList(o.aov);
+    if (!selection) return fail(kExitBadInput, selection.error().message);
+    auto debug = parseDebug(o.debug);
+    if (!debug) return fail(kExitBadInput, debug.error().message);
+    std::optional<ShadowTechnique> technique;
+    if (!o.technique.empty()) {
+        auto t = samples::parseTechnique(o.technique);
+        if (!t) return fail(kExitBadInput, "--technique: " + t.error().message);
+        technique = *t;
+    }
+    if (!std::isfinite(o.time)) return fail(kExitBadInput, "--time: must be a finite number of seconds");
+    if (!std::isfinite(o.dt)) return fail(kExitBadInput, "--dt: must be a finite number of seconds");
+    if (o.frames < 1 || o.frames > 100000) return fail(kExitBadInput, "--frames: must be in [1, 100000]");
+    // The output folder is checked before any work, so a bad one costs nothing.
+    if (Status s = samples::prepareOutputDir(o.out); !s) return fail(kExitBadInput, s.error().message);
+
+    Result<Scene> loaded = loadScene(o.scene);
+    if (!loaded) return fail(kExitBadInput, loaded.error().message);
+    Scene& scene = *loaded;
+    if (o.debugLight < 0 || (!scene.lights.empty() && o.debugLight >= static_cast<int>(scene.lights.size()))) {
+        return fail(kExitBadInput, "--debug-light " + std::to_string(o.debugLight) + ": the scene has " +
+                                       std::to_string(scene.lights.size()) + " lights");
+    }
+    if (technique) {
+        scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.technique = *technique; });
+    }
+    Entity camera;
+    if (o.camera >= 0) {
+        if (o.camera >= static_cast<int>(scene.cameras.size())) {
+            return fail(kExitBadInput, "--camera " + std::to_string(o.camera) + ": the scene has " +
+                                           std::to_string(scene.cameras.size()) + " cameras");
+        }
+        camera = scene.cameras[static_cast<std::size_t>(o.camera)];
+    } else if (!scene.cameras.empty()) {
+        camera = scene.cameras.front();
+    } else {
+        animate(scene.world, o.time);
+        (void)updateTransforms(scene.world);
+        camera = addDefaultCamera(scene);
+    }
+
+    auto context = createOsMesaContext();
+    if (!context) return fail(kExitFailure, context.error().message);
+
+    RenderOptions options;
+    options.width = size->first;
+    options.height = size->second;
+    options.aovs = selection->anyAov() || *debug == DebugView::Visibility;
+    options.debugView = *debug;
+    options.debugLight = o.debugLight;
+
+    FrameRunner runner;
+    runner.shadows().planner().setCaching(!o.noCache);
+    std::vector<FrameStats> frames;
+    if (o.frameImages) std::filesystem::create_directories(o.out + "/frames");
+    for (int f = 0; f < o.frames; ++f) {
+        const double t = o.time + o.dt * f;
+        frames.push_back(runner.runFrame(scene, t, camera, options));
+        const bool last = f + 1 == o.frames;
+        if (!last && !o.frameImages) continue;
+        FrameImages images = runner.renderer().readback(runner.lastCamera(), frames.back());
+        if (o.frameImages) {
+            char name[64];
+            std::snprintf(name, sizeof(name), "/frames/color_%04d.png", f);
+            const auto srgb = toneMapToSrgb8(images.color, o.exposure);
+            if (Status s = writePng(o.out + name, images.color.width, images.color.height, 3, srgb); !s) {
+                return fail(kExitFailure, s.error().message);
+            }
+        }
+        if (last) {
+            if (Status s = samples::writeFrameImages(o.out, images, *selection, o.exposure); !s) {
+                return fail(kExitFailure, s.error().message);
+            }
+        }
+    }
+    if (o.debug == "shadowmap") {
+        if (Status s = writeShadowMaps(o.out, runner.shadows()); !s) return fail(kExitFailure, s.error().message);
+    }
+    const std::string json = samples::statsJson(scene, frames, options.width, options.height, o.technique);
+    if (Status s = writeTextFileAtomic(o.out + "/stats.json", json); !s) return fail(kExitFailure, s.error().message);
+    for (const std::string& w : frames.back().warnings) std::cerr << "shadow_render: warning: " << w << "\n";
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    CLI::App app{"Renders a scene with per-light shadows, headless, and writes images, AOVs and stats.json."};
+    app.add_option("scene", o.scene, "a .gltf/.glb file or builtin:NAME")->required();
+    app.add_option("--out", o.out, "output folder (created if missing)");
+    app.add_option("--size", o.size, "image size WxH");
+    app.add_option("--camera", o.camera, "index of the scene camera to use (default: the first)");
+    app.add_option("--time", o.time, "animation time of the first frame (s)");
+    app.add_option("--frames", o.frames, "frames to render");
+    app.add_option("--dt", o.dt, "time step between frames (s)");
+    app.add_option("--technique", o.technique, "override every shadowed light: none|hard|pcf|pcss");
+    app.add_option("--aov", o.aov, "outputs: color,visibility,position,depth");
+    app.add_option("--debug", o.debug, "debug view: shadowmap|cascade|blocker|penumbra|visibility");
+    app.add_option("--debug-light", o.debugLight, "scene light index the debug view shows");
+    app.add_option("--exposure", o.exposure, "exposure of color.png");
+    app.add_flag("--frame-images", o.frameImages, "write every frame as frames/color_<k>.png");
+    app.add_flag("--no-cache", o.noCache, "redraw every shadow layer every frame");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::cerr << "shadow_render: " << e.what() << "\n(see shadow_render --help)\n";
+        return kExitBadInput;
+    }
+    try {
+        return run(o);
+    } catch (const GlError& e) {
+        return fail(kExitFailure, std::string("OpenGL: ") + e.what());
+    } catch (const std::exception& e) {
+        return fail(kExitFailure, e.what());
+    }
+}

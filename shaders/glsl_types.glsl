@@ -1,0 +1,9 @@
+// GLSL side of gpu_types.h: the shared struct declarations in GLSL types.
+#include "shared_constants.h"
+#define SG_STRUCT(name) struct name {
+#define SG_END_STRUCT };
+#define SG_VEC3 vec3
+#define SG_MAT4 mat4
+#define SG_FLOAT float
+#define SG_INT int
+#include "gpu_structs.h"

@@ -1,0 +1,45 @@
+// Blinn-Phong shading of one light, without visibility: the second factor of the split
+// L_o ~ [integral of V / integral of 1] * [integral of L_i f_r cos] (the seeds' approximated
+// rendering equation). Intensities follow KHR_lights_punctual: candela for point and spot
+// (inverse-square falloff), lux for directional.
+
+struct Surface {
+    vec3 csPosition;
+    vec3 normal;    // unit, facing the viewer
+    vec3 toViewer;  // unit
+    vec3 albedo;
+    vec3 specular;
+    float shininess;
+};
+
+// Smooth window that brings a light's influence to 0 at `range` (0 = infinite).
+float rangeWindow(float distance, float range) {
+    if (range <= 0.0) return 1.0;
+    float x = clamp(1.0 - pow(distance / range, 4.0), 0.0, 1.0);
+    return x * x;
+}
+
+// Radiance reflected towards the viewer from light L (visibility not included).
+vec3 shadeBlinnPhong(GpuLight L, Surface s) {
+    vec3 toLight;
+    float attenuation = 1.0;
+    if (L.type == SG_LIGHT_DIRECTIONAL) {
+        toLight = -L.wsDirection;
+    } else {
+        vec3 d = L.csPosition - s.csPosition;
+        float dist2 = max(dot(d, d), 1e-8);
+        float dist = sqrt(dist2);
+        toLight = d / dist;
+        attenuation = rangeWindow(dist, L.range) / dist2;
+        if (L.type == SG_LIGHT_SPOT) {
+            float cd = dot(-toLight, L.wsDirection);
+            attenuation *= smoothstep(L.cosOuter, max(L.cosInner, L.cosOuter + 1e-4), cd);
+        }
+    }
+    float nDotL = dot(s.normal, toLight);
+    if (nDotL <= 0.0 || attenuation <= 0.0) return vec3(0.0);
+    vec3 h = normalize(toLight + s.toViewer);
+    float spec = pow(max(dot(s.normal, h), 0.0), s.shininess) * (s.shininess + 8.0) / 8.0;
+    vec3 brdf = s.albedo / 3.14159265 + s.specular * spec / 3.14159265;
+    return L.radiance * attenuation * nDotL * brdf;
+}

@@ -1,0 +1,48 @@
+// Constants shared by the C++ engine and the GLSL shaders: the one source of truth for both.
+// Only #define lines and comments may stand here, since C++ and GLSL both include this file.
+#ifndef SHADOW_SHARED_CONSTANTS_H
+#define SHADOW_SHARED_CONSTANTS_H
+
+// Light types (LightType in components.h, in the same order).
+#define SG_LIGHT_DIRECTIONAL 0
+#define SG_LIGHT_SPOT 1
+#define SG_LIGHT_POINT 2
+
+// Shadow techniques (ShadowTechnique in components.h, in the same order).
+#define SG_TECH_NONE 0
+#define SG_TECH_HARD 1
+#define SG_TECH_PCF 2
+#define SG_TECH_PCSS 3
+
+// Lights shaded by one main pass; more lights are added by further additive passes.
+#define SG_MAX_LIGHTS_PER_PASS 8
+// Layers of one light's shadow-map array: up to 4 cascades, or 6 cube faces.
+#define SG_MAX_CASCADES 4
+#define SG_MAX_LAYERS_PER_LIGHT 6
+// Largest filter tap counts a light may ask for.
+#define SG_MAX_SAMPLES 64
+
+// Buffer binding points.
+#define SG_BINDING_LIGHTS 0
+#define SG_BINDING_LAYERS 1
+
+// Texture units: the comparison sampler of pass slot i is unit SG_UNIT_SHADOW_COMPARE + i, the
+// raw-depth sampler (PCSS blocker search) is unit SG_UNIT_SHADOW_DEPTH + i.
+#define SG_UNIT_SHADOW_COMPARE 0
+#define SG_UNIT_SHADOW_DEPTH 8
+
+// Fragment outputs of the main pass.
+#define SG_OUT_COLOR 0
+#define SG_OUT_POSITION 1
+#define SG_OUT_DEPTH 2
+#define SG_OUT_VISIBILITY0 3
+#define SG_OUT_VISIBILITY1 4
+
+// Debug views of the main pass (--debug NAME).
+#define SG_DEBUG_NONE 0
+#define SG_DEBUG_CASCADE 1
+#define SG_DEBUG_BLOCKER_DEPTH 2
+#define SG_DEBUG_PENUMBRA 3
+#define SG_DEBUG_VISIBILITY 4
+
+#endif
