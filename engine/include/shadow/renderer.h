@@ -82,6 +82,10 @@ public:
     /// Reads back the last frame. `camera` turns camera-relative positions back into world ones.
     [[nodiscard]] FrameImages readback(const CameraView& camera, FrameStats& stats) const;
 
+    /// Copies the last frame's linear colour to the default framebuffer of size `width` x
+    /// `height` (windowed viewers), scaled to fit.
+    void present(int width, int height) const;
+
     [[nodiscard]] MeshCache& meshes();
 
 private:

@@ -76,6 +76,7 @@ namespace shadow::gpu {
     X(PFNGLNAMEDFRAMEBUFFERREADBUFFERPROC, NamedFramebufferReadBuffer)          \
     X(PFNGLCHECKNAMEDFRAMEBUFFERSTATUSPROC, CheckNamedFramebufferStatus)        \
     X(PFNGLCLEARNAMEDFRAMEBUFFERFVPROC, ClearNamedFramebufferfv)                \
+    X(PFNGLBLITNAMEDFRAMEBUFFERPROC, BlitNamedFramebuffer)                      \
     X(PFNGLCREATESHADERPROC, CreateShader)                                      \
     X(PFNGLSHADERSOURCEPROC, ShaderSource)                                      \
     X(PFNGLCOMPILESHADERPROC, CompileShader)                                    \

@@ -404,6 +404,14 @@ void Renderer::render(World& world, const CameraView& camera, const std::vector<
     timer.collect(stats);
 }
 
+void Renderer::present(int width, int height) const {
+    const Targets& t = impl_->targets;
+    gl.NamedFramebufferReadBuffer(t.framebuffer.get(), GL_COLOR_ATTACHMENT0 + SG_OUT_COLOR);
+    gl.BlitNamedFramebuffer(t.framebuffer.get(), 0, 0, 0, t.width, t.height, 0, 0, width, height, GL_COLOR_BUFFER_BIT,
+                            GL_LINEAR);
+    gpu::checkGlError("present");
+}
+
 FrameImages Renderer::readback(const CameraView& camera, FrameStats& stats) const {
     const Impl& r = *impl_;
     const Targets& t = r.targets;

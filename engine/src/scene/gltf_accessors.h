@@ -1,0 +1,39 @@
+// Checked reads of glTF accessors. tinygltf parses the JSON but does not check that an
+// accessor's elements lie inside its bufferView and buffer, nor that component types suit the
+// semantic; every read of binary data in the importer goes through here, and nothing is read
+// before the whole range has been checked.
+//
+// Errors name the use and then the accessor: `meshes[0].primitives[1].indices: accessors[2]:
+// exceeds bufferViews[1]`.
+#pragma once
+
+#include <shadow/math.h>
+#include <shadow/result.h>
+
+#include <tiny_gltf.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace shadow::gltf {
+
+/// Float VEC3 elements (POSITION, NORMAL, translation and scale keys), all finite.
+[[nodiscard]] Result<std::vector<glm::vec3>> readVec3(const tinygltf::Model& model, int accessor,
+                                                      const std::string& where);
+
+/// Float SCALAR elements (animation key times), all finite.
+[[nodiscard]] Result<std::vector<float>> readScalars(const tinygltf::Model& model, int accessor,
+                                                     const std::string& where);
+
+/// VEC4 rotation keys: float, or normalized (u)int8/(u)int16 as the glTF spec allows for
+/// rotation outputs. All finite; not normalised (the animation system does that).
+[[nodiscard]] Result<std::vector<glm::vec4>> readRotations(const tinygltf::Model& model,
+                                                           int accessor, const std::string& where);
+
+/// Triangle indices: UNSIGNED_BYTE/SHORT/INT SCALAR, every value < `vertexCount`.
+[[nodiscard]] Result<std::vector<std::uint32_t>> readIndices(const tinygltf::Model& model,
+                                                             int accessor, std::size_t vertexCount,
+                                                             const std::string& where);
+
+}  // namespace shadow::gltf

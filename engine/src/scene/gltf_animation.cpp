@@ -1,0 +1,135 @@
+#include "scene/gltf_animation.h"
+
+#include "scene/gltf_accessors.h"
+#include "scene/gltf_values.h"
+
+#include <algorithm>
+#include <optional>
+
+namespace shadow::gltf {
+namespace {
+
+using Interpolation = AnimationChannel::Interpolation;
+using Path = AnimationChannel::Path;
+
+std::string indexed(const std::string& array, std::size_t i) {
+    return array + "[" + std::to_string(i) + "]";
+}
+
+std::optional<Path> parsePath(const std::string& path) {
+    if (path == "translation") return Path::Translation;
+    if (path == "rotation") return Path::Rotation;
+    if (path == "scale") return Path::Scale;
+    return std::nullopt;
+}
+
+Result<Interpolation> parseInterpolation(const std::string& name, const std::string& where) {
+    if (name == "LINEAR") return Interpolation::Linear;
+    if (name == "STEP") return Interpolation::Step;
+    if (name == "CUBICSPLINE") return Interpolation::CubicSpline;
+    return elementError(where + ".interpolation", "unknown interpolation \"" + name + "\"");
+}
+
+Result<std::vector<float>> readKeyTimes(const tinygltf::Model& model, int accessor,
+                                        const std::string& where) {
+    auto times = readScalars(model, accessor, where);
+    if (!times) return times.error();
+    if (times->empty()) return elementError(where, "has no keys");
+    for (std::size_t k = 1; k < times->size(); ++k) {
+        if (!((*times)[k] > (*times)[k - 1])) {
+            return elementError(where, "key times not strictly increasing at key " +
+                                           std::to_string(k));
+        }
+    }
+    return times;
+}
+
+/// Output values as vec4 (xyz keys get w = 0).
+Result<std::vector<glm::vec4>> readKeyValues(const tinygltf::Model& model, int accessor, Path path,
+                                             const std::string& where) {
+    if (path == Path::Rotation) return readRotations(model, accessor, where);
+    auto xyz = readVec3(model, accessor, where);
+    if (!xyz) return xyz.error();
+    std::vector<glm::vec4> out(xyz->size());
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::vec4((*xyz)[i], 0.0f);
+    return out;
+}
+
+Result<AnimationChannel> importSampler(const tinygltf::Model& model,
+                                       const tinygltf::AnimationSampler& sampler, Path path,
+                                       const std::string& where) {
+    AnimationChannel channel;
+    channel.path = path;
+    auto interpolation = parseInterpolation(sampler.interpolation, where);
+    if (!interpolation) return interpolation.error();
+    channel.interpolation = *interpolation;
+    auto times = readKeyTimes(model, sampler.input, where + ".input");
+    if (!times) return times.error();
+    channel.times = std::move(*times);
+    auto values = readKeyValues(model, sampler.output, path, where + ".output");
+    if (!values) return values.error();
+    channel.values = std::move(*values);
+    const std::size_t perKey = channel.interpolation == Interpolation::CubicSpline ? 3 : 1;
+    if (channel.values.size() != perKey * channel.times.size()) {
+        return elementError(where + ".output",
+                            "has " + std::to_string(channel.values.size()) + " values for " +
+                                std::to_string(channel.times.size()) + " keys (expected " +
+                                std::to_string(perKey * channel.times.size()) + ")");
+    }
+    return channel;
+}
+
+struct TargetedChannel {
+    std::size_t node = 0;
+    AnimationChannel channel;
+};
+
+/// The usable channels of `animations[index]`; `duration` receives its last key time.
+Result<std::vector<TargetedChannel>> importAnimation(const tinygltf::Model& model,
+                                                     std::size_t index, double& duration) {
+    const tinygltf::Animation& animation = model.animations[index];
+    const std::string where = indexed("animations", index);
+    std::vector<TargetedChannel> out;
+    for (std::size_t c = 0; c < animation.channels.size(); ++c) {
+        const tinygltf::AnimationChannel& channel = animation.channels[c];
+        const std::string channelWhere = where + "." + indexed("channels", c);
+        const std::optional<Path> path = parsePath(channel.target_path);
+        if (!path) continue;
+        if (channel.sampler < 0 ||
+            static_cast<std::size_t>(channel.sampler) >= animation.samplers.size()) {
+            return elementError(channelWhere + ".sampler",
+                                "sampler " + std::to_string(channel.sampler) + " does not exist");
+        }
+        if (channel.target_node < 0 ||
+            static_cast<std::size_t>(channel.target_node) >= model.nodes.size()) {
+            return elementError(channelWhere + ".target.node",
+                                "node " + std::to_string(channel.target_node) + " does not exist");
+        }
+        const auto samplerIndex = static_cast<std::size_t>(channel.sampler);
+        auto sampled = importSampler(model, animation.samplers[samplerIndex], *path,
+                                     where + "." + indexed("samplers", samplerIndex));
+        if (!sampled) return sampled.error();
+        duration = std::max(duration, static_cast<double>(sampled->times.back()));
+        out.push_back({static_cast<std::size_t>(channel.target_node), std::move(*sampled)});
+    }
+    return out;
+}
+
+}  // namespace
+
+Result<std::vector<Animation>> importAnimations(const tinygltf::Model& model) {
+    std::vector<Animation> perNode(model.nodes.size());
+    for (std::size_t a = 0; a < model.animations.size(); ++a) {
+        double duration = 0.0;
+        auto channels = importAnimation(model, a, duration);
+        if (!channels) return channels.error();
+        for (TargetedChannel& targeted : *channels) {
+            Animation& animation = perNode[targeted.node];
+            animation.channels.push_back(std::move(targeted.channel));
+            animation.duration = std::max(animation.duration, duration);
+        }
+    }
+    return perNode;
+}
+
+}  // namespace shadow::gltf

@@ -1,0 +1,52 @@
+// The engine's glTF `extras.shadow` objects, parsed from tinygltf values. Kept apart from the
+// importer so a fuzzer can feed arbitrary JSON values to them directly.
+//
+// Light extras (`KHR_lights_punctual.lights[i].extras.shadow`):
+//   technique        "none" | "hard" | "pcf" | "pcss"        (default "hard")
+//   mapSize, pcfSamples, blockerSamples, cascades             positive integers
+//   radius, angularRadius, constantBias, slopeBias, normalOffset, pcfRadius,
+//   maxFilterTexels, cascadeSplitLambda, shadowDistance, nearPlane
+//                                                             finite numbers >= 0
+// Mesh node extras (`nodes[i].extras.shadow`):
+//   cast, receive                                             booleans (default true)
+//
+// Only type, sign and finiteness are checked here: ranges are clamped (and reported) by the
+// shadow system. Unknown keys are ignored so files can carry settings of newer engines.
+#pragma once
+
+#include <shadow/components.h>
+#include <shadow/result.h>
+
+#include <tiny_gltf.h>
+
+#include <string>
+
+namespace shadow::gltf {
+
+/// What a light's `extras.shadow` says. `radius`/`angularRadius` describe the emitter and go
+/// to `Light`; the rest goes to the `Shadow` component, which a light gets only when
+/// `shadow.technique != None`.
+struct LightShadowExtras {
+    Shadow shadow;
+    float radius = 0.0f;         ///< m, to `Light::radius`
+    float angularRadius = 0.0f;  ///< rad, to `Light::angularRadius`
+};
+
+/// Parses the `shadow` member of a light's `extras`. `extras` is the light's whole `extras`
+/// value (null, or not an object, means "no settings": the defaults, technique Hard);
+/// `where` names the light (`KHR_lights_punctual.lights[1]`) and errors read
+/// `<where>.extras.shadow.<key>: <problem>`.
+[[nodiscard]] Result<LightShadowExtras> parseShadowExtras(const tinygltf::Value& extras,
+                                                          const std::string& where);
+
+/// What a mesh node's `extras.shadow` says.
+struct MeshShadowFlags {
+    bool cast = true;
+    bool receive = true;
+};
+
+/// Parses the `shadow` member of a mesh node's `extras`, as `parseShadowExtras` does.
+[[nodiscard]] Result<MeshShadowFlags> parseMeshShadowExtras(const tinygltf::Value& extras,
+                                                            const std::string& where);
+
+}  // namespace shadow::gltf
