@@ -48,8 +48,8 @@ glm::dquat slerpShortest(glm::dquat a, glm::dquat b, double u) {
     const double s = std::sin(angle);
     const double wa = std::sin((1.0 - u) * angle) / s;
     const double wb = std::sin(u * angle) / s;
-    return glm::normalize(glm::dquat(wa * a.w + wb * b.w, wa * a.x + wb * b.x,
-                                     wa * a.y + wb * b.y, wa * a.z + wb * b.z));
+    return glm::normalize(glm::dquat(wa * a.w + wb * b.w, wa * a.x + wb * b.x, wa * a.y + wb * b.y,
+                                     wa * a.z + wb * b.z));
 }
 
 /// Where the clip time falls: key `k` and the fraction `u` in [0, 1] towards key `k + 1`.
@@ -175,7 +175,8 @@ void animate(World& world, double t) {
     if (!std::isfinite(t) || t < 0.0) t = 0.0;
     world.view<Transform, Animation>().each([t](Entity, Transform& transform, Animation& anim) {
         const double local = clipTime(t, anim.duration);
-        for (const AnimationChannel& channel : anim.channels) applyChannel(channel, local, transform);
+        for (const AnimationChannel& channel : anim.channels)
+            applyChannel(channel, local, transform);
     });
     world.view<Transform, ProceduralMotion>().each(
         [t](Entity, Transform& transform, ProceduralMotion& motion) {

@@ -1,13 +1,12 @@
 #include "scene/gltf_accessors.h"
 
-#include "scene/gltf_values.h"
-
-#include <glm/ext/vector_float1.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <glm/ext/vector_float1.hpp>
 #include <initializer_list>
+
+#include "scene/gltf_values.h"
 
 namespace shadow::gltf {
 namespace {
@@ -45,9 +44,8 @@ bool fits(std::size_t offset, std::size_t stride, std::size_t count, std::size_t
 
 Status checkFormat(const tinygltf::Accessor& a, const Format& format, const std::string& name) {
     const bool typeOk = a.type == format.type;
-    const bool componentOk =
-        std::find(format.componentTypes.begin(), format.componentTypes.end(), a.componentType) !=
-        format.componentTypes.end();
+    const bool componentOk = std::find(format.componentTypes.begin(), format.componentTypes.end(),
+                                       a.componentType) != format.componentTypes.end();
     if (!typeOk || !componentOk) {
         return elementError(name, std::string("must be ") + format.description);
     }
@@ -82,10 +80,9 @@ Result<CheckedSpan> checkedSpan(const tinygltf::Model& model, int index, const F
     }
     CheckedSpan span;
     span.components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
-    const auto elementSize =
-        static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(
-            static_cast<std::uint32_t>(a.componentType))) *
-        static_cast<std::size_t>(span.components);
+    const auto elementSize = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(
+                                 static_cast<std::uint32_t>(a.componentType))) *
+                             static_cast<std::size_t>(span.components);
     span.stride = view.byteStride != 0 ? view.byteStride : elementSize;
     if (span.stride < elementSize) {
         return elementError(name, "byteStride of " + indexed("bufferViews", viewIndex) +
@@ -187,20 +184,21 @@ Result<std::vector<glm::vec4>> readRotations(const tinygltf::Model& model, int a
 
 Result<std::vector<std::uint32_t>> readIndices(const tinygltf::Model& model, int accessor,
                                                std::size_t vertexCount, const std::string& where) {
-    const Format format{{TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
-                        TINYGLTF_TYPE_SCALAR,
-                        "UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT SCALAR"};
+    const Format format{
+        {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+         TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
+        TINYGLTF_TYPE_SCALAR,
+        "UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT SCALAR"};
     auto span = checkedSpan(model, accessor, format, where);
     if (!span) return span.error();
     std::vector<std::uint32_t> out(span->count);
     for (std::size_t i = 0; i < span->count; ++i) {
         const unsigned char* p = span->data + i * span->stride;
-        const std::uint32_t index =
-            span->componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? load<std::uint8_t>(p)
-            : span->componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? load<std::uint16_t>(p)
-                                                                            : load<std::uint32_t>(p);
+        const std::uint32_t index = span->componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE
+                                        ? load<std::uint8_t>(p)
+                                    : span->componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
+                                        ? load<std::uint16_t>(p)
+                                        : load<std::uint32_t>(p);
         if (index >= vertexCount) {
             return elementError(span->name, "index " + std::to_string(index) + " at position " +
                                                 std::to_string(i) + " out of range (" +

@@ -9,7 +9,6 @@
 
 #include <shadow/math.h>
 #include <shadow/result.h>
-
 #include <tiny_gltf.h>
 
 #include <cstdint>

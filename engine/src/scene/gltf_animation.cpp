@@ -1,10 +1,10 @@
 #include "scene/gltf_animation.h"
 
-#include "scene/gltf_accessors.h"
-#include "scene/gltf_values.h"
-
 #include <algorithm>
 #include <optional>
+
+#include "scene/gltf_accessors.h"
+#include "scene/gltf_values.h"
 
 namespace shadow::gltf {
 namespace {
@@ -37,8 +37,8 @@ Result<std::vector<float>> readKeyTimes(const tinygltf::Model& model, int access
     if (times->empty()) return elementError(where, "has no keys");
     for (std::size_t k = 1; k < times->size(); ++k) {
         if (!((*times)[k] > (*times)[k - 1])) {
-            return elementError(where, "key times not strictly increasing at key " +
-                                           std::to_string(k));
+            return elementError(where,
+                                "key times not strictly increasing at key " + std::to_string(k));
         }
     }
     return times;

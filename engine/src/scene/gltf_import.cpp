@@ -18,25 +18,24 @@
 // Not supported (ignored): skins, morph targets, textures (images are never decoded),
 // orthographic cameras (an error when a node uses one), sparse accessors (an error when used).
 #include <shadow/scene.h>
-
-#include "scene/gltf_animation.h"
-#include "scene/gltf_lights.h"
-#include "scene/gltf_mesh.h"
-#include "scene/gltf_values.h"
-#include "scene/shadow_extras.h"
-
 #include <tiny_gltf.h>
-
-#include <glm/gtc/constants.hpp>
-#include <glm/gtx/matrix_decompose.hpp>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/gtx/matrix_decompose.hpp>
 #include <initializer_list>
 #include <optional>
+
+#include "scene/gltf_animation.h"
+#include "scene/gltf_lights.h"
+#include "scene/gltf_mesh.h"
+#include "scene/gltf_values.h"
+#include "scene/shadow_extras.h"
 
 namespace shadow {
 namespace {
@@ -57,7 +56,9 @@ bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int
 
 /// tinygltf's default expands URIs with wordexp(3), a shell-like expansion; URIs are file
 /// names, not shell words, so take them literally.
-std::string literalPath(const std::string& path, void*) { return path; }
+std::string literalPath(const std::string& path, void*) {
+    return path;
+}
 
 /// tinygltf messages end in newlines and may hold several lines; make them one line.
 std::string oneLine(std::string text) {
@@ -113,7 +114,9 @@ Result<tinygltf::Model> readModel(const std::string& path) {
 template <int N>
 Status readNodeArray(const std::vector<double>& values, const std::string& where, double* out) {
     if (values.empty()) return Ok{};
-    if (values.size() != N) return elementError(where, "must have " + std::to_string(N) + " numbers");
+    if (values.size() != N) {
+        return elementError(where, "must have " + std::to_string(N) + " numbers");
+    }
     for (int i = 0; i < N; ++i) {
         if (!std::isfinite(values[static_cast<std::size_t>(i)])) {
             return elementError(where, "not finite");
@@ -139,7 +142,7 @@ glm::dquat unitQuat(double x, double y, double z, double w) {
 /// `Transform` cannot hold) is dropped by the decomposition.
 Result<Transform> decomposeMatrix(const std::vector<double>& values, const std::string& where) {
     glm::dmat4 m(1.0);
-    if (auto st = readNodeArray<16>(values, where, &m[0][0]); !st) return st.error();
+    if (auto st = readNodeArray<16>(values, where, glm::value_ptr(m)); !st) return st.error();
     if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0) {
         return elementError(where, "must be affine (last row 0, 0, 0, 1)");
     }
@@ -161,14 +164,15 @@ Result<Transform> nodeTransform(const tinygltf::Node& node, const std::string& w
     if (!node.matrix.empty()) return decomposeMatrix(node.matrix, where + ".matrix");
     Transform t;
     double rotation[4] = {0.0, 0.0, 0.0, 1.0};
-    if (auto st = readNodeArray<3>(node.translation, where + ".translation", &t.translation[0]);
+    if (auto st = readNodeArray<3>(node.translation, where + ".translation",
+                                   glm::value_ptr(t.translation));
         !st) {
         return st.error();
     }
     if (auto st = readNodeArray<4>(node.rotation, where + ".rotation", rotation); !st) {
         return st.error();
     }
-    if (auto st = readNodeArray<3>(node.scale, where + ".scale", &t.scale[0]); !st) {
+    if (auto st = readNodeArray<3>(node.scale, where + ".scale", glm::value_ptr(t.scale)); !st) {
         return st.error();
     }
     t.rotation = unitQuat(rotation[0], rotation[1], rotation[2], rotation[3]);
@@ -178,8 +182,8 @@ Result<Transform> nodeTransform(const tinygltf::Node& node, const std::string& w
 /// Checks an optional index of a node into one of the model's arrays.
 Status checkReference(int index, std::size_t size, const std::string& where, const char* what) {
     if (index < -1 || (index >= 0 && static_cast<std::size_t>(index) >= size)) {
-        return elementError(where, std::string(what) + " " + std::to_string(index) +
-                                       " does not exist");
+        return elementError(where,
+                            std::string(what) + " " + std::to_string(index) + " does not exist");
     }
     return Ok{};
 }
@@ -312,8 +316,8 @@ Result<Camera> importCamera(const tinygltf::Model& model, std::size_t index) {
     if (!(p.aspectRatio >= 0.0 && std::isfinite(p.aspectRatio))) {
         return elementError(pw + ".aspectRatio", "must be a positive number");
     }
-    return Camera{static_cast<float>(p.yfov), static_cast<float>(p.znear),
-                  static_cast<float>(zfar), static_cast<float>(p.aspectRatio)};
+    return Camera{static_cast<float>(p.yfov), static_cast<float>(p.znear), static_cast<float>(zfar),
+                  static_cast<float>(p.aspectRatio)};
 }
 
 // ---- instantiation ----------------------------------------------------------------------

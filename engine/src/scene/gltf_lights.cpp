@@ -1,9 +1,9 @@
 #include "scene/gltf_lights.h"
 
+#include <glm/gtc/constants.hpp>
+
 #include "scene/gltf_values.h"
 #include "scene/shadow_extras.h"
-
-#include <glm/gtc/constants.hpp>
 
 namespace shadow::gltf {
 namespace {
@@ -109,8 +109,8 @@ Result<std::vector<LightDefinition>> importLights(const tinygltf::Model& model) 
     const std::string where = std::string(kExtension) + ".lights";
     if (!lights->IsArray()) return elementError(where, "must be an array");
     for (std::size_t i = 0; i < lights->ArrayLen(); ++i) {
-        auto light = parseLight(lights->Get(static_cast<int>(i)),
-                                where + "[" + std::to_string(i) + "]");
+        auto light =
+            parseLight(lights->Get(static_cast<int>(i)), where + "[" + std::to_string(i) + "]");
         if (!light) return light.error();
         out.push_back(std::move(*light));
     }

@@ -1,14 +1,14 @@
 #include "scene/gltf_mesh.h"
 
-#include "scene/gltf_accessors.h"
-#include "scene/gltf_values.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <numeric>
 #include <optional>
+
+#include "scene/gltf_accessors.h"
+#include "scene/gltf_values.h"
 
 namespace shadow::gltf {
 namespace {
@@ -56,8 +56,8 @@ Status readTriangleIndices(const tinygltf::Model& model, const tinygltf::Primiti
         std::iota(mesh.indices.begin(), mesh.indices.end(), std::uint32_t{0});
     }
     if (mesh.indices.size() % 3 != 0) {
-        return elementError(where, std::to_string(mesh.indices.size()) +
-                                       " vertices do not make whole triangles");
+        return elementError(
+            where, std::to_string(mesh.indices.size()) + " vertices do not make whole triangles");
     }
     return Ok{};
 }
@@ -102,7 +102,8 @@ Result<glm::vec3> readBaseColor(const tinygltf::PbrMetallicRoughness& pbr,
     if (f.size() != 4) return elementError(where, "must have 4 numbers");
     glm::vec3 rgb;
     for (int c = 0; c < 3; ++c) {
-        if (!std::isfinite(f[static_cast<std::size_t>(c)])) return elementError(where, "not finite");
+        if (!std::isfinite(f[static_cast<std::size_t>(c)]))
+            return elementError(where, "not finite");
         rgb[c] = static_cast<float>(std::clamp(f[static_cast<std::size_t>(c)], 0.0, 1.0));
     }
     return rgb;

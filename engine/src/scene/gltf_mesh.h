@@ -3,7 +3,6 @@
 
 #include <shadow/components.h>
 #include <shadow/result.h>
-
 #include <tiny_gltf.h>
 
 #include <memory>

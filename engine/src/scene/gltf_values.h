@@ -5,7 +5,6 @@
 #pragma once
 
 #include <shadow/result.h>
-
 #include <tiny_gltf.h>
 
 #include <string>

@@ -1,8 +1,8 @@
 #include "scene/shadow_extras.h"
 
-#include "scene/gltf_values.h"
-
 #include <array>
+
+#include "scene/gltf_values.h"
 
 namespace shadow::gltf {
 namespace {
@@ -29,8 +29,8 @@ Result<ShadowTechnique> parseTechnique(const tinygltf::Value& v, const std::stri
     if (*name == "hard") return ShadowTechnique::Hard;
     if (*name == "pcf") return ShadowTechnique::Pcf;
     if (*name == "pcss") return ShadowTechnique::Pcss;
-    return elementError(where, "unknown technique \"" + *name +
-                                   "\" (expected none, hard, pcf or pcss)");
+    return elementError(where,
+                        "unknown technique \"" + *name + "\" (expected none, hard, pcf or pcss)");
 }
 
 template <typename Field>

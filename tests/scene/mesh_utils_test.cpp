@@ -1,0 +1,89 @@
+// Tests of computeBounds and makeFlatNormals (engine/src/scene/mesh_utils.cpp).
+#include <gtest/gtest.h>
+#include <shadow/components.h>
+
+#include <cmath>
+#include <limits>
+
+namespace shadow {
+namespace {
+
+/// A unit quad in the XZ plane as two counter-clockwise triangles seen from +Y, sharing
+/// vertices 0 and 2, plus a tilted triangle facing +Z.
+MeshData quadAndWall() {
+    MeshData mesh;
+    mesh.positions = {{0, 0, 0},  {0, 0, 1},  {1, 0, 1}, {1, 0, 0},
+                      {0, 0, -2}, {1, 0, -2}, {0, 1, -2}};
+    mesh.indices = {0, 1, 2, 0, 2, 3, 4, 5, 6};
+    return mesh;
+}
+
+TEST(MeshUtils, ComputeBoundsCoversEveryPosition) {
+    MeshData mesh = quadAndWall();
+    computeBounds(mesh);
+    EXPECT_EQ(mesh.bounds.min, glm::vec3(0, 0, -2));
+    EXPECT_EQ(mesh.bounds.max, glm::vec3(1, 1, 1));
+}
+
+TEST(MeshUtils, ComputeBoundsOfNoPositionsIsEmpty) {
+    MeshData mesh;
+    mesh.bounds.extend(glm::vec3(1.0f));
+    computeBounds(mesh);
+    EXPECT_TRUE(mesh.bounds.empty());
+}
+
+TEST(MeshUtils, ComputeBoundsSkipsNonFinitePositions) {
+    MeshData mesh;
+    mesh.positions = {{1, 2, 3},
+                      {std::numeric_limits<float>::quiet_NaN(), 0, 0},
+                      {std::numeric_limits<float>::infinity(), 0, 0}};
+    computeBounds(mesh);
+    EXPECT_EQ(mesh.bounds.min, glm::vec3(1, 2, 3));
+    EXPECT_EQ(mesh.bounds.max, glm::vec3(1, 2, 3));
+}
+
+TEST(MeshUtils, FlatNormalsGiveEachTriangleItsOwnVertices) {
+    MeshData mesh = quadAndWall();
+    makeFlatNormals(mesh);
+    ASSERT_EQ(mesh.positions.size(), 9u);
+    ASSERT_EQ(mesh.normals.size(), 9u);
+    for (std::uint32_t i = 0; i < 9; ++i) EXPECT_EQ(mesh.indices[i], i);
+    for (int i = 0; i < 6; ++i)
+        EXPECT_EQ(mesh.normals[static_cast<std::size_t>(i)], glm::vec3(0, 1, 0));
+    for (int i = 6; i < 9; ++i)
+        EXPECT_EQ(mesh.normals[static_cast<std::size_t>(i)], glm::vec3(0, 0, 1));
+    EXPECT_EQ(mesh.positions[3], glm::vec3(0, 0, 0));  // second triangle starts at old vertex 0
+    EXPECT_EQ(mesh.positions[5], glm::vec3(1, 0, 0));
+    EXPECT_EQ(mesh.bounds.min, glm::vec3(0, 0, -2));
+    EXPECT_EQ(mesh.bounds.max, glm::vec3(1, 1, 1));
+}
+
+TEST(MeshUtils, FlatNormalsOfTinyTriangleAreUnit) {
+    MeshData mesh;
+    mesh.positions = {
+        {0, 0, 0}, {1e-20f, 0, 0}, {0, 1e-20f, 0}};  // cross product underflows in float
+    mesh.indices = {0, 1, 2};
+    makeFlatNormals(mesh);
+    EXPECT_NEAR(mesh.normals[0].z, 1.0f, 1e-6f);
+}
+
+TEST(MeshUtils, DegenerateTriangleGetsAUnitNormal) {
+    MeshData mesh;
+    mesh.positions = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}};
+    mesh.indices = {0, 1, 2};
+    makeFlatNormals(mesh);
+    ASSERT_EQ(mesh.normals.size(), 3u);
+    EXPECT_NEAR(glm::length(mesh.normals[0]), 1.0f, 1e-6f);
+}
+
+TEST(MeshUtils, FlatNormalsDropTrianglesWithBadIndices) {
+    MeshData mesh = quadAndWall();
+    mesh.indices = {0, 1, 2, 0, 2, 99, 4, 5, 6, 1};  // one bad triangle, one stray index
+    makeFlatNormals(mesh);
+    EXPECT_EQ(mesh.positions.size(), 6u);
+    EXPECT_EQ(mesh.indices.size(), 6u);
+    EXPECT_EQ(mesh.normals[3], glm::vec3(0, 0, 1));
+}
+
+}  // namespace
+}  // namespace shadow
