@@ -103,7 +103,9 @@ float texelMetresAt(GpuLight L, int layer, vec3 csPoint) {
     return scale * max(axial, 0.0);
 }
 
-Receiver makeReceiver(GpuLight L, vec3 csPosition, vec3 wsNormal, float viewDistance) {
+// The receiver for `layer` of a directional light's cascades, or, with layer < 0, for the
+// layer the position selects (cube face, or the cascade of `viewDistance`).
+Receiver makeReceiver(GpuLight L, vec3 csPosition, vec3 wsNormal, float viewDistance, int layer) {
     Receiver r;
     vec3 toLight = L.type == SG_LIGHT_DIRECTIONAL ? -L.wsDirection
                                                   : normalize(L.csPosition - csPosition);
@@ -111,12 +113,13 @@ Receiver makeReceiver(GpuLight L, vec3 csPosition, vec3 wsNormal, float viewDist
     float sinTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0));
     r.slope = min(sinTheta / max(abs(cosTheta), 1e-4), kMaxSlope);
 
-    int layer = selectLayer(L, csPosition, viewDistance);
+    bool chosen = layer >= 0;
+    if (!chosen) layer = selectLayer(L, csPosition, viewDistance);
     float texel = texelMetresAt(L, layer, csPosition);
     // Normal offset: move along the normal by whole texel footprints, more as the light grazes.
     r.csPosition = csPosition + wsNormal * (L.normalOffset * texel * sinTheta);
     r.toLight = L.type == SG_LIGHT_DIRECTIONAL ? toLight : normalize(L.csPosition - r.csPosition);
-    r.layer = selectLayer(L, r.csPosition, viewDistance);
+    r.layer = chosen ? layer : selectLayer(L, r.csPosition, viewDistance);
     r.texelMetres = texelMetresAt(L, r.layer, r.csPosition);
     r.depthBias = L.constantBias + L.slopeBias * r.texelMetres * r.slope;
 
@@ -230,11 +233,7 @@ float pcssVisibility(int slot, GpuLight L, Receiver r) {
 }
 #endif
 
-// Visibility in [0, 1] of light `L` (bound to pass slot `slot`) at a receiver point.
-float shadowVisibility(int slot, GpuLight L, vec3 csPosition, vec3 wsNormal, float viewDistance) {
-    if (L.technique == SG_TECH_NONE) return 1.0;
-    Receiver r = makeReceiver(L, csPosition, wsNormal, viewDistance);
-    gDebugCascade = r.layer;
+float techniqueVisibility(int slot, GpuLight L, Receiver r) {
     float v = 1.0;
 #ifdef SG_TECH_HARD_ENABLED
     if (L.technique == SG_TECH_HARD) v = hardVisibility(slot, L, r);
@@ -248,5 +247,26 @@ float shadowVisibility(int slot, GpuLight L, vec3 csPosition, vec3 wsNormal, flo
 #ifdef SG_TECH_PCSS_ENABLED
     if (L.technique == SG_TECH_PCSS) v = pcssVisibility(slot, L, r);
 #endif
+    return v;
+}
+
+// Visibility in [0, 1] of light `L` (bound to pass slot `slot`) at a receiver point. Near the
+// far end of a cascade the next cascade is blended in over the last `cascadeBlend` fraction
+// of its range, so cascade borders do not show as seams.
+float shadowVisibility(int slot, GpuLight L, vec3 csPosition, vec3 wsNormal, float viewDistance) {
+    if (L.technique == SG_TECH_NONE) return 1.0;
+    Receiver r = makeReceiver(L, csPosition, wsNormal, viewDistance, -1);
+    gDebugCascade = r.layer;
+    float v = techniqueVisibility(slot, L, r);
+    if (L.type == SG_LIGHT_DIRECTIONAL && r.layer + 1 < L.layerCount && L.cascadeBlend > 0.0) {
+        float end = uLayers[L.firstLayer + r.layer].splitFar;
+        float begin = r.layer > 0 ? uLayers[L.firstLayer + r.layer - 1].splitFar : 0.0;
+        float band = L.cascadeBlend * (end - begin);
+        float w = clamp((viewDistance - (end - band)) / max(band, 1e-6), 0.0, 1.0);
+        if (w > 0.0) {
+            Receiver next = makeReceiver(L, csPosition, wsNormal, viewDistance, r.layer + 1);
+            v = mix(v, techniqueVisibility(slot, L, next), w);
+        }
+    }
     return clamp(v, 0.0, 1.0);
 }

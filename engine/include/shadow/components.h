@@ -126,6 +126,9 @@ struct Shadow {
     int cascades = 1;
     /// Directional: blend between uniform (0) and logarithmic (1) cascade splits, [0, 1].
     float cascadeSplitLambda = 0.75f;
+    /// Directional: fraction of each cascade's depth range, at its far end, over which the
+    /// next cascade is blended in, [0, 0.5]. Default 0.1.
+    float cascadeBlend = 0.1f;
     /// Directional: how far from the camera shadows are drawn (m), 0 = the camera's far plane.
     float shadowDistance = 0.0f;
     /// Spot/point: near plane of the shadow projection (m), (0, range). 0 = automatic.

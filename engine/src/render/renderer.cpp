@@ -160,7 +160,7 @@ void packShadow(const ShadowLightPlan& plan, const glm::dvec3& camera, gpu::GpuL
     g.maxFilterTexels = s.maxFilterTexels;
     g.mapSize = static_cast<float>(plan.mapSize);
     g.firstLayer = static_cast<int>(layers.size());
-    g.cascadeBlend = 0.0f;
+    g.cascadeBlend = s.cascadeBlend;
     const glm::dmat4 worldFromCs = glm::translate(glm::dmat4(1.0), camera);
     for (const ShadowLayerPlan& layer : plan.layers) {
         gpu::GpuShadowLayer l{};

@@ -85,6 +85,7 @@ Scene makeDefault() {
     Shadow sunShadow;
     sunShadow.technique = ShadowTechnique::Pcss;
     sunShadow.mapSize = 1024;
+    sunShadow.cascades = 3;
     addLight(scene, "sun", sun, sunShadow, {0, 20, 0}, glm::normalize(glm::dvec3(0.55, -1.0, -0.35)));
 
     Light spot;

@@ -71,7 +71,7 @@ Result<LightShadowExtras> parseShadowExtras(const tinygltf::Value& extras,
                                          {"pcfSamples", &s.pcfSamples},
                                          {"blockerSamples", &s.blockerSamples},
                                          {"cascades", &s.cascades}}};
-    const std::array<Knob<float>, 10> floats{{{"radius", &out.radius},
+    const std::array<Knob<float>, 11> floats{{{"radius", &out.radius},
                                               {"angularRadius", &out.angularRadius},
                                               {"constantBias", &s.constantBias},
                                               {"slopeBias", &s.slopeBias},
@@ -79,6 +79,7 @@ Result<LightShadowExtras> parseShadowExtras(const tinygltf::Value& extras,
                                               {"pcfRadius", &s.pcfRadius},
                                               {"maxFilterTexels", &s.maxFilterTexels},
                                               {"cascadeSplitLambda", &s.cascadeSplitLambda},
+                                              {"cascadeBlend", &s.cascadeBlend},
                                               {"shadowDistance", &s.shadowDistance},
                                               {"nearPlane", &s.nearPlane}}};
     if (auto st = readKnobs(*object, ints, readPositiveInt); !st) return st.error();

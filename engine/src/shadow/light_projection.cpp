@@ -79,7 +79,10 @@ std::vector<ShadowLayerPlan> planDirectional(const ShadowLightPlan& plan, const 
     // No receiver lies beyond the farthest corner of their bounds: do not spread texels there.
     const double toFarthestReceiver = farthestCorner(cam.wsPosition, g.receivers);
     distance = std::clamp(toFarthestReceiver, 2.0 * static_cast<double>(cam.znear), distance);
-    const std::vector<double> splits = cascadeSplits(cam.znear, distance, s.cascades, s.cascadeSplitLambda);
+    // Nor nearer than the nearest receiver: cascades start where shadows can first be seen.
+    const double nearest = std::clamp(distanceToBox(cam.wsPosition, g.receivers), static_cast<double>(cam.znear),
+                                      0.5 * distance);
+    const std::vector<double> splits = cascadeSplits(nearest, distance, s.cascades, s.cascadeSplitLambda);
     const DAabb lsReceivers = toLightSpace(rotation, g.receivers);
 
     std::vector<ShadowLayerPlan> layers;

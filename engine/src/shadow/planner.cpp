@@ -48,6 +48,7 @@ void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, co
     clampField(s.maxFilterTexels, 1.0f, 256.0f, who, "maxFilterTexels", warnings);
     clampField(s.cascades, 1, 4, who, "cascades", warnings);
     clampField(s.cascadeSplitLambda, 0.0f, 1.0f, who, "cascadeSplitLambda", warnings);
+    clampField(s.cascadeBlend, 0.0f, 0.5f, who, "cascadeBlend", warnings);
     clampField(s.shadowDistance, 0.0f, 1e7f, who, "shadowDistance", warnings);
     clampField(s.nearPlane, 0.0f, 1e7f, who, "nearPlane", warnings);
     clampField(light.radius, 0.0f, 1e3f, who, "radius", warnings);
