@@ -34,7 +34,7 @@ struct Options {
     std::string scene;
     std::string out = "out";
     std::string size = "640x360";
-    int camera = -1;
+    std::optional<int> camera;
     double time = 0.0;
     int frames = 1;
     double dt = 1.0 / 30.0;
@@ -119,8 +119,7 @@ int run(const Options& o) {
     if (!std::isfinite(o.time)) return fail(kExitBadInput, "--time: must be a finite number of seconds");
     if (!std::isfinite(o.dt)) return fail(kExitBadInput, "--dt: must be a finite number of seconds");
     if (o.frames < 1 || o.frames > 100000) return fail(kExitBadInput, "--frames: must be in [1, 100000]");
-    // The output folder is checked before any work, so a bad one costs nothing.
-    if (Status s = samples::prepareOutputDir(o.out); !s) return fail(kExitBadInput, s.error().message);
+    if (o.camera && *o.camera < 0) return fail(kExitBadInput, "--camera " + std::to_string(*o.camera) + ": must be >= 0");
 
     Result<Scene> loaded = loadScene(o.scene);
     if (!loaded) return fail(kExitBadInput, loaded.error().message);
@@ -133,12 +132,12 @@ int run(const Options& o) {
         scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.technique = *technique; });
     }
     Entity camera;
-    if (o.camera >= 0) {
-        if (o.camera >= static_cast<int>(scene.cameras.size())) {
-            return fail(kExitBadInput, "--camera " + std::to_string(o.camera) + ": the scene has " +
+    if (o.camera) {
+        if (*o.camera >= static_cast<int>(scene.cameras.size())) {
+            return fail(kExitBadInput, "--camera " + std::to_string(*o.camera) + ": the scene has " +
                                            std::to_string(scene.cameras.size()) + " cameras");
         }
-        camera = scene.cameras[static_cast<std::size_t>(o.camera)];
+        camera = scene.cameras[static_cast<std::size_t>(*o.camera)];
     } else if (!scene.cameras.empty()) {
         camera = scene.cameras.front();
     } else {
@@ -146,6 +145,10 @@ int run(const Options& o) {
         (void)updateTransforms(scene.world);
         camera = addDefaultCamera(scene);
     }
+
+    // Input is valid: now the output folder, checked before any rendering so a bad one costs
+    // nothing, and created only for input that will be rendered.
+    if (Status s = samples::prepareOutputDir(o.out); !s) return fail(kExitBadInput, s.error().message);
 
     auto context = createOsMesaContext();
     if (!context) return fail(kExitFailure, context.error().message);

@@ -131,27 +131,39 @@ std::vector<ShadowLayerPlan> planDirectional(const ShadowLightPlan& plan, const 
     return layers;
 }
 
-/// Near and far planes of a perspective light at `position`: far covers the light's range (or
-/// the scene), near sits just before the nearest caster unless the settings fix it.
-void perspectiveRange(const ShadowLightPlan& plan, const glm::dvec3& position, const SceneGeometry& g,
-                      double& near, double& far) {
-    far = plan.light.range > 0.0f ? plan.light.range : farthestCorner(position, g.everything);
-    far = std::max(far, 1e-3);
-    if (plan.settings.nearPlane > 0.0f) {
-        near = std::min<double>(plan.settings.nearPlane, 0.5 * far);
-        return;
-    }
-    double nearest = far;
-    for (const BoundedEntity& c : g.casters) nearest = std::min(nearest, distanceToBox(position, c.bounds));
-    near = std::clamp(0.9 * nearest, far * 1e-6, 0.5 * far);
+/// Far plane of a perspective light at `position`: its range, or the whole scene.
+double perspectiveFar(const ShadowLightPlan& plan, const glm::dvec3& position, const SceneGeometry& g) {
+    const double far = plan.light.range > 0.0f ? plan.light.range : farthestCorner(position, g.everything);
+    return std::max(far, 1e-3);
 }
 
+/// The largest power of two not above `x` > 0: a near plane that stays put while the nearest
+/// caster moves a little, so layers whose own casters did not move are not redrawn.
+double powerOfTwoBelow(double x) { return std::exp2(std::floor(std::log2(x))); }
+
+/// One perspective layer looking along `direction`. With `fixedNear` 0 the near plane is fitted
+/// just before the nearest caster in this layer's frustum.
 ShadowLayerPlan perspectiveLayer(const glm::dvec3& position, const glm::dvec3& direction, double tanHalf,
-                                 double near, double far, const SceneGeometry& g) {
+                                 double fixedNear, double far, const SceneGeometry& g) {
+    const double minNear = far * 1e-6;
     ShadowLayerPlan layer;
     layer.orthographic = false;
     layer.lightFromWorld = lookAlong(position, direction);
-    layer.clipFromLight = glm::perspective(2.0 * std::atan(tanHalf), 1.0, near, far);
+    const double fov = 2.0 * std::atan(tanHalf);
+    double near = std::min(fixedNear, 0.5 * far);
+    if (fixedNear <= 0.0) {
+        const glm::dmat4 widest = glm::perspective(fov, 1.0, minNear, far) * layer.lightFromWorld;
+        double nearest = far;
+        const Frustum f = Frustum::fromMatrix(widest);
+        for (const BoundedEntity& c : g.casters) {
+            if (f.intersects(c.bounds)) nearest = std::min(nearest, distanceToBox(position, c.bounds));
+        }
+        // The near plane clips by depth along the axis; a caster at distance d can be as shallow
+        // as d times the cosine of the frustum's corner angle.
+        const double cornerCos = 1.0 / std::sqrt(1.0 + 2.0 * tanHalf * tanHalf);
+        near = std::clamp(powerOfTwoBelow(std::max(0.9 * nearest * cornerCos, minNear)), minNear, 0.5 * far);
+    }
+    layer.clipFromLight = glm::perspective(fov, 1.0, near, far);
     // Stored depth is the distance from the light; the farthest point of the frustum is a
     // far-plane corner.
     layer.depthScale = static_cast<float>(far * std::sqrt(1.0 + 2.0 * tanHalf * tanHalf));
@@ -215,21 +227,22 @@ std::vector<double> cascadeSplits(double near, double far, int count, double lam
 std::vector<ShadowLayerPlan> planLayers(const ShadowLightPlan& plan, const LightPose& pose,
                                         const CameraView& camera, const SceneGeometry& geometry) {
     if (plan.light.type == LightType::Directional) return planDirectional(plan, pose, camera, geometry);
-    double near = 0.0;
-    double far = 0.0;
-    perspectiveRange(plan, pose.wsPosition, geometry, near, far);
     // Two texels of margin on each side keep bilinear taps at the edge inside the map.
     const double margin = 1.0 + 4.0 / plan.mapSize;
+    const double tanHalf = plan.light.type == LightType::Spot
+                               ? std::tan(static_cast<double>(plan.light.outerConeAngle)) * margin
+                               : margin;
+    const double far = perspectiveFar(plan, pose.wsPosition, geometry);
+    const double near = plan.settings.nearPlane;  // 0: fitted per layer
     std::vector<ShadowLayerPlan> layers;
     if (plan.light.type == LightType::Spot) {
-        const double tanHalf = std::tan(static_cast<double>(plan.light.outerConeAngle)) * margin;
         layers.push_back(perspectiveLayer(pose.wsPosition, pose.wsDirection, tanHalf, near, far, geometry));
         return layers;
     }
     // Point: cube faces +X, -X, +Y, -Y, +Z, -Z, the order the shader's cubeFace() uses.
     static const glm::dvec3 kFaces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     for (const glm::dvec3& dir : kFaces) {
-        layers.push_back(perspectiveLayer(pose.wsPosition, dir, margin, near, far, geometry));
+        layers.push_back(perspectiveLayer(pose.wsPosition, dir, tanHalf, near, far, geometry));
     }
     return layers;
 }

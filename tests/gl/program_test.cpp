@@ -1,0 +1,193 @@
+// Shader programs (engine/src/gl/program.cpp): include expansion with #line mapping, compiler
+// logs rewritten to file names, errors that name the file, and every variant the engine builds
+// compiling on the test context.
+#include "gl/program.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "gl/shader_sources.h"
+#include "render/render_test_support.h"
+
+namespace shadow {
+namespace {
+
+std::vector<std::string> linesOf(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line)) out.push_back(line);
+    return out;
+}
+
+/// 1-based line of `source` file `file` that contains `needle`; 0 when none does.
+int lineContaining(const std::string& file, const std::string& needle) {
+    const char* text = gpu::findShaderSource(file);
+    if (text == nullptr) return 0;
+    const std::vector<std::string> lines = linesOf(text);
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        if (lines[i].find(needle) != std::string::npos) return static_cast<int>(i) + 1;
+    }
+    return 0;
+}
+
+TEST(Program, ExpandShaderPutsVersionAndDefinesFirst) {
+    const gpu::ExpandedSource src =
+        gpu::expandShader("lit.frag.glsl", {"SG_TECH_PCF_ENABLED", "SG_FOO 3"});
+    const std::vector<std::string> lines = linesOf(src.text);
+    ASSERT_GE(lines.size(), 4u);
+    EXPECT_EQ(lines[0], "#version 450 core");
+    EXPECT_EQ(lines[1], "#define SG_TECH_PCF_ENABLED");
+    EXPECT_EQ(lines[2], "#define SG_FOO 3");
+    EXPECT_EQ(lines[3], "#line 1 0");
+    ASSERT_FALSE(src.files.empty());
+    EXPECT_EQ(src.files[0], "lit.frag.glsl");
+}
+
+TEST(Program, ExpandShaderInlinesEveryInclude) {
+    const gpu::ExpandedSource src = gpu::expandShader("lit.frag.glsl", {});
+    for (const std::string& line : linesOf(src.text)) {
+        EXPECT_EQ(line.find("#include"), std::string::npos) << "left unexpanded: " << line;
+    }
+    for (const char* f : {"shadow_sampling.glsl", "glsl_types.glsl", "shared_constants.h",
+                          "gpu_structs.h", "shadow_common.glsl", "lighting.glsl"}) {
+        EXPECT_NE(std::find(src.files.begin(), src.files.end(), f), src.files.end())
+            << f << " not in the file table";
+    }
+    // The text of an included file is there.
+    EXPECT_NE(src.text.find("float shadowVisibility("), std::string::npos);
+    EXPECT_NE(src.text.find("#define SG_MAX_LIGHTS_PER_PASS 8"), std::string::npos);
+}
+
+// Every line of the expansion must be the line of the file its #line directive says: a compiler
+// message at F:N then points at the right source line.
+TEST(Program, ExpandShaderLineDirectivesMapEveryLineToItsSource) {
+    for (const char* file :
+         {"lit.frag.glsl", "lit.vert.glsl", "shadow_depth.frag.glsl", "shadow_depth.vert.glsl"}) {
+        const gpu::ExpandedSource src = gpu::expandShader(file, {"SG_TECH_HARD_ENABLED"});
+        int currentFile = -1;
+        int currentLine = 0;
+        int checked = 0;
+        int directives = 0;
+        for (const std::string& line : linesOf(src.text)) {
+            int n = 0;
+            int f = 0;
+            if (std::sscanf(line.c_str(), "#line %d %d", &n, &f) == 2) {
+                ASSERT_GE(f, 0);
+                ASSERT_LT(static_cast<std::size_t>(f), src.files.size()) << line;
+                currentFile = f;
+                currentLine = n;
+                ++directives;
+                continue;
+            }
+            if (currentFile < 0) continue;  // #version and the defines
+            const std::vector<std::string> source =
+                linesOf(gpu::findShaderSource(src.files[static_cast<std::size_t>(currentFile)]));
+            ASSERT_GE(currentLine, 1);
+            ASSERT_LE(static_cast<std::size_t>(currentLine), source.size())
+                << file << ": line " << currentLine << " past the end of "
+                << src.files[static_cast<std::size_t>(currentFile)];
+            EXPECT_EQ(line, source[static_cast<std::size_t>(currentLine - 1)])
+                << file << ": expanded line claims to be "
+                << src.files[static_cast<std::size_t>(currentFile)] << ":" << currentLine;
+            ++currentLine;
+            ++checked;
+        }
+        EXPECT_GT(checked, 10) << file;
+        EXPECT_GE(directives, 1) << file;
+    }
+}
+
+TEST(Program, ExpandShaderLineAfterIncludeResumesTheIncludingFile) {
+    const gpu::ExpandedSource src = gpu::expandShader("lit.frag.glsl", {});
+    const int include = lineContaining("lit.frag.glsl", "#include \"shadow_sampling.glsl\"");
+    ASSERT_GT(include, 0);
+    EXPECT_NE(src.text.find("#line " + std::to_string(include + 1) + " 0\n"), std::string::npos);
+}
+
+TEST(Program, ExpandShaderThrowsNamingAMissingFile) {
+    try {
+        (void)gpu::expandShader("no_such_shader.glsl", {});
+        FAIL() << "expected GlError";
+    } catch (const GlError& e) {
+        EXPECT_NE(std::string(e.what()).find("no_such_shader.glsl"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Program, MapShaderLogReplacesFileNumbersByNames) {
+    EXPECT_EQ(gpu::mapShaderLog("0:12(5): error: x\n1:3(1): error: y", {"a.glsl", "b.glsl"}),
+              "a.glsl:12(5): error: x\nb.glsl:3(1): error: y");
+    // NVIDIA's "F(L) : " form.
+    EXPECT_EQ(gpu::mapShaderLog("1(7) : error C0000: z", {"a.glsl", "b.glsl"}),
+              "b.glsl(7) : error C0000: z");
+    // A number outside the table is kept, not invented.
+    EXPECT_EQ(gpu::mapShaderLog("5:1(1): error: w", {"a.glsl"}), "5:1(1): error: w");
+}
+
+TEST(Program, BuildProgramWithMissingFileThrowsNamingIt) {
+    test::glContext();
+    try {
+        (void)gpu::buildProgram({"Test/missing", "nonexistent.vert.glsl", "lit.frag.glsl", {}});
+        FAIL() << "expected GlError";
+    } catch (const GlError& e) {
+        EXPECT_NE(std::string(e.what()).find("nonexistent.vert.glsl"), std::string::npos)
+            << e.what();
+    }
+}
+
+// A compile error inside an included file is reported with that file's name and line.
+TEST(Program, CompileErrorNamesTheIncludedFileAndLine) {
+    test::glContext();
+    const int line = lineContaining("shadow_sampling.glsl", "const float kGoldenAngle");
+    ASSERT_GT(line, 0);
+    try {
+        // Turns "const float kGoldenAngle = ..." into a syntax error.
+        (void)gpu::buildProgram({"Test/broken",
+                                 "lit.vert.glsl",
+                                 "lit.frag.glsl",
+                                 {"SG_TECH_HARD_ENABLED", "kGoldenAngle )"}});
+        FAIL() << "expected GlError";
+    } catch (const GlError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("Test/broken"), std::string::npos) << what;
+        EXPECT_NE(what.find("shadow_sampling.glsl:" + std::to_string(line) + "("),
+                  std::string::npos)
+            << what;
+    }
+}
+
+// Every variant the renderer can ask for: each subset of techniques, with and without AOVs.
+TEST(Program, EveryLitVariantAndTheDepthProgramCompile) {
+    test::glContext();
+    const char* techniques[3] = {"SG_TECH_HARD_ENABLED", "SG_TECH_PCF_ENABLED",
+                                 "SG_TECH_PCSS_ENABLED"};
+    for (unsigned mask = 0; mask < 16; ++mask) {
+        gpu::ProgramDesc desc{
+            "Test/Lit" + std::to_string(mask), "lit.vert.glsl", "lit.frag.glsl", {}};
+        for (unsigned t = 0; t < 3; ++t) {
+            if (mask & (1u << t)) desc.defines.emplace_back(techniques[t]);
+        }
+        if (mask & 8u) desc.defines.emplace_back("SG_WRITE_AOVS");
+        try {
+            const gpu::Program program = gpu::buildProgram(desc);
+            EXPECT_NE(program.get(), 0u) << desc.label;
+        } catch (const GlError& e) {
+            ADD_FAILURE() << desc.label << ": " << e.what();
+        }
+    }
+    try {
+        const gpu::Program depth = gpu::buildProgram(
+            {"Test/Depth", "shadow_depth.vert.glsl", "shadow_depth.frag.glsl", {}});
+        EXPECT_NE(depth.get(), 0u);
+    } catch (const GlError& e) {
+        ADD_FAILURE() << "shadow_depth: " << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace shadow

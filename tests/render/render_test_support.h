@@ -1,0 +1,191 @@
+// Shared helpers of the GL tests: one headless context per process, rendering a scene through
+// FrameRunner with AOVs, building small test scenes, and the geometric truth of hard shadows.
+//
+// Header-only on purpose: tests/CMakeLists.txt globs only *_test.cpp files.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <shadow/context.h>
+#include <shadow/renderer.h>
+#include <shadow/scene.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace shadow::test {
+
+/// The process-wide OSMesa context (created on first use, current on return). Every GL test
+/// calls this before touching GL; libOSMesa allows one provider per process, so one context
+/// serves them all.
+inline GlContext& glContext() {
+    static const std::unique_ptr<GlContext> context = [] {
+        Result<std::unique_ptr<GlContext>> made = createOsMesaContext();
+        if (!made)
+            throw std::runtime_error("cannot create the OSMesa context: " + made.error().message);
+        return std::move(made.value());
+    }();
+    context->makeCurrent();
+    return *context;
+}
+
+/// One rendered frame: the images and the counters of that frame.
+struct RenderedFrame {
+    FrameImages images;
+    FrameStats stats;
+};
+
+/// Runs one frame of `scene` at time `t` through `runner` with AOVs at `width` x `height` and reads
+/// it back. The camera is the scene's first unless `camera` names another.
+inline RenderedFrame renderFrame(FrameRunner& runner, Scene& scene, int width, int height,
+                                 double t = 0.0, Entity camera = Entity::null()) {
+    glContext();
+    if (camera.isNull()) camera = scene.cameras.at(0);
+    RenderOptions options;
+    options.width = width;
+    options.height = height;
+    options.aovs = true;
+    RenderedFrame out;
+    out.stats = runner.runFrame(scene, t, camera, options);
+    out.images = runner.renderer().readback(runner.lastCamera(), out.stats);
+    return out;
+}
+
+/// `renderFrame` with a fresh runner (a first frame: everything compiled and drawn).
+inline FrameImages renderOnce(Scene& scene, int width, int height) {
+    glContext();
+    FrameRunner runner;
+    return renderFrame(runner, scene, width, height).images;
+}
+
+/// A transform at `position` scaled by `scale`.
+inline Transform placed(const glm::dvec3& position, const glm::dvec3& scale = glm::dvec3(1.0)) {
+    Transform t;
+    t.translation = position;
+    t.scale = scale;
+    return t;
+}
+
+/// A square ground plane at y = 0, centred on the origin.
+inline Entity addGround(Scene& scene, float halfSize) {
+    return addMeshInstance(scene.world, "ground", makePlaneMesh(halfSize, 4),
+                           placed(glm::dvec3(0.0)));
+}
+
+/// An axis-aligned box of `halfExtents` centred at `center`; returns its entity.
+inline Entity addBox(Scene& scene, const std::string& name, const glm::dvec3& center,
+                     const glm::dvec3& halfExtents) {
+    return addMeshInstance(scene.world, name, makeBoxMesh(glm::vec3(halfExtents)), placed(center));
+}
+
+/// Hard-shadow settings (technique Hard) with the given map size.
+inline Shadow hardShadow(int mapSize = 1024) {
+    Shadow s;
+    s.technique = ShadowTechnique::Hard;
+    s.mapSize = mapSize;
+    return s;
+}
+
+/// A light of `type` with a point-sized emitter (hard shadows are exact for it).
+inline Light pointSizedLight(LightType type, float outerConeAngle = 0.7f) {
+    Light l;
+    l.type = type;
+    l.intensity = type == LightType::Directional ? 3.0f : 20.0f;
+    l.radius = 0.0f;
+    l.angularRadius = 0.0f;
+    l.outerConeAngle = outerConeAngle;
+    l.innerConeAngle = 0.5f * outerConeAngle;
+    return l;
+}
+
+/// Whether the segment `origin + t * dir`, t in (tMin, tMax), meets the closed box (slab test in
+/// double; `dir` need not be unit).
+inline bool segmentHitsBox(const glm::dvec3& origin, const glm::dvec3& dir, double tMin,
+                           double tMax, const DAabb& box) {
+    for (int a = 0; a < 3; ++a) {
+        if (std::abs(dir[a]) < 1e-300) {
+            if (origin[a] < box.min[a] || origin[a] > box.max[a]) return false;
+            continue;
+        }
+        double t0 = (box.min[a] - origin[a]) / dir[a];
+        double t1 = (box.max[a] - origin[a]) / dir[a];
+        if (t0 > t1) std::swap(t0, t1);
+        tMin = std::max(tMin, t0);
+        tMax = std::min(tMax, t1);
+        if (tMin > tMax) return false;
+    }
+    return true;
+}
+
+/// Where a light is, as the analytic shadow needs it.
+struct AnalyticLight {
+    LightType type = LightType::Point;
+    glm::dvec3 position{0.0};
+    glm::dvec3 direction{0.0, -1.0, 0.0};  ///< unit, the way the light shines (directional)
+};
+
+/// True when the point `p` sees the light past every box in `boxes`: the ray from `p` to the
+/// light position (point/spot) or along -direction (directional) misses them all.
+template <typename Boxes>
+bool analyticallyLit(const AnalyticLight& light, const glm::dvec3& p, const Boxes& boxes) {
+    const bool directional = light.type == LightType::Directional;
+    const glm::dvec3 dir = directional ? -light.direction : light.position - p;
+    const double tMax = directional ? std::numeric_limits<double>::infinity() : 1.0;
+    for (const DAabb& box : boxes) {
+        if (segmentHitsBox(p, dir, 1e-9, tMax, box)) return false;
+    }
+    return true;
+}
+
+/// The world box of a box mesh instance of `halfExtents` centred at `center`.
+inline DAabb boxBounds(const glm::dvec3& center, const glm::dvec3& halfExtents) {
+    DAabb b;
+    b.extend(center - halfExtents);
+    b.extend(center + halfExtents);
+    return b;
+}
+
+/// Whether a pixel of `images.position` is ground (covered and at y = 0).
+inline bool isGroundPixel(const FrameImages& images, int x, int y) {
+    return images.position.at(x, y, 3) > 0.5f && std::abs(images.position.at(x, y, 1)) < 1e-3f;
+}
+
+/// The world point seen at pixel (x, y) of the position AOV.
+inline glm::dvec3 positionAt(const FrameImages& images, int x, int y) {
+    return {images.position.at(x, y, 0), images.position.at(x, y, 1), images.position.at(x, y, 2)};
+}
+
+/// Number of values of `image` that are NaN or Inf.
+inline int countNonFinite(const ImageF& image) {
+    return static_cast<int>(std::count_if(image.pixels.begin(), image.pixels.end(),
+                                          [](float v) { return !std::isfinite(v); }));
+}
+
+/// The AOV invariants every frame must keep (design.md): nothing NaN/Inf, visibility in [0, 1],
+/// background pixels fully lit. Adds a failure for each broken one.
+inline void expectSaneAovs(const FrameImages& images) {
+    ASSERT_GT(images.position.width, 0) << "AOVs were not produced";
+    EXPECT_EQ(countNonFinite(images.color), 0) << "color has NaN/Inf";
+    EXPECT_EQ(countNonFinite(images.position), 0) << "position has NaN/Inf";
+    EXPECT_EQ(countNonFinite(images.depth), 0) << "depth has NaN/Inf";
+    for (std::size_t i = 0; i < images.visibility.size(); ++i) {
+        const ImageF& v = images.visibility[i];
+        EXPECT_EQ(countNonFinite(v), 0) << "visibility " << i << " has NaN/Inf";
+        int outOfRange = 0;
+        int darkBackground = 0;
+        for (int y = 0; y < v.height; ++y) {
+            for (int x = 0; x < v.width; ++x) {
+                const float value = v.at(x, y, 0);
+                if (!(value >= 0.0f && value <= 1.0f)) ++outOfRange;
+                if (images.position.at(x, y, 3) < 0.5f && value != 1.0f) ++darkBackground;
+            }
+        }
+        EXPECT_EQ(outOfRange, 0) << "visibility " << i << " outside [0, 1]";
+        EXPECT_EQ(darkBackground, 0) << "visibility " << i << " is not 1 on the background";
+    }
+}
+
+}  // namespace shadow::test

@@ -1,0 +1,279 @@
+// The shadow_render CLI contract (design.md): the files it writes, what is in them, stats.json,
+// and bad input answered by one message and exit code 2 with nothing written.
+#include <gtest/gtest.h>
+#include <shadow/image_io.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace shadow {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kExitBadInput = 2;
+constexpr int kWidth = 96;
+constexpr int kHeight = 54;
+
+/// A fresh folder under SHADOW_TEST_TMP (or the system temp folder), removed afterwards.
+class TempDir {
+public:
+    TempDir() {
+        static std::atomic<int> counter{0};
+        const char* root = std::getenv("SHADOW_TEST_TMP");
+        const fs::path base =
+            root != nullptr && *root != '\0' ? fs::path(root) : fs::temp_directory_path();
+        path_ = base / ("shadow_render_test-" + std::to_string(::getpid()) + "-" +
+                        std::to_string(counter++));
+        fs::remove_all(path_);
+        fs::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    [[nodiscard]] const fs::path& path() const { return path_; }
+    [[nodiscard]] std::string operator/(const std::string& name) const {
+        return (path_ / name).string();
+    }
+
+private:
+    fs::path path_;
+};
+
+std::string quoted(const std::string& s) {
+    std::string out = "'";
+    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+struct CliRun {
+    int exitCode = -1;   ///< -1 when the process did not exit normally (a crash)
+    std::string output;  ///< stdout and stderr
+};
+
+/// Runs shadow_render with `args` (already quoted where needed), capturing its output.
+CliRun runCli(const TempDir& tmp, const std::string& args) {
+    const std::string log = tmp / "cli.log";
+    const std::string command =
+        quoted(SHADOW_BIN_DIR "/shadow_render") + " " + args + " > " + quoted(log) + " 2>&1";
+    const int raw = std::system(command.c_str());
+    CliRun run;
+    run.exitCode = raw != -1 && WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    std::ifstream in(log);
+    std::ostringstream text;
+    text << in.rdbuf();
+    run.output = text.str();
+    return run;
+}
+
+bool emptyOrAbsent(const fs::path& dir) {
+    std::error_code ec;
+    return !fs::exists(dir, ec) || (fs::is_directory(dir, ec) && fs::is_empty(dir, ec));
+}
+
+ImageF readOrFail(const std::string& path, const std::vector<std::string>& channels) {
+    Result<ImageF> image = readExr(path, channels);
+    if (!image) {
+        ADD_FAILURE() << path << ": " << image.error().message;
+        return {};
+    }
+    return std::move(image.value());
+}
+
+nlohmann::json readJson(const std::string& path) {
+    std::ifstream in(path);
+    return nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+}
+
+TEST(ShadowRenderCli, DefaultSceneWritesEveryOutputOfTheContract) {
+    TempDir tmp;
+    const std::string out = tmp / "out";
+    const CliRun run = runCli(tmp, "builtin:default --out " + quoted(out) + " --size 96x54");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+
+    for (const char* name : {"color.png", "color.exr", "visibility_0.exr", "visibility_1.exr",
+                             "visibility_2.exr", "position.exr", "depth.exr", "stats.json"}) {
+        EXPECT_TRUE(fs::is_regular_file(fs::path(out) / name)) << name;
+    }
+    EXPECT_FALSE(fs::exists(fs::path(out) / "visibility_3.exr"))
+        << "the default scene has three lights";
+    {
+        std::ifstream png(out + "/color.png", std::ios::binary);
+        char signature[8] = {};
+        png.read(signature, 8);
+        EXPECT_EQ(std::string(signature + 1, 3), "PNG");
+    }
+
+    const ImageF color = readOrFail(out + "/color.exr", {"R", "G", "B"});
+    const ImageF position = readOrFail(out + "/position.exr", {"R", "G", "B", "A"});
+    const ImageF depth = readOrFail(out + "/depth.exr", {"Y"});
+    for (const ImageF* image : {&color, &position, &depth}) {
+        ASSERT_EQ(image->width, kWidth);
+        ASSERT_EQ(image->height, kHeight);
+    }
+    int covered = 0;
+    int badCoverage = 0;
+    int badDepth = 0;
+    for (int y = 0; y < kHeight; ++y) {
+        for (int x = 0; x < kWidth; ++x) {
+            const float a = position.at(x, y, 3);
+            const float d = depth.at(x, y, 0);
+            if (a != 0.0f && a != 1.0f) ++badCoverage;
+            covered += a == 1.0f ? 1 : 0;
+            // Geometry lies in front of the camera; the background has depth 0.
+            if (!std::isfinite(d) || (a == 1.0f ? !(d > 0.0f) : d != 0.0f)) ++badDepth;
+        }
+    }
+    EXPECT_EQ(badCoverage, 0) << "position A must be 1 on geometry and 0 elsewhere";
+    EXPECT_EQ(badDepth, 0);
+    EXPECT_GT(covered, kWidth * kHeight / 4);
+    EXPECT_LT(covered, kWidth * kHeight) << "the default view shows some background";
+
+    for (int i = 0; i < 3; ++i) {
+        const ImageF v = readOrFail(out + "/visibility_" + std::to_string(i) + ".exr", {"Y"});
+        ASSERT_EQ(v.width, kWidth);
+        ASSERT_EQ(v.height, kHeight);
+        int invalid = 0;
+        int darkBackground = 0;
+        int shadowed = 0;
+        for (int y = 0; y < kHeight; ++y) {
+            for (int x = 0; x < kWidth; ++x) {
+                const float value = v.at(x, y, 0);
+                if (!(value >= 0.0f && value <= 1.0f)) ++invalid;  // also catches NaN
+                if (position.at(x, y, 3) == 0.0f && value != 1.0f) ++darkBackground;
+                if (value < 0.5f) ++shadowed;
+            }
+        }
+        EXPECT_EQ(invalid, 0) << "visibility_" << i;
+        EXPECT_EQ(darkBackground, 0) << "visibility_" << i << " on the background";
+        EXPECT_GT(shadowed, 0) << "visibility_" << i
+                               << ": every light of the default scene casts a shadow in view";
+    }
+
+    const nlohmann::json stats = readJson(out + "/stats.json");
+    ASSERT_FALSE(stats.is_discarded()) << "stats.json is not JSON";
+    EXPECT_EQ(stats.value("frames", 0), 1);
+    EXPECT_EQ(stats["size"], nlohmann::json::array({kWidth, kHeight}));
+    ASSERT_TRUE(stats["lights"].is_array());
+    ASSERT_EQ(stats["lights"].size(), 3u);
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(stats["lights"][i].value("visibility", ""),
+                  "visibility_" + std::to_string(i) + ".exr");
+    }
+}
+
+struct BadInput {
+    const char* what;
+    std::string args;  // everything after the scene and --out
+    std::string scene;
+    std::string mention;  // the message must name this
+};
+
+TEST(ShadowRenderCli, BadInputExitsWithCode2AndWritesNothing) {
+    TempDir tmp;
+    const std::string missing = tmp / "no_such_scene.gltf";
+    const std::vector<BadInput> cases = {
+        {"unknown builtin", "", "builtin:nope", "nope"},
+        {"missing file", "", missing, "no_such_scene.gltf"},
+        {"zero width", "--size 0x5", "builtin:default", "--size"},
+        {"size not a size", "--size abc", "builtin:default", "--size"},
+        {"unknown technique", "--technique foo", "builtin:default", "foo"},
+        {"camera out of range", "--camera 99", "builtin:default", "--camera"},
+        {"unknown AOV", "--aov bogus", "builtin:default", "bogus"},
+        {"no frames", "--frames 0", "builtin:default", "--frames"},
+    };
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        const BadInput& c = cases[i];
+        const std::string out = tmp / ("out" + std::to_string(i));
+        const CliRun run = runCli(tmp, quoted(c.scene) + " --out " + quoted(out) + " " + c.args);
+        EXPECT_EQ(run.exitCode, kExitBadInput) << c.what << ": " << run.output;
+        EXPECT_NE(run.output.find(c.mention), std::string::npos)
+            << c.what << ": message does not name '" << c.mention << "': " << run.output;
+        EXPECT_TRUE(emptyOrAbsent(out)) << c.what << ": wrote into " << out;
+    }
+}
+
+// `--camera N` indexes the scene's cameras; a negative N names none of them and is bad input,
+// not a silent fall-back to the first camera.
+TEST(ShadowRenderCli, NegativeCameraIndexIsBadInput) {
+    TempDir tmp;
+    const std::string out = tmp / "out";
+    const CliRun run = runCli(tmp, "builtin:default --size 32x18 --camera -5 --out " + quoted(out));
+    EXPECT_EQ(run.exitCode, kExitBadInput) << run.output;
+    EXPECT_NE(run.output.find("--camera"), std::string::npos) << run.output;
+    EXPECT_TRUE(emptyOrAbsent(out)) << "wrote into " << out;
+}
+
+TEST(ShadowRenderCli, UnwritableOutputFolderExitsWithCode2) {
+    TempDir tmp;
+    const std::string file = tmp / "a_regular_file";
+    {
+        std::ofstream f(file);
+        f << "keep me";
+    }
+    const std::string out = file + "/images";
+    const CliRun run = runCli(tmp, "builtin:default --size 32x18 --out " + quoted(out));
+    EXPECT_EQ(run.exitCode, kExitBadInput) << run.output;
+    EXPECT_NE(run.output.find("--out"), std::string::npos) << run.output;
+    EXPECT_TRUE(fs::is_regular_file(file));
+    std::ifstream in(file);
+    std::string text;
+    std::getline(in, text);
+    EXPECT_EQ(text, "keep me");
+}
+
+// --frames 3 --dt 0.1 animates from t = 0 to t = 0.2 and writes the last frame: its geometry is
+// the frame a single render at --time 0.2 gives.
+TEST(ShadowRenderCli, FramesAndDtRenderTheLastFrameAndReportThem) {
+    TempDir tmp;
+    const std::string animated = tmp / "animated";
+    const std::string still = tmp / "still";
+    const std::string start = tmp / "start";
+    const CliRun run =
+        runCli(tmp, "builtin:default --size 96x54 --frames 3 --dt 0.1 --out " + quoted(animated));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    ASSERT_EQ(
+        runCli(tmp, "builtin:default --size 96x54 --time 0.2 --out " + quoted(still)).exitCode, 0);
+    ASSERT_EQ(runCli(tmp, "builtin:default --size 96x54 --out " + quoted(start)).exitCode, 0);
+
+    const nlohmann::json stats = readJson(animated + "/stats.json");
+    ASSERT_FALSE(stats.is_discarded()) << "stats.json is not JSON";
+    EXPECT_EQ(stats.value("frames", 0), 3);
+    ASSERT_TRUE(stats.contains("timingMethod"));
+    EXPECT_TRUE(stats["timingMethod"].is_string());
+    EXPECT_FALSE(stats["timingMethod"].get<std::string>().empty());
+    ASSERT_TRUE(stats["perFrame"].is_array());
+    EXPECT_EQ(stats["perFrame"].size(), 3u);
+
+    const ImageF last = readOrFail(animated + "/position.exr", {"R", "G", "B", "A"});
+    const ImageF at02 = readOrFail(still + "/position.exr", {"R", "G", "B", "A"});
+    const ImageF at0 = readOrFail(start + "/position.exr", {"R", "G", "B", "A"});
+    EXPECT_EQ(last.pixels, at02.pixels) << "the written frame is not the one at t = 0.2";
+    EXPECT_NE(last.pixels, at0.pixels) << "nothing moved between t = 0 and t = 0.2";
+    // Shadows of the last frame too (layers reused or redrawn, the result is the same).
+    for (int i = 0; i < 3; ++i) {
+        const std::string name = "/visibility_" + std::to_string(i) + ".exr";
+        const ImageF a = readOrFail(animated + name, {"Y"});
+        const ImageF b = readOrFail(still + name, {"Y"});
+        ASSERT_EQ(a.pixels.size(), b.pixels.size());
+        float worst = 0.0f;
+        for (std::size_t p = 0; p < a.pixels.size(); ++p)
+            worst = std::max(worst, std::abs(a.pixels[p] - b.pixels[p]));
+        EXPECT_LT(worst, 1e-5f) << name;
+    }
+}
+
+}  // namespace
+}  // namespace shadow

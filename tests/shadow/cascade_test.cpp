@@ -1,0 +1,255 @@
+// Stability of directional cascades (engine/src/shadow/light_projection.cpp): each cascade is
+// fitted to the bounding sphere of its camera slice (rotation invariant) and its centre is
+// snapped to whole texels, so a moving camera moves a map by whole texels only and a turning
+// camera does not change its texel size; the maps' contents then follow the world exactly.
+#include "shadow/soft_test_support.h"
+
+#include <shadow/shadow_system.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace shadow {
+namespace {
+
+constexpr int kCascades = 3;
+constexpr int kMapSize = 1024;
+constexpr float kShadowDistance = 25.0f;
+/// Texels next to a map's border not compared (the shifted map brings new content there).
+constexpr int kBorderTexels = 4;
+/// Largest fraction of compared texels whose depth may differ (by more than kDepthTolerance)
+/// between a map and the same map moved by whole texels.
+constexpr double kMaxDifferingFraction = 0.005;
+/// Depth tolerance (m): float rounding of light-space positions shifted by whole texels.
+constexpr float kDepthTolerance = 1e-3f;
+
+/// A large ground with boxes spread from the camera out past the shadow distance, a sun with
+/// three cascades, and a camera 5 m above the ground (well above the boxes: the distance to the
+/// receivers, where the first cascade starts, does not change while it moves sideways).
+struct CascadeScene {
+    Scene scene;
+    Entity camera;
+    Entity sun;
+};
+
+CascadeScene makeCascadeScene(float shadowDistance = kShadowDistance) {
+    CascadeScene s;
+    test::addGround(s.scene, 30.0f);
+    for (int i = 0; i < 5; ++i) {
+        for (int j = 0; j < 3; ++j) {
+            const double height = 0.4 + 0.3 * ((i + j) % 3);
+            test::addBox(s.scene, "box", {-6.0 + 6.0 * j, height, 6.0 - 7.0 * i}, {0.6, height, 0.5});
+        }
+    }
+    Light sun = test::pointSizedLight(LightType::Directional);
+    Shadow shadow = test::shadowWith(ShadowTechnique::Pcf, kMapSize);
+    shadow.cascades = kCascades;
+    shadow.shadowDistance = shadowDistance;
+    s.sun = addLight(s.scene, "sun", sun, shadow, {0, 20, 0}, glm::normalize(glm::dvec3(0.3, -1.0, 0.45)));
+    Camera lens;
+    lens.zfar = 200.0f;
+    s.camera = addCamera(s.scene, "camera", lens, {0.0, 5.0, 12.0}, {0.0, 0.0, -10.0});
+    return s;
+}
+
+/// What a frame left in the sun's cascades.
+struct CascadeState {
+    std::vector<ShadowLayerPlan> layers;
+    std::vector<std::vector<float>> depth;  ///< readLayerDepth of each layer, row-major, y up
+};
+
+CascadeState renderCascades(FrameRunner& runner, CascadeScene& s) {
+    test::renderFrame(runner, s.scene, 128, 72);
+    CascadeState state;
+    const ShadowFrame& frame = runner.shadows().frame();
+    if (frame.lights.size() != 1 || frame.lights[0].layers.size() != kCascades) {
+        ADD_FAILURE() << "expected one sun with " << kCascades << " cascades";
+        return state;
+    }
+    state.layers = frame.lights[0].layers;
+    for (int k = 0; k < kCascades; ++k) state.depth.push_back(runner.shadows().readLayerDepth(0, k));
+    return state;
+}
+
+void moveCamera(CascadeScene& s, const glm::dvec3& by) { s.scene.world.get<Transform>(s.camera).translation += by; }
+
+double extentOf(const ShadowLayerPlan& layer) { return 2.0 / layer.clipFromLight[0][0]; }
+double texelOf(const ShadowLayerPlan& layer) { return extentOf(layer) / kMapSize; }
+
+/// The light-space x, y of the layer's centre: lightFromWorld = translate(-(centre, top)) * R.
+glm::dvec2 centreOf(const ShadowLayerPlan& layer) { return -glm::dvec2(layer.lightFromWorld[3]); }
+
+/// The light's x axis in world space (a horizontal vector for a light that is not vertical).
+glm::dvec3 lightXAxis(const ShadowLayerPlan& layer) {
+    return glm::normalize(glm::dvec3(layer.lightFromWorld[0][0], layer.lightFromWorld[1][0], layer.lightFromWorld[2][0]));
+}
+
+/// Whole-texel shift of the layer's centre from `before` to `after`; fails when it is not whole.
+glm::ivec2 texelShift(const ShadowLayerPlan& before, const ShadowLayerPlan& after, int k) {
+    const glm::dvec2 shift = (centreOf(after) - centreOf(before)) / texelOf(before);
+    const glm::dvec2 whole = glm::round(shift);
+    EXPECT_NEAR(shift.x, whole.x, 1e-6) << "cascade " << k << " moved by a fraction of a texel";
+    EXPECT_NEAR(shift.y, whole.y, 1e-6) << "cascade " << k << " moved by a fraction of a texel";
+    return glm::ivec2(whole);
+}
+
+/// Fraction of the texels away from the border where `after` differs from `before` moved by
+/// `shift` texels (after[x, y] shows what before[x + shift.x, y + shift.y] showed).
+double differingFraction(const std::vector<float>& before, const std::vector<float>& after, glm::ivec2 shift) {
+    int compared = 0;
+    int differing = 0;
+    for (int y = kBorderTexels; y < kMapSize - kBorderTexels; ++y) {
+        for (int x = kBorderTexels; x < kMapSize - kBorderTexels; ++x) {
+            const int bx = x + shift.x;
+            const int by = y + shift.y;
+            if (bx < kBorderTexels || by < kBorderTexels || bx >= kMapSize - kBorderTexels ||
+                by >= kMapSize - kBorderTexels) {
+                continue;
+            }
+            ++compared;
+            const float a = after[static_cast<std::size_t>(y) * kMapSize + x];
+            const float b = before[static_cast<std::size_t>(by) * kMapSize + bx];
+            if (std::abs(a - b) > kDepthTolerance) ++differing;
+        }
+    }
+    return compared > 0 ? static_cast<double>(differing) / compared : 1.0;
+}
+
+TEST(Cascade, SubTexelCameraMoveKeepsMapContents) {
+    CascadeScene s = makeCascadeScene();
+    test::glContext();
+    FrameRunner runner;
+    // Every frame redraws every layer, so equal contents come from the same rasterisation and
+    // not from a reused layer.
+    runner.shadows().planner().setCaching(false);
+    const CascadeState start = renderCascades(runner, s);
+    ASSERT_EQ(start.layers.size(), static_cast<std::size_t>(kCascades));
+    const double texel0 = texelOf(start.layers[0]);
+    for (int k = 0; k < kCascades; ++k) {
+        std::printf("[ measured ] cascade %d: extent %.4f m, texel %.5f m, splitFar %.3f m, %zu casters\n", k,
+                    extentOf(start.layers[k]), texelOf(start.layers[k]), start.layers[k].splitFar,
+                    start.layers[k].casters.size());
+    }
+
+    // A sub-texel move keeps each layer's matrices unless it carries the centre across a snap
+    // boundary (chance ~ move / texel per axis). It cannot do so both ways on one axis, so for
+    // each cascade one of +move and -move must keep the matrices, and any change must be one
+    // whole texel with the contents shifted by exactly that.
+    const glm::dvec3 subTexel = 0.01 * texel0 * glm::normalize(glm::dvec3(1.0, 0.0, 0.5));
+    std::vector<bool> keptBySome(kCascades, false);
+    for (double sign : {1.0, -1.0}) {
+        moveCamera(s, sign * subTexel);
+        const CascadeState moved = renderCascades(runner, s);
+        moveCamera(s, -sign * subTexel);
+        ASSERT_EQ(moved.layers.size(), static_cast<std::size_t>(kCascades));
+        for (int k = 0; k < kCascades; ++k) {
+            const ShadowLayerPlan& a = start.layers[k];
+            const ShadowLayerPlan& b = moved.layers[k];
+            EXPECT_EQ(b.clipFromLight, a.clipFromLight) << "cascade " << k << ": extent or depth range changed";
+            const glm::ivec2 shift = texelShift(a, b, k);
+            EXPECT_LE(std::abs(shift.x) + std::abs(shift.y), 1) << "cascade " << k;
+            if (b.lightFromWorld == a.lightFromWorld) keptBySome[k] = true;
+            const double differing = differingFraction(start.depth[k], moved.depth[k], shift);
+            std::printf("[ measured ] sub-texel move %+.0e m, cascade %d: matrices %s, shift (%d, %d), %.5f of texels differ\n",
+                        sign * glm::length(subTexel), k, b.lightFromWorld == a.lightFromWorld ? "kept" : "changed",
+                        shift.x, shift.y, differing);
+            EXPECT_LT(differing, kMaxDifferingFraction) << "cascade " << k;
+            if (b.lightFromWorld == a.lightFromWorld) {
+                EXPECT_EQ(differing, 0.0) << "cascade " << k << ": same matrices, different contents";
+            }
+        }
+    }
+    for (int k = 0; k < kCascades; ++k) EXPECT_TRUE(keptBySome[k]) << "cascade " << k << " followed a sub-texel move";
+
+    // A move of exactly three texels of cascade 0 along the light's x axis: cascade 0 moves by
+    // exactly three texels, the coarser cascades by a whole number near 3 * texel0 / texelK,
+    // and every map shows the same world, shifted.
+    const glm::dvec3 threeTexels = 3.0 * texel0 * lightXAxis(start.layers[0]);
+    moveCamera(s, threeTexels);
+    const CascadeState moved = renderCascades(runner, s);
+    ASSERT_EQ(moved.layers.size(), static_cast<std::size_t>(kCascades));
+    for (int k = 0; k < kCascades; ++k) {
+        const ShadowLayerPlan& a = start.layers[k];
+        const ShadowLayerPlan& b = moved.layers[k];
+        EXPECT_EQ(b.clipFromLight, a.clipFromLight) << "cascade " << k << ": extent or depth range changed";
+        const glm::ivec2 shift = texelShift(a, b, k);
+        const double expected = 3.0 * texel0 / texelOf(a);
+        if (k == 0) {
+            EXPECT_EQ(shift, glm::ivec2(3, 0));
+        } else {
+            EXPECT_GE(shift.x, static_cast<int>(std::floor(expected))) << "cascade " << k;
+            EXPECT_LE(shift.x, static_cast<int>(std::ceil(expected))) << "cascade " << k;
+            EXPECT_EQ(shift.y, 0) << "cascade " << k;
+        }
+        const double differing = differingFraction(start.depth[k], moved.depth[k], shift);
+        // Control: compared one texel off, the maps differ (the ground is sloped in light
+        // space), so the comparison above can tell a shifted map from a moved one.
+        const double control = differingFraction(start.depth[k], moved.depth[k], shift + glm::ivec2(1, 0));
+        std::printf("[ measured ] 3-texel move, cascade %d: shift (%d, %d) (%.2f texels of it), %.5f of texels "
+                    "differ (one texel off: %.3f)\n",
+                    k, shift.x, shift.y, expected, differing, control);
+        EXPECT_LT(differing, kMaxDifferingFraction) << "cascade " << k;
+        EXPECT_GT(control, 0.5) << "cascade " << k << ": the depth comparison cannot see a one-texel shift";
+    }
+}
+
+TEST(Cascade, CameraRotationKeepsCascadeExtents) {
+    CascadeScene s = makeCascadeScene();
+    test::glContext();
+    FrameRunner runner;
+    const CascadeState start = renderCascades(runner, s);
+    ASSERT_EQ(start.layers.size(), static_cast<std::size_t>(kCascades));
+    // Yaw all round and pitch up and down, from the same position.
+    Transform& camera = s.scene.world.get<Transform>(s.camera);
+    const glm::dvec3 position = camera.translation;
+    for (double yawDeg : {0.0, 37.0, 90.0, 200.0, 310.0}) {
+        for (double pitchDeg : {-60.0, -20.0, 10.0}) {
+            const double yaw = yawDeg * test::kPi / 180.0;
+            const double pitch = pitchDeg * test::kPi / 180.0;
+            const glm::dvec3 forward(std::cos(pitch) * std::sin(yaw), std::sin(pitch), -std::cos(pitch) * std::cos(yaw));
+            camera.rotation = rotationLookingAlong(forward);
+            camera.translation = position;
+            const CascadeState turned = renderCascades(runner, s);
+            ASSERT_EQ(turned.layers.size(), static_cast<std::size_t>(kCascades));
+            for (int k = 0; k < kCascades; ++k) {
+                EXPECT_EQ(extentOf(turned.layers[k]), extentOf(start.layers[k]))
+                    << "cascade " << k << " at yaw " << yawDeg << ", pitch " << pitchDeg;
+                EXPECT_EQ(turned.layers[k].splitFar, start.layers[k].splitFar) << "cascade " << k;
+            }
+        }
+    }
+}
+
+/// The first cascade starts at the nearest receiver and the split distances grow to the
+/// shadow distance bound: min(shadowDistance or the camera's far plane, farthest receiver).
+TEST(Cascade, SplitsIncreaseToTheShadowDistance) {
+    for (float shadowDistance : {kShadowDistance, 0.0f}) {
+        CascadeScene s = makeCascadeScene(shadowDistance);
+        test::glContext();
+        FrameRunner runner;
+        const CascadeState state = renderCascades(runner, s);
+        ASSERT_EQ(state.layers.size(), static_cast<std::size_t>(kCascades));
+        // Without a shadow distance, the bound is the farthest corner of the receivers' box
+        // (the 60 m ground and the boxes on it), nearer than the far plane (200 m).
+        DAabb receivers = test::boxBounds({0, 0, 0}, {30, 0, 30});
+        s.scene.world.view<WorldBounds>().each([&](Entity, WorldBounds& b) { receivers.extend(b.box); });
+        const glm::dvec3 eye = s.scene.world.get<Transform>(s.camera).translation;
+        double farthest = 0.0;
+        for (int i = 0; i < 8; ++i) farthest = std::max(farthest, glm::distance(eye, receivers.corner(i)));
+        const double bound = shadowDistance > 0.0f ? shadowDistance : std::min(farthest, 200.0);
+        double previous = 0.0;
+        for (int k = 0; k < kCascades; ++k) {
+            const double splitFar = state.layers[k].splitFar;
+            std::printf("[ measured ] shadowDistance %.0f: cascade %d ends at %.4f m\n", shadowDistance, k, splitFar);
+            EXPECT_GT(splitFar, previous) << "cascade " << k;
+            previous = splitFar;
+        }
+        EXPECT_NEAR(previous, bound, 1e-4 * bound) << "the last cascade does not end at the shadow distance bound";
+    }
+}
+
+}  // namespace
+}  // namespace shadow
