@@ -156,8 +156,35 @@ float interleavedGradientNoise(vec2 pixel) {
     return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
 }
 
-// Sample i of n of a unit disk: golden-angle spiral with uniform area density, rotated.
-vec2 diskSample(int i, int n, float rotation) {
+// Best-candidate Poisson disk points in the unit disk, set by the renderer (every prefix is well
+// spread, so n taps use the first n).
+uniform vec2 uPoissonDisk[SG_MAX_SAMPLES];
+
+// A hash of the pixel and an index to [0, 1) (Wang-style integer mixing).
+float hashToUnit(uvec2 pixel, uint i) {
+    uint h = pixel.x * 1973u + pixel.y * 9277u + i * 26699u;
+    h = (h ^ 61u) ^ (h >> 16);
+    h *= 9u;
+    h ^= h >> 4;
+    h *= 0x27d4eb2du;
+    h ^= h >> 15;
+    return float(h) * (1.0 / 4294967296.0);
+}
+
+// Sample i of n of the unit disk with the light's kernel, rotated by `rotation`.
+vec2 diskSample(int kernel, int i, int n, float rotation) {
+    if (kernel == SG_KERNEL_POISSON) {
+        vec2 p = uPoissonDisk[i];
+        float c = cos(rotation), s = sin(rotation);
+        return vec2(c * p.x - s * p.y, s * p.x + c * p.y);
+    }
+    if (kernel == SG_KERNEL_UNIFORM) {
+        uvec2 pixel = uvec2(gl_FragCoord.xy);
+        float radius = sqrt(hashToUnit(pixel, uint(2 * i)));
+        float angle = 6.28318531 * hashToUnit(pixel, uint(2 * i + 1));
+        return radius * vec2(cos(angle), sin(angle));
+    }
+    // Golden-angle spiral with uniform area density.
     float radius = sqrt((float(i) + 0.5) / float(n));
     float angle = float(i) * kGoldenAngle + rotation;
     return radius * vec2(cos(angle), sin(angle));
@@ -173,7 +200,7 @@ float pcfVisibility(int slot, GpuLight L, Receiver r, float radius, int samples)
     float rotation = 6.28318531 * interleavedGradientNoise(gl_FragCoord.xy);
     float sum = 0.0;
     for (int i = 0; i < samples; ++i) {
-        sum += compareTap(slot, L, r, lateralTap(L, r, diskSample(i, samples, rotation) * radius));
+        sum += compareTap(slot, L, r, lateralTap(L, r, diskSample(L.kernel, i, samples, rotation) * radius));
     }
     return sum / float(samples);
 }
@@ -203,7 +230,7 @@ float pcssVisibility(int slot, GpuLight L, Receiver r) {
     float blockerSum = 0.0;
     int blockers = 0;
     for (int i = 0; i < L.blockerSamples; ++i) {
-        Tap t = lateralTap(L, r, diskSample(i, L.blockerSamples, rotation) * searchRadius);
+        Tap t = lateralTap(L, r, diskSample(L.kernel, i, L.blockerSamples, rotation) * searchRadius);
         float stored = texture(uShadowDepth[slot], vec3(t.uv, float(t.layer))).r *
                        uLayers[L.firstLayer + t.layer].depthScale;
         if (stored < t.depth - r.depthBias) {

@@ -14,6 +14,11 @@
 #define SG_TECH_PCF 2
 #define SG_TECH_PCSS 3
 
+// Filter kernels (FilterKernel in components.h, in the same order).
+#define SG_KERNEL_VOGEL 0
+#define SG_KERNEL_POISSON 1
+#define SG_KERNEL_UNIFORM 2
+
 // Lights shaded by one main pass; more lights are added by further additive passes.
 #define SG_MAX_LIGHTS_PER_PASS 8
 // Layers of one light's shadow-map array: up to 4 cascades, or 6 cube faces.

@@ -99,6 +99,13 @@ enum class ShadowTechnique : std::uint8_t {
     Pcss,  ///< blocker search, penumbra estimate, then PCF
 };
 
+/// Sample pattern of the PCF filter and the PCSS blocker search, all over the unit disk.
+enum class FilterKernel : std::uint8_t {
+    Vogel,    ///< golden-angle spiral, rotated per pixel (even coverage for any tap count)
+    Poisson,  ///< best-candidate Poisson disk (every prefix well spread), rotated per pixel
+    Uniform,  ///< independent uniform points, fresh per pixel
+};
+
 /// Per-light shadow settings. A light with no `Shadow` component, or technique `None`, gets no
 /// shadow map at all. Values out of range are clamped to the stated range by the shadow system
 /// and the clamp is reported in stats.json.
@@ -116,6 +123,8 @@ struct Shadow {
     float normalOffset = 1.0f;
     /// PCF filter radius (m) at the receiver, [0, 10]. Default 0.05.
     float pcfRadius = 0.05f;
+    /// Sample pattern of PCF and the blocker search. Default Vogel.
+    FilterKernel kernel = FilterKernel::Vogel;
     /// Taps of the PCF filter, [1, 64]. Default 16.
     int pcfSamples = 16;
     /// Taps of the PCSS blocker search, [1, 64]. Default 16.

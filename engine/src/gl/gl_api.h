@@ -94,6 +94,7 @@ namespace shadow::gpu {
     X(PFNGLPROGRAMUNIFORM1IPROC, ProgramUniform1i)                              \
     X(PFNGLPROGRAMUNIFORM1IVPROC, ProgramUniform1iv)                            \
     X(PFNGLPROGRAMUNIFORM1FPROC, ProgramUniform1f)                              \
+    X(PFNGLPROGRAMUNIFORM2FVPROC, ProgramUniform2fv)                            \
     X(PFNGLPROGRAMUNIFORM3FVPROC, ProgramUniform3fv)                            \
     X(PFNGLPROGRAMUNIFORM4FVPROC, ProgramUniform4fv)                            \
     X(PFNGLPROGRAMUNIFORMMATRIX4FVPROC, ProgramUniformMatrix4fv)                \

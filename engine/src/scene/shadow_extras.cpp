@@ -33,6 +33,15 @@ Result<ShadowTechnique> parseTechnique(const tinygltf::Value& v, const std::stri
                         "unknown technique \"" + *name + "\" (expected none, hard, pcf or pcss)");
 }
 
+Result<FilterKernel> parseKernel(const tinygltf::Value& v, const std::string& where) {
+    auto name = readString(v, where);
+    if (!name) return name.error();
+    if (*name == "vogel") return FilterKernel::Vogel;
+    if (*name == "poisson") return FilterKernel::Poisson;
+    if (*name == "uniform") return FilterKernel::Uniform;
+    return elementError(where, "unknown kernel \"" + *name + "\" (expected vogel, poisson or uniform)");
+}
+
 template <typename Field>
 struct Knob {
     const char* key;
@@ -65,6 +74,11 @@ Result<LightShadowExtras> parseShadowExtras(const tinygltf::Value& extras,
         auto parsed = parseTechnique(*technique, object->where + ".technique");
         if (!parsed) return parsed.error();
         out.shadow.technique = *parsed;
+    }
+    if (const tinygltf::Value* kernel = member(*object->value, "kernel")) {
+        auto parsed = parseKernel(*kernel, object->where + ".kernel");
+        if (!parsed) return parsed.error();
+        out.shadow.kernel = *parsed;
     }
     Shadow& s = out.shadow;
     const std::array<Knob<int>, 4> ints{{{"mapSize", &s.mapSize},
