@@ -80,7 +80,7 @@ Scene makeDefault() {
     Light sun;
     sun.type = LightType::Directional;
     sun.color = {1.0f, 0.96f, 0.9f};
-    sun.intensity = 2.5f;
+    sun.intensity = 4.0f;
     sun.angularRadius = 0.02f;
     Shadow sunShadow;
     sunShadow.technique = ShadowTechnique::Pcss;
