@@ -4,16 +4,15 @@
 //
 // Visibility is read from the per-light AOVs and mapped to world points with the position AOV,
 // so every expectation is stated in metres on the receiver, not in pixels.
-#include "shadow/soft_test_support.h"
-
-#include <shadow/shadow_system.h>
-
 #include <gtest/gtest.h>
+#include <shadow/shadow_system.h>
 
 #include <array>
 #include <cstdio>
 #include <string>
 #include <vector>
+
+#include "shadow/soft_test_support.h"
 
 namespace shadow {
 namespace {
@@ -37,7 +36,8 @@ constexpr double kFarPlateHeight = 3.0;
 const glm::dvec3 kPlateHalf{0.75, 0.0005, 0.5};
 constexpr double kNearPlateZ = -0.8;  // plate covers z in [-1.3, -0.3]
 constexpr double kFarPlateZ = 0.6;    // plate covers z in [0.1, 1.1]
-/// Allowed relative error of the measured 5-95 % band against the closed form.
+/// Allowed relative error of the measured 5-95 % band against the closed form. Measured on
+/// llvmpipe: near 0.0444 m against 0.0439 m, far 0.4857 m against 0.4832 m (within 1.2 %).
 constexpr double kBandTolerance = 0.25;
 
 struct EdgeMeasurement {
@@ -58,8 +58,8 @@ double geometricPenumbra(double blockerHeight) {
 
 /// Mean visibility profile across x = 0 of the ground pixels with z in [zLo, zHi] seen through
 /// `camera`, over x in [-halfRange, halfRange].
-EdgeMeasurement measureEdge(FrameRunner& runner, Scene& scene, Entity camera, double blockerHeight, double zLo,
-                            double zHi, double halfRange) {
+EdgeMeasurement measureEdge(FrameRunner& runner, Scene& scene, Entity camera, double blockerHeight,
+                            double zLo, double zHi, double halfRange) {
     EdgeMeasurement m;
     m.fullWidth = geometricPenumbra(blockerHeight);
     m.expected = test::diskEdgeBandWidth(m.fullWidth, 0.05, 0.95);
@@ -106,22 +106,31 @@ TEST(SoftShadow, PcssContactHardeningMatchesGeometry) {
     // the penumbra that lies under it, and zooms so that the band spans ~50-80 pixels.
     Camera farLens;
     farLens.yfov = 0.35f;
-    const Entity farCamera = addCamera(scene, "far edge", farLens, {1.6, 4.0, 1.2}, {0.0, 0.0, 1.2});
+    const Entity farCamera =
+        addCamera(scene, "far edge", farLens, {1.6, 4.0, 1.2}, {0.0, 0.0, 1.2});
     Camera nearLens;
     nearLens.yfov = 0.12f;
-    const Entity nearCamera = addCamera(scene, "near edge", nearLens, {0.5, 1.2, -0.85}, {0.0, 0.0, -0.85});
+    const Entity nearCamera =
+        addCamera(scene, "near edge", nearLens, {0.5, 1.2, -0.85}, {0.0, 0.0, -0.85});
 
     test::glContext();
     FrameRunner runner;
     // Rows of z at least one far-penumbra half-width (0.3 m) inside each shadow's z extent, so
     // the plates' other edges do not enter the profile.
-    const EdgeMeasurement nearEdge = measureEdge(runner, scene, nearCamera, kNearPlateHeight, -1.1, -0.6, 0.08);
-    const EdgeMeasurement farEdge = measureEdge(runner, scene, farCamera, kFarPlateHeight, 0.8, 1.6, 0.6);
+    const EdgeMeasurement nearEdge =
+        measureEdge(runner, scene, nearCamera, kNearPlateHeight, -1.1, -0.6, 0.08);
+    const EdgeMeasurement farEdge =
+        measureEdge(runner, scene, farCamera, kFarPlateHeight, 0.8, 1.6, 0.6);
 
-    std::printf("[ measured ] PCSS near plate (h=%.1f m): 5-95%% band %.4f m, closed form %.4f m (full %.4f m), 50%% at x=%.4f m\n",
-                kNearPlateHeight, nearEdge.measured, nearEdge.expected, nearEdge.fullWidth, nearEdge.midpoint);
-    std::printf("[ measured ] PCSS far plate  (h=%.1f m): 5-95%% band %.4f m, closed form %.4f m (full %.4f m), 50%% at x=%.4f m\n",
-                kFarPlateHeight, farEdge.measured, farEdge.expected, farEdge.fullWidth, farEdge.midpoint);
+    std::printf(
+        "[ measured ] PCSS near plate (h=%.1f m): 5-95%% band %.4f m, closed form %.4f m (full "
+        "%.4f m), 50%% at x=%.4f m\n",
+        kNearPlateHeight, nearEdge.measured, nearEdge.expected, nearEdge.fullWidth,
+        nearEdge.midpoint);
+    std::printf(
+        "[ measured ] PCSS far plate  (h=%.1f m): 5-95%% band %.4f m, closed form %.4f m (full "
+        "%.4f m), 50%% at x=%.4f m\n",
+        kFarPlateHeight, farEdge.measured, farEdge.expected, farEdge.fullWidth, farEdge.midpoint);
     EXPECT_GE(nearEdge.minPixelsPerBin, 20) << "too few pixels per profile bin near the near edge";
     EXPECT_GE(farEdge.minPixelsPerBin, 20) << "too few pixels per profile bin near the far edge";
     EXPECT_NEAR(nearEdge.measured, nearEdge.expected, kBandTolerance * nearEdge.expected);
@@ -137,17 +146,22 @@ TEST(SoftShadow, PcssContactHardeningMatchesGeometry) {
 // No acne: an open plane lit at any elevation must not shadow itself.
 // ---------------------------------------------------------------------------------------------
 
-/// Largest fraction of lit-plane pixels allowed to read visibility < 0.5.
+/// Largest fraction of lit-plane pixels allowed to read visibility < 0.5. Measured on llvmpipe:
+/// 0 for every technique, light and elevation (the taps lie on the receiver's tangent plane).
 constexpr double kMaxAcneFraction = 0.001;
 constexpr std::array<ShadowTechnique, 3> kTechniques{ShadowTechnique::Hard, ShadowTechnique::Pcf,
                                                      ShadowTechnique::Pcss};
 
 const char* techniqueName(ShadowTechnique t) {
     switch (t) {
-        case ShadowTechnique::Hard: return "hard";
-        case ShadowTechnique::Pcf: return "pcf";
-        case ShadowTechnique::Pcss: return "pcss";
-        default: return "none";
+        case ShadowTechnique::Hard:
+            return "hard";
+        case ShadowTechnique::Pcf:
+            return "pcf";
+        case ShadowTechnique::Pcss:
+            return "pcss";
+        default:
+            return "none";
     }
 }
 
@@ -174,7 +188,7 @@ TEST(SoftShadow, NoAcneOnLitPlaneAtAnyElevation) {
     const std::array<double, 4> spotElevationsDeg{75, 45, 30, 20};
 
     test::glContext();
-    std::array<double, 3> worst{};
+    std::array<double, 3> worst{-1.0, -1.0, -1.0};
     std::array<std::string, 3> worstCase;
     for (LightType type : {LightType::Directional, LightType::Spot}) {
         Scene scene;
@@ -182,14 +196,17 @@ TEST(SoftShadow, NoAcneOnLitPlaneAtAnyElevation) {
         Light light = test::pointSizedLight(type, kSpotHalfAngle);
         light.angularRadius = 0.02f;  // PCSS needs an emitter; hard and PCF ignore it
         light.radius = 0.1f;
-        const Entity e = addLight(scene, "light", light, test::shadowWith(ShadowTechnique::Hard), {0, 8, 0}, {0, -1, 0});
+        const Entity e = addLight(scene, "light", light, test::shadowWith(ShadowTechnique::Hard),
+                                  {0, 8, 0}, {0, -1, 0});
         addCamera(scene, "camera", Camera{}, {0.0, 9.0, 13.0}, {0.0, 0.0, 0.0});
         FrameRunner runner;
-        const auto& elevations = type == LightType::Directional
-                                     ? std::vector<double>(sunElevationsDeg.begin(), sunElevationsDeg.end())
-                                     : std::vector<double>(spotElevationsDeg.begin(), spotElevationsDeg.end());
+        const auto& elevations =
+            type == LightType::Directional
+                ? std::vector<double>(sunElevationsDeg.begin(), sunElevationsDeg.end())
+                : std::vector<double>(spotElevationsDeg.begin(), spotElevationsDeg.end());
         for (double deg : elevations) {
-            const glm::dvec3 dir = deg == 90.0 ? glm::dvec3(0, -1, 0) : downAt(deg * test::kPi / 180.0, kAzimuth);
+            const glm::dvec3 dir =
+                deg == 90.0 ? glm::dvec3(0, -1, 0) : downAt(deg * test::kPi / 180.0, kAzimuth);
             // Spot: 8 m from the plane's centre, aimed at it.
             const glm::dvec3 position = type == LightType::Spot ? -8.0 * dir : glm::dvec3(0, 8, 0);
             for (std::size_t k = 0; k < kTechniques.size(); ++k) {
@@ -198,15 +215,16 @@ TEST(SoftShadow, NoAcneOnLitPlaneAtAnyElevation) {
                 test::expectSaneAovs(frame.images);
                 // A spot lights only its cone (a hair inside, where its map ends).
                 const GroundCounts c = countGround(frame.images, 0, [&](const glm::dvec3& p) {
-                    return type != LightType::Spot || test::insideCone(p, position, dir, kSpotHalfAngle - 0.02);
+                    return type != LightType::Spot ||
+                           test::insideCone(p, position, dir, kSpotHalfAngle - 0.02);
                 });
-                const std::string name = std::string(type == LightType::Spot ? "spot" : "sun") + " at " +
-                                         std::to_string(static_cast<int>(deg)) + " deg";
+                const std::string name = std::string(type == LightType::Spot ? "spot" : "sun") +
+                                         " at " + std::to_string(static_cast<int>(deg)) + " deg";
                 ASSERT_GT(c.ground, 2000) << name << ": too few lit plane pixels to judge";
                 EXPECT_LT(c.darkFraction(), kMaxAcneFraction)
-                    << techniqueName(kTechniques[k]) << ", " << name << ": " << c.dark << " of " << c.ground
-                    << " lit plane pixels read visibility < 0.5";
-                if (c.darkFraction() >= worst[k]) {
+                    << techniqueName(kTechniques[k]) << ", " << name << ": " << c.dark << " of "
+                    << c.ground << " lit plane pixels read visibility < 0.5";
+                if (c.darkFraction() > worst[k]) {
                     worst[k] = c.darkFraction();
                     worstCase[k] = name;
                 }
@@ -214,8 +232,8 @@ TEST(SoftShadow, NoAcneOnLitPlaneAtAnyElevation) {
         }
     }
     for (std::size_t k = 0; k < kTechniques.size(); ++k) {
-        std::printf("[ measured ] acne, %s: worst dark fraction %.5f (%s)\n", techniqueName(kTechniques[k]),
-                    worst[k], worstCase[k].c_str());
+        std::printf("[ measured ] acne, %s: worst dark fraction %.5f (%s)\n",
+                    techniqueName(kTechniques[k]), worst[k], worstCase[k].c_str());
     }
 }
 
@@ -245,8 +263,8 @@ struct BaseGap {
 /// at `elevationDeg` with `technique`, and measures the lit gap at the foot of that face over
 /// the ground strip |z| < 0.3, kBaseX < x < kBaseX + 0.5 (inside the shadow, which is at least
 /// 1 / tan(elevation) >= 1 m long, and 0.2 m from its sides).
-BaseGap measureBaseGap(const glm::dvec3& casterCentre, const glm::dvec3& casterHalf, double elevationDeg,
-                       ShadowTechnique technique) {
+BaseGap measureBaseGap(const glm::dvec3& casterCentre, const glm::dvec3& casterHalf,
+                       double elevationDeg, ShadowTechnique technique) {
     Scene scene;
     test::addGround(scene, 3.0f);
     test::addBox(scene, "caster", casterCentre, casterHalf);
@@ -291,19 +309,26 @@ BaseGap measureBaseGap(const glm::dvec3& casterCentre, const glm::dvec3& casterH
     return g;
 }
 
+/// A solid box hides the depth bias (the ray from the ground at its foot crosses the whole box),
+/// so what this catches is a map misregistered against the receivers or a normal offset that
+/// lifts receivers out of the shadow. Measured: no lit pixel at all beyond the base (gap 0).
 TEST(SoftShadow, BoxShadowTouchesBox) {
     const glm::dvec3 boxHalf{0.5, 0.5, 0.5};
     for (double elevationDeg : {45.0, 25.0}) {
         for (ShadowTechnique technique : kTechniques) {
-            const BaseGap g = measureBaseGap({kBaseX - boxHalf.x, boxHalf.y, 0.0}, boxHalf, elevationDeg, technique);
-            std::printf("[ measured ] box, %s, sun at %.0f deg: lit gap at the base %.4f m = %.2f texels "
-                        "(mean-profile gap %.4f m; texel %.4f m)\n",
-                        techniqueName(technique), elevationDeg, g.pixelGap, g.pixelGap / g.texel, g.meanGap, g.texel);
+            const BaseGap g = measureBaseGap({kBaseX - boxHalf.x, boxHalf.y, 0.0}, boxHalf,
+                                             elevationDeg, technique);
+            std::printf(
+                "[ measured ] box, %s, sun at %.0f deg: lit gap at the base %.4f m = %.2f texels "
+                "(mean-profile gap %.4f m; texel %.4f m)\n",
+                techniqueName(technique), elevationDeg, g.pixelGap, g.pixelGap / g.texel, g.meanGap,
+                g.texel);
             ASSERT_GT(g.considered, 5000) << "the camera does not see the foot of the box";
-            EXPECT_GT(g.dark, g.considered / 2) << techniqueName(technique) << ": the box casts no shadow";
+            EXPECT_GT(g.dark, g.considered / 2)
+                << techniqueName(technique) << ": the box casts no shadow";
             EXPECT_LE(g.pixelGap / g.texel, kMaxGapTexels)
-                << techniqueName(technique) << ", sun at " << elevationDeg << " deg: shadow detached by " << g.pixelGap
-                << " m";
+                << techniqueName(technique) << ", sun at " << elevationDeg
+                << " deg: shadow detached by " << g.pixelGap << " m";
         }
     }
 }
@@ -319,14 +344,20 @@ TEST(SoftShadow, ThinWallShadowGapStaysWithinTheDepthBias) {
     const glm::dvec3 wallHalf{0.0005, 0.5, 0.5};
     for (double elevationDeg : {45.0, 25.0}) {
         for (ShadowTechnique technique : kTechniques) {
-            const BaseGap g = measureBaseGap({kBaseX - wallHalf.x, wallHalf.y, 0.0}, wallHalf, elevationDeg, technique);
+            const BaseGap g = measureBaseGap({kBaseX - wallHalf.x, wallHalf.y, 0.0}, wallHalf,
+                                             elevationDeg, technique);
             const double allowed = g.bias * std::cos(elevationDeg * test::kPi / 180.0) + g.texel;
-            std::printf("[ measured ] thin wall, %s, sun at %.0f deg: mean-profile gap %.4f m = %.2f texels "
-                        "(largest lit pixel %.4f m); bias allows %.4f m\n",
-                        techniqueName(technique), elevationDeg, g.meanGap, g.meanGap / g.texel, g.pixelGap, allowed);
+            std::printf(
+                "[ measured ] thin wall, %s, sun at %.0f deg: mean-profile gap %.4f m = %.2f "
+                "texels "
+                "(largest lit pixel %.4f m); bias allows %.4f m\n",
+                techniqueName(technique), elevationDeg, g.meanGap, g.meanGap / g.texel, g.pixelGap,
+                allowed);
             ASSERT_GT(g.considered, 5000) << "the camera does not see the foot of the wall";
-            EXPECT_GT(g.dark, g.considered / 2) << techniqueName(technique) << ": the wall casts no shadow";
-            EXPECT_LE(g.meanGap, allowed) << techniqueName(technique) << ", sun at " << elevationDeg << " deg";
+            EXPECT_GT(g.dark, g.considered / 2)
+                << techniqueName(technique) << ": the wall casts no shadow";
+            EXPECT_LE(g.meanGap, allowed)
+                << techniqueName(technique) << ", sun at " << elevationDeg << " deg";
         }
     }
 }
@@ -364,7 +395,8 @@ TEST(Mixed, EachLightUsesItsOwnTechnique) {
 
     Light bulb = test::pointSizedLight(LightType::Point);
     bulb.radius = 0.05f;
-    addLight(scene, "bulb", bulb, test::shadowWith(ShadowTechnique::Hard, 1024), {0.0, 3.5, 2.4}, {0, -1, 0});
+    addLight(scene, "bulb", bulb, test::shadowWith(ShadowTechnique::Hard, 1024), {0.0, 3.5, 2.4},
+             {0, -1, 0});
     addCamera(scene, "camera", Camera{}, {0.0, 10.0, 10.0}, {0.0, 0.0, 0.0});
 
     test::glContext();
@@ -377,24 +409,29 @@ TEST(Mixed, EachLightUsesItsOwnTechnique) {
             const GroundCounts c = countGround(frame.images, i, [&](const glm::dvec3& p) {
                 return i != 1 || test::insideCone(p, spotPosition, spotDirection, 0.58);
             });
-            EXPECT_GT(c.dark, c.ground / 100) << "light " << i << " casts (almost) no shadow in view";
+            EXPECT_GT(c.dark, c.ground / 100)
+                << "light " << i << " casts (almost) no shadow in view";
             f[i] = c.penumbraFraction();
         }
         return f;
     };
     const std::array<double, 3> own = penumbraFractions();
-    for (Entity light : scene.lights) scene.world.get<Shadow>(light).technique = ShadowTechnique::Hard;
+    for (Entity light : scene.lights)
+        scene.world.get<Shadow>(light).technique = ShadowTechnique::Hard;
     const std::array<double, 3> allHard = penumbraFractions();
-    std::printf("[ measured ] penumbra fraction own technique: sun/pcss %.4f, spot/pcf %.4f, bulb/hard %.4f\n",
-                own[0], own[1], own[2]);
-    std::printf("[ measured ] penumbra fraction all hard:      sun %.4f, spot %.4f, bulb %.4f\n", allHard[0],
-                allHard[1], allHard[2]);
+    std::printf(
+        "[ measured ] penumbra fraction own technique: sun/pcss %.4f, spot/pcf %.4f, bulb/hard "
+        "%.4f\n",
+        own[0], own[1], own[2]);
+    std::printf("[ measured ] penumbra fraction all hard:      sun %.4f, spot %.4f, bulb %.4f\n",
+                allHard[0], allHard[1], allHard[2]);
 
     EXPECT_LT(own[2], kMaxHardPenumbraFraction) << "the hard light is not binary";
     for (std::size_t i = 0; i < 2; ++i) {
         // A soft technique: a penumbra band several times wider than a hard edge's.
         EXPECT_GT(own[i], kMinSoftPenumbraFraction) << "light " << i << " shows no soft penumbra";
-        EXPECT_LT(allHard[i], kMaxHardPenumbraFraction) << "light " << i << " forced to hard is not binary";
+        EXPECT_LT(allHard[i], kMaxHardPenumbraFraction)
+            << "light " << i << " forced to hard is not binary";
         EXPECT_LT(allHard[i], 0.5 * own[i]) << "light " << i << ": forcing hard did not sharpen it";
     }
     // The hard light did not change.

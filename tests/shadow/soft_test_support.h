@@ -5,8 +5,6 @@
 // Header-only on purpose: tests/CMakeLists.txt globs only *_test.cpp files.
 #pragma once
 
-#include "render/render_test_support.h"
-
 #include <shadow/renderer.h>
 #include <shadow/shadow_system.h>
 
@@ -15,6 +13,8 @@
 #include <functional>
 #include <optional>
 #include <vector>
+
+#include "render/render_test_support.h"
 
 namespace shadow::test {
 
@@ -63,7 +63,9 @@ struct Profile {
     std::vector<int> count;
 
     Profile(double from, double to, int bins)
-        : start(from), binWidth((to - from) / bins), sum(static_cast<std::size_t>(bins), 0.0),
+        : start(from),
+          binWidth((to - from) / bins),
+          sum(static_cast<std::size_t>(bins), 0.0),
           count(static_cast<std::size_t>(bins), 0) {}
 
     void add(double coordinate, double value) {
@@ -99,30 +101,16 @@ struct Profile {
         }
         return std::nullopt;
     }
-    /// Where the rising profile last lies below `level` before staying at or above it.
-    [[nodiscard]] std::optional<double> lastCrossingUp(double level) const {
-        std::optional<double> nextX;
-        double nextV = 1.0;
-        for (int b = bins() - 1; b >= 0; --b) {
-            const std::optional<double> v = mean(b);
-            if (!v) continue;
-            if (*v < level) {
-                if (!nextX) return centre(b);
-                return centre(b) + (level - *v) / (nextV - *v) * (*nextX - centre(b));
-            }
-            nextX = centre(b);
-            nextV = *v;
-        }
-        return std::nullopt;
-    }
 };
 
 /// Counts over the ground pixels accepted by `keep` (all ground pixels when empty).
 struct GroundCounts {
-    int ground = 0;     ///< ground pixels considered
-    int dark = 0;       ///< visibility < 0.5
-    int penumbra = 0;   ///< 0.05 < visibility < 0.95
-    [[nodiscard]] double darkFraction() const { return ground > 0 ? static_cast<double>(dark) / ground : 0.0; }
+    int ground = 0;    ///< ground pixels considered
+    int dark = 0;      ///< visibility < 0.5
+    int penumbra = 0;  ///< 0.05 < visibility < 0.95
+    [[nodiscard]] double darkFraction() const {
+        return ground > 0 ? static_cast<double>(dark) / ground : 0.0;
+    }
     [[nodiscard]] double penumbraFraction() const {
         return ground > 0 ? static_cast<double>(penumbra) / ground : 0.0;
     }

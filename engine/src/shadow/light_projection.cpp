@@ -131,10 +131,12 @@ std::vector<ShadowLayerPlan> planDirectional(const ShadowLightPlan& plan, const 
     return layers;
 }
 
-/// Far plane of a perspective light at `position`: its range, or the whole scene.
+/// Far plane of a perspective light at `position`: its range, or else the whole scene rounded
+/// up to a power of two, so that an object moving at the edge of the scene does not change
+/// every layer's projection (and force a redraw of layers whose casters did not move).
 double perspectiveFar(const ShadowLightPlan& plan, const glm::dvec3& position, const SceneGeometry& g) {
-    const double far = plan.light.range > 0.0f ? plan.light.range : farthestCorner(position, g.everything);
-    return std::max(far, 1e-3);
+    if (plan.light.range > 0.0f) return std::max<double>(plan.light.range, 1e-3);
+    return std::exp2(std::ceil(std::log2(std::max(farthestCorner(position, g.everything), 1e-3))));
 }
 
 /// The largest power of two not above `x` > 0: a near plane that stays put while the nearest
