@@ -88,20 +88,8 @@ const char* lightTypeName(LightType t) {
     return "point";
 }
 
-const char* techniqueName(ShadowTechnique t) {
-    switch (t) {
-        case ShadowTechnique::None: return "none";
-        case ShadowTechnique::Hard: return "hard";
-        case ShadowTechnique::Pcf: return "pcf";
-        case ShadowTechnique::Pcss: return "pcss";
-    }
-    return "none";
-}
-
 Result<ShadowTechnique> parseTechnique(const std::string& name) {
-    for (ShadowTechnique t : {ShadowTechnique::None, ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss}) {
-        if (name == techniqueName(t)) return t;
-    }
+    if (const auto t = techniqueFromName(name)) return *t;
     return Error{"unknown technique '" + name + "' (known: none, hard, pcf, pcss)"};
 }
 

@@ -42,9 +42,8 @@ struct Spread {
 [[nodiscard]] std::string statsJson(const Scene& scene, const std::vector<FrameStats>& frames, int width,
                                     int height, const std::string& technique);
 
-/// "directional" / "spot" / "point"; "none" / "hard" / "pcf" / "pcss".
+/// "directional" / "spot" / "point".
 [[nodiscard]] const char* lightTypeName(LightType t);
-[[nodiscard]] const char* techniqueName(ShadowTechnique t);
 /// Parses a technique name; error names the value.
 [[nodiscard]] Result<ShadowTechnique> parseTechnique(const std::string& name);
 

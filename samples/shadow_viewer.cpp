@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
                 scene.world.view<Shadow>().each([&](Entity e, Shadow& s) {
                     s.technique = techniqueMode == 0 ? own[e.bits()] : forced[techniqueMode];
                 });
-                std::cout << "technique: " << (techniqueMode == 0 ? "scene's own" : samples::techniqueName(forced[techniqueMode]))
+                std::cout << "technique: " << (techniqueMode == 0 ? "scene's own" : techniqueName(forced[techniqueMode]))
                           << "\n";
             }
             if (!paused) t += dt;

@@ -152,18 +152,6 @@ constexpr double kMaxAcneFraction = 0.001;
 constexpr std::array<ShadowTechnique, 3> kTechniques{ShadowTechnique::Hard, ShadowTechnique::Pcf,
                                                      ShadowTechnique::Pcss};
 
-const char* techniqueName(ShadowTechnique t) {
-    switch (t) {
-        case ShadowTechnique::Hard:
-            return "hard";
-        case ShadowTechnique::Pcf:
-            return "pcf";
-        case ShadowTechnique::Pcss:
-            return "pcss";
-        default:
-            return "none";
-    }
-}
 
 /// Unit direction of light travelling downwards at `elevation` (rad) above the horizon, turned
 /// by `azimuth` (rad) about +Y so that no grid axis lines up with it.

@@ -9,7 +9,9 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace shadow {
@@ -98,6 +100,12 @@ enum class ShadowTechnique : std::uint8_t {
     Pcf,   ///< fixed-radius percentage-closer filtering
     Pcss,  ///< blocker search, penumbra estimate, then PCF
 };
+
+/// A technique's name as glTF `extras.shadow.technique` and the CLI spell it ("none", "hard",
+/// "pcf", "pcss").
+[[nodiscard]] const char* techniqueName(ShadowTechnique t);
+/// The technique named `name`, or nullopt for an unknown name.
+[[nodiscard]] std::optional<ShadowTechnique> techniqueFromName(std::string_view name);
 
 /// Sample pattern of the PCF filter and the PCSS blocker search, all over the unit disk.
 enum class FilterKernel : std::uint8_t {

@@ -25,10 +25,7 @@ Result<ShadowObject> findShadowObject(const tinygltf::Value& extras, const std::
 Result<ShadowTechnique> parseTechnique(const tinygltf::Value& v, const std::string& where) {
     auto name = readString(v, where);
     if (!name) return name.error();
-    if (*name == "none") return ShadowTechnique::None;
-    if (*name == "hard") return ShadowTechnique::Hard;
-    if (*name == "pcf") return ShadowTechnique::Pcf;
-    if (*name == "pcss") return ShadowTechnique::Pcss;
+    if (const auto t = techniqueFromName(*name)) return *t;
     return elementError(where,
                         "unknown technique \"" + *name + "\" (expected none, hard, pcf or pcss)");
 }

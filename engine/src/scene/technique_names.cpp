@@ -1,0 +1,22 @@
+#include <shadow/components.h>
+
+namespace shadow {
+
+const char* techniqueName(ShadowTechnique t) {
+    switch (t) {
+        case ShadowTechnique::None: return "none";
+        case ShadowTechnique::Hard: return "hard";
+        case ShadowTechnique::Pcf: return "pcf";
+        case ShadowTechnique::Pcss: return "pcss";
+    }
+    return "none";
+}
+
+std::optional<ShadowTechnique> techniqueFromName(std::string_view name) {
+    for (ShadowTechnique t : {ShadowTechnique::None, ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss}) {
+        if (name == techniqueName(t)) return t;
+    }
+    return std::nullopt;
+}
+
+}  // namespace shadow
