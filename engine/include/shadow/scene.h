@@ -68,6 +68,25 @@ struct CameraView {
 /// Names of the built-in procedural scenes.
 [[nodiscard]] std::vector<std::string> builtinSceneNames();
 
+/// The geometry of builtin:plates, the scene whose visibility has a closed form: a disk light of
+/// radius `lightRadius` at height `lightHeight` facing straight down (a spot light), square
+/// zero-thickness plates parallel to a receiver plane at y = 0. The visible fraction of the
+/// emitter at a receiver point is 1 - area(disk ∩ union of the plates projected from the point
+/// onto the emitter plane) / area(disk).
+struct PlatesGeometry {
+    struct Plate {
+        glm::dvec3 center;  ///< the plate lies in the plane y = center.y
+        double halfSize;    ///< half the edge of the square (axis aligned)
+    };
+    double lightHeight = 4.0;
+    double lightRadius = 0.4;
+    double receiverHalfSize = 4.0;
+    std::vector<Plate> plates = {{{-1.0, 1.0, 0.0}, 0.5}, {{1.1, 2.0, 0.4}, 0.35}};
+};
+
+/// builtin:plates (see `PlatesGeometry`).
+[[nodiscard]] Scene makePlatesScene();
+
 /// Builds a built-in scene by name (without the `builtin:` prefix).
 [[nodiscard]] Result<Scene> makeBuiltinScene(const std::string& name);
 
@@ -83,6 +102,12 @@ namespace shadow {
 [[nodiscard]] std::shared_ptr<MeshData> makePlaneMesh(float halfSize, int cells = 1);
 /// A UV sphere with smooth normals.
 [[nodiscard]] std::shared_ptr<MeshData> makeSphereMesh(float radius, int segments = 32, int rings = 16);
+
+/// Reads a Wavefront OBJ (positions and polygon faces; smooth normals are computed).
+[[nodiscard]] Result<std::shared_ptr<MeshData>> loadObjMesh(const std::string& path);
+
+/// Where Debian's glmark2-data installs the Stanford bunny (used by builtin:bunny).
+inline constexpr const char* kBunnyObjPath = "/usr/share/glmark2/models/bunny.obj";
 
 /// The rotation that makes a node's -Z point along unit `direction` (robust for straight up/down).
 [[nodiscard]] glm::dquat rotationLookingAlong(const glm::dvec3& direction);

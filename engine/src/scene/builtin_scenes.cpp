@@ -123,9 +123,95 @@ Scene makeDefault() {
     return scene;
 }
 
-const std::map<std::string, std::function<Scene()>>& registry() {
-    static const std::map<std::string, std::function<Scene()>> scenes = {
-        {"default", makeDefault},
+}  // namespace
+
+Scene makePlatesScene() {
+    Scene scene;
+    scene.name = "plates";
+    World& w = scene.world;
+    const PlatesGeometry g;
+    addMeshInstance(w, "receiver", makePlaneMesh(static_cast<float>(g.receiverHalfSize), 4), at(0, 0, 0),
+                    matte(0.8f, 0.8f, 0.8f));
+    for (std::size_t k = 0; k < g.plates.size(); ++k) {
+        const PlatesGeometry::Plate& p = g.plates[k];
+        const Entity e = addMeshInstance(w, "plate" + std::to_string(k), makePlaneMesh(static_cast<float>(p.halfSize)),
+                                         at(p.center.x, p.center.y, p.center.z), matte(0.5f, 0.6f, 0.8f));
+        w.get<Mesh>(e).receiveShadows = false;
+    }
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.intensity = 40.0f;
+    spot.outerConeAngle = 0.95f;
+    spot.innerConeAngle = 0.9f;
+    spot.radius = static_cast<float>(g.lightRadius);
+    Shadow shadow;
+    shadow.technique = ShadowTechnique::Pcss;
+    shadow.mapSize = 2048;
+    shadow.blockerSamples = 32;
+    shadow.pcfSamples = 32;
+    shadow.maxFilterTexels = 64.0f;
+    addLight(scene, "disk light", spot, shadow, {0.0, g.lightHeight, 0.0}, {0.0, -1.0, 0.0});
+    Camera camera;
+    camera.yfov = 0.9f;
+    camera.znear = 0.1f;
+    camera.zfar = 50.0f;
+    addCamera(scene, "camera", camera, {0.0, 5.5, 3.0}, {0.0, 0.0, 0.0});
+    return scene;
+}
+
+namespace {
+
+Result<Scene> makeBunny() {
+    auto bunny = loadObjMesh(kBunnyObjPath);
+    if (!bunny) return Error{"builtin:bunny: " + bunny.error().message + " (install glmark2-data)"};
+    Scene scene;
+    scene.name = "bunny";
+    World& w = scene.world;
+    addMeshInstance(w, "ground", makePlaneMesh(4.0f, 4), at(0, 0, 0), matte(0.75f, 0.75f, 0.72f));
+    // The bunny's bounds: stand it on the ground, about 1.2 m tall.
+    const Aabb b = (*bunny)->bounds;
+    const double scale = 1.2 / std::max(1e-6f, b.max.y - b.min.y);
+    Transform t = at(-scale * b.center().x, -scale * b.min.y, -scale * b.center().z);
+    t.scale = glm::dvec3(scale);
+    addMeshInstance(w, "bunny", std::move(bunny).value(), t, matte(0.85f, 0.8f, 0.7f));
+
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.intensity = 3.0f;
+    sun.angularRadius = 0.03f;
+    Shadow sunShadow;
+    sunShadow.technique = ShadowTechnique::Pcss;
+    addLight(scene, "sun", sun, sunShadow, {0, 10, 0}, glm::normalize(glm::dvec3(0.5, -1.0, -0.4)));
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.intensity = 25.0f;
+    spot.outerConeAngle = 0.6f;
+    spot.innerConeAngle = 0.45f;
+    spot.radius = 0.1f;
+    Shadow spotShadow;
+    spotShadow.technique = ShadowTechnique::Pcf;
+    addLight(scene, "spot", spot, spotShadow, {-2.5, 3.0, 2.0}, glm::normalize(glm::dvec3(2.5, -2.6, -2.0)));
+    Light bulb;
+    bulb.type = LightType::Point;
+    bulb.intensity = 6.0f;
+    bulb.radius = 0.05f;
+    Shadow bulbShadow;
+    bulbShadow.technique = ShadowTechnique::Hard;
+    bulbShadow.mapSize = 512;
+    addLight(scene, "bulb", bulb, bulbShadow, {1.2, 1.8, 1.0}, {0, -1, 0});
+    Camera camera;
+    camera.yfov = 0.7f;
+    camera.znear = 0.05f;
+    camera.zfar = 50.0f;
+    addCamera(scene, "camera", camera, {2.6, 2.2, 3.4}, {0.0, 0.5, 0.0});
+    return scene;
+}
+
+const std::map<std::string, std::function<Result<Scene>()>>& registry() {
+    static const std::map<std::string, std::function<Result<Scene>()>> scenes = {
+        {"default", [] { return Result<Scene>(makeDefault()); }},
+        {"plates", [] { return Result<Scene>(makePlatesScene()); }},
+        {"bunny", makeBunny},
     };
     return scenes;
 }
