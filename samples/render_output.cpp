@@ -90,7 +90,7 @@ const char* lightTypeName(LightType t) {
 
 Result<ShadowTechnique> parseTechnique(const std::string& name) {
     if (const auto t = techniqueFromName(name)) return *t;
-    return Error{"unknown technique '" + name + "' (known: none, hard, pcf, pcss)"};
+    return Error{"unknown technique '" + name + "' (known: none, hard, pcf, pcss, pcss-textbook)"};
 }
 
 namespace {

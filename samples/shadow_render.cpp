@@ -205,7 +205,7 @@ int main(int argc, char** argv) {
     app.add_option("--time", o.time, "animation time of the first frame (s)");
     app.add_option("--frames", o.frames, "frames to render");
     app.add_option("--dt", o.dt, "time step between frames (s)");
-    app.add_option("--technique", o.technique, "override every shadowed light: none|hard|pcf|pcss");
+    app.add_option("--technique", o.technique, "override every shadowed light: none|hard|pcf|pcss|pcss-textbook");
     app.add_option("--aov", o.aov, "outputs: color,visibility,position,depth");
     app.add_option("--debug", o.debug, "debug view: shadowmap|cascade|blocker|penumbra|visibility");
     app.add_option("--debug-light", o.debugLight, "scene light index the debug view shows");

@@ -28,7 +28,7 @@ layout(std430, binding = SG_BINDING_LAYERS) readonly buffer LayerBuffer {
 };
 
 layout(binding = SG_UNIT_SHADOW_COMPARE) uniform sampler2DArrayShadow uShadowCompare[SG_MAX_LIGHTS_PER_PASS];
-#ifdef SG_TECH_PCSS_ENABLED
+#if defined(SG_TECH_PCSS_ENABLED) || defined(SG_TECH_PCSS_TEXTBOOK_ENABLED)
 layout(binding = SG_UNIT_SHADOW_DEPTH) uniform sampler2DArray uShadowDepth[SG_MAX_LIGHTS_PER_PASS];
 #endif
 
@@ -260,6 +260,51 @@ float pcssVisibility(int slot, GpuLight L, Receiver r) {
 }
 #endif
 
+#ifdef SG_TECH_PCSS_TEXTBOOK_ENABLED
+// The seeds' PCSS, kept as the baseline every speed-up is measured against: a fixed-count
+// Poisson blocker search and PCF around the receiver's own shadow-map UV (no receiver-plane
+// taps, no per-tap layer choice, no early-outs), with the same physical search region,
+// penumbra formula, bias and clamp as pcssVisibility.
+float pcssTextbookVisibility(int slot, GpuLight L, Receiver r) {
+    Tap center = lateralTap(L, r, vec2(0.0));
+    GpuShadowLayer S = uLayers[L.firstLayer + center.layer];
+    vec3 ls = (S.lightFromWorld * vec4(r.csPosition, 1.0)).xyz;
+    float uvPerMetre = 0.5 * S.clipFromLight[0][0] / (S.orthographic != 0 ? 1.0 : max(-ls.z, 1e-6));
+    float dReceiver = center.depth;
+    float size = max(L.emitterSize, 0.0);
+    float maxRadius = L.maxFilterTexels * r.texelMetres;
+    float searchRadius = L.type == SG_LIGHT_DIRECTIONAL
+                             ? dReceiver * tan(size)
+                             : size * max(dReceiver - S.depthNear, 0.0) / max(S.depthNear, 1e-6);
+    searchRadius = clamp(searchRadius, r.texelMetres, maxRadius);
+    float rotation = 6.28318531 * interleavedGradientNoise(gl_FragCoord.xy);
+
+    float blockerSum = 0.0;
+    int blockers = 0;
+    for (int i = 0; i < L.blockerSamples; ++i) {
+        vec2 uv = center.uv + diskSample(SG_KERNEL_POISSON, i, L.blockerSamples, rotation) * searchRadius * uvPerMetre;
+        float stored = texture(uShadowDepth[slot], vec3(uv, float(center.layer))).r * S.depthScale;
+        if (stored < dReceiver - r.depthBias) {
+            blockerSum += stored;
+            ++blockers;
+        }
+    }
+    float dBlocker = blockers > 0 ? blockerSum / float(blockers) : dReceiver;
+    float penumbra = L.type == SG_LIGHT_DIRECTIONAL ? (dReceiver - dBlocker) * tan(size)
+                                                    : (dReceiver - dBlocker) * size / max(dBlocker, 1e-6);
+    penumbra = clamp(penumbra, 0.0, maxRadius);
+    gDebugBlockerDepth = dBlocker;
+    gDebugPenumbra = penumbra;
+    float reference = min((dReceiver - r.depthBias) / S.depthScale, 1.0);
+    float sum = 0.0;
+    for (int i = 0; i < L.pcfSamples; ++i) {
+        vec2 uv = center.uv + diskSample(SG_KERNEL_POISSON, i, L.pcfSamples, rotation) * penumbra * uvPerMetre;
+        sum += texture(uShadowCompare[slot], vec4(uv, float(center.layer), reference));
+    }
+    return sum / float(L.pcfSamples);
+}
+#endif
+
 float techniqueVisibility(int slot, GpuLight L, Receiver r) {
     float v = 1.0;
 #ifdef SG_TECH_HARD_ENABLED
@@ -273,6 +318,9 @@ float techniqueVisibility(int slot, GpuLight L, Receiver r) {
 #endif
 #ifdef SG_TECH_PCSS_ENABLED
     if (L.technique == SG_TECH_PCSS) v = pcssVisibility(slot, L, r);
+#endif
+#ifdef SG_TECH_PCSS_TEXTBOOK_ENABLED
+    if (L.technique == SG_TECH_PCSS_TEXTBOOK) v = pcssTextbookVisibility(slot, L, r);
 #endif
     return v;
 }

@@ -13,6 +13,7 @@
 #define SG_TECH_HARD 1
 #define SG_TECH_PCF 2
 #define SG_TECH_PCSS 3
+#define SG_TECH_PCSS_TEXTBOOK 4
 
 // Filter kernels (FilterKernel in components.h, in the same order).
 #define SG_KERNEL_VOGEL 0

@@ -99,10 +99,14 @@ enum class ShadowTechnique : std::uint8_t {
     Hard,  ///< one depth comparison (with hardware 2x2 bilinear PCF)
     Pcf,   ///< fixed-radius percentage-closer filtering
     Pcss,  ///< blocker search, penumbra estimate, then PCF
+    /// The seeds' textbook PCSS, kept as a baseline for the benchmarks: fixed-count Poisson
+    /// blocker search and PCF in the receiver's shadow-map UV, no receiver-plane taps, no
+    /// early-outs. Same physical units as Pcss.
+    PcssTextbook,
 };
 
 /// A technique's name as glTF `extras.shadow.technique` and the CLI spell it ("none", "hard",
-/// "pcf", "pcss").
+/// "pcf", "pcss", "pcss-textbook").
 [[nodiscard]] const char* techniqueName(ShadowTechnique t);
 /// The technique named `name`, or nullopt for an unknown name.
 [[nodiscard]] std::optional<ShadowTechnique> techniqueFromName(std::string_view name);

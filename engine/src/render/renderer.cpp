@@ -67,8 +67,10 @@ LitProgram buildLit(VariantKey key) {
     desc.vertexFile = "lit.vert.glsl";
     desc.fragmentFile = "lit.frag.glsl";
     std::string name;
-    const std::array<std::pair<int, const char*>, 3> techniques = {
-        {{SG_TECH_HARD, "HARD"}, {SG_TECH_PCF, "PCF"}, {SG_TECH_PCSS, "PCSS"}}};
+    const std::array<std::pair<int, const char*>, 4> techniques = {{{SG_TECH_HARD, "HARD"},
+                                                                    {SG_TECH_PCF, "PCF"},
+                                                                    {SG_TECH_PCSS, "PCSS"},
+                                                                    {SG_TECH_PCSS_TEXTBOOK, "PCSS_TEXTBOOK"}}};
     for (const auto& [id, label] : techniques) {
         if (key & (1u << id)) {
             desc.defines.push_back(std::string("SG_TECH_") + label + "_ENABLED");
@@ -144,6 +146,7 @@ int techniqueId(ShadowTechnique t) {
         case ShadowTechnique::Hard: return SG_TECH_HARD;
         case ShadowTechnique::Pcf: return SG_TECH_PCF;
         case ShadowTechnique::Pcss: return SG_TECH_PCSS;
+        case ShadowTechnique::PcssTextbook: return SG_TECH_PCSS_TEXTBOOK;
     }
     return SG_TECH_NONE;
 }

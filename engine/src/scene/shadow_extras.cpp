@@ -27,7 +27,7 @@ Result<ShadowTechnique> parseTechnique(const tinygltf::Value& v, const std::stri
     if (!name) return name.error();
     if (const auto t = techniqueFromName(*name)) return *t;
     return elementError(where,
-                        "unknown technique \"" + *name + "\" (expected none, hard, pcf or pcss)");
+                        "unknown technique \"" + *name + "\" (expected none, hard, pcf, pcss or pcss-textbook)");
 }
 
 Result<FilterKernel> parseKernel(const tinygltf::Value& v, const std::string& where) {

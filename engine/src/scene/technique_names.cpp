@@ -8,12 +8,14 @@ const char* techniqueName(ShadowTechnique t) {
         case ShadowTechnique::Hard: return "hard";
         case ShadowTechnique::Pcf: return "pcf";
         case ShadowTechnique::Pcss: return "pcss";
+        case ShadowTechnique::PcssTextbook: return "pcss-textbook";
     }
     return "none";
 }
 
 std::optional<ShadowTechnique> techniqueFromName(std::string_view name) {
-    for (ShadowTechnique t : {ShadowTechnique::None, ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss}) {
+    for (ShadowTechnique t : {ShadowTechnique::None, ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss,
+                              ShadowTechnique::PcssTextbook}) {
         if (name == techniqueName(t)) return t;
     }
     return std::nullopt;
