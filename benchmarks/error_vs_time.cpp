@@ -1,0 +1,431 @@
+// error_vs_time: every shadow technique and setting on an error-against-time chart.
+//
+// For each scene, every configuration of the sweep (technique x map size x tap counts x
+// kernel) is rendered with the engine: frames are timed without AOVs (median of the timed
+// frames after a warm-up frame, shadow layers redrawn every frame so the figure is the full
+// cost of a frame), then one frame with AOVs gives the visibility that is compared with the
+// ray-traced reference (`shadow_reference`, read from REFERENCES/<scene>/). Writes:
+//   OUT/error_vs_time.csv, OUT/error_vs_time.json   one row per (scene, configuration)
+//   OUT/error_vs_time.md                            the tables BENCHMARKS.md shows
+//   OUT/plot/*.dat, OUT/error_vs_time.gp            data and script for gnuplot
+// Run through benchmarks/run_error_vs_time.sh, which makes the references and the plot.
+#include <shadow/context.h>
+#include <shadow/metrics.h>
+#include <shadow/renderer.h>
+#include <shadow/scene.h>
+
+#include "render_output.h"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+namespace {
+
+using namespace shadow;
+namespace fs = std::filesystem;
+
+/// One point of the sweep: what every shadowed light of the scene is set to.
+struct Config {
+    ShadowTechnique technique = ShadowTechnique::Hard;
+    int mapSize = 1024;
+    int pcfSamples = 16;
+    int blockerSamples = 16;
+    FilterKernel kernel = FilterKernel::Vogel;
+
+    [[nodiscard]] std::string label() const {
+        std::ostringstream s;
+        s << techniqueName(technique) << " map" << mapSize;
+        if (technique == ShadowTechnique::Pcf) s << " taps" << pcfSamples;
+        if (technique == ShadowTechnique::Pcss || technique == ShadowTechnique::PcssTextbook) {
+            s << " taps" << blockerSamples << "+" << pcfSamples;
+        }
+        if (technique != ShadowTechnique::Hard) s << " " << kernelName(kernel);
+        return s.str();
+    }
+    static const char* kernelName(FilterKernel k) {
+        switch (k) {
+            case FilterKernel::Vogel: return "vogel";
+            case FilterKernel::Poisson: return "poisson";
+            case FilterKernel::Uniform: return "uniform";
+        }
+        return "vogel";
+    }
+};
+
+std::vector<Config> sweep() {
+    std::vector<Config> out;
+    for (int size : {512, 1024, 2048}) out.push_back({ShadowTechnique::Hard, size, 1, 1, FilterKernel::Vogel});
+    for (FilterKernel k : {FilterKernel::Vogel, FilterKernel::Poisson}) {
+        for (int taps : {4, 8, 16, 32}) out.push_back({ShadowTechnique::Pcf, 1024, taps, 1, k});
+    }
+    for (FilterKernel k : {FilterKernel::Vogel, FilterKernel::Poisson}) {
+        for (int taps : {8, 16, 32}) out.push_back({ShadowTechnique::Pcss, 1024, taps, taps, k});
+    }
+    out.push_back({ShadowTechnique::Pcss, 2048, 32, 32, FilterKernel::Vogel});
+    for (int taps : {8, 16, 32}) out.push_back({ShadowTechnique::PcssTextbook, 1024, taps, taps, FilterKernel::Poisson});
+    return out;
+}
+
+/// What one configuration measured on one scene.
+struct Row {
+    std::string scene;
+    Config config;
+    samples::Spread frameMs, shadowMs, mainMs;
+    VisibilityErrors errors;  // pooled over the scene's lights
+    bool pareto = false;
+};
+
+void applyConfig(Scene& scene, const Config& c) {
+    scene.world.view<Shadow>().each([&](Entity, Shadow& s) {
+        if (s.technique == ShadowTechnique::None) return;
+        s.technique = c.technique;
+        s.mapSize = c.mapSize;
+        s.pcfSamples = c.pcfSamples;
+        s.blockerSamples = c.blockerSamples;
+        s.kernel = c.kernel;
+    });
+}
+
+/// Pools per-light errors pixel-weighted (RMSEs combine through their mean squares).
+VisibilityErrors pool(const std::vector<VisibilityErrors>& lights) {
+    VisibilityErrors all;
+    double sq = 0.0, abs = 0.0, penSq = 0.0;
+    for (const VisibilityErrors& e : lights) {
+        all.validPixels += e.validPixels;
+        all.penumbraPixels += e.penumbraPixels;
+        all.litPixels += e.litPixels;
+        all.umbraPixels += e.umbraPixels;
+        all.acnePixels += e.acnePixels;
+        all.leakPixels += e.leakPixels;
+        sq += e.rmse * e.rmse * static_cast<double>(e.validPixels);
+        abs += e.mae * static_cast<double>(e.validPixels);
+        penSq += e.penumbraRmse * e.penumbraRmse * static_cast<double>(e.penumbraPixels);
+        all.p99 = std::max(all.p99, e.p99);
+    }
+    if (all.validPixels > 0) {
+        all.rmse = std::sqrt(sq / static_cast<double>(all.validPixels));
+        all.mae = abs / static_cast<double>(all.validPixels);
+    }
+    if (all.penumbraPixels > 0) all.penumbraRmse = std::sqrt(penSq / static_cast<double>(all.penumbraPixels));
+    if (all.litPixels > 0) all.acneFraction = static_cast<double>(all.acnePixels) / static_cast<double>(all.litPixels);
+    if (all.umbraPixels > 0) all.leakFraction = static_cast<double>(all.leakPixels) / static_cast<double>(all.umbraPixels);
+    return all;
+}
+
+struct Options {
+    std::vector<std::string> scenes{"builtin:plates", "builtin:bunny", "builtin:default"};
+    std::string references = "benchmarks/results/tmp/references";
+    std::string out = "benchmarks/results";
+    std::string size = "320x240";
+    int frames = 5;
+};
+
+Result<Row> measure(const std::string& spec, const Config& config, const Options& o, int width, int height) {
+    Result<Scene> loaded = loadScene(spec);
+    if (!loaded) return loaded.error();
+    Scene& scene = *loaded;
+    applyConfig(scene, config);
+    const Entity camera = scene.cameras.front();
+    FrameRunner runner;
+    runner.shadows().planner().setCaching(false);  // every frame pays for its shadow maps
+    RenderOptions options;
+    options.width = width;
+    options.height = height;
+    std::vector<double> frame, shadow, main;
+    for (int f = 0; f <= o.frames; ++f) {
+        const FrameStats s = runner.runFrame(scene, 0.0, camera, options);
+        if (f == 0) continue;  // warm-up: programs compiled, meshes uploaded
+        shadow.push_back(s.passMs("Shadow/"));
+        main.push_back(s.passMs("Main/"));
+        frame.push_back(shadow.back() + main.back());
+    }
+    options.aovs = true;
+    FrameStats aovStats;
+    (void)runner.runFrame(scene, 0.0, camera, options);
+    const FrameImages images = runner.renderer().readback(runner.lastCamera(), aovStats);
+
+    const std::string refDir = o.references + "/" + scene.name;
+    Result<ImageF> mask = readExr(refDir + "/position.exr", {"A"});
+    if (!mask) return mask.error();
+    std::vector<VisibilityErrors> perLight;
+    for (std::size_t i = 0; i < images.visibility.size(); ++i) {
+        Result<ImageF> truth = readExr(refDir + "/visibility_" + std::to_string(i) + ".exr", {"Y"});
+        if (!truth) return truth.error();
+        Result<VisibilityErrors> e = compareVisibility(images.visibility[i], *truth, &*mask);
+        if (!e) return e.error();
+        perLight.push_back(*e);
+    }
+    Row row;
+    row.scene = scene.name;
+    row.config = config;
+    row.frameMs = samples::spreadOf(frame);
+    row.shadowMs = samples::spreadOf(shadow);
+    row.mainMs = samples::spreadOf(main);
+    row.errors = pool(perLight);
+    return row;
+}
+
+/// Marks each scene's rows that no other row beats in both time and RMSE.
+void markPareto(std::vector<Row>& rows) {
+    for (Row& r : rows) {
+        r.pareto = std::none_of(rows.begin(), rows.end(), [&](const Row& o) {
+            return o.scene == r.scene && o.frameMs.median <= r.frameMs.median && o.errors.rmse <= r.errors.rmse &&
+                   (o.frameMs.median < r.frameMs.median || o.errors.rmse < r.errors.rmse);
+        });
+    }
+}
+
+/// Our PCSS against the textbook PCSS of the same run: time at equal error and error at equal
+/// time, for each textbook configuration.
+nlohmann::json versusTextbook(const std::vector<Row>& rows) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const Row& t : rows) {
+        if (t.config.technique != ShadowTechnique::PcssTextbook) continue;
+        const Row* fastestAsGood = nullptr;
+        const Row* bestAsFast = nullptr;
+        for (const Row& r : rows) {
+            if (r.scene != t.scene || r.config.technique != ShadowTechnique::Pcss) continue;
+            if (r.errors.rmse <= t.errors.rmse && (!fastestAsGood || r.frameMs.median < fastestAsGood->frameMs.median)) {
+                fastestAsGood = &r;
+            }
+            if (r.frameMs.median <= t.frameMs.median && (!bestAsFast || r.errors.rmse < bestAsFast->errors.rmse)) {
+                bestAsFast = &r;
+            }
+        }
+        nlohmann::json j{{"scene", t.scene}, {"textbook", t.config.label()}, {"textbookMs", t.frameMs.median},
+                         {"textbookRmse", t.errors.rmse}};
+        if (fastestAsGood) {
+            j["equalError"] = {{"ours", fastestAsGood->config.label()},
+                               {"oursMs", fastestAsGood->frameMs.median},
+                               {"speedup", t.frameMs.median / fastestAsGood->frameMs.median}};
+        }
+        if (bestAsFast) {
+            j["equalTime"] = {{"ours", bestAsFast->config.label()},
+                              {"oursRmse", bestAsFast->errors.rmse},
+                              {"errorRatio", bestAsFast->errors.rmse > 0 ? t.errors.rmse / bestAsFast->errors.rmse : 0.0}};
+        }
+        out.push_back(j);
+    }
+    return out;
+}
+
+std::string machineName() {
+    std::ifstream cpu("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(cpu, line)) {
+        if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+    }
+    return "unknown CPU";
+}
+
+void writeCsv(const std::string& path, const std::vector<Row>& rows) {
+    std::ofstream f(path);
+    f << "scene,technique,config,mapSize,pcfSamples,blockerSamples,kernel,frameMsMedian,frameMsMin,frameMsMax,"
+         "shadowMsMedian,mainMsMedian,rmse,penumbraRmse,mae,p99,acneFraction,leakFraction,pareto\n";
+    for (const Row& r : rows) {
+        f << r.scene << ',' << techniqueName(r.config.technique) << ",\"" << r.config.label() << "\","
+          << r.config.mapSize << ',' << r.config.pcfSamples << ',' << r.config.blockerSamples << ','
+          << Config::kernelName(r.config.kernel) << ',' << r.frameMs.median << ',' << r.frameMs.min << ','
+          << r.frameMs.max << ',' << r.shadowMs.median << ',' << r.mainMs.median << ',' << r.errors.rmse << ','
+          << r.errors.penumbraRmse << ',' << r.errors.mae << ',' << r.errors.p99 << ',' << r.errors.acneFraction
+          << ',' << r.errors.leakFraction << ',' << (r.pareto ? 1 : 0) << '\n';
+    }
+}
+
+nlohmann::json rowsJson(const std::vector<Row>& rows) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const Row& r : rows) {
+        out.push_back({{"scene", r.scene},
+                       {"technique", techniqueName(r.config.technique)},
+                       {"config", r.config.label()},
+                       {"frameMs", {{"median", r.frameMs.median}, {"min", r.frameMs.min}, {"max", r.frameMs.max}}},
+                       {"shadowMsMedian", r.shadowMs.median},
+                       {"mainMsMedian", r.mainMs.median},
+                       {"rmse", r.errors.rmse},
+                       {"penumbraRmse", r.errors.penumbraRmse},
+                       {"mae", r.errors.mae},
+                       {"p99", r.errors.p99},
+                       {"acneFraction", r.errors.acneFraction},
+                       {"leakFraction", r.errors.leakFraction},
+                       {"pareto", r.pareto}});
+    }
+    return out;
+}
+
+void writeMarkdown(const std::string& path, const std::vector<Row>& rows, const nlohmann::json& textbook,
+                   const std::string& renderer, const Options& o) {
+    std::ofstream f(path);
+    f.setf(std::ios::fixed);
+    f.precision(4);
+    f << "Renderer: " << renderer << "; CPU: " << machineName() << "; " << o.size << " pixels; frame time = "
+      << "median of " << o.frames << " frames after one warm-up frame, shadow maps redrawn every frame, timed by "
+      << "wall clock between glFinish fences.\n\n";
+    std::string scene;
+    for (const Row& r : rows) {
+        if (r.scene != scene) {
+            scene = r.scene;
+            f << "\n### " << scene << "\n\n| configuration | frame ms (median) | shadow ms | main ms | RMSE | penumbra RMSE "
+                 "| p99 abs error | acne | leak | Pareto |\n|---|---|---|---|---|---|---|---|---|---|\n";
+        }
+        f.precision(1);
+        f << "| " << r.config.label() << " | " << r.frameMs.median << " | " << r.shadowMs.median << " | "
+          << r.mainMs.median;
+        f.precision(4);
+        f << " | " << r.errors.rmse << " | " << r.errors.penumbraRmse << " | " << r.errors.p99 << " | "
+          << r.errors.acneFraction << " | " << r.errors.leakFraction << " | " << (r.pareto ? "yes" : "") << " |\n";
+    }
+    f << "\n### Our PCSS against the textbook PCSS (same run)\n\n| scene | textbook | textbook ms | textbook RMSE "
+         "| ours at equal error | speed-up | ours at equal time | error ratio |\n|---|---|---|---|---|---|---|---|\n";
+    for (const auto& j : textbook) {
+        f.precision(1);
+        f << "| " << j["scene"].get<std::string>() << " | " << j["textbook"].get<std::string>() << " | "
+          << j["textbookMs"].get<double>();
+        f.precision(4);
+        f << " | " << j["textbookRmse"].get<double>() << " | ";
+        if (j.contains("equalError")) {
+            f.precision(2);
+            f << j["equalError"]["ours"].get<std::string>() << " (" << j["equalError"]["oursMs"].get<double>()
+              << " ms) | " << j["equalError"]["speedup"].get<double>() << "x | ";
+        } else {
+            f << "none as accurate | | ";
+        }
+        if (j.contains("equalTime")) {
+            f.precision(4);
+            f << j["equalTime"]["ours"].get<std::string>() << " (RMSE " << j["equalTime"]["oursRmse"].get<double>()
+              << ") | ";
+            f.precision(2);
+            f << j["equalTime"]["errorRatio"].get<double>() << "x |\n";
+        } else {
+            f << "none as fast | |\n";
+        }
+    }
+}
+
+/// gnuplot data (one file per scene and technique, plus each scene's Pareto front) and script.
+void writePlot(const std::string& out, const std::vector<Row>& rows) {
+    fs::create_directories(out + "/plot");
+    std::vector<std::string> scenes;
+    for (const Row& r : rows) {
+        if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
+    }
+    const std::vector<ShadowTechnique> techniques = {ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss,
+                                                     ShadowTechnique::PcssTextbook};
+    for (const std::string& s : scenes) {
+        for (ShadowTechnique t : techniques) {
+            std::vector<const Row*> sel;
+            for (const Row& r : rows) {
+                if (r.scene == s && r.config.technique == t) sel.push_back(&r);
+            }
+            std::sort(sel.begin(), sel.end(), [](const Row* a, const Row* b) { return a->frameMs.median < b->frameMs.median; });
+            std::ofstream f(out + "/plot/" + s + "_" + techniqueName(t) + ".dat");
+            for (const Row* r : sel) f << r->frameMs.median << ' ' << r->errors.rmse << ' ' << r->errors.penumbraRmse << '\n';
+        }
+        std::vector<const Row*> front;
+        for (const Row& r : rows) {
+            if (r.scene == s && r.pareto) front.push_back(&r);
+        }
+        std::sort(front.begin(), front.end(), [](const Row* a, const Row* b) { return a->frameMs.median < b->frameMs.median; });
+        std::ofstream f(out + "/plot/" + s + "_pareto.dat");
+        for (const Row* r : front) f << r->frameMs.median << ' ' << r->errors.rmse << ' ' << r->errors.penumbraRmse << '\n';
+    }
+    std::ofstream gp(out + "/error_vs_time.gp");
+    gp << "# Generated by error_vs_time. Run from " << out << ": gnuplot error_vs_time.gp\n"
+       << "set terminal pngcairo size " << 520 * scenes.size() << ",900 font ',10'\n"
+       << "set output 'error_vs_time.png'\nset multiplot layout 2," << scenes.size() << "\n"
+       << "set logscale x\nset grid\nset key top right\nset xlabel 'frame time (ms, median, log)'\n";
+    for (int metric = 0; metric < 2; ++metric) {
+        for (const std::string& s : scenes) {
+            gp << "set title '" << s << ": " << (metric == 0 ? "RMSE" : "penumbra RMSE") << "'\n";
+            gp << "set ylabel '" << (metric == 0 ? "RMSE of visibility" : "RMSE in the true penumbra") << "'\n";
+            gp << "plot ";
+            const int col = metric == 0 ? 2 : 3;
+            for (ShadowTechnique t : techniques) {
+                gp << "'plot/" << s << "_" << techniqueName(t) << ".dat' using 1:" << col << " with linespoints title '"
+                   << techniqueName(t) << "', ";
+            }
+            gp << "'plot/" << s << "_pareto.dat' using 1:" << col
+               << " with lines dashtype 2 linewidth 2 linecolor 'black' title 'Pareto front (RMSE)'\n";
+        }
+    }
+    gp << "unset multiplot\n";
+}
+
+int run(const Options& o) {
+    auto size = std::string(o.size);
+    const auto x = size.find('x');
+    const int width = x == std::string::npos ? 0 : std::atoi(size.substr(0, x).c_str());
+    const int height = x == std::string::npos ? 0 : std::atoi(size.substr(x + 1).c_str());
+    if (width < 1 || height < 1) {
+        std::cerr << "error_vs_time: --size '" << o.size << "': expected WxH\n";
+        return 2;
+    }
+    auto context = createOsMesaContext();
+    if (!context) {
+        std::cerr << "error_vs_time: " << context.error().message << "\n";
+        return 1;
+    }
+    const std::string renderer = queryGlInfo().renderer;
+    std::vector<Row> rows;
+    const std::vector<Config> configs = sweep();
+    for (const std::string& spec : o.scenes) {
+        for (const Config& c : configs) {
+            Result<Row> row = measure(spec, c, o, width, height);
+            if (!row) {
+                std::cerr << "error_vs_time: " << spec << ", " << c.label() << ": " << row.error().message << "\n";
+                return 2;
+            }
+            std::cerr << spec << "  " << c.label() << ": " << row->frameMs.median << " ms, RMSE " << row->errors.rmse
+                      << "\n";
+            rows.push_back(std::move(row).value());
+        }
+    }
+    markPareto(rows);
+    fs::create_directories(o.out);
+    writeCsv(o.out + "/error_vs_time.csv", rows);
+    const nlohmann::json textbook = versusTextbook(rows);
+    nlohmann::json j{{"renderer", renderer},
+                     {"cpu", machineName()},
+                     {"size", o.size},
+                     {"timedFrames", o.frames},
+                     {"timingMethod", queryGlInfo().softwareRenderer ? "wall-clock-fence" : "timer-query"},
+                     {"rows", rowsJson(rows)},
+                     {"versusTextbook", textbook}};
+    std::ofstream(o.out + "/error_vs_time.json") << j.dump(2) << "\n";
+    writeMarkdown(o.out + "/error_vs_time.md", rows, textbook, renderer, o);
+    writePlot(o.out, rows);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    CLI::App app{"Error against time for every shadow technique and setting (see the file header)."};
+    app.add_option("--scenes", o.scenes, "scenes to sweep")->delimiter(',');
+    app.add_option("--references", o.references, "folder with one shadow_reference output per scene name");
+    app.add_option("--out", o.out, "results folder");
+    app.add_option("--size", o.size, "image size WxH");
+    app.add_option("--frames", o.frames, "timed frames per configuration")->check(CLI::Range(1, 1000));
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::cerr << "error_vs_time: " << e.what() << "\n";
+        return 2;
+    }
+    try {
+        return run(o);
+    } catch (const std::exception& e) {
+        std::cerr << "error_vs_time: " << e.what() << "\n";
+        return 1;
+    }
+}

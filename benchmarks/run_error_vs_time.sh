@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Error against time for every technique on three scenes, and BENCHMARKS.md from the results.
+#   bash benchmarks/run_error_vs_time.sh [--quick]
+# Sets up and builds (.ci/setup), traces the references with shadow_reference (Embree), runs the
+# sweep (build/bin/error_vs_time), plots with gnuplot, and rewrites BENCHMARKS.md. --quick uses
+# fewer reference samples and timed frames (for a smoke run; the committed figures are full).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash .ci/setup >/dev/null
+
+size=320x240
+samples=1024
+frames=5
+if [ "${1:-}" = "--quick" ]; then samples=64; frames=1; fi
+results=benchmarks/results
+refs=$results/tmp/references
+mkdir -p "$refs"
+for scene in plates bunny default; do
+  ./build/bin/shadow_reference "builtin:$scene" --out "$refs/$scene" --size "$size" --samples "$samples"
+done
+./build/bin/error_vs_time --scenes builtin:plates,builtin:bunny,builtin:default --references "$refs" \
+  --out "$results" --size "$size" --frames "$frames"
+(cd "$results" && gnuplot error_vs_time.gp)
+
+{
+  cat <<'MD'
+# Benchmarks
+
+## Error against time
+
+Every shadow technique and setting, on three scenes — `builtin:plates` (a disk light over two
+square plates: the scene whose visibility has a closed form), `builtin:bunny` (the Stanford
+bunny from Debian's glmark2-data on a plane under a PCSS sun, a PCF spot and a hard point
+light) and `builtin:default` (the animated default scene at t = 0, three lights) — against the
+ray-traced truth of `shadow_reference` (Embree, stratified samples over each light's emitter).
+Error is the visibility error over receiver pixels, pooled over the scene's lights; the
+penumbra RMSE counts only pixels whose true visibility is strictly between 0 and 1. One
+configuration sets every shadowed light of the scene. `pcss-textbook` is the seeds' PCSS (fixed
+Poisson taps around the receiver's UV), kept so our PCSS is measured against it in the same run.
+
+Reproduce (about 10 minutes here; rewrites this file and `benchmarks/results/`):
+
+```sh
+bash benchmarks/run_error_vs_time.sh
+```
+
+![error against time](benchmarks/results/error_vs_time.png)
+
+Data: `benchmarks/results/error_vs_time.csv` and `.json`.
+
+MD
+  cat "$results/error_vs_time.md"
+  cat <<'MD'
+
+## CPU cost of the per-frame systems
+
+`./build/bin/cpu_systems_bench` (Google Benchmark) times animation + transforms and the shadow
+system's decide phase on the default scene; run it to get this machine's figures.
+MD
+} > BENCHMARKS.md
+echo "wrote BENCHMARKS.md and $results/"
