@@ -79,7 +79,7 @@ struct Row {
     std::string scene;
     Config config;
     samples::Spread frameMs, shadowMs, mainMs;
-    VisibilityErrors errors;  // pooled over the scene's lights
+    VisibilityErrors errors;  // all lights' receiver pixels as one population
     bool pareto = false;
 };
 
@@ -92,32 +92,6 @@ void applyConfig(Scene& scene, const Config& c) {
         s.blockerSamples = c.blockerSamples;
         s.kernel = c.kernel;
     });
-}
-
-/// Pools per-light errors pixel-weighted (RMSEs combine through their mean squares).
-VisibilityErrors pool(const std::vector<VisibilityErrors>& lights) {
-    VisibilityErrors all;
-    double sq = 0.0, abs = 0.0, penSq = 0.0;
-    for (const VisibilityErrors& e : lights) {
-        all.validPixels += e.validPixels;
-        all.penumbraPixels += e.penumbraPixels;
-        all.litPixels += e.litPixels;
-        all.umbraPixels += e.umbraPixels;
-        all.acnePixels += e.acnePixels;
-        all.leakPixels += e.leakPixels;
-        sq += e.rmse * e.rmse * static_cast<double>(e.validPixels);
-        abs += e.mae * static_cast<double>(e.validPixels);
-        penSq += e.penumbraRmse * e.penumbraRmse * static_cast<double>(e.penumbraPixels);
-        all.p99 = std::max(all.p99, e.p99);
-    }
-    if (all.validPixels > 0) {
-        all.rmse = std::sqrt(sq / static_cast<double>(all.validPixels));
-        all.mae = abs / static_cast<double>(all.validPixels);
-    }
-    if (all.penumbraPixels > 0) all.penumbraRmse = std::sqrt(penSq / static_cast<double>(all.penumbraPixels));
-    if (all.litPixels > 0) all.acneFraction = static_cast<double>(all.acnePixels) / static_cast<double>(all.litPixels);
-    if (all.umbraPixels > 0) all.leakFraction = static_cast<double>(all.leakPixels) / static_cast<double>(all.umbraPixels);
-    return all;
 }
 
 struct Options {
@@ -155,21 +129,21 @@ Result<Row> measure(const std::string& spec, const Config& config, const Options
     const std::string refDir = o.references + "/" + scene.name;
     Result<ImageF> mask = readExr(refDir + "/position.exr", {"A"});
     if (!mask) return mask.error();
-    std::vector<VisibilityErrors> perLight;
+    std::vector<ImageF> truths;
     for (std::size_t i = 0; i < images.visibility.size(); ++i) {
         Result<ImageF> truth = readExr(refDir + "/visibility_" + std::to_string(i) + ".exr", {"Y"});
         if (!truth) return truth.error();
-        Result<VisibilityErrors> e = compareVisibility(images.visibility[i], *truth, &*mask);
-        if (!e) return e.error();
-        perLight.push_back(*e);
+        truths.push_back(std::move(truth).value());
     }
+    Result<VisibilityErrors> pooled = compareVisibilityPooled(images.visibility, truths, &*mask);
+    if (!pooled) return pooled.error();
     Row row;
     row.scene = scene.name;
     row.config = config;
     row.frameMs = samples::spreadOf(frame);
     row.shadowMs = samples::spreadOf(shadow);
     row.mainMs = samples::spreadOf(main);
-    row.errors = pool(perLight);
+    row.errors = *pooled;
     return row;
 }
 

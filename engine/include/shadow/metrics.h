@@ -54,10 +54,10 @@ struct VisibilityErrors {
     std::int64_t leakPixels = 0;      ///< umbra, estimate > kWrongSideVisibility
 
     // ---- Over valid pixels ----
-    double rmse = 0.0;             ///< sqrt(mean e²)
-    double mae = 0.0;              ///< mean |e|
-    double meanError = 0.0;        ///< mean e (bias: < 0 too dark overall, > 0 too light)
-    double maxAbsError = 0.0;      ///< max |e|
+    double rmse = 0.0;         ///< sqrt(mean e²)
+    double mae = 0.0;          ///< mean |e|
+    double meanError = 0.0;    ///< mean e (bias: < 0 too dark overall, > 0 too light)
+    double maxAbsError = 0.0;  ///< max |e|
     /// Nearest-rank 99th percentile of |e|: the ⌈0.99·N⌉-th smallest of the N values
     /// (1-based), so at least 99% of the valid pixels have |e| ≤ p99. With N < 100 it is the
     /// maximum.
@@ -65,12 +65,12 @@ struct VisibilityErrors {
     double fractionOver0_1 = 0.0;  ///< over0_1Pixels / validPixels
 
     // ---- Per truth class ----
-    double penumbraRmse = 0.0;       ///< sqrt(mean e²) over penumbra pixels
-    double acneFraction = 0.0;       ///< acnePixels / litPixels
+    double penumbraRmse = 0.0;  ///< sqrt(mean e²) over penumbra pixels
+    double acneFraction = 0.0;  ///< acnePixels / litPixels
     /// Mean of max(0, V_true − estimate) over *all* lit pixels, so it also shows faint acne
     /// that never crosses kWrongSideVisibility.
     double acneMeanDarkening = 0.0;
-    double leakFraction = 0.0;       ///< leakPixels / umbraPixels
+    double leakFraction = 0.0;  ///< leakPixels / umbraPixels
     /// Mean of max(0, estimate − V_true) over all umbra pixels.
     double leakMeanLightening = 0.0;
 };
@@ -79,8 +79,17 @@ struct VisibilityErrors {
 /// last channel is > 0.5 (a non-finite mask value is not a receiver), or over every pixel when
 /// `mask` is null. Errors: a size mismatch (naming both sizes) or a channel count other than 1
 /// (mask: any count ≥ 1).
-[[nodiscard]] Result<VisibilityErrors> compareVisibility(const ImageF& estimate, const ImageF& truth,
+[[nodiscard]] Result<VisibilityErrors> compareVisibility(const ImageF& estimate,
+                                                         const ImageF& truth,
                                                          const ImageF* mask = nullptr);
+
+/// The errors of several lights pooled, as one population of (light, pixel) pairs:
+/// pixel-weighted, with p99 the percentile of the pooled |e| (not a mix of per-light
+/// figures). `estimates[i]` is compared with `truths[i]`, all over the same `mask`. Errors: the
+/// lists differ in length, or compareVisibility's errors for a light, prefixed "light <i>: ".
+[[nodiscard]] Result<VisibilityErrors> compareVisibilityPooled(const std::vector<ImageF>& estimates,
+                                                               const std::vector<ImageF>& truths,
+                                                               const ImageF* mask = nullptr);
 
 /// Heat-map colour of a signed error, display-referred RGB in [0, 1]: white at 0, towards blue
 /// (0,0,1) for e < 0 (estimate too dark), towards red (1,0,0) for e > 0 (too light); |e| ≥ 1
@@ -103,9 +112,9 @@ inline constexpr std::array<float, 3> kHeatMapBadColor{0.0f, 0.0f, 0.0f};
 
 /// One light of a folder comparison.
 struct LightComparison {
-    int index = 0;            ///< `<i>` of visibility_<i>.exr
+    int index = 0;  ///< `<i>` of visibility_<i>.exr
     VisibilityErrors errors;
-    ImageF heatMap;           ///< errorHeatMap of this light, for writeHeatMapPng
+    ImageF heatMap;  ///< errorHeatMap of this light, for writeHeatMapPng
 };
 
 /// Two render folders compared light by light.
