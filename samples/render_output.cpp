@@ -6,10 +6,37 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <sstream>
 #include <unistd.h>
 
 namespace shadow::samples {
+
+Result<std::pair<int, int>> parseSize(const std::string& text) {
+    static const std::regex kSize(R"((\d{1,5})x(\d{1,5}))");
+    std::smatch m;
+    if (!std::regex_match(text, m, kSize)) return Error{"--size '" + text + "': expected WxH, e.g. 640x360"};
+    const int w = std::stoi(m[1].str());
+    const int h = std::stoi(m[2].str());
+    if (w < 1 || h < 1 || w > 16384 || h > 16384) {
+        return Error{"--size '" + text + "': width and height must be in [1, 16384]"};
+    }
+    return std::make_pair(w, h);
+}
+
+Result<Entity> chooseCamera(Scene& scene, std::optional<int> index, double time) {
+    if (index) {
+        if (*index < 0 || *index >= static_cast<int>(scene.cameras.size())) {
+            return Error{"--camera " + std::to_string(*index) + ": the scene has " + std::to_string(scene.cameras.size()) +
+                         " cameras"};
+        }
+        return scene.cameras[static_cast<std::size_t>(*index)];
+    }
+    if (!scene.cameras.empty()) return scene.cameras.front();
+    animate(scene.world, time);
+    (void)updateTransforms(scene.world);
+    return addDefaultCamera(scene);
+}
 
 Result<OutputSelection> parseAovList(const std::string& list) {
     OutputSelection s{false, false, false, false};

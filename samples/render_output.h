@@ -7,7 +7,9 @@
 #include <shadow/scene.h>
 #include <shadow/stats.h>
 
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace shadow::samples {
@@ -20,6 +22,14 @@ struct OutputSelection {
     bool depth = true;
     [[nodiscard]] bool anyAov() const { return visibility || position || depth; }
 };
+
+/// Parses an image size "WxH" with 1 <= W, H <= 16384; the error names the flag's text.
+[[nodiscard]] Result<std::pair<int, int>> parseSize(const std::string& text);
+
+/// The camera of `--camera N` (an error when out of range), else the scene's first, else a
+/// default one added after posing the scene at `time`. shadow_render and shadow_reference use
+/// it, so both see the same pixels.
+[[nodiscard]] Result<Entity> chooseCamera(Scene& scene, std::optional<int> index, double time);
 
 /// Parses "color,visibility,position,depth" (any subset, any order).
 [[nodiscard]] Result<OutputSelection> parseAovList(const std::string& list);

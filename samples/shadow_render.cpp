@@ -52,18 +52,6 @@ int fail(int code, const std::string& message) {
     return code;
 }
 
-Result<std::pair<int, int>> parseSize(const std::string& text) {
-    static const std::regex kSize(R"((\d{1,5})x(\d{1,5}))");
-    std::smatch m;
-    if (!std::regex_match(text, m, kSize)) return Error{"--size '" + text + "': expected WxH, e.g. 640x360"};
-    const int w = std::stoi(m[1].str());
-    const int h = std::stoi(m[2].str());
-    if (w < 1 || h < 1 || w > 16384 || h > 16384) {
-        return Error{"--size '" + text + "': width and height must be in [1, 16384]"};
-    }
-    return std::make_pair(w, h);
-}
-
 Result<DebugView> parseDebug(const std::string& name) {
     if (name.empty()) return DebugView::None;
     if (name == "cascade") return DebugView::Cascade;
@@ -104,7 +92,7 @@ Status writeShadowMaps(const std::string& dir, const ShadowSystem& shadows) {
 }
 
 int run(const Options& o) {
-    auto size = parseSize(o.size);
+    auto size = samples::parseSize(o.size);
     if (!size) return fail(kExitBadInput, size.error().message);
     auto selection = samples::parseAovList(o.aov);
     if (!selection) return fail(kExitBadInput, selection.error().message);
@@ -131,20 +119,9 @@ int run(const Options& o) {
     if (technique) {
         scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.technique = *technique; });
     }
-    Entity camera;
-    if (o.camera) {
-        if (*o.camera >= static_cast<int>(scene.cameras.size())) {
-            return fail(kExitBadInput, "--camera " + std::to_string(*o.camera) + ": the scene has " +
-                                           std::to_string(scene.cameras.size()) + " cameras");
-        }
-        camera = scene.cameras[static_cast<std::size_t>(*o.camera)];
-    } else if (!scene.cameras.empty()) {
-        camera = scene.cameras.front();
-    } else {
-        animate(scene.world, o.time);
-        (void)updateTransforms(scene.world);
-        camera = addDefaultCamera(scene);
-    }
+    Result<Entity> chosen = samples::chooseCamera(scene, o.camera, o.time);
+    if (!chosen) return fail(kExitBadInput, chosen.error().message);
+    const Entity camera = *chosen;
 
     // Input is valid: now the output folder, checked before any rendering so a bad one costs
     // nothing, and created only for input that will be rendered.

@@ -1,0 +1,250 @@
+#include "ray_scene.h"
+
+#include <embree3/rtcore.h>
+#include <shadow/components.h>
+#include <shadow/math.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace shadow::reference {
+namespace {
+
+constexpr double kRelativeEpsilon = 1e-5;
+constexpr double kMinEpsilon = 1e-7;  // m
+
+/// One mesh instance in world space, its triangles in the buffers Embree shares.
+struct FlatMesh {
+    std::vector<float> vertices;  ///< xyz per vertex relative to the scene origin, plus padding
+    std::vector<std::uint32_t> indices;
+    bool casts = true;
+    bool receives = true;
+};
+
+/// A mesh instance picked for the BVHs, before flattening.
+struct Instance {
+    std::string name;
+    glm::dmat4 worldFromLocal{1.0};
+    std::shared_ptr<const MeshData> data;
+    bool casts = true;
+    bool receives = true;
+};
+
+std::string meshName(const World& world, Entity e, const MeshData& data) {
+    if (const Name* n = world.tryGet<Name>(e); n != nullptr && !n->value.empty()) return n->value;
+    return data.name.empty() ? "entity " + std::to_string(e.index()) : data.name;
+}
+
+/// Mesh data Embree could read out of bounds or that would poison the BVH is bad input.
+Status validate(const Instance& instance) {
+    const MeshData& d = *instance.data;
+    if (d.indices.size() % 3 != 0) {
+        return Error{"mesh '" + instance.name + "': index count " +
+                     std::to_string(d.indices.size()) + " is not a multiple of 3"};
+    }
+    for (const std::uint32_t i : d.indices) {
+        if (i >= d.positions.size()) {
+            return Error{"mesh '" + instance.name + "': index " + std::to_string(i) +
+                         " out of range (" + std::to_string(d.positions.size()) + " vertices)"};
+        }
+    }
+    for (const glm::vec3& p : d.positions) {
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+            return Error{"mesh '" + instance.name + "': a vertex position is not finite"};
+        }
+    }
+    return Ok{};
+}
+
+void recordEmbreeError(void* user, RTCError code, const char* message) {
+    if (code == RTC_ERROR_NONE) return;
+    auto* sink = static_cast<std::pair<std::mutex, std::string>*>(user);
+    const std::lock_guard<std::mutex> lock(sink->first);
+    if (sink->second.empty()) sink->second = message != nullptr ? message : "unknown error";
+}
+
+}  // namespace
+
+struct RayScene::Impl {
+    RTCDevice device = nullptr;
+    RTCScene all = nullptr;      ///< every mesh: camera rays
+    RTCScene casters = nullptr;  ///< casters only: shadow rays
+    std::vector<FlatMesh> meshes;
+    glm::dvec3 origin{0.0};
+    double epsilon = kMinEpsilon;
+    std::size_t triangles = 0;
+    std::size_t casterTriangles = 0;
+    std::pair<std::mutex, std::string> error;
+
+    Impl() = default;
+    Impl(const Impl&) = delete;
+    Impl& operator=(const Impl&) = delete;
+    ~Impl() {
+        if (casters != nullptr) rtcReleaseScene(casters);
+        if (all != nullptr) rtcReleaseScene(all);
+        if (device != nullptr) rtcReleaseDevice(device);
+    }
+
+    [[nodiscard]] glm::vec3 local(const glm::dvec3& ws) const { return glm::vec3(ws - origin); }
+
+    void attach(RTCScene scene, const FlatMesh& mesh, unsigned id) const {
+        RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                   mesh.vertices.data(), 0, 3 * sizeof(float),
+                                   (mesh.vertices.size() - 4) / 3);
+        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                   mesh.indices.data(), 0, 3 * sizeof(std::uint32_t),
+                                   mesh.indices.size() / 3);
+        rtcCommitGeometry(g);
+        rtcAttachGeometryByID(scene, g, id);
+        rtcReleaseGeometry(g);
+    }
+
+    [[nodiscard]] Status embreeStatus(const std::string& what) {
+        const std::lock_guard<std::mutex> lock(error.first);
+        if (error.second.empty()) return Ok{};
+        return Error{"Embree: " + what + ": " + error.second};
+    }
+};
+
+RayScene::RayScene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+RayScene::RayScene(RayScene&&) noexcept = default;
+RayScene& RayScene::operator=(RayScene&&) noexcept = default;
+RayScene::~RayScene() = default;
+
+Result<RayScene> RayScene::build(World& world) {
+    std::vector<Instance> instances;
+    world.view<Mesh, WorldTransform>().each([&](Entity e, Mesh& mesh, WorldTransform& wt) {
+        if (!wt.finite || mesh.data == nullptr || mesh.data->indices.empty()) return;
+        instances.push_back({meshName(world, e, *mesh.data), wt.worldFromLocal, mesh.data,
+                             mesh.castShadows, mesh.receiveShadows});
+    });
+    // The view walks its pool back to front; keep a stable, readable order (creation order).
+    std::reverse(instances.begin(), instances.end());
+
+    auto impl = std::make_unique<Impl>();
+    DAabb bounds;
+    std::vector<std::vector<glm::dvec3>> wsPositions;
+    for (const Instance& instance : instances) {
+        if (Status s = validate(instance); !s) return s.error();
+        std::vector<glm::dvec3>& ws = wsPositions.emplace_back();
+        ws.reserve(instance.data->positions.size());
+        for (const glm::vec3& p : instance.data->positions) {
+            ws.push_back(glm::dvec3(instance.worldFromLocal * glm::dvec4(glm::dvec3(p), 1.0)));
+            bounds.extend(ws.back());
+        }
+    }
+    if (!bounds.empty()) {
+        impl->origin = bounds.center();
+        impl->epsilon = std::max(kRelativeEpsilon * glm::length(bounds.extent()), kMinEpsilon);
+    }
+
+    impl->device = rtcNewDevice(nullptr);
+    if (impl->device == nullptr) return Error{"Embree: cannot create a device"};
+    rtcSetDeviceErrorFunction(impl->device, recordEmbreeError, &impl->error);
+    impl->all = rtcNewScene(impl->device);
+    impl->casters = rtcNewScene(impl->device);
+    for (RTCScene scene : {impl->all, impl->casters}) {
+        // Robust traversal: no ray slips between two triangles sharing an edge.
+        rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+        rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+    }
+
+    impl->meshes.reserve(instances.size());
+    for (std::size_t k = 0; k < instances.size(); ++k) {
+        FlatMesh& mesh = impl->meshes.emplace_back();
+        mesh.casts = instances[k].casts;
+        mesh.receives = instances[k].receives;
+        // Embree reads vertices with 16-byte loads: pad the last one.
+        mesh.vertices.reserve(wsPositions[k].size() * 3 + 4);
+        for (const glm::dvec3& p : wsPositions[k]) {
+            const glm::vec3 v = impl->local(p);
+            mesh.vertices.insert(mesh.vertices.end(), {v.x, v.y, v.z});
+        }
+        mesh.vertices.insert(mesh.vertices.end(), 4, 0.0f);
+        mesh.indices = instances[k].data->indices;
+        const auto id = static_cast<unsigned>(k);
+        impl->attach(impl->all, mesh, id);
+        impl->triangles += mesh.indices.size() / 3;
+        if (mesh.casts) {
+            impl->attach(impl->casters, mesh, id);
+            impl->casterTriangles += mesh.indices.size() / 3;
+        }
+    }
+    rtcCommitScene(impl->all);
+    rtcCommitScene(impl->casters);
+    if (Status s = impl->embreeStatus("building the BVH"); !s) return s.error();
+    return RayScene(std::move(impl));
+}
+
+std::optional<SurfaceHit> RayScene::intersect(const glm::dvec3& wsOrigin,
+                                              const glm::dvec3& direction, double tnear,
+                                              double tfar) const {
+    const Impl& m = *impl_;
+    const glm::vec3 o = m.local(wsOrigin);
+    const glm::vec3 d(direction);
+    RTCRayHit rh{};
+    rh.ray.org_x = o.x;
+    rh.ray.org_y = o.y;
+    rh.ray.org_z = o.z;
+    rh.ray.dir_x = d.x;
+    rh.ray.dir_y = d.y;
+    rh.ray.dir_z = d.z;
+    rh.ray.tnear = static_cast<float>(tnear);
+    rh.ray.tfar = static_cast<float>(tfar);
+    rh.ray.mask = 0xffffffffu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcIntersect1(m.all, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+
+    SurfaceHit hit;
+    hit.t = rh.ray.tfar;
+    hit.wsPosition = wsOrigin + hit.t * direction;
+    const glm::dvec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    const double length = glm::length(ng);
+    hit.wsNormal = length > 0.0 ? ng / length : -glm::normalize(direction);
+    if (glm::dot(hit.wsNormal, direction) > 0.0) hit.wsNormal = -hit.wsNormal;
+    hit.receivesShadows = m.meshes[rh.hit.geomID].receives;
+    return hit;
+}
+
+bool RayScene::occluded(const glm::dvec3& wsOrigin, const glm::dvec3& unitDirection, double tnear,
+                        double tfar) const {
+    const Impl& m = *impl_;
+    const glm::vec3 o = m.local(wsOrigin);
+    const glm::vec3 d(unitDirection);
+    RTCRay ray{};
+    ray.org_x = o.x;
+    ray.org_y = o.y;
+    ray.org_z = o.z;
+    ray.dir_x = d.x;
+    ray.dir_y = d.y;
+    ray.dir_z = d.z;
+    ray.tnear = static_cast<float>(tnear);
+    ray.tfar = std::isinf(tfar) ? std::numeric_limits<float>::infinity() : static_cast<float>(tfar);
+    ray.mask = 0xffffffffu;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcOccluded1(m.casters, &context, &ray);
+    // Embree marks an occluded ray by setting tfar to -inf.
+    return ray.tfar < 0.0f;
+}
+
+double RayScene::epsilon() const {
+    return impl_->epsilon;
+}
+std::size_t RayScene::triangleCount() const {
+    return impl_->triangles;
+}
+std::size_t RayScene::casterTriangleCount() const {
+    return impl_->casterTriangles;
+}
+
+}  // namespace shadow::reference

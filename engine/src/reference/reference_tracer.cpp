@@ -1,0 +1,313 @@
+#include <shadow/reference.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "emitters.h"
+#include "ray_scene.h"
+
+namespace shadow::reference {
+namespace {
+
+constexpr int kMaxImageSize = 16384;
+constexpr int kMaxSamples = 1 << 20;
+constexpr int kMaxThreads = 1024;
+/// Positions mode: the surface under a given position is looked for on the camera ray within
+/// this fraction of the camera distance on either side of it.
+constexpr double kSurfaceSearchWindow = 1e-3;
+
+/// The point a pixel shades.
+struct ShadingPoint {
+    bool covered = false;    ///< on geometry (else background)
+    bool receives = true;    ///< the surface receives shadows
+    bool hasNormal = false;  ///< positions mode without a surface found: false
+    glm::dvec3 wsPosition{0.0};
+    glm::dvec3 wsNormal{0.0};  ///< unit geometric normal when `hasNormal`
+};
+
+struct Estimate {
+    double visibility = 1.0;
+    double standardError = 0.0;
+};
+
+/// The fraction of `rays` shadow rays from `point` to the emitter that no caster blocks.
+Estimate estimateVisibility(const RayScene& scene, const Emitter& emitter,
+                            const ShadingPoint& point, int rays, std::uint32_t pattern) {
+    const double eps = scene.epsilon();
+    int unoccluded = 0;
+    for (int k = 0; k < rays; ++k) {
+        const glm::dvec2 disk =
+            rays == 1
+                ? glm::dvec2(0.0)
+                : concentricDisk(multiJitteredSample(static_cast<std::uint32_t>(k),
+                                                     static_cast<std::uint32_t>(rays), pattern));
+        const ShadowRayAim aim = aimAtEmitter(emitter, point.wsPosition, disk);
+        if (!(aim.distance > 0.0)) {  // on or inside the emitter: nothing in between
+            ++unoccluded;
+            continue;
+        }
+        glm::dvec3 origin = point.wsPosition;
+        double tnear = 0.0;
+        if (point.hasNormal) {
+            const double side = glm::dot(point.wsNormal, aim.direction) >= 0.0 ? 1.0 : -1.0;
+            origin += point.wsNormal * (side * eps);
+        } else {
+            tnear = eps;
+        }
+        glm::dvec3 direction = aim.direction;
+        double tfar = aim.distance;
+        if (std::isfinite(aim.distance)) {
+            // Aim from the offset origin at the very emitter sample.
+            const glm::dvec3 toTarget = point.wsPosition + aim.direction * aim.distance - origin;
+            tfar = glm::length(toTarget);
+            direction = toTarget / tfar;
+            tfar -= eps;
+        }
+        if (!(tfar > tnear) || !scene.occluded(origin, direction, tnear, tfar)) ++unoccluded;
+    }
+    Estimate e;
+    e.visibility = static_cast<double>(unoccluded) / rays;
+    e.standardError = binomialStandardError(e.visibility, rays);
+    return e;
+}
+
+Status validate(const ReferenceOptions& o) {
+    if (o.width < 1 || o.height < 1 || o.width > kMaxImageSize || o.height > kMaxImageSize) {
+        return Error{"size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                     ": width and height must be in [1, 16384]"};
+    }
+    if (o.samples < 1 || o.samples > kMaxSamples) {
+        return Error{"samples " + std::to_string(o.samples) + ": must be in [1, 1048576]"};
+    }
+    if (o.threads < 0 || o.threads > kMaxThreads) {
+        return Error{"threads " + std::to_string(o.threads) + ": must be in [0, 1024]"};
+    }
+    if (const ImageF* p = o.wsPositions; p != nullptr) {
+        if (p->channels != 4) return Error{"positions: expected 4 channels (R, G, B, A)"};
+        if (p->width != o.width || p->height != o.height) {
+            return Error{"positions: image is " + std::to_string(p->width) + "x" +
+                         std::to_string(p->height) + ", expected " + std::to_string(o.width) + "x" +
+                         std::to_string(o.height)};
+        }
+        for (int y = 0; y < p->height; ++y) {
+            for (int x = 0; x < p->width; ++x) {
+                if (!(p->at(x, y, 3) >= 0.5f)) continue;
+                for (int c = 0; c < 3; ++c) {
+                    if (!std::isfinite(p->at(x, y, c))) {
+                        return Error{"positions: pixel (" + std::to_string(x) + ", " +
+                                     std::to_string(y) +
+                                     ") is covered but its position is not finite"};
+                    }
+                }
+            }
+        }
+    }
+    return Ok{};
+}
+
+/// Everything the workers share; each pixel is written by exactly one worker.
+class Tracer {
+public:
+    Tracer(const RayScene& scene, const CameraView& camera, const ReferenceOptions& options,
+           const std::vector<std::optional<Emitter>>& emitters, ReferenceResult& out)
+        : scene_(scene), camera_(camera), options_(options), emitters_(emitters), out_(out) {
+        shaded_.assign(static_cast<std::size_t>(options.width) * options.height, 0);
+    }
+
+    /// Rows are handed out one at a time so the threads stay busy until the end.
+    void work() {
+        for (int y = nextRow_++; y < options_.height; y = nextRow_++) {
+            for (int x = 0; x < options_.width; ++x) tracePixel(x, y);
+            const int done = ++rowsDone_;
+            if (options_.progress) {
+                const std::lock_guard<std::mutex> lock(progressMutex_);
+                options_.progress(done, options_.height);
+            }
+        }
+    }
+
+    [[nodiscard]] const std::vector<std::uint8_t>& shaded() const { return shaded_; }
+    [[nodiscard]] int positionsWithoutSurface() const { return withoutSurface_.load(); }
+
+private:
+    ShadingPoint fromCamera(int x, int y) const {
+        const CameraRay ray = cameraRay(camera_, options_.width, options_.height, x + 0.5, y + 0.5);
+        ShadingPoint p;
+        const std::optional<SurfaceHit> hit =
+            scene_.intersect(ray.wsOrigin, ray.direction, ray.tnear, ray.tfar);
+        if (!hit) return p;
+        p.covered = true;
+        p.receives = hit->receivesShadows;
+        p.hasNormal = true;
+        p.wsPosition = hit->wsPosition;
+        p.wsNormal = hit->wsNormal;
+        return p;
+    }
+
+    ShadingPoint fromPositions(int x, int y) {
+        const ImageF& image = *options_.wsPositions;
+        ShadingPoint p;
+        if (!(image.at(x, y, 3) >= 0.5f)) return p;
+        p.covered = true;
+        p.wsPosition = glm::dvec3(image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2));
+        // The surface under the position: the camera ray through it, searched only near it so
+        // a surface just in front (a silhouette the rasteriser decided otherwise) is skipped.
+        const glm::dvec3 toPoint = p.wsPosition - camera_.wsPosition;
+        if (glm::length(toPoint) > 0.0) {
+            const std::optional<SurfaceHit> hit =
+                scene_.intersect(camera_.wsPosition, toPoint, 1.0 - kSurfaceSearchWindow,
+                                 1.0 + kSurfaceSearchWindow);
+            if (hit) {
+                p.receives = hit->receivesShadows;
+                p.hasNormal = true;
+                p.wsNormal = hit->wsNormal;
+                return p;
+            }
+        }
+        ++withoutSurface_;
+        return p;
+    }
+
+    void tracePixel(int x, int y) {
+        const ShadingPoint p =
+            options_.wsPositions != nullptr ? fromPositions(x, y) : fromCamera(x, y);
+        if (p.covered) {
+            for (int c = 0; c < 3; ++c)
+                out_.wsPosition.at(x, y, c) = static_cast<float>(p.wsPosition[c]);
+            out_.wsPosition.at(x, y, 3) = 1.0f;
+        }
+        if (!p.covered || !p.receives) return;  // images are initialised to V = 1, SE = 0
+        const std::uint64_t pixel = static_cast<std::uint64_t>(y) * options_.width + x;
+        shaded_[pixel] = 1;
+        for (std::size_t i = 0; i < emitters_.size(); ++i) {
+            if (!emitters_[i]) continue;
+            const Emitter& e = *emitters_[i];
+            const int rays = e.isPointLike() ? 1 : options_.samples;
+            const Estimate v = estimateVisibility(
+                scene_, e, p, rays, patternId(options_.seed, pixel, static_cast<std::uint32_t>(i)));
+            out_.visibility[i].at(x, y, 0) = static_cast<float>(v.visibility);
+            out_.standardError[i].at(x, y, 0) = static_cast<float>(v.standardError);
+        }
+    }
+
+    const RayScene& scene_;
+    const CameraView& camera_;
+    const ReferenceOptions& options_;
+    const std::vector<std::optional<Emitter>>& emitters_;
+    ReferenceResult& out_;
+    std::vector<std::uint8_t> shaded_;
+    std::atomic<int> nextRow_{0};
+    std::atomic<int> rowsDone_{0};
+    std::atomic<int> withoutSurface_{0};
+    std::mutex progressMutex_;
+};
+
+/// Per-light means and maxima over the shaded pixels.
+void summarise(const std::vector<std::uint8_t>& shaded, ReferenceResult& out) {
+    for (std::size_t i = 0; i < out.lights.size(); ++i) {
+        LightReference& light = out.lights[i];
+        double sumSe = 0.0;
+        double sumV = 0.0;
+        double maxSe = 0.0;
+        std::size_t n = 0;
+        for (std::size_t p = 0; p < shaded.size(); ++p) {
+            if (shaded[p] == 0) continue;
+            const double se = out.standardError[i].pixels[p];
+            sumSe += se;
+            sumV += out.visibility[i].pixels[p];
+            maxSe = std::max(maxSe, se);
+            ++n;
+        }
+        light.meanStandardError = n > 0 ? sumSe / static_cast<double>(n) : 0.0;
+        light.maxStandardError = maxSe;
+        light.meanVisibility = n > 0 ? sumV / static_cast<double>(n) : 1.0;
+    }
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+double binomialStandardError(double v, int rays) {
+    return rays > 0 ? std::sqrt(std::clamp(v * (1.0 - v), 0.0, 0.25) / rays) : 0.0;
+}
+
+CameraRay cameraRay(const CameraView& camera, int width, int height, double px, double py) {
+    // NDC of the image point; image rows run top-down, NDC y bottom-up (the renderer flips
+    // rows on readback).
+    const double ndcX = 2.0 * px / width - 1.0;
+    const double ndcY = 1.0 - 2.0 * py / height;
+    // glm::perspective: x_ndc = x_view / (-z_view · tan(yfov/2) · aspect), likewise y without
+    // aspect.
+    const double tanHalf = std::tan(0.5 * static_cast<double>(camera.yfov));
+    const glm::dvec3 vsDirection(ndcX * tanHalf * camera.aspect, ndcY * tanHalf, -1.0);
+    const glm::dmat3 worldFromView(glm::inverse(camera.viewFromWorld));
+    CameraRay ray;
+    ray.wsOrigin = camera.wsPosition;
+    ray.direction = worldFromView * vsDirection;
+    ray.tnear = camera.znear;
+    ray.tfar = camera.zfar;
+    return ray;
+}
+
+Result<ReferenceResult> traceVisibility(Scene& scene, const CameraView& camera,
+                                        const ReferenceOptions& options) {
+    if (Status s = validate(options); !s) return s.error();
+
+    const auto buildStart = std::chrono::steady_clock::now();
+    Result<RayScene> rays = RayScene::build(scene.world);
+    if (!rays) return rays.error();
+
+    ReferenceResult out;
+    out.buildSeconds = secondsSince(buildStart);
+    out.epsilon = rays->epsilon();
+    std::vector<std::optional<Emitter>> emitters;
+    for (const Entity light : scene.lights) {
+        emitters.push_back(emitterOf(scene.world, light));
+        LightReference& report = out.lights.emplace_back();
+        report.missing = !emitters.back();
+        report.sizeClamped = emitters.back() && emitters.back()->clamped;
+        report.raysPerPixel = !emitters.back()                 ? 0
+                              : emitters.back()->isPointLike() ? 1
+                                                               : options.samples;
+    }
+    out.wsPosition = makeImage(options.width, options.height, 4);
+    for (std::size_t i = 0; i < emitters.size(); ++i) {
+        ImageF v = makeImage(options.width, options.height, 1);
+        std::fill(v.pixels.begin(), v.pixels.end(), 1.0f);
+        out.visibility.push_back(std::move(v));
+        out.standardError.push_back(makeImage(options.width, options.height, 1));
+    }
+
+    int threads = options.threads > 0 ? options.threads
+                                      : static_cast<int>(std::thread::hardware_concurrency());
+    threads = std::clamp(threads, 1, options.height);
+    out.threads = threads;
+
+    const auto traceStart = std::chrono::steady_clock::now();
+    Tracer tracer(*rays, camera, options, emitters, out);
+    {
+        std::vector<std::jthread> workers;
+        for (int t = 1; t < threads; ++t) workers.emplace_back([&tracer] { tracer.work(); });
+        tracer.work();
+    }  // joins
+    out.traceSeconds = secondsSince(traceStart);
+
+    summarise(tracer.shaded(), out);
+    for (std::size_t p = 0; p < tracer.shaded().size(); ++p) {
+        const bool covered = out.wsPosition.pixels[p * 4 + 3] > 0.5f;
+        out.coveredPixels += covered ? 1 : 0;
+        out.nonReceiverPixels += covered && tracer.shaded()[p] == 0 ? 1 : 0;
+    }
+    out.positionsWithoutSurface = tracer.positionsWithoutSurface();
+    return out;
+}
+
+}  // namespace shadow::reference

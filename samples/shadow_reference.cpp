@@ -1,0 +1,235 @@
+// shadow_reference: the ray-traced truth of every light's visibility, for the pixels
+// shadow_render draws.
+//
+//   shadow_reference SCENE [--out DIR] [--size WxH] [--camera N] [--time T] [--samples N]
+//                    [--positions FILE] [--threads K] [--seed S]
+//
+// SCENE, --size, --camera and --time mean what they mean to shadow_render, so both programs
+// shade the same pixels. Each pixel's point is the first surface on its camera ray or, with
+// --positions, the world position in an engine position.exr (its size is then the image size).
+// For every light, --samples stratified shadow rays go to its emitter (engine/src/reference/
+// shadow/reference.h states the choices). Writes into DIR: visibility_<i>.exr, stderr_<i>.exr
+// (binomial standard error per pixel), position.exr and reference.json. Progress goes to stderr
+// when it is a terminal. Bad input: one message, exit code 2.
+#include <shadow/scene.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <regex>
+
+#include <shadow/reference.h>
+#include "render_output.h"
+
+namespace {
+
+using namespace shadow;
+
+constexpr int kExitBadInput = 2;
+constexpr int kExitFailure = 1;
+constexpr const char* kDefaultSize = "640x360";
+
+struct Options {
+    std::string scene;
+    std::string out = "out";
+    std::string size = kDefaultSize;
+    bool sizeGiven = false;
+    std::optional<int> camera;
+    double time = 0.0;
+    int samples = 256;
+    std::string positions;
+    int threads = 0;
+    std::uint32_t seed = 1;
+};
+
+int fail(int code, const std::string& message) {
+    std::cerr << "shadow_reference: " << message << "\n";
+    return code;
+}
+
+
+
+/// Prints "tracing NN%" over itself, only when stderr is a terminal.
+std::function<void(int, int)> progressPrinter() {
+    if (::isatty(STDERR_FILENO) == 0) return {};
+    return [last = -1](int done, int total) mutable {
+        const int percent = 100 * done / std::max(total, 1);
+        if (percent == last) return;
+        last = percent;
+        std::fprintf(stderr, "\rshadow_reference: tracing %3d%%%s", percent,
+                     done == total ? "\n" : "");
+        std::fflush(stderr);
+    };
+}
+
+nlohmann::json lightsJson(const Scene& scene, const reference::ReferenceResult& r) {
+    nlohmann::json lights = nlohmann::json::array();
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+        const World& w = scene.world;
+        const Name* name = w.tryGet<Name>(scene.lights[i]);
+        const Light* light = w.tryGet<Light>(scene.lights[i]);
+        const reference::LightReference& l = r.lights[i];
+        nlohmann::json j;
+        j["index"] = i;
+        j["node"] = name != nullptr ? name->value : "";
+        j["type"] = light != nullptr ? samples::lightTypeName(light->type) : "";
+        if (light != nullptr) {
+            if (light->type == LightType::Directional)
+                j["angularRadius"] = light->angularRadius;
+            else
+                j["radius"] = light->radius;
+        }
+        j["raysPerPixel"] = l.raysPerPixel;
+        j["meanStandardError"] = l.meanStandardError;
+        j["maxStandardError"] = l.maxStandardError;
+        j["meanVisibility"] = l.meanVisibility;
+        j["sizeClamped"] = l.sizeClamped;
+        j["missing"] = l.missing;
+        j["visibility"] = "visibility_" + std::to_string(i) + ".exr";
+        j["standardError"] = "stderr_" + std::to_string(i) + ".exr";
+        lights.push_back(j);
+    }
+    return lights;
+}
+
+std::string referenceJson(const Scene& scene, const Options& o, int cameraIndex, int width,
+                          int height, const reference::ReferenceResult& r, double totalSeconds) {
+    nlohmann::json j;
+    j["scene"] = scene.name;
+    j["sceneSpec"] = o.scene;
+    j["size"] = {width, height};
+    j["camera"] = cameraIndex;
+    j["time"] = o.time;
+    j["mode"] = o.positions.empty() ? "camera" : "positions";
+    j["positions"] = o.positions;
+    j["samplesPerPixel"] = o.samples;
+    j["seed"] = o.seed;
+    j["threads"] = r.threads;
+    j["epsilon"] = r.epsilon;
+    j["standardErrorModel"] = "binomial sqrt(v(1-v)/N); an upper bound for stratified samples";
+    j["timeSeconds"] = {
+        {"build", r.buildSeconds}, {"trace", r.traceSeconds}, {"total", totalSeconds}};
+    j["pixels"] = {{"covered", r.coveredPixels},
+                   {"nonReceiver", r.nonReceiverPixels},
+                   {"positionsWithoutSurface", r.positionsWithoutSurface}};
+    j["lights"] = lightsJson(scene, r);
+    return j.dump(2) + "\n";
+}
+
+Status writeOutputs(const std::string& dir, reference::ReferenceResult& r) {
+    FrameImages images;
+    images.position = std::move(r.wsPosition);
+    images.visibility = std::move(r.visibility);
+    const samples::OutputSelection selection{false, true, true, false};
+    if (Status s = samples::writeFrameImages(dir, images, selection, 1.0f); !s) return s;
+    for (std::size_t i = 0; i < r.standardError.size(); ++i) {
+        const std::string path = dir + "/stderr_" + std::to_string(i) + ".exr";
+        if (Status s = writeExr(path, r.standardError[i], {"Y"}); !s) return s;
+    }
+    return Ok{};
+}
+
+int run(Options& o) {
+    const auto start = std::chrono::steady_clock::now();
+    auto size = samples::parseSize(o.size);
+    if (!size) return fail(kExitBadInput, size.error().message);
+    if (o.samples < 1 || o.samples > (1 << 20))
+        return fail(kExitBadInput, "--samples: must be in [1, 1048576]");
+    if (o.threads < 0 || o.threads > 1024)
+        return fail(kExitBadInput, "--threads: must be in [0, 1024] (0 = all cores)");
+    if (!std::isfinite(o.time))
+        return fail(kExitBadInput, "--time: must be a finite number of seconds");
+    if (o.camera && *o.camera < 0)
+        return fail(kExitBadInput, "--camera " + std::to_string(*o.camera) + ": must be >= 0");
+
+    std::optional<ImageF> positions;
+    if (!o.positions.empty()) {
+        Result<ImageF> read = readExr(o.positions, {"R", "G", "B", "A"});
+        if (!read)
+            return fail(kExitBadInput, "--positions " + o.positions + ": " + read.error().message);
+        if (o.sizeGiven && (read->width != size->first || read->height != size->second)) {
+            return fail(kExitBadInput,
+                        "--positions " + o.positions + ": image is " + std::to_string(read->width) +
+                            "x" + std::to_string(read->height) + " but --size is " + o.size);
+        }
+        *size = {read->width, read->height};
+        positions = std::move(*read);
+    }
+
+    Result<Scene> loaded = loadScene(o.scene);
+    if (!loaded) return fail(kExitBadInput, loaded.error().message);
+    Scene& scene = *loaded;
+    Result<Entity> camera = samples::chooseCamera(scene, o.camera, o.time);
+    if (!camera) return fail(kExitBadInput, camera.error().message);
+    animate(scene.world, o.time);
+    (void)updateTransforms(scene.world);
+    const float aspect = static_cast<float>(size->first) / static_cast<float>(size->second);
+    const CameraView view = makeCameraView(scene.world, *camera, aspect);
+    int cameraIndex = 0;
+    for (std::size_t k = 0; k < scene.cameras.size(); ++k) {
+        if (scene.cameras[k] == *camera) cameraIndex = static_cast<int>(k);
+    }
+
+    // Input is valid: now the output folder, checked before any tracing.
+    if (Status s = samples::prepareOutputDir(o.out); !s)
+        return fail(kExitBadInput, s.error().message);
+
+    reference::ReferenceOptions options;
+    options.width = size->first;
+    options.height = size->second;
+    options.samples = o.samples;
+    options.threads = o.threads;
+    options.seed = o.seed;
+    options.wsPositions = positions ? &*positions : nullptr;
+    options.progress = progressPrinter();
+    // Every error here is about the input (mesh data, positions); Embree itself does not fail
+    // on valid input short of running out of memory.
+    Result<reference::ReferenceResult> traced = reference::traceVisibility(scene, view, options);
+    if (!traced) return fail(kExitBadInput, traced.error().message);
+
+    const std::string json = referenceJson(
+        scene, o, cameraIndex, size->first, size->second, *traced,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    if (Status s = writeOutputs(o.out, *traced); !s) return fail(kExitFailure, s.error().message);
+    if (Status s = writeTextFileAtomic(o.out + "/reference.json", json); !s)
+        return fail(kExitFailure, s.error().message);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    CLI::App app{
+        "Ray-traces every light's visibility (the reference the shadow maps approximate)."};
+    app.add_option("scene", o.scene, "a .gltf/.glb file or builtin:NAME")->required();
+    app.add_option("--out", o.out, "output folder (created if missing)");
+    CLI::Option* sizeOption = app.add_option(
+        "--size", o.size, "image size WxH (default 640x360, or that of --positions)");
+    app.add_option("--camera", o.camera, "index of the scene camera to use (default: the first)");
+    app.add_option("--time", o.time, "animation time (s)");
+    app.add_option("--samples", o.samples, "shadow rays per pixel and light, [1, 1048576]");
+    app.add_option("--positions", o.positions,
+                   "shade the world positions of an engine position.exr");
+    app.add_option("--threads", o.threads, "worker threads (0 = all cores)");
+    app.add_option("--seed", o.seed, "seed of the sample patterns");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::cerr << "shadow_reference: " << e.what() << "\n(see shadow_reference --help)\n";
+        return kExitBadInput;
+    }
+    o.sizeGiven = sizeOption->count() > 0;
+    try {
+        return run(o);
+    } catch (const std::exception& e) {
+        return fail(kExitFailure, e.what());
+    }
+}
