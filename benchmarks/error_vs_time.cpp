@@ -126,16 +126,20 @@ Result<Row> measure(const std::string& spec, const Config& config, const Options
     (void)runner.runFrame(scene, 0.0, camera, options);
     const FrameImages images = runner.renderer().readback(runner.lastCamera(), aovStats);
 
+    // Each light is judged where it shades the surface (the reference's lit_<i>.exr): elsewhere
+    // V x shading = 0 and its visibility never reaches the image.
     const std::string refDir = o.references + "/" + scene.name;
-    Result<ImageF> mask = readExr(refDir + "/position.exr", {"A"});
-    if (!mask) return mask.error();
-    std::vector<ImageF> truths;
+    std::vector<ImageF> truths, masks;
     for (std::size_t i = 0; i < images.visibility.size(); ++i) {
-        Result<ImageF> truth = readExr(refDir + "/visibility_" + std::to_string(i) + ".exr", {"Y"});
+        const std::string n = std::to_string(i);
+        Result<ImageF> truth = readExr(refDir + "/visibility_" + n + ".exr", {"Y"});
         if (!truth) return truth.error();
+        Result<ImageF> mask = readExr(refDir + "/lit_" + n + ".exr", {"Y"});
+        if (!mask) return mask.error();
         truths.push_back(std::move(truth).value());
+        masks.push_back(std::move(mask).value());
     }
-    Result<VisibilityErrors> pooled = compareVisibilityPooled(images.visibility, truths, &*mask);
+    Result<VisibilityErrors> pooled = compareVisibilityPooled(images.visibility, truths, masks);
     if (!pooled) return pooled.error();
     Row row;
     row.scene = scene.name;

@@ -33,8 +33,11 @@ square plates: the scene whose visibility has a closed form), `builtin:bunny` (t
 bunny from Debian's glmark2-data on a plane under a PCSS sun, a PCF spot and a hard point
 light) and `builtin:default` (the animated default scene at t = 0, three lights) — against the
 ray-traced truth of `shadow_reference` (Embree, stratified samples over each light's emitter).
-Error is the visibility error over receiver pixels, pooled over the scene's lights; the
-penumbra RMSE counts only pixels whose true visibility is strictly between 0 and 1. One
+Error is the visibility error, pooled over the scene's lights, over the pixels where each
+light shades the surface (the reference's `lit_<i>.exr`: the surface faces the light, inside a
+spot's cone and the light's range); elsewhere visibility × shading is 0 and never reaches the
+image. The penumbra RMSE counts only pixels whose true visibility is strictly between 0 and 1.
+Timings on llvmpipe (a CPU rasteriser) are noisy from run to run; compare rows of one run. One
 configuration sets every shadowed light of the scene. `pcss-textbook` is the seeds' PCSS (fixed
 Poisson taps around the receiver's UV), kept so our PCSS is measured against it in the same run.
 

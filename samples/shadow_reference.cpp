@@ -9,7 +9,7 @@
 // --positions, the world position in an engine position.exr (its size is then the image size).
 // For every light, --samples stratified shadow rays go to its emitter (engine/src/reference/
 // shadow/reference.h states the choices). Writes into DIR: visibility_<i>.exr, stderr_<i>.exr
-// (binomial standard error per pixel), position.exr and reference.json. Progress goes to stderr
+// (binomial standard error per pixel), lit_<i>.exr (1 where the light shades the surface), position.exr and reference.json. Progress goes to stderr
 // when it is a terminal. Bad input: one message, exit code 2.
 #include <shadow/scene.h>
 #include <unistd.h>
@@ -92,6 +92,7 @@ nlohmann::json lightsJson(const Scene& scene, const reference::ReferenceResult& 
         j["missing"] = l.missing;
         j["visibility"] = "visibility_" + std::to_string(i) + ".exr";
         j["standardError"] = "stderr_" + std::to_string(i) + ".exr";
+        j["litMask"] = "lit_" + std::to_string(i) + ".exr";
         lights.push_back(j);
     }
     return lights;
@@ -130,6 +131,7 @@ Status writeOutputs(const std::string& dir, reference::ReferenceResult& r) {
     for (std::size_t i = 0; i < r.standardError.size(); ++i) {
         const std::string path = dir + "/stderr_" + std::to_string(i) + ".exr";
         if (Status s = writeExr(path, r.standardError[i], {"Y"}); !s) return s;
+        if (Status s = writeExr(dir + "/lit_" + std::to_string(i) + ".exr", r.lit[i], {"Y"}); !s) return s;
     }
     return Ok{};
 }

@@ -91,6 +91,12 @@ struct VisibilityErrors {
                                                                const std::vector<ImageF>& truths,
                                                                const ImageF* mask = nullptr);
 
+/// As above, with one mask per light: `masks[i]` selects the receivers of light i (e.g. the
+/// reference's lit_<i>.exr: where the light shades the surface at all).
+[[nodiscard]] Result<VisibilityErrors> compareVisibilityPooled(const std::vector<ImageF>& estimates,
+                                                               const std::vector<ImageF>& truths,
+                                                               const std::vector<ImageF>& masks);
+
 /// Heat-map colour of a signed error, display-referred RGB in [0, 1]: white at 0, towards blue
 /// (0,0,1) for e < 0 (estimate too dark), towards red (1,0,0) for e > 0 (too light); |e| ≥ 1
 /// saturates. A non-finite `e` maps to kHeatMapBadColor.

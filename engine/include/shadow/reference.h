@@ -71,6 +71,11 @@ struct ReferenceResult {
     ImageF wsPosition;                  ///< RGBA: world xyz, A = 1 on geometry, 0 elsewhere
     std::vector<ImageF> visibility;     ///< per `Scene::lights` entry, channel Y
     std::vector<ImageF> standardError;  ///< per light, sqrt(v(1 − v)/N), channel Y
+    /// Per light, channel Y: 1 where the light's shading term is not zero — the surface side
+    /// facing the camera faces the light's centre, inside a spot's outer cone and within the
+    /// light's range — else 0. Where it is 0, visibility does not reach the image (V × shading
+    /// = 0), so error reports weigh only the pixels where it is 1.
+    std::vector<ImageF> lit;
     std::vector<LightReference> lights;
     int threads = 0;            ///< threads used
     double buildSeconds = 0.0;  ///< BVH build

@@ -308,6 +308,23 @@ Result<VisibilityErrors> compareVisibilityPooled(const std::vector<ImageF>& esti
     return pooled.finish();
 }
 
+Result<VisibilityErrors> compareVisibilityPooled(const std::vector<ImageF>& estimates,
+                                                 const std::vector<ImageF>& truths,
+                                                 const std::vector<ImageF>& masks) {
+    if (estimates.size() != truths.size() || masks.size() != truths.size()) {
+        return Error{std::to_string(estimates.size()) + " estimate images, " + std::to_string(truths.size()) +
+                     " truth images and " + std::to_string(masks.size()) + " masks"};
+    }
+    ErrorAccumulator pooled;
+    for (std::size_t i = 0; i < truths.size(); ++i) {
+        if (Status s = checkInputs(estimates[i], truths[i], &masks[i]); !s.ok()) {
+            return Error{"light " + std::to_string(i) + ": " + s.error().message};
+        }
+        pooled.merge(accumulate(estimates[i], truths[i], &masks[i]));
+    }
+    return pooled.finish();
+}
+
 std::array<float, 3> errorColor(double e) {
     if (!std::isfinite(e)) return kHeatMapBadColor;
     const auto t = static_cast<float>(std::min(std::abs(e), 1.0));

@@ -114,8 +114,9 @@ Status validate(const ReferenceOptions& o) {
 class Tracer {
 public:
     Tracer(const RayScene& scene, const CameraView& camera, const ReferenceOptions& options,
-           const std::vector<std::optional<Emitter>>& emitters, ReferenceResult& out)
-        : scene_(scene), camera_(camera), options_(options), emitters_(emitters), out_(out) {
+           const std::vector<std::optional<Emitter>>& emitters, const std::vector<const Light*>& lights,
+           ReferenceResult& out)
+        : scene_(scene), camera_(camera), options_(options), emitters_(emitters), lights_(lights), out_(out) {
         shaded_.assign(static_cast<std::size_t>(options.width) * options.height, 0);
     }
 
@@ -173,6 +174,31 @@ private:
         return p;
     }
 
+    /// Whether light `i`'s Blinn-Phong term is non-zero at `p` (the engine's shading rule:
+    /// normal turned towards the camera, N·L > 0 towards the light's centre, spot cone, range).
+    bool lightReaches(std::size_t i, const ShadingPoint& p) const {
+        const Emitter& e = *emitters_[i];
+        const Light* light = lights_[i];
+        if (light == nullptr || !p.hasNormal) return true;
+        glm::dvec3 n = p.wsNormal;
+        if (glm::dot(n, camera_.wsPosition - p.wsPosition) < 0.0) n = -n;
+        glm::dvec3 toLight = e.wsTowardLight;
+        double distance = 0.0;
+        if (e.type != LightType::Directional) {
+            toLight = e.wsPosition - p.wsPosition;
+            distance = glm::length(toLight);
+            if (!(distance > 0.0)) return true;
+            toLight /= distance;
+        }
+        if (glm::dot(n, toLight) <= 0.0) return false;
+        if (e.type != LightType::Directional && light->range > 0.0f && distance >= light->range) return false;
+        if (e.type == LightType::Spot &&
+            glm::dot(-toLight, -e.wsTowardLight) <= std::cos(static_cast<double>(light->outerConeAngle))) {
+            return false;
+        }
+        return true;
+    }
+
     void tracePixel(int x, int y) {
         const ShadingPoint p =
             options_.wsPositions != nullptr ? fromPositions(x, y) : fromCamera(x, y);
@@ -192,6 +218,7 @@ private:
                 scene_, e, p, rays, patternId(options_.seed, pixel, static_cast<std::uint32_t>(i)));
             out_.visibility[i].at(x, y, 0) = static_cast<float>(v.visibility);
             out_.standardError[i].at(x, y, 0) = static_cast<float>(v.standardError);
+            out_.lit[i].at(x, y, 0) = lightReaches(i, p) ? 1.0f : 0.0f;
         }
     }
 
@@ -199,6 +226,7 @@ private:
     const CameraView& camera_;
     const ReferenceOptions& options_;
     const std::vector<std::optional<Emitter>>& emitters_;
+    const std::vector<const Light*>& lights_;
     ReferenceResult& out_;
     std::vector<std::uint8_t> shaded_;
     std::atomic<int> nextRow_{0};
@@ -269,8 +297,10 @@ Result<ReferenceResult> traceVisibility(Scene& scene, const CameraView& camera,
     out.buildSeconds = secondsSince(buildStart);
     out.epsilon = rays->epsilon();
     std::vector<std::optional<Emitter>> emitters;
+    std::vector<const Light*> lights;
     for (const Entity light : scene.lights) {
         emitters.push_back(emitterOf(scene.world, light));
+        lights.push_back(scene.world.tryGet<Light>(light));
         LightReference& report = out.lights.emplace_back();
         report.missing = !emitters.back();
         report.sizeClamped = emitters.back() && emitters.back()->clamped;
@@ -284,6 +314,7 @@ Result<ReferenceResult> traceVisibility(Scene& scene, const CameraView& camera,
         std::fill(v.pixels.begin(), v.pixels.end(), 1.0f);
         out.visibility.push_back(std::move(v));
         out.standardError.push_back(makeImage(options.width, options.height, 1));
+        out.lit.push_back(makeImage(options.width, options.height, 1));  // 0 off receivers
     }
 
     int threads = options.threads > 0 ? options.threads
@@ -292,7 +323,7 @@ Result<ReferenceResult> traceVisibility(Scene& scene, const CameraView& camera,
     out.threads = threads;
 
     const auto traceStart = std::chrono::steady_clock::now();
-    Tracer tracer(*rays, camera, options, emitters, out);
+    Tracer tracer(*rays, camera, options, emitters, lights, out);
     {
         std::vector<std::jthread> workers;
         for (int t = 1; t < threads; ++t) workers.emplace_back([&tracer] { tracer.work(); });
