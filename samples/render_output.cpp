@@ -143,9 +143,13 @@ nlohmann::json lightsJson(const Scene& scene, const FrameStats& last) {
         j["visibility"] = "visibility_" + std::to_string(i) + ".exr";
         for (const LightShadowStats& ls : last.lights) {
             if (ls.sceneIndex != static_cast<int>(i)) continue;
-            j["shadow"] = {{"mapSize", ls.mapSize},           {"layers", ls.layers},
-                           {"layersDrawn", ls.layersDrawn},   {"layersReused", ls.layersReused},
-                           {"layersCleared", ls.layersCleared}, {"castersDrawn", ls.castersDrawn},
+            j["shadow"] = {{"mapSize", ls.mapSize},
+                           {"requestedMapSize", ls.requestedMapSize},
+                           {"layers", ls.layers},
+                           {"layersDrawn", ls.layersDrawn},
+                           {"layersReused", ls.layersReused},
+                           {"layersCleared", ls.layersCleared},
+                           {"castersDrawn", ls.castersDrawn},
                            {"affectsView", ls.affectsView}};
         }
         lights.push_back(j);

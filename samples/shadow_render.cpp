@@ -38,7 +38,7 @@ struct Options {
     double time = 0.0;
     int frames = 1;
     double dt = 1.0 / 30.0;
-    std::string technique;
+    std::optional<std::string> technique;  ///< absent: each light keeps its own
     std::string aov = "color,visibility,position,depth";
     std::string debug;
     int debugLight = 0;
@@ -99,12 +99,15 @@ int run(const Options& o) {
     auto debug = parseDebug(o.debug);
     if (!debug) return fail(kExitBadInput, debug.error().message);
     std::optional<ShadowTechnique> technique;
-    if (!o.technique.empty()) {
-        auto t = samples::parseTechnique(o.technique);
+    if (o.technique) {
+        auto t = samples::parseTechnique(*o.technique);
         if (!t) return fail(kExitBadInput, "--technique: " + t.error().message);
         technique = *t;
     }
     if (!std::isfinite(o.time)) return fail(kExitBadInput, "--time: must be a finite number of seconds");
+    if (!(std::isfinite(o.exposure) && o.exposure > 0.0f)) {
+        return fail(kExitBadInput, "--exposure: must be a finite number > 0");
+    }
     if (!std::isfinite(o.dt)) return fail(kExitBadInput, "--dt: must be a finite number of seconds");
     if (o.frames < 1 || o.frames > 100000) return fail(kExitBadInput, "--frames: must be in [1, 100000]");
     if (o.camera && *o.camera < 0) return fail(kExitBadInput, "--camera " + std::to_string(*o.camera) + ": must be >= 0");
@@ -164,7 +167,8 @@ int run(const Options& o) {
     if (o.debug == "shadowmap") {
         if (Status s = writeShadowMaps(o.out, runner.shadows()); !s) return fail(kExitFailure, s.error().message);
     }
-    const std::string json = samples::statsJson(scene, frames, options.width, options.height, o.technique);
+    const std::string json =
+        samples::statsJson(scene, frames, options.width, options.height, o.technique.value_or(""));
     if (Status s = writeTextFileAtomic(o.out + "/stats.json", json); !s) return fail(kExitFailure, s.error().message);
     for (const std::string& w : frames.back().warnings) std::cerr << "shadow_render: warning: " << w << "\n";
     return 0;

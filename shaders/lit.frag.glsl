@@ -29,8 +29,9 @@ layout(location = SG_OUT_VISIBILITY1) out vec4 outVisibility1;
 void main() {
     Surface s;
     s.csPosition = vCsPosition;
-    s.toViewer = normalize(-vCsPosition);
-    vec3 n = normalize(vWsNormal);
+    s.toViewer = normalize(-vCsPosition);  // never zero: the near plane clips the camera's point
+    // A zero normal (a file's, or opposite normals interpolated) takes the triangle's own.
+    vec3 n = safeNormalize(vWsNormal, safeNormalize(cross(dFdx(vCsPosition), dFdy(vCsPosition)), s.toViewer));
     // Two-sided: shade the side facing the camera.
     s.normal = dot(n, s.toViewer) < 0.0 ? -n : n;
     s.albedo = uAlbedo;

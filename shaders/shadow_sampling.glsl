@@ -36,6 +36,18 @@ const float kGoldenAngle = 2.39996323;
 // Steepest receiver slope (tan of the angle between normal and light) the bias follows;
 // beyond it, at grazing light, the normal offset does the work.
 const float kMaxSlope = 16.0;
+// Steepest slope the tangent-plane taps follow exactly: tan(89.9 deg), so the filters see the
+// receiver's own plane down to 0.1 degree of elevation. A tap at lateral offset o moves o * slope
+// along the ray, and a plane flattened to a lesser slope puts the taps towards the light behind
+// the receiver (measured: at 0.5 degrees with the old clamp of 16, PCF read as low as 0.76 under
+// a sun and 0.53 under a spot on an open plane). The clamp only keeps the stretch finite where cos(theta) loses its precision: n.L
+// carries ~1e-6 of float error, so a slope of 573 errs by 573^2 * 1e-6 * 32 = 10 texels of depth
+// at the widest filter (32 texels), inside the 24 texels the slope bias gives.
+const float kMaxPlaneSlope = 573.0;
+// Relative float error allowed for the two depths a tap compares, 2^-18 (32 ulps of a float:
+// matrix products and interpolation each add a few). Measured: one ulp already clears the
+// open-plane acne of a light straight above with no constant bias; 32 is the margin.
+const float kDepthPrecision = 1.0 / 262144.0;
 
 // Debug outputs of the last PCSS evaluation (--debug blocker / penumbra).
 float gDebugBlockerDepth = 0.0;
@@ -52,6 +64,7 @@ struct Receiver {
     int layer;        // layer for directional/spot lights (point lights choose per tap)
     float texelMetres;  // world size of one shadow texel at the receiver
     float depthBias;  // m, subtracted from every tap's reference depth
+    vec3 offsetPerTexel;  // the normal offset per metre of texel footprint
 };
 
 // Where a world point falls in a layer.
@@ -108,7 +121,7 @@ float texelMetresAt(GpuLight L, int layer, vec3 csPoint) {
 Receiver makeReceiver(GpuLight L, vec3 csPosition, vec3 wsNormal, float viewDistance, int layer) {
     Receiver r;
     vec3 toLight = L.type == SG_LIGHT_DIRECTIONAL ? -L.wsDirection
-                                                  : normalize(L.csPosition - csPosition);
+                                                  : safeNormalize(L.csPosition - csPosition, -L.wsDirection);
     float cosTheta = clamp(dot(wsNormal, toLight), -1.0, 1.0);
     float sinTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0));
     r.slope = min(sinTheta / max(abs(cosTheta), 1e-4), kMaxSlope);
@@ -117,11 +130,16 @@ Receiver makeReceiver(GpuLight L, vec3 csPosition, vec3 wsNormal, float viewDist
     if (!chosen) layer = selectLayer(L, csPosition, viewDistance);
     float texel = texelMetresAt(L, layer, csPosition);
     // Normal offset: move along the normal by whole texel footprints, more as the light grazes.
-    r.csPosition = csPosition + wsNormal * (L.normalOffset * texel * sinTheta);
-    r.toLight = L.type == SG_LIGHT_DIRECTIONAL ? toLight : normalize(L.csPosition - r.csPosition);
+    r.offsetPerTexel = wsNormal * (L.normalOffset * sinTheta);
+    r.csPosition = csPosition + r.offsetPerTexel * texel;
+    r.toLight = L.type == SG_LIGHT_DIRECTIONAL ? toLight : safeNormalize(L.csPosition - r.csPosition, toLight);
     r.layer = chosen ? layer : selectLayer(L, r.csPosition, viewDistance);
     r.texelMetres = texelMetresAt(L, r.layer, r.csPosition);
-    r.depthBias = L.constantBias + L.slopeBias * r.texelMetres * r.slope;
+    // Float error of the depths compared: both come from float positions of magnitude |cs| (the
+    // receiver from the camera) and |ls| (the point from the layer's origin), good to a few ulps.
+    vec3 ls = (uLayers[L.firstLayer + r.layer].lightFromWorld * vec4(r.csPosition, 1.0)).xyz;
+    float floatError = kDepthPrecision * (length(ls) + length(r.csPosition));
+    r.depthBias = L.constantBias + L.slopeBias * r.texelMetres * r.slope + floatError;
 
     // Lateral axes perpendicular to the ray, then slid along the ray onto the tangent plane.
     vec3 a = abs(r.toLight);
@@ -129,8 +147,8 @@ Receiver makeReceiver(GpuLight L, vec3 csPosition, vec3 wsNormal, float viewDist
     vec3 t1 = normalize(cross(r.toLight, helper));
     vec3 t2 = cross(r.toLight, t1);
     float nDotL = dot(wsNormal, r.toLight);
-    // Keep the stretch finite at grazing light: beyond kMaxSlope the plane is treated as that steep.
-    float denom = sign(nDotL) * max(abs(nDotL), 1.0 / sqrt(1.0 + kMaxSlope * kMaxSlope));
+    // Keep the stretch finite at grazing light: beyond kMaxPlaneSlope the plane is treated as that steep.
+    float denom = sign(nDotL) * max(abs(nDotL), 1.0 / sqrt(1.0 + kMaxPlaneSlope * kMaxPlaneSlope));
     if (denom == 0.0) denom = 1.0;
     r.csTangent1 = t1 - r.toLight * (dot(wsNormal, t1) / denom);
     r.csTangent2 = t2 - r.toLight * (dot(wsNormal, t2) / denom);
@@ -138,9 +156,17 @@ Receiver makeReceiver(GpuLight L, vec3 csPosition, vec3 wsNormal, float viewDist
 }
 
 // The tap at lateral offset `offset` (m) from the receiver, on its tangent plane.
+//
+// Perspective texels grow with the distance from the light, and at grazing light a tap slides
+// far along the ray (offset x slope): a tap beyond the receiver takes the normal offset of its
+// own, larger texel, or the bilinear neighbours of a steep receiver reach above it (measured:
+// a spot at 0.5 degrees read down to 0.95 on an open plane without this).
 Tap lateralTap(GpuLight L, Receiver r, vec2 offset) {
     vec3 p = r.csPosition + r.csTangent1 * offset.x + r.csTangent2 * offset.y;
     int layer = L.type == SG_LIGHT_POINT ? cubeFace(p - L.csPosition) : r.layer;
+    if (L.type != SG_LIGHT_DIRECTIONAL) {
+        p += r.offsetPerTexel * max(texelMetresAt(L, layer, p) - r.texelMetres, 0.0);
+    }
     return projectTap(L, layer, p);
 }
 

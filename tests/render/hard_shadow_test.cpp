@@ -21,8 +21,6 @@
 namespace shadow {
 namespace {
 
-using test::AnalyticLight;
-
 constexpr int kWidth = 256;
 constexpr int kHeight = 192;
 constexpr int kMapSize = 1024;
@@ -50,38 +48,10 @@ struct HardCase {
     glm::dvec3 origin{0.0};
 };
 
-struct Measured {
-    int groundPixels = 0;
+struct Measured : test::GeometryAgreement {
     int backgroundPixels = 0;
-    int shadowedPixels = 0;  // analytically shadowed ground pixels
-    int mismatches = 0;      // ground pixels where (visibility > 0.5) != analytic
-    int outsideBand = 0;     // of those, farther than the band from the analytic edge
-    std::array<int, 6> shadowedPerLayer{};  // analytically shadowed pixels by layer (point: face)
     FrameImages images;
 };
-
-/// Layer of the light's array a receiver at `p` uses (point: cube face as the shader's cubeFace).
-int layerOf(const ShadowLightPlan& plan, const glm::dvec3& p) {
-    if (plan.light.type != LightType::Point) return 0;
-    const glm::dvec3 d = p - glm::dvec3(glm::inverse(plan.layers[0].lightFromWorld)[3]);
-    const glm::dvec3 a = glm::abs(d);
-    if (a.x >= a.y && a.x >= a.z) return d.x >= 0.0 ? 0 : 1;
-    if (a.y >= a.z) return d.y >= 0.0 ? 2 : 3;
-    return d.z >= 0.0 ? 4 : 5;
-}
-
-/// Size on the ground (m) of one shadow texel at ground point `p`: the texel's lateral size,
-/// 2 / (clipFromLight[0][0] * mapSize), times the axial distance for perspective layers, and
-/// stretched by 1 / cos(incidence) since the ground is tilted against the light's rays.
-double groundTexelAt(const ShadowLightPlan& plan, const AnalyticLight& light, const glm::dvec3& p) {
-    const ShadowLayerPlan& layer = plan.layers[static_cast<std::size_t>(layerOf(plan, p))];
-    double texel = 2.0 / (layer.clipFromLight[0][0] * plan.mapSize);
-    if (!layer.orthographic) texel *= std::max(-(layer.lightFromWorld * glm::dvec4(p, 1.0)).z, 0.0);
-    const glm::dvec3 toLight = light.type == LightType::Directional
-                                   ? -light.direction
-                                   : glm::normalize(light.position - p);
-    return texel / std::max(std::abs(toLight.y), 0.25);
-}
 
 Measured measure(const HardCase& c) {
     Scene scene;
@@ -106,38 +76,14 @@ Measured measure(const HardCase& c) {
                       << frame.lights.size() << " and " << m.images.visibility.size();
         return m;
     }
-    const ShadowLightPlan& plan = frame.lights[0];
-    const AnalyticLight light{c.type, position, direction};
+    const test::AnalyticLight light{c.type, position, direction};
     const std::array<DAabb, 1> boxes{test::boxBounds(boxCenter, kBoxHalf)};
-
-    const ImageF& visibility = m.images.visibility[0];
+    static_cast<test::GeometryAgreement&>(m) =
+        test::compareWithGeometry(m.images, m.images.visibility[0], frame.lights[0], light, boxes,
+                                  kBandTexels, c.outerConeAngle);
     for (int y = 0; y < kHeight; ++y) {
         for (int x = 0; x < kWidth; ++x) {
             if (m.images.position.at(x, y, 3) < 0.5f) ++m.backgroundPixels;
-            if (!test::isGroundPixel(m.images, x, y)) continue;
-            const glm::dvec3 p = test::positionAt(m.images, x, y);
-            // A spot's map covers its cone only; outside it there is no light to shadow.
-            if (c.type == LightType::Spot &&
-                glm::dot(glm::normalize(p - position), direction) < std::cos(c.outerConeAngle)) {
-                continue;
-            }
-            ++m.groundPixels;
-            const bool lit = test::analyticallyLit(light, p, boxes);
-            if (!lit) {
-                ++m.shadowedPixels;
-                ++m.shadowedPerLayer[static_cast<std::size_t>(layerOf(plan, p))];
-            }
-            if ((visibility.at(x, y, 0) > 0.5f) == lit) continue;
-            ++m.mismatches;
-            // Near the edge when the answer changes within the band, in any of 8 directions.
-            const double reach = kBandTexels * groundTexelAt(plan, light, p);
-            bool nearEdge = false;
-            for (int k = 0; k < 8 && !nearEdge; ++k) {
-                const double angle = k * 0.25 * 3.14159265358979;
-                const glm::dvec3 q = p + reach * glm::dvec3(std::cos(angle), 0.0, std::sin(angle));
-                nearEdge = test::analyticallyLit(light, q, boxes) != lit;
-            }
-            if (!nearEdge) ++m.outsideBand;
         }
     }
     std::printf(

@@ -8,9 +8,12 @@
 #include <shadow/context.h>
 #include <shadow/renderer.h>
 #include <shadow/scene.h>
+#include <shadow/shadow_system.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -156,6 +159,82 @@ inline bool isGroundPixel(const FrameImages& images, int x, int y) {
 /// The world point seen at pixel (x, y) of the position AOV.
 inline glm::dvec3 positionAt(const FrameImages& images, int x, int y) {
     return {images.position.at(x, y, 0), images.position.at(x, y, 1), images.position.at(x, y, 2)};
+}
+
+/// Layer of a light's array a receiver at `p` uses (point: cube face as the shader's cubeFace).
+inline int layerOf(const ShadowLightPlan& plan, const glm::dvec3& p) {
+    if (plan.light.type != LightType::Point) return 0;
+    const glm::dvec3 d = p - glm::dvec3(glm::inverse(plan.layers[0].lightFromWorld)[3]);
+    const glm::dvec3 a = glm::abs(d);
+    if (a.x >= a.y && a.x >= a.z) return d.x >= 0.0 ? 0 : 1;
+    if (a.y >= a.z) return d.y >= 0.0 ? 2 : 3;
+    return d.z >= 0.0 ? 4 : 5;
+}
+
+/// Size on the ground (m) of one shadow texel at ground point `p`: the texel's lateral size,
+/// 2 / (clipFromLight[0][0] * mapSize), times the axial distance for perspective layers, and
+/// stretched by 1 / cos(incidence) since the ground is tilted against the light's rays.
+inline double groundTexelAt(const ShadowLightPlan& plan, const AnalyticLight& light,
+                            const glm::dvec3& p) {
+    const ShadowLayerPlan& layer = plan.layers[static_cast<std::size_t>(layerOf(plan, p))];
+    double texel = 2.0 / (layer.clipFromLight[0][0] * plan.mapSize);
+    if (!layer.orthographic) texel *= std::max(-(layer.lightFromWorld * glm::dvec4(p, 1.0)).z, 0.0);
+    const glm::dvec3 toLight = light.type == LightType::Directional
+                                   ? -light.direction
+                                   : glm::normalize(light.position - p);
+    return texel / std::max(std::abs(toLight.y), 0.25);
+}
+
+/// How a hard shadow on the ground agrees with ray casting against boxes.
+struct GeometryAgreement {
+    int groundPixels = 0;
+    int shadowedPixels = 0;  ///< analytically shadowed ground pixels
+    int mismatches = 0;      ///< ground pixels where (visibility > 0.5) != analytic
+    int outsideBand = 0;     ///< of those, farther than the edge band from the analytic edge
+    std::array<int, 6> shadowedPerLayer{};  ///< analytically shadowed pixels by layer (point: face)
+};
+
+/// Compares visibility AOV `visibility` with the ray-cast shadow of `boxes` over the ground
+/// pixels (y = 0), skipping those outside a spot's cone of half-angle `spotCone`. A shadow map
+/// places an edge only to within its texels, so pixels whose analytic answer changes within
+/// `bandTexels` texel footprints (in any of 8 directions) form an edge band where either answer
+/// is accepted; `outsideBand` counts the mismatches beyond it.
+/// `keep`, when given, further selects the ground points compared.
+template <typename Boxes>
+GeometryAgreement compareWithGeometry(const FrameImages& images, const ImageF& visibility,
+                                      const ShadowLightPlan& plan, const AnalyticLight& light,
+                                      const Boxes& boxes, double bandTexels, double spotCone = 0.0,
+                                      const std::function<bool(const glm::dvec3&)>& keep = {}) {
+    GeometryAgreement m;
+    for (int y = 0; y < visibility.height; ++y) {
+        for (int x = 0; x < visibility.width; ++x) {
+            if (!isGroundPixel(images, x, y)) continue;
+            const glm::dvec3 p = positionAt(images, x, y);
+            if (keep && !keep(p)) continue;
+            // A spot's map covers its cone only; outside it there is no light to shadow.
+            if (light.type == LightType::Spot && glm::dot(glm::normalize(p - light.position),
+                                                          light.direction) < std::cos(spotCone)) {
+                continue;
+            }
+            ++m.groundPixels;
+            const bool lit = analyticallyLit(light, p, boxes);
+            if (!lit) {
+                ++m.shadowedPixels;
+                ++m.shadowedPerLayer[static_cast<std::size_t>(layerOf(plan, p))];
+            }
+            if ((visibility.at(x, y, 0) > 0.5f) == lit) continue;
+            ++m.mismatches;
+            const double reach = bandTexels * groundTexelAt(plan, light, p);
+            bool nearEdge = false;
+            for (int k = 0; k < 8 && !nearEdge; ++k) {
+                const double angle = k * 0.25 * 3.14159265358979;
+                const glm::dvec3 q = p + reach * glm::dvec3(std::cos(angle), 0.0, std::sin(angle));
+                nearEdge = analyticallyLit(light, q, boxes) != lit;
+            }
+            if (!nearEdge) ++m.outsideBand;
+        }
+    }
+    return m;
 }
 
 /// Number of values of `image` that are NaN or Inf.

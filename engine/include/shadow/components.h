@@ -30,12 +30,19 @@ struct Transform {
     Entity parent;
 };
 
+/// Largest world coordinate (m) an entity may reach and still be drawn. Beyond it, float
+/// arithmetic relative to the camera keeps no precision worth drawing (a float spaces 1e9 by
+/// 64 m) and products of such values overflow, so the transform system treats the entity as
+/// non-finite: skipped by every pass and reported. A file may well place a mesh at 1e38 m.
+inline constexpr double kMaxWorldCoordinate = 1e9;
+
 /// Written by `updateTransforms`; read by everything after it.
 struct WorldTransform {
     glm::dmat4 worldFromLocal{1.0};
     /// The matrix differs from last frame's (or the entity is new this frame).
     bool movedThisFrame = true;
-    /// False when the matrix has a NaN or Inf; such entities are skipped by rendering.
+    /// False when the matrix has a NaN or Inf, or places the entity (a mesh: any of its
+    /// vertices) beyond `kMaxWorldCoordinate`; such entities are skipped by rendering.
     bool finite = true;
 };
 
@@ -78,13 +85,15 @@ enum class LightType : std::uint8_t { Directional, Spot, Point };
 /// A punctual light with the physical size of its emitter (the truth soft shadows approximate).
 struct Light {
     LightType type = LightType::Point;
-    glm::vec3 color{1.0f};  ///< linear RGB
+    glm::vec3 color{1.0f};  ///< linear RGB, each in [0, 1e3]
     /// Point/spot: luminous intensity (cd); directional: illuminance (lux), as KHR_lights_punctual.
+    /// [0, 1e12], so that no shading can overflow a float.
     float intensity = 1.0f;
-    /// Distance where the light's influence ends (m); 0 = infinite. Point and spot only.
+    /// Distance where the light's influence ends (m); 0 = infinite. Point and spot only. [0, 1e7].
     float range = 0.0f;
     float innerConeAngle = 0.0f;           ///< spot: full-intensity half-angle (rad), [0, outer)
-    float outerConeAngle = 0.7853981634f;  ///< spot: cut-off half-angle (rad), (0, pi/2)
+    /// Spot: cut-off half-angle (rad), (0, pi/2]; shadow maps cover up to 85 degrees of it.
+    float outerConeAngle = 0.7853981634f;
     /// Spot: radius (m) of the emitting disk perpendicular to the axis. Point: radius (m) of
     /// the emitting sphere. 0 = a hard shadow. Range [0, 1e3].
     float radius = 0.0f;
@@ -125,8 +134,12 @@ struct Shadow {
     ShadowTechnique technique = ShadowTechnique::Hard;
     /// Edge of one shadow-map layer in texels, [1, GL_MAX_TEXTURE_SIZE]. Default 1024.
     int mapSize = 1024;
-    /// Constant depth bias (m), [0, 10]. Default 0.002.
-    float constantBias = 0.002f;
+    /// Constant depth bias (m), [0, 10]. Default 0.0005: a margin for surfaces whose
+    /// interpolated normals leave their triangles. The float error of the compared depths is
+    /// covered by the sampler itself (a few ulps of the magnitudes involved), so a caster nearer
+    /// its receiver than this along the light ray still shadows it (a plate 1 mm above the
+    /// ground does; with the former default of 2 mm it leaked).
+    float constantBias = 0.0005f;
     /// Slope-scaled bias in shadow-map texels: the depth offset grows with the texel's world
     /// footprint times tan(angle between normal and light), [0, 16]. Default 1.5.
     float slopeBias = 1.5f;

@@ -23,6 +23,20 @@ struct Scene {
     std::vector<Entity> cameras;
     /// Longest animation clip (s); 0 when nothing is keyframed.
     double animationDuration = 0.0;
+    /// Problems the loader let pass under lenient `GltfLoadOptions`, one line each, naming the
+    /// file and element.
+    std::vector<std::string> warnings;
+};
+
+/// How `loadGltf` treats a light's or mesh node's `extras.shadow` that does not parse (a
+/// string where a number is due, an unknown technique, a negative mapSize, ...).
+struct GltfLoadOptions {
+    /// true (the default, and the CLIs): the load fails with one message naming the element.
+    /// false (a game that must show what it can): that `extras.shadow` object is ignored, the
+    /// light or mesh keeps the documented defaults (a light: hard shadows, mapSize 1024), and
+    /// the message goes to `Scene::warnings`. Either way one light's settings never affect
+    /// another light. Errors outside `extras.shadow` always fail the load.
+    bool strictShadowSettings = true;
 };
 
 /// Animation system: writes local `Transform`s from `Animation` and `ProceduralMotion` at
@@ -34,12 +48,17 @@ void animate(World& world, double t);
 struct TransformStats {
     int updated = 0;     ///< entities with a world matrix
     int moved = 0;       ///< of those, moved this frame
-    int nonFinite = 0;   ///< skipped because their matrix is not finite
+    /// Skipped because their matrix is not finite or reaches beyond `kMaxWorldCoordinate`.
+    int nonFinite = 0;
+    /// The `nonFinite` entities (their own matrix or an ancestor's has a NaN or Inf, or they
+    /// reach beyond the world), in the order visited; empty, and allocating nothing, otherwise.
+    std::vector<Entity> skipped;
 };
 
 /// Transform system: world matrices parent-first, world bounds of meshes, moved flags.
 /// An entity whose matrix is not finite is flagged (`WorldTransform::finite = false`) and so
-/// are its descendants; it does not affect other entities.
+/// are its descendants; so is one placed (a mesh: with a vertex) beyond `kMaxWorldCoordinate`.
+/// It does not affect other entities.
 TransformStats updateTransforms(World& world);
 
 /// Camera pose and projection for one frame, derived from a camera entity.
@@ -60,10 +79,10 @@ struct CameraView {
 [[nodiscard]] Entity addDefaultCamera(Scene& scene);
 
 /// Loads `SCENE` as the CLI names it: a `.gltf`/`.glb` path or `builtin:NAME`.
-[[nodiscard]] Result<Scene> loadScene(const std::string& spec);
+[[nodiscard]] Result<Scene> loadScene(const std::string& spec, const GltfLoadOptions& options = {});
 
 /// Loads a glTF 2.0 file (`.gltf` with embedded or external buffers, or `.glb`).
-[[nodiscard]] Result<Scene> loadGltf(const std::string& path);
+[[nodiscard]] Result<Scene> loadGltf(const std::string& path, const GltfLoadOptions& options = {});
 
 /// Names of the built-in procedural scenes.
 [[nodiscard]] std::vector<std::string> builtinSceneNames();

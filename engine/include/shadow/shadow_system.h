@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace shadow {
@@ -50,26 +51,45 @@ struct ShadowLightPlan {
     int sceneIndex = -1;  ///< position in `Scene::lights`
     std::string name;
     Light light;          ///< with the emitter size clamped
-    Shadow settings;      ///< clamped to the documented ranges
-    int mapSize = 0;      ///< texels per layer edge
+    Shadow settings;      ///< clamped to the documented ranges; `mapSize` is the one asked for
+    /// Texels per layer edge allocated: `settings.mapSize`, or less when the shadow texel budget
+    /// (`ShadowLimits::maxShadowTexels`) halved it.
+    int mapSize = 0;
     std::vector<ShadowLayerPlan> layers;
     bool affectsView = true;
 };
 
 /// The hand-off from `prepare` to `render` and to the renderer.
 struct ShadowFrame {
-    std::vector<ShadowLightPlan> lights;  ///< shadowed lights only, in scene order
+    /// Shadowed lights only, in scene order (lights the texel budget dropped are absent).
+    std::vector<ShadowLightPlan> lights;
+    /// Clamped settings, skipped lights and the texel budget's decisions, one line each.
     std::vector<std::string> warnings;
 };
 
-/// Limits of the GL implementation the planner must respect.
+/// Limits the planner must respect: the GL implementation's, and the memory the shadow maps
+/// may take together.
 struct ShadowLimits {
     int maxTextureSize = 16384;
     int maxArrayLayers = 2048;
+    /// Texels of every shadowed light's layers together (mapSize^2 x layers), 4 bytes each.
+    /// Default 2^28 (1 GiB): one 16384^2 layer, or 256 spot lights at 1024^2. Over budget, the
+    /// planner degrades lights deterministically: ranked by distance from the camera (lights
+    /// that cannot reach the view count as farthest, directional lights as nearest, ties by
+    /// scene order, later first), maps are halved round by round, farthest first, down to 256
+    /// texels (a light that asked for less keeps its own); then the farthest lights lose their
+    /// shadow (visibility 1) until the rest fit. Each decision is a warning. The ranking follows
+    /// the camera: a light whose map size changes is reallocated and redrawn that frame.
+    std::int64_t maxShadowTexels = std::int64_t{1} << 28;
 };
 
-/// Clamps `s` (and the emitter size in `light`) to the documented ranges; appends one warning
-/// per clamped field, prefixed by `who`.
+/// Clamps the fields of `light` to their documented ranges (components.h), NaN to the low end;
+/// appends one warning per clamped field, prefixed by `who`. A light out of range is drawn as
+/// clamped, so one bad light never makes the others' pixels NaN.
+void clampLight(Light& light, std::string_view who, std::vector<std::string>& warnings);
+
+/// Clamps `s` and `light` (`clampLight`, and a spot's cone to what a map covers, 85 degrees)
+/// to the documented ranges; appends one warning per clamped field, prefixed by `who`.
 void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, const std::string& who,
                          std::vector<std::string>& warnings);
 

@@ -19,6 +19,7 @@ struct LightShadowStats {
     std::string type;           ///< "directional" | "spot" | "point"
     std::string technique;      ///< "none" | "hard" | "pcf" | "pcss"
     int mapSize = 0;            ///< texels per layer edge actually allocated (0 = no map)
+    int requestedMapSize = 0;   ///< the light's mapSize setting (clamped to the GL limit)
     int layers = 0;
     int layersDrawn = 0;        ///< redrawn this frame
     int layersReused = 0;       ///< unchanged since the last frame, not redrawn
@@ -46,6 +47,8 @@ struct FrameStats {
     int mainDrawCalls = 0;
     int mainPasses = 0;
     int programsCompiled = 0;    ///< shader programs built this frame (0 in steady state)
+    /// Entities whose world matrix (or an ancestor's) is not finite, skipped by every pass
+    /// (`TransformStats::nonFinite`); each is also named in `warnings`.
     int entitiesSkippedNonFinite = 0;
     /// Settings clamped to their documented range, over-budget degradations, and the like.
     std::vector<std::string> warnings;

@@ -15,6 +15,7 @@
 #include <array>
 #include <chrono>
 #include <map>
+#include <string_view>
 
 namespace shadow {
 namespace {
@@ -162,6 +163,12 @@ int debugViewId(DebugView v) {
     return SG_DEBUG_NONE;
 }
 
+/// The light's name for messages.
+std::string_view nameOf(const World& world, Entity e) {
+    const Name* n = world.tryGet<Name>(e);
+    return n != nullptr ? std::string_view(n->value) : std::string_view("light");
+}
+
 /// The light as the shader sees it, without shadow data.
 gpu::GpuLight packLight(const Light& light, const WorldTransform& wt, const glm::dvec3& camera) {
     gpu::GpuLight g{};
@@ -218,6 +225,7 @@ struct Renderer::Impl {
     GrowingBuffer lightBuffer, layerBuffer;
     std::vector<gpu::GpuLight> lights;
     std::vector<gpu::GpuShadowLayer> layers;
+    std::vector<std::string> scratchWarnings;
     gpu::Sampler compareSampler, depthSampler;
     Targets targets;
     bool aovs = false;
@@ -353,17 +361,28 @@ void Renderer::render(World& world, const CameraView& camera, const std::vector<
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const Light* light = world.tryGet<Light>(lights[i]);
         const WorldTransform* wt = world.tryGet<WorldTransform>(lights[i]);
+        const auto plan = std::find_if(
+            frame.lights.begin(), frame.lights.end(),
+            [&](const ShadowLightPlan& p) { return p.sceneIndex == static_cast<int>(i); });
+        // A light without a Light or with a non-finite transform (reported by the transform
+        // system) contributes nothing; its visibility stays 1.
         gpu::GpuLight g{};
         if (light != nullptr && wt != nullptr && wt->finite) {
-            g = packLight(*light, *wt, camera.wsPosition);
-        } else {
-            ++stats.entitiesSkippedNonFinite;  // contributes nothing; visibility stays 1
-        }
-        for (const ShadowLightPlan& plan : frame.lights) {
-            if (plan.sceneIndex == static_cast<int>(i)) {
-                packShadow(plan, camera.wsPosition, g, r.layers);
-                key |= 1u << g.technique;
+            // Out-of-range fields are drawn clamped. The planner reported those of every light it
+            // planned (all with a Shadow of a technique other than None); report the others here.
+            Light shaded = *light;
+            r.scratchWarnings.clear();
+            clampLight(shaded, nameOf(world, lights[i]), r.scratchWarnings);
+            const Shadow* shadow = world.tryGet<Shadow>(lights[i]);
+            if (shadow == nullptr || shadow->technique == ShadowTechnique::None) {
+                stats.warnings.insert(stats.warnings.end(), r.scratchWarnings.begin(),
+                                      r.scratchWarnings.end());
             }
+            g = packLight(shaded, *wt, camera.wsPosition);
+        }
+        if (plan != frame.lights.end()) {
+            packShadow(*plan, camera.wsPosition, g, r.layers);
+            key |= 1u << g.technique;
         }
         r.lights.push_back(g);
     }

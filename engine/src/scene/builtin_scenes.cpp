@@ -234,10 +234,10 @@ Result<Scene> makeBuiltinScene(const std::string& name) {
     return it->second();
 }
 
-Result<Scene> loadScene(const std::string& spec) {
+Result<Scene> loadScene(const std::string& spec, const GltfLoadOptions& options) {
     const std::string prefix = "builtin:";
     if (spec.rfind(prefix, 0) == 0) return makeBuiltinScene(spec.substr(prefix.size()));
-    return loadGltf(spec);
+    return loadGltf(spec, options);
 }
 
 }  // namespace shadow

@@ -17,6 +17,8 @@
 //
 // Not supported (ignored): skins, morph targets, textures (images are never decoded),
 // orthographic cameras (an error when a node uses one), sparse accessors (an error when used).
+#include "scene/gltf_import.h"
+
 #include <shadow/scene.h>
 #include <tiny_gltf.h>
 
@@ -29,7 +31,9 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/gtx/matrix_decompose.hpp>
 #include <initializer_list>
+#include <limits>
 #include <optional>
+#include <string_view>
 
 #include "scene/gltf_animation.h"
 #include "scene/gltf_lights.h"
@@ -79,6 +83,43 @@ std::string lowerExtension(const std::string& path) {
     return ext;
 }
 
+/// In-memory input reads no file: an external buffer URI is an error, not a disk access.
+bool noFileExists(const std::string&, void*) {
+    return false;
+}
+bool noFileRead(std::vector<unsigned char>*, std::string* err, const std::string& path, void*) {
+    if (err != nullptr)
+        *err += "external file \"" + path + "\" is not read when loading from memory\n";
+    return false;
+}
+
+/// Runs one tinygltf load (`load(loader, model, err, warn)`) with the engine's callbacks:
+/// images skipped, URIs literal, and, for in-memory input, no file access at all. Errors start
+/// with `name`.
+template <typename Load>
+Result<tinygltf::Model> parseModel(const std::string& name, bool filesAllowed, Load load) {
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(&skipImage, nullptr);
+    if (filesAllowed) {
+        loader.SetFsCallbacks({&tinygltf::FileExists, &literalPath, &tinygltf::ReadWholeFile,
+                               &tinygltf::WriteWholeFile, nullptr});
+    } else {
+        loader.SetFsCallbacks(
+            {&noFileExists, &literalPath, &noFileRead, &tinygltf::WriteWholeFile, nullptr});
+    }
+    tinygltf::Model model;
+    std::string err;
+    std::string warn;
+    bool ok = false;
+    try {
+        ok = load(loader, model, err, warn);
+    } catch (const std::exception& e) {  // tinygltf throws on some malformed input
+        err = e.what();
+    }
+    if (!ok) return Error{name + ": " + oneLine(err)};
+    return model;
+}
+
 /// Parses the file with tinygltf: binary when it starts with the GLB magic, JSON otherwise.
 /// A `.glb` without the magic is an error rather than a JSON parse.
 Result<tinygltf::Model> readModel(const std::string& path) {
@@ -90,22 +131,12 @@ Result<tinygltf::Model> readModel(const std::string& path) {
     if (!binary && lowerExtension(path) == ".glb") {
         return Error{path + ": not a binary glTF file (the header magic is not \"glTF\")"};
     }
-    tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(&skipImage, nullptr);
-    loader.SetFsCallbacks({&tinygltf::FileExists, &literalPath, &tinygltf::ReadWholeFile,
-                           &tinygltf::WriteWholeFile, nullptr});
-    tinygltf::Model model;
-    std::string err;
-    std::string warn;
-    bool ok = false;
-    try {
-        ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                    : loader.LoadASCIIFromFile(&model, &err, &warn, path);
-    } catch (const std::exception& e) {  // tinygltf throws on some malformed input
-        err = e.what();
-    }
-    if (!ok) return Error{path + ": " + oneLine(err)};
-    return model;
+    return parseModel(path, true,
+                      [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& err,
+                          std::string& warn) {
+                          return binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                                        : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+                      });
 }
 
 // ---- nodes ------------------------------------------------------------------------------
@@ -325,6 +356,7 @@ Result<Camera> importCamera(const tinygltf::Model& model, std::size_t index) {
 /// State of one import: the model, its checked parts, and the scene being built.
 struct Importer {
     const tinygltf::Model& model;
+    const GltfLoadOptions& options;
     std::vector<NodeInfo> nodes;
     std::vector<gltf::LightDefinition> lights;
     std::vector<Animation> animations;
@@ -356,7 +388,9 @@ struct Importer {
         const tinygltf::Node& node = model.nodes[nodeIndex];
         auto parts = meshParts(static_cast<std::size_t>(node.mesh));
         if (!parts) return parts.error();
-        auto flags = gltf::parseMeshShadowExtras(node.extras, indexed("nodes", nodeIndex));
+        auto flags =
+            gltf::orDefaults(gltf::parseMeshShadowExtras(node.extras, indexed("nodes", nodeIndex)),
+                             options.strictShadowSettings, scene.warnings);
         if (!flags) return flags.error();
         const auto attach = [&](Entity target, const gltf::MeshPart& part) {
             scene.world.emplace<Mesh>(target, Mesh{part.data, flags->cast, flags->receive});
@@ -431,10 +465,11 @@ struct Importer {
     }
 };
 
-/// Everything after parsing; errors carry the element but not yet the file name.
-Result<Scene> buildScene(const tinygltf::Model& model, const std::string& name) {
-    Importer importer{model, {}, {}, {}, {}, {}};
-    auto lights = gltf::importLights(model);
+/// Everything after parsing; errors and warnings carry the element but not yet the file name.
+Result<Scene> buildScene(const tinygltf::Model& model, const std::string& name,
+                         const GltfLoadOptions& options) {
+    Importer importer{model, options, {}, {}, {}, {}, {}};
+    auto lights = gltf::importLights(model, options.strictShadowSettings, importer.scene.warnings);
     if (!lights) return lights.error();
     importer.lights = std::move(*lights);
     for (std::size_t i = 0; i < model.nodes.size(); ++i) {
@@ -455,14 +490,43 @@ Result<Scene> buildScene(const tinygltf::Model& model, const std::string& name) 
     return std::move(importer.scene);
 }
 
-}  // namespace
-
-Result<Scene> loadGltf(const std::string& path) {
-    auto model = readModel(path);
-    if (!model) return model.error();
-    auto scene = buildScene(*model, std::filesystem::path(path).stem().string());
-    if (!scene) return Error{path + ": " + scene.error().message};
+/// The scene of a parsed model; `source` (the file, or the in-memory name) prefixes every
+/// error and warning.
+Result<Scene> sceneOf(const tinygltf::Model& model, const std::string& source,
+                      const std::string& name, const GltfLoadOptions& options) {
+    auto scene = buildScene(model, name, options);
+    if (!scene) return Error{source + ": " + scene.error().message};
+    for (std::string& w : scene->warnings) w = source + ": " + w;
     return scene;
 }
+
+}  // namespace
+
+Result<Scene> loadGltf(const std::string& path, const GltfLoadOptions& options) {
+    auto model = readModel(path);
+    if (!model) return model.error();
+    return sceneOf(*model, path, std::filesystem::path(path).stem().string(), options);
+}
+
+namespace gltf {
+
+Result<Scene> loadGltfFromMemory(std::string_view bytes, const std::string& name,
+                                 const GltfLoadOptions& options) {
+    const bool binary = bytes.size() >= 4 && bytes.substr(0, 4) == "glTF";
+    // tinygltf takes the length as unsigned int.
+    if (bytes.size() > std::numeric_limits<unsigned int>::max()) return Error{name + ": too large"};
+    const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+    const auto size = static_cast<unsigned int>(bytes.size());
+    auto model = parseModel(
+        name, false,
+        [&](tinygltf::TinyGLTF& loader, tinygltf::Model& m, std::string& err, std::string& warn) {
+            return binary ? loader.LoadBinaryFromMemory(&m, &err, &warn, data, size, "")
+                          : loader.LoadASCIIFromString(&m, &err, &warn, bytes.data(), size, "");
+        });
+    if (!model) return model.error();
+    return sceneOf(*model, name, name, options);
+}
+
+}  // namespace gltf
 
 }  // namespace shadow

@@ -66,7 +66,8 @@ Status parseSpot(const tinygltf::Value& light, const std::string& where, Light& 
     return Ok{};
 }
 
-Result<LightDefinition> parseLight(const tinygltf::Value& value, const std::string& where) {
+Result<LightDefinition> parseLight(const tinygltf::Value& value, const std::string& where,
+                                   bool strict, std::vector<std::string>& warnings) {
     if (!value.IsObject()) return elementError(where, "must be an object");
     LightDefinition def;
     auto type = parseType(value, where);
@@ -90,7 +91,9 @@ Result<LightDefinition> parseLight(const tinygltf::Value& value, const std::stri
         if (auto st = parseSpot(value, where, def.light); !st) return st.error();
     }
     const tinygltf::Value* extras = member(value, "extras");
-    auto settings = parseShadowExtras(extras != nullptr ? *extras : tinygltf::Value(), where);
+    auto settings =
+        orDefaults(parseShadowExtras(extras != nullptr ? *extras : tinygltf::Value(), where),
+                   strict, warnings);
     if (!settings) return settings.error();
     def.light.radius = settings->radius;
     def.light.angularRadius = settings->angularRadius;
@@ -100,7 +103,9 @@ Result<LightDefinition> parseLight(const tinygltf::Value& value, const std::stri
 
 }  // namespace
 
-Result<std::vector<LightDefinition>> importLights(const tinygltf::Model& model) {
+Result<std::vector<LightDefinition>> importLights(const tinygltf::Model& model,
+                                                  bool strictShadowSettings,
+                                                  std::vector<std::string>& warnings) {
     std::vector<LightDefinition> out;
     const auto extension = model.extensions.find(kExtension);
     if (extension == model.extensions.end()) return out;
@@ -110,7 +115,8 @@ Result<std::vector<LightDefinition>> importLights(const tinygltf::Model& model) 
     if (!lights->IsArray()) return elementError(where, "must be an array");
     for (std::size_t i = 0; i < lights->ArrayLen(); ++i) {
         auto light =
-            parseLight(lights->Get(static_cast<int>(i)), where + "[" + std::to_string(i) + "]");
+            parseLight(lights->Get(static_cast<int>(i)), where + "[" + std::to_string(i) + "]",
+                       strictShadowSettings, warnings);
         if (!light) return light.error();
         out.push_back(std::move(*light));
     }

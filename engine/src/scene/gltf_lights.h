@@ -24,8 +24,12 @@ struct LightDefinition {
     std::optional<Shadow> shadow;
 };
 
-/// Every light of the file, in file order; empty when the extension is absent.
-[[nodiscard]] Result<std::vector<LightDefinition>> importLights(const tinygltf::Model& model);
+/// Every light of the file, in file order; empty when the extension is absent. With
+/// `strictShadowSettings` off, a light whose `extras.shadow` does not parse keeps the defaults
+/// and the error goes to `warnings`.
+[[nodiscard]] Result<std::vector<LightDefinition>> importLights(const tinygltf::Model& model,
+                                                                bool strictShadowSettings,
+                                                                std::vector<std::string>& warnings);
 
 /// The light `nodes[nodeIndex]` references through its KHR_lights_punctual extension, or
 /// nullopt for none. The index is checked against `lightCount`.

@@ -19,6 +19,7 @@
 #include <tiny_gltf.h>
 
 #include <string>
+#include <vector>
 
 namespace shadow::gltf {
 
@@ -47,5 +48,15 @@ struct MeshShadowFlags {
 /// Parses the `shadow` member of a mesh node's `extras`, as `parseShadowExtras` does.
 [[nodiscard]] Result<MeshShadowFlags> parseMeshShadowExtras(const tinygltf::Value& extras,
                                                             const std::string& where);
+
+/// `parsed` itself when it holds a value or `strict` is set; otherwise the defaults `T{}`, with
+/// the error appended to `warnings` (the lenient `GltfLoadOptions`).
+template <typename T>
+[[nodiscard]] Result<T> orDefaults(Result<T> parsed, bool strict,
+                                   std::vector<std::string>& warnings) {
+    if (parsed.ok() || strict) return parsed;
+    warnings.push_back(parsed.error().message + " (ignored: the defaults are used)");
+    return T{};
+}
 
 }  // namespace shadow::gltf

@@ -11,6 +11,12 @@ namespace {
 
 enum class Visit : std::uint8_t { NotYet, InProgress, Done };
 
+/// Whether every coordinate of `p` lies within kMaxWorldCoordinate (false for NaN).
+bool insideWorld(const glm::dvec3& p) {
+    return std::abs(p.x) <= kMaxWorldCoordinate && std::abs(p.y) <= kMaxWorldCoordinate &&
+           std::abs(p.z) <= kMaxWorldCoordinate;
+}
+
 glm::dmat4 localMatrix(const Transform& t) {
     glm::dquat q = t.rotation;
     const double len = glm::length(q);
@@ -45,14 +51,17 @@ struct Resolver {
         }
         WorldTransform& wt = world.get<WorldTransform>(e);
         const glm::dmat4 next = parentMatrix * localMatrix(t);
-        const bool finite = parentFinite && isFinite(next);
+        const bool finite = parentFinite && isFinite(next) && insideWorld(glm::dvec3(next[3]));
         wt.movedThisFrame = wt.movedThisFrame || next != wt.worldFromLocal || finite != wt.finite;
         wt.worldFromLocal = next;
         wt.finite = finite;
         state[i] = Visit::Done;
         ++stats.updated;
         if (wt.movedThisFrame) ++stats.moved;
-        if (!finite) ++stats.nonFinite;
+        if (!finite) {
+            ++stats.nonFinite;
+            stats.skipped.push_back(e);
+        }
         return finite;
     }
 };
@@ -81,10 +90,19 @@ TransformStats updateTransforms(World& world) {
     Resolver resolver{world, state, {}};
     world.view<Transform, WorldTransform>().each([&](Entity e, Transform&, WorldTransform&) { resolver.resolve(e); });
 
-    world.view<Mesh, WorldTransform, WorldBounds>().each([](Entity, Mesh& mesh, WorldTransform& wt, WorldBounds& wb) {
+    TransformStats& stats = resolver.stats;
+    world.view<Mesh, WorldTransform, WorldBounds>().each([&](Entity e, Mesh& mesh,
+                                                             WorldTransform& wt, WorldBounds& wb) {
         wb.box = (wt.finite && mesh.data != nullptr) ? transformBounds(wt.worldFromLocal, mesh.data->bounds) : DAabb{};
+        // A mesh whose vertices reach beyond the world is skipped like a non-finite one.
+        if (wt.finite && !wb.box.empty() && !(insideWorld(wb.box.min) && insideWorld(wb.box.max))) {
+            wt.finite = false;
+            wb.box = DAabb{};
+            ++stats.nonFinite;
+            stats.skipped.push_back(e);
+        }
     });
-    return resolver.stats;
+    return stats;
 }
 
 }  // namespace shadow

@@ -75,13 +75,17 @@ std::vector<ShadowLayerPlan> planDirectional(const ShadowLightPlan& plan, const 
                                              const CameraView& cam, const SceneGeometry& g) {
     const Shadow& s = plan.settings;
     const glm::dmat4 rotation = lookAlong(glm::dvec3(0.0), pose.wsDirection);
-    double distance = s.shadowDistance > 0.0f ? std::min<double>(s.shadowDistance, cam.zfar) : cam.zfar;
+    const double reach =
+        std::min(s.shadowDistance > 0.0f ? std::min<double>(s.shadowDistance, cam.zfar) : cam.zfar,
+                 kMaxShadowReach);
+    const double znear = cam.znear;
     // No receiver lies beyond the farthest corner of their bounds: do not spread texels there.
     const double toFarthestReceiver = farthestCorner(cam.wsPosition, g.receivers);
-    distance = std::clamp(toFarthestReceiver, 2.0 * static_cast<double>(cam.znear), distance);
+    const double distance = std::clamp(toFarthestReceiver, std::min(2.0 * znear, reach), reach);
     // Nor nearer than the nearest receiver: cascades start where shadows can first be seen.
-    const double nearest = std::clamp(distanceToBox(cam.wsPosition, g.receivers), static_cast<double>(cam.znear),
-                                      0.5 * distance);
+    const double nearest = std::clamp(distanceToBox(cam.wsPosition, g.receivers),
+                                      std::min(znear, 0.5 * distance), 0.5 * distance);
+    const glm::dvec3 lsCamera(rotation * glm::dvec4(cam.wsPosition, 1.0));
     const std::vector<double> splits = cascadeSplits(nearest, distance, s.cascades, s.cascadeSplitLambda);
     const DAabb lsReceivers = toLightSpace(rotation, g.receivers);
 
@@ -104,6 +108,10 @@ std::vector<ShadowLayerPlan> planDirectional(const ShadowLightPlan& plan, const 
             extent = quantizeUp(std::max({recvSize.x, recvSize.y, 1e-3}));
             lsCenter = glm::dvec2(lsReceivers.center());
         }
+        // Within reach of the camera (kMaxShadowReach), whatever the receivers' spread.
+        extent = std::min(extent, 2.0 * kMaxShadowReach);
+        lsCenter = glm::clamp(lsCenter, glm::dvec2(lsCamera) - kMaxShadowReach,
+                              glm::dvec2(lsCamera) + kMaxShadowReach);
         // Snap to whole texels so a moving camera moves the map by whole texels only.
         const double texel = extent / plan.mapSize;
         lsCenter = glm::floor(lsCenter / texel) * texel;
@@ -113,6 +121,8 @@ std::vector<ShadowLayerPlan> planDirectional(const ShadowLightPlan& plan, const 
         double zTop = lsReceivers.empty() ? 0.0 : lsReceivers.max.z;
         double zBottom = lsReceivers.empty() ? -1.0 : lsReceivers.min.z;
         zRangeOfColumn(rotation, g, lo, hi, zTop, zBottom);
+        zTop = std::clamp(zTop, lsCamera.z - kMaxShadowReach, lsCamera.z + kMaxShadowReach);
+        zBottom = std::clamp(zBottom, lsCamera.z - kMaxShadowReach, zTop);
         const double step = std::exp2(std::ceil(std::log2(std::max(zTop - zBottom, 1e-3) / 8.0)));
         zTop = (std::floor(zTop / step) + 1.0) * step;
         zBottom = (std::ceil(zBottom / step) - 1.0) * step;
@@ -135,8 +145,10 @@ std::vector<ShadowLayerPlan> planDirectional(const ShadowLightPlan& plan, const 
 /// up to a power of two, so that an object moving at the edge of the scene does not change
 /// every layer's projection (and force a redraw of layers whose casters did not move).
 double perspectiveFar(const ShadowLightPlan& plan, const glm::dvec3& position, const SceneGeometry& g) {
-    if (plan.light.range > 0.0f) return std::max<double>(plan.light.range, 1e-3);
-    return std::exp2(std::ceil(std::log2(std::max(farthestCorner(position, g.everything), 1e-3))));
+    if (plan.light.range > 0.0f) return std::clamp<double>(plan.light.range, 1e-3, kMaxShadowReach);
+    const double fitted =
+        std::exp2(std::ceil(std::log2(std::max(farthestCorner(position, g.everything), 1e-3))));
+    return std::min(fitted, kMaxShadowReach);
 }
 
 /// The largest power of two not above `x` > 0: a near plane that stays put while the nearest
@@ -180,7 +192,9 @@ SceneGeometry gatherGeometry(World& world) {
     SceneGeometry g;
     world.view<Mesh, WorldTransform, WorldBounds>().each(
         [&](Entity e, Mesh& mesh, WorldTransform& wt, WorldBounds& wb) {
-            if (!wt.finite || wb.box.empty() || mesh.data == nullptr) return;
+            // A mesh with no triangles draws nothing: it must not widen any layer's fit either.
+            if (!wt.finite || wb.box.empty() || mesh.data == nullptr || mesh.data->indices.empty())
+                return;
             g.everything.extend(wb.box);
             if (mesh.castShadows) g.casters.push_back({e, wb.box});
             if (mesh.receiveShadows) g.receivers.extend(wb.box);

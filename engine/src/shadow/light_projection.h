@@ -13,6 +13,12 @@ namespace shadow {
 /// Largest spot half-angle a shadow map can cover (rad); wider cones are clamped (85 degrees).
 inline constexpr float kMaxSpotHalfAngle = 1.4835298642f;
 
+/// Farthest a shadow layer reaches (m), the documented range of `Light::range` and
+/// `Shadow::shadowDistance`: far planes, a sun's reach and the width and depth of its layers
+/// around the camera are clamped to it, so every number handed to the GPU is a finite float
+/// however large the scene's coordinates (a file may place a mesh at 1e38 m; the fuzzer did).
+inline constexpr double kMaxShadowReach = 1e7;
+
 /// A caster or receiver instance with its world bounds.
 struct BoundedEntity {
     Entity entity;
@@ -26,7 +32,7 @@ struct SceneGeometry {
     DAabb everything;                    ///< union of all finite meshes
 };
 
-/// Collects casters and receivers from meshes with finite world transforms.
+/// Collects casters and receivers from meshes with finite world transforms and triangles.
 SceneGeometry gatherGeometry(World& world);
 
 /// Where a light is and where it points, in world space.

@@ -8,13 +8,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <sstream>
+#include <string_view>
 
 namespace shadow {
 namespace {
 
 template <typename T>
-void clampField(T& value, T lo, T hi, const std::string& who, const char* field,
+void clampField(T& value, T lo, T hi, std::string_view who, const char* field,
                 std::vector<std::string>& warnings) {
     T clamped = value;
     if constexpr (std::is_floating_point_v<T>) {
@@ -34,7 +37,104 @@ const char* lightName(const World& world, Entity e) {
     return n != nullptr ? n->value.c_str() : "light";
 }
 
+/// Smallest map edge the texel budget halves a light to before it drops its shadow.
+constexpr int kMinBudgetMapSize = 256;
+
+/// A shadowed light before its layers are planned.
+struct Candidate {
+    ShadowLightPlan plan;
+    LightPose pose;
+    bool dropped = false;
+};
+
+/// Layers of a light's array: its cascades, one spot layer, or six cube faces.
+std::int64_t layerCount(const ShadowLightPlan& plan) {
+    switch (plan.light.type) {
+        case LightType::Directional:
+            return plan.settings.cascades;
+        case LightType::Spot:
+            return 1;
+        case LightType::Point:
+            return 6;
+    }
+    return 6;
+}
+
+std::int64_t texelsOf(const ShadowLightPlan& plan) {
+    return static_cast<std::int64_t>(plan.mapSize) * plan.mapSize * layerCount(plan);
+}
+
+/// Candidates from least to most important: lights that cannot reach the view, then by
+/// distance from the camera (directional lights at 0), farthest first, then later in the scene.
+std::vector<std::size_t> budgetOrder(const std::vector<Candidate>& lights,
+                                     const glm::dvec3& camera) {
+    std::vector<std::size_t> order(lights.size());
+    std::vector<double> distance(lights.size(), 0.0);
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        order[i] = i;
+        const ShadowLightPlan& p = lights[i].plan;
+        if (!p.affectsView) {
+            distance[i] = std::numeric_limits<double>::infinity();
+        } else if (p.light.type != LightType::Directional) {
+            distance[i] = glm::distance(camera, lights[i].pose.wsPosition);
+        }
+    }
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        if (distance[a] != distance[b]) return distance[a] > distance[b];
+        return lights[a].plan.sceneIndex > lights[b].plan.sceneIndex;
+    });
+    return order;
+}
+
+/// Fits the lights' maps into `budget` texels by the policy of `ShadowLimits::maxShadowTexels`.
+void fitTexelBudget(std::vector<Candidate>& lights, const glm::dvec3& camera, std::int64_t budget,
+                    std::vector<std::string>& warnings) {
+    std::int64_t total = 0;
+    for (const Candidate& c : lights) total += texelsOf(c.plan);
+    if (total <= budget) return;
+    const std::vector<std::size_t> order = budgetOrder(lights, camera);
+    for (bool halved = true; total > budget && halved;) {
+        halved = false;
+        for (std::size_t i : order) {
+            ShadowLightPlan& p = lights[i].plan;
+            if (total <= budget) break;
+            if (p.mapSize <= kMinBudgetMapSize) continue;
+            total -= texelsOf(p);
+            p.mapSize = std::max(p.mapSize / 2, kMinBudgetMapSize);
+            total += texelsOf(p);
+            halved = true;
+        }
+    }
+    for (std::size_t i : order) {
+        if (total <= budget) break;
+        total -= texelsOf(lights[i].plan);
+        lights[i].dropped = true;
+    }
+    const std::string why =
+        " to fit the shadow texel budget (" + std::to_string(budget) + " texels)";
+    for (const Candidate& c : lights) {
+        if (c.dropped) {
+            warnings.push_back(c.plan.name + ": shadow dropped" + why);
+        } else if (c.plan.mapSize != c.plan.settings.mapSize) {
+            warnings.push_back(c.plan.name + ": mapSize " +
+                               std::to_string(c.plan.settings.mapSize) + " reduced to " +
+                               std::to_string(c.plan.mapSize) + why);
+        }
+    }
+}
+
 }  // namespace
+
+void clampLight(Light& light, std::string_view who, std::vector<std::string>& warnings) {
+    static const char* const kColor[3] = {"color.r", "color.g", "color.b"};
+    for (int c = 0; c < 3; ++c) clampField(light.color[c], 0.0f, 1e3f, who, kColor[c], warnings);
+    clampField(light.intensity, 0.0f, 1e12f, who, "intensity", warnings);
+    clampField(light.range, 0.0f, 1e7f, who, "range", warnings);
+    clampField(light.outerConeAngle, 1e-4f, 1.5707963268f, who, "outerConeAngle", warnings);
+    clampField(light.innerConeAngle, 0.0f, light.outerConeAngle, who, "innerConeAngle", warnings);
+    clampField(light.radius, 0.0f, 1e3f, who, "radius", warnings);
+    clampField(light.angularRadius, 0.0f, 0.2f, who, "angularRadius", warnings);
+}
 
 void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, const std::string& who,
                          std::vector<std::string>& warnings) {
@@ -51,11 +151,10 @@ void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, co
     clampField(s.cascadeBlend, 0.0f, 0.5f, who, "cascadeBlend", warnings);
     clampField(s.shadowDistance, 0.0f, 1e7f, who, "shadowDistance", warnings);
     clampField(s.nearPlane, 0.0f, 1e7f, who, "nearPlane", warnings);
-    clampField(light.radius, 0.0f, 1e3f, who, "radius", warnings);
-    clampField(light.angularRadius, 0.0f, 0.2f, who, "angularRadius", warnings);
+    clampLight(light, who, warnings);
+    // A shadow map covers less than the half-space a spot may light.
     clampField(light.outerConeAngle, 1e-4f, kMaxSpotHalfAngle, who, "outerConeAngle", warnings);
     clampField(light.innerConeAngle, 0.0f, light.outerConeAngle, who, "innerConeAngle", warnings);
-    clampField(light.range, 0.0f, 1e7f, who, "range", warnings);
 }
 
 const ShadowFrame& ShadowPlanner::prepare(World& world, const CameraView& camera,
@@ -65,6 +164,7 @@ const ShadowFrame& ShadowPlanner::prepare(World& world, const CameraView& camera
     const SceneGeometry geometry = gatherGeometry(world);
     const Frustum cameraFrustum = Frustum::fromMatrix(cameraClipFromWorld(camera));
 
+    std::vector<Candidate> candidates;
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const Entity e = lights[i];
         const Light* light = world.tryGet<Light>(e);
@@ -72,11 +172,7 @@ const ShadowFrame& ShadowPlanner::prepare(World& world, const CameraView& camera
         const WorldTransform* wt = world.tryGet<WorldTransform>(e);
         if (light == nullptr || shadow == nullptr || wt == nullptr) continue;
         if (shadow->technique == ShadowTechnique::None) continue;
-        if (!wt->finite) {
-            frame_.warnings.push_back(std::string(lightName(world, e)) +
-                                      ": non-finite transform, light skipped");
-            continue;
-        }
+        if (!wt->finite) continue;  // reported by the transform system (TransformStats::skipped)
         ShadowLightPlan plan;
         plan.entity = e;
         plan.sceneIndex = static_cast<int>(i);
@@ -87,9 +183,15 @@ const ShadowFrame& ShadowPlanner::prepare(World& world, const CameraView& camera
         plan.mapSize = plan.settings.mapSize;
         const LightPose pose = lightPose(*wt);
         plan.affectsView = lightAffectsView(plan.light, pose, cameraFrustum);
-        plan.layers = planLayers(plan, pose, camera, geometry);
-        markDirty(world, plan);
-        frame_.lights.push_back(std::move(plan));
+        candidates.push_back({std::move(plan), pose});
+    }
+    // Sizes first: the layers' texel snapping and margins depend on them.
+    fitTexelBudget(candidates, camera.wsPosition, limits_.maxShadowTexels, frame_.warnings);
+    for (Candidate& c : candidates) {
+        if (c.dropped) continue;
+        c.plan.layers = planLayers(c.plan, c.pose, camera, geometry);
+        markDirty(world, c.plan);
+        frame_.lights.push_back(std::move(c.plan));
     }
     // Forget lights that are gone so their memory does not grow without bound.
     std::erase_if(memory_, [&](const auto& m) {

@@ -116,6 +116,7 @@ void ShadowSystem::render(World& world, MeshCache& meshes, FrameStats& stats) {
         ls.sceneIndex = plan.sceneIndex;
         ls.name = plan.name;
         ls.mapSize = plan.mapSize;
+        ls.requestedMapSize = plan.settings.mapSize;
         ls.layers = static_cast<int>(plan.layers.size());
         ls.affectsView = plan.affectsView;
         for (std::size_t k = 0; k < plan.layers.size(); ++k) {
