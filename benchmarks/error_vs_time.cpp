@@ -67,10 +67,10 @@ std::vector<Config> sweep() {
         for (int taps : {4, 8, 16, 32}) out.push_back({ShadowTechnique::Pcf, 1024, taps, 1, k});
     }
     for (FilterKernel k : {FilterKernel::Vogel, FilterKernel::Poisson}) {
-        for (int taps : {8, 16, 32}) out.push_back({ShadowTechnique::Pcss, 1024, taps, taps, k});
+        for (int taps : {4, 8, 16, 32}) out.push_back({ShadowTechnique::Pcss, 1024, taps, taps, k});
     }
     out.push_back({ShadowTechnique::Pcss, 2048, 32, 32, FilterKernel::Vogel});
-    for (int taps : {8, 16, 32}) out.push_back({ShadowTechnique::PcssTextbook, 1024, taps, taps, FilterKernel::Poisson});
+    for (int taps : {4, 8, 16, 32}) out.push_back({ShadowTechnique::PcssTextbook, 1024, taps, taps, FilterKernel::Poisson});
     return out;
 }
 

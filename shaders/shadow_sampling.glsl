@@ -65,6 +65,17 @@ struct Receiver {
     float texelMetres;  // world size of one shadow texel at the receiver
     float depthBias;  // m, subtracted from every tap's reference depth
     vec3 offsetPerTexel;  // the normal offset per metre of texel footprint
+    // The receiver's own layer, cached so that a tap in it costs one projection: light-space
+    // position and tangents (the layer transform is affine, so a tap's light-space point is
+    // lsPosition + o.x*lsTangent1 + o.y*lsTangent2), projection and depth scale.
+    vec3 lsPosition;
+    vec3 lsTangent1;
+    vec3 lsTangent2;
+    vec3 lsOffsetPerTexel;
+    mat4 clipFromLight;
+    float depthScale;
+    float texelPerAxial;  // perspective: texel footprint per metre of axial distance
+    bool orthographic;
 };
 
 // Where a world point falls in a layer.
@@ -152,6 +163,17 @@ Receiver makeReceiver(GpuLight L, vec3 csPosition, vec3 wsNormal, float viewDist
     if (denom == 0.0) denom = 1.0;
     r.csTangent1 = t1 - r.toLight * (dot(wsNormal, t1) / denom);
     r.csTangent2 = t2 - r.toLight * (dot(wsNormal, t2) / denom);
+
+    GpuShadowLayer S = uLayers[L.firstLayer + r.layer];
+    mat3 linear = mat3(S.lightFromWorld);
+    r.lsPosition = ls;
+    r.lsTangent1 = linear * r.csTangent1;
+    r.lsTangent2 = linear * r.csTangent2;
+    r.lsOffsetPerTexel = linear * r.offsetPerTexel;
+    r.clipFromLight = S.clipFromLight;
+    r.depthScale = S.depthScale;
+    r.orthographic = S.orthographic != 0;
+    r.texelPerAxial = 2.0 / (S.clipFromLight[0][0] * L.mapSize);
     return r;
 }
 
@@ -164,15 +186,26 @@ Receiver makeReceiver(GpuLight L, vec3 csPosition, vec3 wsNormal, float viewDist
 Tap lateralTap(GpuLight L, Receiver r, vec2 offset) {
     vec3 p = r.csPosition + r.csTangent1 * offset.x + r.csTangent2 * offset.y;
     int layer = L.type == SG_LIGHT_POINT ? cubeFace(p - L.csPosition) : r.layer;
-    if (L.type != SG_LIGHT_DIRECTIONAL) {
-        p += r.offsetPerTexel * max(texelMetresAt(L, layer, p) - r.texelMetres, 0.0);
+    if (layer == r.layer) {
+        // Fast path, every tap of directional and spot lights and most of a point light's:
+        // the receiver's cached layer, one projection per tap.
+        vec3 ls = r.lsPosition + r.lsTangent1 * offset.x + r.lsTangent2 * offset.y;
+        if (!r.orthographic) ls += r.lsOffsetPerTexel * max(r.texelPerAxial * max(-ls.z, 0.0) - r.texelMetres, 0.0);
+        vec4 clip = r.clipFromLight * vec4(ls, 1.0);
+        Tap t;
+        t.layer = layer;
+        t.uv = clip.xy / max(clip.w, 1e-20) * 0.5 + 0.5;
+        t.depth = lightSpaceDepth(ls, r.orthographic);
+        return t;
     }
+    // A point light's tap that crossed into another cube face.
+    p += r.offsetPerTexel * max(texelMetresAt(L, layer, p) - r.texelMetres, 0.0);
     return projectTap(L, layer, p);
 }
 
 // 1 where the tap's point is lit, with the 2x2 bilinear PCF of the comparison sampler.
 float compareTap(int slot, GpuLight L, Receiver r, Tap t) {
-    float depthScale = uLayers[L.firstLayer + t.layer].depthScale;
+    float depthScale = t.layer == r.layer ? r.depthScale : uLayers[L.firstLayer + t.layer].depthScale;
     float reference = min((t.depth - r.depthBias) / depthScale, 1.0);
     return texture(uShadowCompare[slot], vec4(t.uv, float(t.layer), reference));
 }
@@ -258,7 +291,7 @@ float pcssVisibility(int slot, GpuLight L, Receiver r) {
     for (int i = 0; i < L.blockerSamples; ++i) {
         Tap t = lateralTap(L, r, diskSample(L.kernel, i, L.blockerSamples, rotation) * searchRadius);
         float stored = texture(uShadowDepth[slot], vec3(t.uv, float(t.layer))).r *
-                       uLayers[L.firstLayer + t.layer].depthScale;
+                       (t.layer == r.layer ? r.depthScale : uLayers[L.firstLayer + t.layer].depthScale);
         if (stored < t.depth - r.depthBias) {
             // Blocker depth expressed at the center's lateral position: the tap's own shift
             // along the tangent plane is removed so a sloped receiver does not bias it.
