@@ -1,6 +1,10 @@
 // Tests for engine/src/analysis/error_metrics.cpp: visibility error statistics on images with
 // hand-computed errors, masks, NaN/Inf, size errors, heat-map colours, and folder comparison.
 #include <gtest/gtest.h>
+
+#include <memory>
+
+#include "test_support.h"
 #include <shadow/image_io.h>
 #include <shadow/metrics.h>
 #include <stb/stb_image.h>  // decoder only; its implementation comes from libstb
@@ -299,19 +303,10 @@ TEST(ErrorHeatMap, ImageColoursReceiversAndGreysBackground) {
 class MetricsDirTest : public ::testing::Test {
 protected:
     void SetUp() override {
-        const char* env = std::getenv("SHADOW_TEST_TMP");
-        const fs::path base =
-            env != nullptr && *env != '\0' ? fs::path(env) : fs::temp_directory_path();
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = base / (std::string("shadow_") + info->test_suite_name() + "_" + info->name() + "_" +
-                       std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        tmp_ = std::make_unique<test::TempDir>("error_metrics_test");
+        dir_ = tmp_->path();
     }
-    void TearDown() override {
-        std::error_code ignored;
-        fs::remove_all(dir_, ignored);
-    }
+    void TearDown() override { tmp_.reset(); }
 
     /// `dir_/name`, created as a folder when `folder`.
     [[nodiscard]] std::string path(const std::string& name, bool folder = false) const {
@@ -328,6 +323,7 @@ protected:
         ASSERT_TRUE(writeExr(dir + "/position.exr", rgba, {"R", "G", "B", "A"}).ok());
     }
 
+    std::unique_ptr<test::TempDir> tmp_;  // removes the folder
     fs::path dir_;
 };
 

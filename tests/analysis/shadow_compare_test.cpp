@@ -4,6 +4,10 @@
 // shadow_core_tests has no SHADOW_BIN_DIR: the programs live beside the test executable
 // (build/bin), found through /proc/self/exe. Build the shadow_compare target before running.
 #include <gtest/gtest.h>
+
+#include <memory>
+
+#include "test_support.h"
 #include <shadow/image_io.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -62,23 +66,14 @@ protected:
     void SetUp() override {
         ASSERT_TRUE(fs::exists(compareBinary()))
             << compareBinary() << " is missing: build the shadow_compare target";
-        const char* env = std::getenv("SHADOW_TEST_TMP");
-        const fs::path base =
-            env != nullptr && *env != '\0' ? fs::path(env) : fs::temp_directory_path();
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = base /
-               (std::string("shadow_compare_") + info->name() + "_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        tmp_ = std::make_unique<test::TempDir>("shadow_compare_test");
+        dir_ = tmp_->path();
         estimate_ = (dir_ / "est").string();
         truth_ = (dir_ / "truth").string();
         fs::create_directories(estimate_);
         fs::create_directories(truth_);
     }
-    void TearDown() override {
-        std::error_code ignored;
-        fs::remove_all(dir_, ignored);
-    }
+    void TearDown() override { tmp_.reset(); }
 
     /// Runs shadow_compare with `args` (quoted by the caller where needed).
     [[nodiscard]] CliRun run(const std::string& args) const {
@@ -111,6 +106,7 @@ protected:
         ASSERT_TRUE(writeExr(truth_ + "/position.exr", position, {"R", "G", "B", "A"}).ok());
     }
 
+    std::unique_ptr<test::TempDir> tmp_;  // removes the folder
     fs::path dir_;
     std::string estimate_;
     std::string truth_;

@@ -1,6 +1,10 @@
 // Tests for engine/src/io/image_io.cpp: EXR and PNG writing/reading, atomic writes, tone map.
 
 #include <gtest/gtest.h>
+
+#include <memory>
+
+#include "test_support.h"
 #include <shadow/image_io.h>
 #include <stb/stb_image.h>  // decoder only; its implementation comes from libstb
 #include <unistd.h>
@@ -26,19 +30,10 @@ namespace fs = std::filesystem;
 class TempDirTest : public ::testing::Test {
 protected:
     void SetUp() override {
-        const char* env = std::getenv("SHADOW_TEST_TMP");
-        const fs::path base =
-            env != nullptr && *env != '\0' ? fs::path(env) : fs::temp_directory_path();
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = base / (std::string("shadow_") + info->test_suite_name() + "_" + info->name() + "_" +
-                       std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        tmp_ = std::make_unique<test::TempDir>("image_io_test");
+        dir_ = tmp_->path();
     }
-    void TearDown() override {
-        std::error_code ignored;
-        fs::remove_all(dir_, ignored);
-    }
+    void TearDown() override { tmp_.reset(); }
 
     [[nodiscard]] std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
@@ -58,6 +53,7 @@ protected:
         return false;
     }
 
+    std::unique_ptr<test::TempDir> tmp_;  // removes the folder
     fs::path dir_;
 };
 

@@ -2,6 +2,8 @@
 // camera rays against analytic ray/plane intersections (its own and the engine's position.exr),
 // positions mode against camera mode, and the shadow_reference CLI contract.
 #include <gtest/gtest.h>
+
+#include "test_support.h"
 #include <shadow/image_io.h>
 #include <shadow/scene.h>
 #include <sys/wait.h>
@@ -30,57 +32,14 @@ constexpr int kExitBadInput = 2;
 
 // ---- Helpers ----
 
-/// A fresh folder under SHADOW_TEST_TMP (or the system temp folder), removed afterwards.
-class TempDir {
-public:
-    TempDir() {
-        static std::atomic<int> counter{0};
-        const char* root = std::getenv("SHADOW_TEST_TMP");
-        const fs::path base =
-            root != nullptr && *root != '\0' ? fs::path(root) : fs::temp_directory_path();
-        path_ = base /
-                ("reference_test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    [[nodiscard]] std::string operator/(const std::string& name) const {
-        return (path_ / name).string();
-    }
+using test::TempDir;
+using CliRun = test::ProcessRun;
 
-private:
-    fs::path path_;
-};
-
-std::string quoted(const std::string& s) {
-    std::string out = "'";
-    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
-struct CliRun {
-    int exitCode = -1;  ///< -1 when the process did not exit normally (a crash)
-    std::string output;
-};
+std::string quoted(const std::string& s) { return test::shellQuoted(s); }
 
 /// Runs `program` (a binary in SHADOW_BIN_DIR) with `args` (quoted where needed).
 CliRun runProgram(const TempDir& tmp, const std::string& program, const std::string& args) {
-    const std::string log = tmp / "cli.log";
-    const std::string command = quoted(std::string(SHADOW_BIN_DIR "/") + program) + " " + args +
-                                " > " + quoted(log) + " 2>&1";
-    const int raw = std::system(command.c_str());
-    CliRun run;
-    run.exitCode = raw != -1 && WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    std::ifstream in(log);
-    std::ostringstream text;
-    text << in.rdbuf();
-    run.output = text.str();
-    return run;
+    return test::runProgram(std::string(SHADOW_BIN_DIR "/") + program, args, tmp / (program + ".log"));
 }
 
 /// builtin:plates posed at t = 0 and its first camera's view for a `width` x `height` image.

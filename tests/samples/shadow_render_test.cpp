@@ -1,6 +1,8 @@
 // The shadow_render CLI contract (design.md): the files it writes, what is in them, stats.json,
 // and bad input answered by one message and exit code 2 with nothing written.
 #include <gtest/gtest.h>
+
+#include "test_support.h"
 #include <shadow/image_io.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -24,58 +26,14 @@ constexpr int kExitBadInput = 2;
 constexpr int kWidth = 96;
 constexpr int kHeight = 54;
 
-/// A fresh folder under SHADOW_TEST_TMP (or the system temp folder), removed afterwards.
-class TempDir {
-public:
-    TempDir() {
-        static std::atomic<int> counter{0};
-        const char* root = std::getenv("SHADOW_TEST_TMP");
-        const fs::path base =
-            root != nullptr && *root != '\0' ? fs::path(root) : fs::temp_directory_path();
-        path_ = base / ("shadow_render_test-" + std::to_string(::getpid()) + "-" +
-                        std::to_string(counter++));
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    [[nodiscard]] const fs::path& path() const { return path_; }
-    [[nodiscard]] std::string operator/(const std::string& name) const {
-        return (path_ / name).string();
-    }
+using test::TempDir;
+using CliRun = test::ProcessRun;
 
-private:
-    fs::path path_;
-};
-
-std::string quoted(const std::string& s) {
-    std::string out = "'";
-    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
-struct CliRun {
-    int exitCode = -1;   ///< -1 when the process did not exit normally (a crash)
-    std::string output;  ///< stdout and stderr
-};
+std::string quoted(const std::string& s) { return test::shellQuoted(s); }
 
 /// Runs shadow_render with `args` (already quoted where needed), capturing its output.
 CliRun runCli(const TempDir& tmp, const std::string& args) {
-    const std::string log = tmp / "cli.log";
-    const std::string command =
-        quoted(SHADOW_BIN_DIR "/shadow_render") + " " + args + " > " + quoted(log) + " 2>&1";
-    const int raw = std::system(command.c_str());
-    CliRun run;
-    run.exitCode = raw != -1 && WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    std::ifstream in(log);
-    std::ostringstream text;
-    text << in.rdbuf();
-    run.output = text.str();
-    return run;
+    return test::runProgram(SHADOW_BIN_DIR "/shadow_render", args, tmp / "cli.log");
 }
 
 bool emptyOrAbsent(const fs::path& dir) {

@@ -1,0 +1,69 @@
+// Helpers every test binary may use: a fresh temporary folder per test, and running one of the
+// project's programs with its output captured. Header-only: test sources are globbed per folder.
+#pragma once
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace shadow::test {
+
+/// A fresh folder under $SHADOW_TEST_TMP (or the system temp folder), removed afterwards.
+class TempDir {
+public:
+    /// `prefix` names the folder after the test file, for a reader of a leftover folder.
+    explicit TempDir(const std::string& prefix = "shadow_test") {
+        static std::atomic<int> counter{0};
+        namespace fs = std::filesystem;
+        const char* root = std::getenv("SHADOW_TEST_TMP");
+        const fs::path base = root != nullptr && *root != '\0' ? fs::path(root) : fs::temp_directory_path();
+        path_ = base / (prefix + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+        fs::remove_all(path_);
+        fs::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path_, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+    [[nodiscard]] std::string operator/(const std::string& name) const { return (path_ / name).string(); }
+
+private:
+    std::filesystem::path path_;
+};
+
+/// `s` quoted for the POSIX shell.
+inline std::string shellQuoted(const std::string& s) {
+    std::string out = "'";
+    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+/// The outcome of running a program.
+struct ProcessRun {
+    int exitCode = -1;   ///< -1 when the process did not exit normally (a crash)
+    std::string output;  ///< stdout and stderr
+};
+
+/// Runs `program` (a path, quoted here) with `args` (already quoted where needed) through the
+/// shell, capturing stdout and stderr in `logPath`.
+inline ProcessRun runProgram(const std::string& program, const std::string& args, const std::string& logPath) {
+    const std::string command = shellQuoted(program) + " " + args + " > " + shellQuoted(logPath) + " 2>&1";
+    const int raw = std::system(command.c_str());
+    ProcessRun run;
+    run.exitCode = raw != -1 && WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    std::ifstream in(logPath);
+    std::ostringstream text;
+    text << in.rdbuf();
+    run.output = text.str();
+    return run;
+}
+
+}  // namespace shadow::test
