@@ -47,16 +47,8 @@ struct Config {
         if (technique == ShadowTechnique::Pcss || technique == ShadowTechnique::PcssTextbook) {
             s << " taps" << blockerSamples << "+" << pcfSamples;
         }
-        if (technique != ShadowTechnique::Hard) s << " " << kernelName(kernel);
+        if (technique != ShadowTechnique::Hard) s << " " << filterKernelName(kernel);
         return s.str();
-    }
-    static const char* kernelName(FilterKernel k) {
-        switch (k) {
-            case FilterKernel::Vogel: return "vogel";
-            case FilterKernel::Poisson: return "poisson";
-            case FilterKernel::Uniform: return "uniform";
-        }
-        return "vogel";
     }
 };
 
@@ -211,7 +203,7 @@ void writeCsv(const std::string& path, const std::vector<Row>& rows) {
     for (const Row& r : rows) {
         f << r.scene << ',' << techniqueName(r.config.technique) << ",\"" << r.config.label() << "\","
           << r.config.mapSize << ',' << r.config.pcfSamples << ',' << r.config.blockerSamples << ','
-          << Config::kernelName(r.config.kernel) << ',' << r.frameMs.median << ',' << r.frameMs.min << ','
+          << filterKernelName(r.config.kernel) << ',' << r.frameMs.median << ',' << r.frameMs.min << ','
           << r.frameMs.max << ',' << r.shadowMs.median << ',' << r.mainMs.median << ',' << r.errors.rmse << ','
           << r.errors.penumbraRmse << ',' << r.errors.mae << ',' << r.errors.p99 << ',' << r.errors.acneFraction
           << ',' << r.errors.leakFraction << ',' << (r.pareto ? 1 : 0) << '\n';

@@ -41,7 +41,7 @@ Timings on llvmpipe (a CPU rasteriser) are noisy from run to run; compare rows o
 configuration sets every shadowed light of the scene. `pcss-textbook` is the seeds' PCSS (fixed
 Poisson taps around the receiver's UV), kept so our PCSS is measured against it in the same run.
 
-Reproduce (about 10 minutes here; rewrites this file and `benchmarks/results/`):
+Reproduce (about 2 minutes here after the build: `time bash benchmarks/run_error_vs_time.sh`; rewrites this file and `benchmarks/results/`):
 
 ```sh
 bash benchmarks/run_error_vs_time.sh

@@ -127,6 +127,11 @@ enum class FilterKernel : std::uint8_t {
     Uniform,  ///< independent uniform points, fresh per pixel
 };
 
+/// A kernel's name as glTF `extras.shadow.kernel` spells it ("vogel", "poisson", "uniform").
+[[nodiscard]] const char* filterKernelName(FilterKernel k);
+/// The kernel named `name`, or nullopt for an unknown name.
+[[nodiscard]] std::optional<FilterKernel> filterKernelFromName(std::string_view name);
+
 /// Per-light shadow settings. A light with no `Shadow` component, or technique `None`, gets no
 /// shadow map at all. Values out of range are clamped to the stated range by the shadow system
 /// and the clamp is reported in stats.json.

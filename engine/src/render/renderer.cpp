@@ -406,7 +406,8 @@ void Renderer::render(World& world, const CameraView& camera, const std::vector<
     for (int pass = 0; pass < passes; ++pass) {
         const int first = pass * SG_MAX_LIGHTS_PER_PASS;
         const int count = std::clamp(r.lightCount - first, 0, SG_MAX_LIGHTS_PER_PASS);
-        std::vector<GLenum> buffers = {GL_COLOR_ATTACHMENT0 + SG_OUT_COLOR};
+        std::array<GLenum, 5> buffers = {GL_COLOR_ATTACHMENT0 + SG_OUT_COLOR, GL_NONE, GL_NONE, GL_NONE, GL_NONE};
+        GLsizei bufferCount = 1;
         if (options.aovs) {
             gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0 + SG_OUT_VISIBILITY0, r.targets.visibility[2 * pass].get(), 0);
             gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0 + SG_OUT_VISIBILITY1,
@@ -416,8 +417,9 @@ void Renderer::render(World& world, const CameraView& camera, const std::vector<
             const GLenum depth = pass == 0 ? GLenum{GL_COLOR_ATTACHMENT0 + SG_OUT_DEPTH} : GLenum{GL_NONE};
             buffers = {GL_COLOR_ATTACHMENT0 + SG_OUT_COLOR, position, depth, GL_COLOR_ATTACHMENT0 + SG_OUT_VISIBILITY0,
                        GL_COLOR_ATTACHMENT0 + SG_OUT_VISIBILITY1};
+            bufferCount = 5;
         }
-        gl.NamedFramebufferDrawBuffers(fb, static_cast<GLsizei>(buffers.size()), buffers.data());
+        gl.NamedFramebufferDrawBuffers(fb, bufferCount, buffers.data());
         gpu::checkGlError("main pass framebuffer");
         if (gl.CheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
             throw GlError("main pass framebuffer is incomplete");

@@ -33,9 +33,7 @@ Result<ShadowTechnique> parseTechnique(const tinygltf::Value& v, const std::stri
 Result<FilterKernel> parseKernel(const tinygltf::Value& v, const std::string& where) {
     auto name = readString(v, where);
     if (!name) return name.error();
-    if (*name == "vogel") return FilterKernel::Vogel;
-    if (*name == "poisson") return FilterKernel::Poisson;
-    if (*name == "uniform") return FilterKernel::Uniform;
+    if (const auto k = filterKernelFromName(*name)) return *k;
     return elementError(where, "unknown kernel \"" + *name + "\" (expected vogel, poisson or uniform)");
 }
 

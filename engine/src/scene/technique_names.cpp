@@ -21,4 +21,20 @@ std::optional<ShadowTechnique> techniqueFromName(std::string_view name) {
     return std::nullopt;
 }
 
+const char* filterKernelName(FilterKernel k) {
+    switch (k) {
+        case FilterKernel::Vogel: return "vogel";
+        case FilterKernel::Poisson: return "poisson";
+        case FilterKernel::Uniform: return "uniform";
+    }
+    return "vogel";
+}
+
+std::optional<FilterKernel> filterKernelFromName(std::string_view name) {
+    for (FilterKernel k : {FilterKernel::Vogel, FilterKernel::Poisson, FilterKernel::Uniform}) {
+        if (name == filterKernelName(k)) return k;
+    }
+    return std::nullopt;
+}
+
 }  // namespace shadow
