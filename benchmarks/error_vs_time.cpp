@@ -11,7 +11,7 @@
 // Run through benchmarks/run_error_vs_time.sh, which makes the references and the plot.
 #include <shadow/context.h>
 #include <shadow/metrics.h>
-#include <shadow/renderer.h>
+#include <shadow/frame_runner.h>
 #include <shadow/scene.h>
 
 #include "render_output.h"

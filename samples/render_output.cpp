@@ -106,15 +106,6 @@ Spread spreadOf(std::vector<double> values) {
     return s;
 }
 
-const char* lightTypeName(LightType t) {
-    switch (t) {
-        case LightType::Directional: return "directional";
-        case LightType::Spot: return "spot";
-        case LightType::Point: return "point";
-    }
-    return "point";
-}
-
 Result<ShadowTechnique> parseTechnique(const std::string& name) {
     if (const auto t = techniqueFromName(name)) return *t;
     return Error{"unknown technique '" + name + "' (known: none, hard, pcf, pcss, pcss-textbook)"};
@@ -138,11 +129,12 @@ nlohmann::json lightsJson(const Scene& scene, const FrameStats& last) {
         nlohmann::json j;
         j["index"] = i;
         j["node"] = name != nullptr ? name->value : "";
-        j["type"] = light != nullptr ? lightTypeName(light->type) : "";
+        j["type"] = light != nullptr ? shadow::lightTypeName(light->type) : "";
         j["technique"] = shadow != nullptr ? techniqueName(shadow->technique) : "none";
         j["visibility"] = "visibility_" + std::to_string(i) + ".exr";
-        for (const LightShadowStats& ls : last.lights) {
-            if (ls.sceneIndex != static_cast<int>(i)) continue;
+        // FrameStats::lights is indexed like Scene::lights; lights that asked for no map have none.
+        if (i < last.lights.size() && last.lights[i].requestedMapSize > 0) {
+            const LightShadowStats& ls = last.lights[i];
             j["shadow"] = {{"mapSize", ls.mapSize},
                            {"requestedMapSize", ls.requestedMapSize},
                            {"layers", ls.layers},

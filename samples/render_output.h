@@ -52,8 +52,6 @@ struct Spread {
 [[nodiscard]] std::string statsJson(const Scene& scene, const std::vector<FrameStats>& frames, int width,
                                     int height, const std::string& technique);
 
-/// "directional" / "spot" / "point".
-[[nodiscard]] const char* lightTypeName(LightType t);
 /// Parses a technique name; error names the value.
 [[nodiscard]] Result<ShadowTechnique> parseTechnique(const std::string& name);
 

@@ -77,7 +77,7 @@ nlohmann::json lightsJson(const Scene& scene, const reference::ReferenceResult& 
         nlohmann::json j;
         j["index"] = i;
         j["node"] = name != nullptr ? name->value : "";
-        j["type"] = light != nullptr ? samples::lightTypeName(light->type) : "";
+        j["type"] = light != nullptr ? lightTypeName(light->type) : "";
         if (light != nullptr) {
             if (light->type == LightType::Directional)
                 j["angularRadius"] = light->angularRadius;

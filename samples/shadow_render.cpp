@@ -1,15 +1,15 @@
 // shadow_render: renders a scene headless (OSMesa) and writes images, AOVs and stats.json.
 //
 //   shadow_render SCENE [--out DIR] [--size WxH] [--camera N] [--time T] [--frames N --dt S]
-//                 [--technique none|hard|pcf|pcss] [--aov color,visibility,position,depth]
-//                 [--debug NAME] [--debug-light I] [--frame-images] [--no-cache]
+//                 [--technique none|hard|pcf|pcss|pcss-textbook] [--aov color,visibility,position,depth]
+//                 [--debug NAME] [--debug-light I] [--frame-images] [--no-cache] [--exposure E]
 //
 // SCENE is a .gltf/.glb path or builtin:NAME. With --frames N the scene is animated from
 // --time T in steps of --dt S; the images are those of the last frame and the timings in
 // stats.json are medians over the frames after the first. --frame-images also writes every
 // frame's colour as frames/color_<k>.png. Bad input: one message, exit code 2.
 #include <shadow/context.h>
-#include <shadow/renderer.h>
+#include <shadow/frame_runner.h>
 #include <shadow/scene.h>
 
 #include "render_output.h"
@@ -44,7 +44,7 @@ struct Options {
     int debugLight = 0;
     bool frameImages = false;
     bool noCache = false;
-    float exposure = 1.0f;
+    std::optional<float> exposure;  ///< absent: from the first frame read back (autoExposure)
 };
 
 int fail(int code, const std::string& message) {
@@ -105,7 +105,7 @@ int run(const Options& o) {
         technique = *t;
     }
     if (!std::isfinite(o.time)) return fail(kExitBadInput, "--time: must be a finite number of seconds");
-    if (!(std::isfinite(o.exposure) && o.exposure > 0.0f)) {
+    if (o.exposure && !(std::isfinite(*o.exposure) && *o.exposure > 0.0f)) {
         return fail(kExitBadInput, "--exposure: must be a finite number > 0");
     }
     if (!std::isfinite(o.dt)) return fail(kExitBadInput, "--dt: must be a finite number of seconds");
@@ -143,6 +143,7 @@ int run(const Options& o) {
     FrameRunner runner;
     runner.shadows().planner().setCaching(!o.noCache);
     std::vector<FrameStats> frames;
+    std::optional<float> exposure = o.exposure;
     if (o.frameImages) std::filesystem::create_directories(o.out + "/frames");
     for (int f = 0; f < o.frames; ++f) {
         const double t = o.time + o.dt * f;
@@ -150,16 +151,18 @@ int run(const Options& o) {
         const bool last = f + 1 == o.frames;
         if (!last && !o.frameImages) continue;
         FrameImages images = runner.renderer().readback(runner.lastCamera(), frames.back());
+        // One exposure for the whole animation, so its frames do not flicker.
+        if (!exposure) exposure = autoExposure(images.color);
         if (o.frameImages) {
             char name[64];
             std::snprintf(name, sizeof(name), "/frames/color_%04d.png", f);
-            const auto srgb = toneMapToSrgb8(images.color, o.exposure);
+            const auto srgb = toneMapToSrgb8(images.color, *exposure);
             if (Status s = writePng(o.out + name, images.color.width, images.color.height, 3, srgb); !s) {
                 return fail(kExitFailure, s.error().message);
             }
         }
         if (last) {
-            if (Status s = samples::writeFrameImages(o.out, images, *selection, o.exposure); !s) {
+            if (Status s = samples::writeFrameImages(o.out, images, *selection, *exposure); !s) {
                 return fail(kExitFailure, s.error().message);
             }
         }
@@ -190,7 +193,7 @@ int main(int argc, char** argv) {
     app.add_option("--aov", o.aov, "outputs: color,visibility,position,depth");
     app.add_option("--debug", o.debug, "debug view: shadowmap|cascade|blocker|penumbra|visibility");
     app.add_option("--debug-light", o.debugLight, "scene light index the debug view shows");
-    app.add_option("--exposure", o.exposure, "exposure of color.png");
+    app.add_option("--exposure", o.exposure, "exposure of color.png (default: log-average luminance to 0.18)");
     app.add_flag("--frame-images", o.frameImages, "write every frame as frames/color_<k>.png");
     app.add_flag("--no-cache", o.noCache, "redraw every shadow layer every frame");
     try {

@@ -4,7 +4,7 @@
 //
 // W/A/S/D/Q/E move the camera, T cycles every light's technique (scene's own, hard, PCF, PCSS),
 // Space pauses the animation, Esc quits. Per-pass timings are printed once a second.
-#include <shadow/renderer.h>
+#include <shadow/frame_runner.h>
 #include <shadow/scene.h>
 #include <shadow/window.h>
 

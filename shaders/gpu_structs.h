@@ -31,7 +31,7 @@ SG_END_STRUCT
 
 // One layer (cascade, spot map or cube face) of a light's shadow-map array.
 SG_STRUCT(GpuShadowLayer)
-    SG_MAT4 lightFromWorld;  // camera-relative world -> light view (m; the light looks down -Z)
+    SG_MAT4 lightFromCs;  // camera-relative world -> light view (m; the light looks down -Z)
     SG_MAT4 clipFromLight;   // light view -> clip
     SG_FLOAT depthScale;     // stored depth = lsDepth / depthScale
     SG_FLOAT depthNear;      // near plane of the projection (m)

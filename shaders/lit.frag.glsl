@@ -1,22 +1,29 @@
-// Main pass: sum over this pass's lights of Blinn-Phong shading times the light's visibility.
-// Further passes (more than SG_MAX_LIGHTS_PER_PASS lights) add with blending and write only
-// colour and their own visibility outputs.
-#include "shadow_sampling.glsl"
+// Main pass: the sum over this pass's lights of Blinn-Phong shading times the light's visibility.
+//
+// The renderer compiles one variant per light configuration of a pass (render/lit_programs.h):
+// SG_PASS_LIGHTS lights, and for every slot i < SG_MAX_LIGHTS_PER_PASS the constants
+// SG_SLOT<i>_TYPE (SG_LIGHT_*), SG_SLOT<i>_TECH (SG_TECH_*) and SG_SLOT<i>_KERNEL (SG_KERNEL_*). Each slot's code is straight-line
+// with its type, technique and layers known when compiling: no light loop, no per-pixel index
+// into the sampler array or the light records, no branch for a type or technique the light does
+// not have (the fragment-cost table in BENCHMARKS.md measures what each of those costs).
+// Depth comes from the depth pre-pass (depth test EQUAL), so each visible pixel is shaded once;
+// further passes (more lights) add with blending.
+#include "shadow_visibility.glsl"
 #include "lighting.glsl"
+
+#if SG_MAX_LIGHTS_PER_PASS != 8
+#error "main() below shades slots 0-7: one SG_SHADE_SLOT line per slot"
+#endif
 
 in vec3 vCsPosition;
 in vec3 vWsNormal;
 
-uniform int uFirstLight;     // index in the light buffer of pass slot 0
-uniform int uLightCount;     // lights in this pass
 uniform int uReceiveShadows;
 uniform vec3 uAlbedo;
 uniform vec3 uSpecular;
 uniform float uShininess;
-uniform vec3 uAmbient;       // added by the first pass only
-uniform vec3 uCameraForward; // unit, world space
-uniform int uDebugView;      // SG_DEBUG_*
-uniform int uDebugLight;     // pass slot the debug view shows
+uniform vec3 uAmbient;        // added by the first pass only
+uniform vec3 uCameraForward;  // unit, world space
 
 layout(location = SG_OUT_COLOR) out vec4 outColor;
 #ifdef SG_WRITE_AOVS
@@ -25,6 +32,58 @@ layout(location = SG_OUT_DEPTH) out float outDepth;       // distance from the c
 layout(location = SG_OUT_VISIBILITY0) out vec4 outVisibility0;
 layout(location = SG_OUT_VISIBILITY1) out vec4 outVisibility1;
 #endif
+
+// Light of pass slot `slot`, whose type and technique are the compile-time constants given: the
+// record's own fields are replaced by them so that the compiler folds every test on them.
+GpuLight slotLight(const int slot, const int type, const int technique, const int kernel) {
+    GpuLight L = uLights[slot];
+    L.type = type;
+    L.technique = technique;
+    L.kernel = kernel;
+    L.firstLayer = slot * SG_MAX_LAYERS_PER_LIGHT;
+    return L;
+}
+
+// Radiance from pass slot `slot` and its visibility. Without AOVs or debug views the shadow
+// lookup is skipped where the light's shading is zero (facing away, outside the cone, beyond
+// the range); the visibility AOV keeps its meaning everywhere on geometry.
+vec3 shadeSlot(const int slot, const int type, const int technique, const int kernel, Surface s, float viewDistance,
+               out float visibility) {
+    GpuLight L = slotLight(slot, type, technique, kernel);
+    vec3 shading = shadeBlinnPhong(L, s);
+    visibility = 1.0;
+#if defined(SG_WRITE_AOVS) || defined(SG_DEBUG_VIEWS)
+    bool wanted = true;
+#else
+    bool wanted = max(shading.r, max(shading.g, shading.b)) > 0.0;
+#endif
+    if (technique != SG_TECH_NONE && uReceiveShadows != 0 && wanted) {
+        visibility = shadowVisibility(slot, L, s.csPosition, s.normal, viewDistance);
+    }
+    return visibility * shading;
+}
+
+#ifdef SG_DEBUG_VIEWS
+// SG_DEBUG_VIEW (SG_DEBUG_*) of pass slot SG_DEBUG_SLOT, read right after that slot ran.
+vec3 debugColor = vec3(0.0);
+#define SG_DEBUG_CAPTURE(i, v)                                                                    \
+    if (i == SG_DEBUG_SLOT) {                                                                     \
+        if (SG_DEBUG_VIEW == SG_DEBUG_CASCADE)                                                    \
+            debugColor = vec3(gDebugCascade == 0, gDebugCascade == 1, gDebugCascade >= 2) * 0.8 + 0.2 * v; \
+        if (SG_DEBUG_VIEW == SG_DEBUG_BLOCKER_DEPTH) debugColor = vec3(gDebugBlockerDepth);       \
+        if (SG_DEBUG_VIEW == SG_DEBUG_PENUMBRA) debugColor = vec3(gDebugPenumbra);                \
+        if (SG_DEBUG_VIEW == SG_DEBUG_VISIBILITY) debugColor = vec3(v);                           \
+    }
+#else
+#define SG_DEBUG_CAPTURE(i, v)
+#endif
+
+// Slot i of the pass: folded away for i >= SG_PASS_LIGHTS.
+#define SG_SHADE_SLOT(i)                                                                          \
+    if (i < SG_PASS_LIGHTS) {                                                                     \
+        color += shadeSlot(i, SG_SLOT##i##_TYPE, SG_SLOT##i##_TECH, SG_SLOT##i##_KERNEL, s, viewDistance, visibility[i]); \
+        SG_DEBUG_CAPTURE(i, visibility[i])                                                        \
+    }
 
 void main() {
     Surface s;
@@ -40,23 +99,20 @@ void main() {
 
     float viewDistance = dot(vCsPosition, uCameraForward);
     vec3 color = uAmbient * uAlbedo;
-    float visibility[SG_MAX_LIGHTS_PER_PASS];
-    vec3 debugColor = vec3(0.0);
-    for (int i = 0; i < SG_MAX_LIGHTS_PER_PASS; ++i) {
-        visibility[i] = 1.0;
-        if (i >= uLightCount) continue;
-        GpuLight L = uLights[uFirstLight + i];
-        vec3 shading = shadeBlinnPhong(L, s);
-        if (uReceiveShadows != 0) visibility[i] = shadowVisibility(i, L, s.csPosition, s.normal, viewDistance);
-        color += visibility[i] * shading;
-        if (i == uDebugLight) {
-            if (uDebugView == SG_DEBUG_CASCADE) debugColor = vec3(gDebugCascade == 0, gDebugCascade == 1, gDebugCascade >= 2) * 0.8 + 0.2 * visibility[i];
-            if (uDebugView == SG_DEBUG_BLOCKER_DEPTH) debugColor = vec3(gDebugBlockerDepth);
-            if (uDebugView == SG_DEBUG_PENUMBRA) debugColor = vec3(gDebugPenumbra);
-            if (uDebugView == SG_DEBUG_VISIBILITY) debugColor = vec3(visibility[i]);
-        }
-    }
-    outColor = vec4(uDebugView == SG_DEBUG_NONE ? color : debugColor, 1.0);
+    float visibility[SG_MAX_LIGHTS_PER_PASS] = float[](1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0);
+    SG_SHADE_SLOT(0)
+    SG_SHADE_SLOT(1)
+    SG_SHADE_SLOT(2)
+    SG_SHADE_SLOT(3)
+    SG_SHADE_SLOT(4)
+    SG_SHADE_SLOT(5)
+    SG_SHADE_SLOT(6)
+    SG_SHADE_SLOT(7)
+#ifdef SG_DEBUG_VIEWS
+    outColor = vec4(debugColor, 1.0);
+#else
+    outColor = vec4(color, 1.0);
+#endif
 #ifdef SG_WRITE_AOVS
     outPosition = vec4(vCsPosition, 1.0);
     outDepth = length(vCsPosition);

@@ -1,4 +1,4 @@
-// Main pass: camera-relative positions keep float precision far from the origin.
+// Main pass and depth pre-pass: camera-relative positions keep float precision far from the origin.
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 
@@ -8,6 +8,8 @@ uniform mat4 uClipFromCs;       // camera-relative world -> clip
 
 out vec3 vCsPosition;
 out vec3 vWsNormal;
+// The depth pre-pass and the lit pass must rasterise the same depths (EQUAL test).
+invariant gl_Position;
 
 void main() {
     vec4 cs = uCsFromLocal * vec4(inPosition, 1.0);

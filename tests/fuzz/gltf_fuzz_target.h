@@ -90,8 +90,9 @@ inline void runCpuFrames(Scene& scene) {
         const glm::dmat4 worldFromCs = glm::translate(glm::dmat4(1.0), view.wsPosition);
         const ShadowFrame& frame = planner.prepare(scene.world, view, scene.lights);
         std::int64_t texels = 0;
+        check(frame.lights.size() == scene.lights.size(), "one plan per scene light");
         for (const ShadowLightPlan& plan : frame.lights) {
-            check(plan.mapSize >= 1 && plan.mapSize <= limits.maxTextureSize,
+            check(plan.hasMap() ? plan.mapSize >= 1 && plan.mapSize <= limits.maxTextureSize : plan.mapSize == 0,
                   "map size inside the limits");
             for (const ShadowLayerPlan& layer : plan.layers) {
                 check(finiteAsFloat(layer.lightFromWorld * worldFromCs) &&

@@ -2,6 +2,7 @@
 // logs rewritten to file names, errors that name the file, and every variant the engine builds
 // compiling on the test context.
 #include "gl/program.h"
+#include "render/lit_programs.h"
 
 #include <gtest/gtest.h>
 
@@ -50,12 +51,13 @@ TEST(Program, ExpandShaderPutsVersionAndDefinesFirst) {
 }
 
 TEST(Program, ExpandShaderInlinesEveryInclude) {
-    const gpu::ExpandedSource src = gpu::expandShader("lit.frag.glsl", {});
+    const gpu::ExpandedSource src = gpu::expandShader("lit.frag.glsl", {"SG_TECH_PCSS_ENABLED"});
     for (const std::string& line : linesOf(src.text)) {
         EXPECT_EQ(line.find("#include"), std::string::npos) << "left unexpanded: " << line;
     }
-    for (const char* f : {"shadow_sampling.glsl", "glsl_types.glsl", "shared_constants.h",
-                          "gpu_structs.h", "shadow_common.glsl", "lighting.glsl"}) {
+    for (const char* f : {"shadow_visibility.glsl", "shadow_receiver.glsl", "shadow_bindings.glsl",
+                          "shadow_kernels.glsl", "shadow_pcf.glsl", "shadow_pcss.glsl", "glsl_types.glsl",
+                          "shared_constants.h", "gpu_structs.h", "shadow_common.glsl", "lighting.glsl"}) {
         EXPECT_NE(std::find(src.files.begin(), src.files.end(), f), src.files.end())
             << f << " not in the file table";
     }
@@ -105,7 +107,7 @@ TEST(Program, ExpandShaderLineDirectivesMapEveryLineToItsSource) {
 
 TEST(Program, ExpandShaderLineAfterIncludeResumesTheIncludingFile) {
     const gpu::ExpandedSource src = gpu::expandShader("lit.frag.glsl", {});
-    const int include = lineContaining("lit.frag.glsl", "#include \"shadow_sampling.glsl\"");
+    const int include = lineContaining("lit.frag.glsl", "#include \"shadow_visibility.glsl\"");
     ASSERT_GT(include, 0);
     EXPECT_NE(src.text.find("#line " + std::to_string(include + 1) + " 0\n"), std::string::npos);
 }
@@ -143,42 +145,63 @@ TEST(Program, BuildProgramWithMissingFileThrowsNamingIt) {
 // A compile error inside an included file is reported with that file's name and line.
 TEST(Program, CompileErrorNamesTheIncludedFileAndLine) {
     test::glContext();
-    const int line = lineContaining("shadow_sampling.glsl", "const float kGoldenAngle");
+    const int line = lineContaining("shadow_kernels.glsl", "const float kGoldenAngle");
     ASSERT_GT(line, 0);
+    render::LitVariant pcf;
+    pcf.lights = 1;
+    pcf.technique[0] = SG_TECH_PCF;
+    std::vector<std::string> defines = render::variantDefines(pcf);
+    defines.emplace_back("kGoldenAngle )");  // turns "const float kGoldenAngle = ..." into a syntax error
     try {
-        // Turns "const float kGoldenAngle = ..." into a syntax error.
-        (void)gpu::buildProgram({"Test/broken",
-                                 "lit.vert.glsl",
-                                 "lit.frag.glsl",
-                                 {"SG_TECH_HARD_ENABLED", "kGoldenAngle )"}});
+        (void)gpu::buildProgram({"Test/broken", "lit.vert.glsl", "lit.frag.glsl", defines});
         FAIL() << "expected GlError";
     } catch (const GlError& e) {
         const std::string what = e.what();
         EXPECT_NE(what.find("Test/broken"), std::string::npos) << what;
-        EXPECT_NE(what.find("shadow_sampling.glsl:" + std::to_string(line) + "("),
+        EXPECT_NE(what.find("shadow_kernels.glsl:" + std::to_string(line) + "("),
                   std::string::npos)
             << what;
     }
 }
 
-// Every variant the renderer can ask for: each subset of techniques, with and without AOVs.
+// Every light type with every technique and kernel in some slot, with and without AOVs, and
+// with a debug view: the configurations the renderer can ask for.
 TEST(Program, EveryLitVariantAndTheDepthProgramCompile) {
     test::glContext();
-    const char* techniques[3] = {"SG_TECH_HARD_ENABLED", "SG_TECH_PCF_ENABLED",
-                                 "SG_TECH_PCSS_ENABLED"};
-    for (unsigned mask = 0; mask < 16; ++mask) {
-        gpu::ProgramDesc desc{
-            "Test/Lit" + std::to_string(mask), "lit.vert.glsl", "lit.frag.glsl", {}};
-        for (unsigned t = 0; t < 3; ++t) {
-            if (mask & (1u << t)) desc.defines.emplace_back(techniques[t]);
+    std::vector<render::LitVariant> variants;
+    for (int type : {SG_LIGHT_DIRECTIONAL, SG_LIGHT_SPOT, SG_LIGHT_POINT}) {
+        render::LitVariant v;
+        v.lights = SG_MAX_LIGHTS_PER_PASS;
+        for (int slot = 0; slot < v.lights; ++slot) {
+            const auto i = static_cast<std::size_t>(slot);
+            v.type[i] = static_cast<std::uint8_t>(slot < 5 ? type : (type + slot) % 3);
+            v.technique[i] = static_cast<std::uint8_t>(slot % (SG_TECH_PCSS_TEXTBOOK + 1));
+            v.kernel[i] = static_cast<std::uint8_t>(slot % 3);
         }
-        if (mask & 8u) desc.defines.emplace_back("SG_WRITE_AOVS");
+        variants.push_back(v);
+        v.aovs = true;
+        variants.push_back(v);
+        v.debugView = SG_DEBUG_PENUMBRA;
+        v.debugSlot = 3;
+        variants.push_back(v);
+    }
+    variants.emplace_back();  // no light at all: ambient and AOVs only
+    for (const render::LitVariant& v : variants) {
+        const std::string label = render::variantLabel(v);
         try {
-            const gpu::Program program = gpu::buildProgram(desc);
-            EXPECT_NE(program.get(), 0u) << desc.label;
+            const gpu::Program program =
+                gpu::buildProgram({label, "lit.vert.glsl", "lit.frag.glsl", render::variantDefines(v)});
+            EXPECT_NE(program.get(), 0u) << label;
         } catch (const GlError& e) {
-            ADD_FAILURE() << desc.label << ": " << e.what();
+            ADD_FAILURE() << label << ": " << e.what();
         }
+    }
+    try {
+        const gpu::Program prepass = gpu::buildProgram(
+            {"Test/DepthPrepass", "lit.vert.glsl", "depth_prepass.frag.glsl", {}});
+        EXPECT_NE(prepass.get(), 0u);
+    } catch (const GlError& e) {
+        ADD_FAILURE() << "depth pre-pass: " << e.what();
     }
     try {
         const gpu::Program depth = gpu::buildProgram(

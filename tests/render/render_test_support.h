@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 #include <shadow/context.h>
-#include <shadow/renderer.h>
+#include <shadow/frame_runner.h>
 #include <shadow/scene.h>
 #include <shadow/shadow_system.h>
 

@@ -29,17 +29,6 @@ int bitDifferences(const ImageF& a, const ImageF& b) {
     return n;
 }
 
-/// The frame's per-light stats indexed by scene light index (default entries where missing).
-std::vector<LightShadowStats> statsBySceneIndex(const FrameStats& stats, std::size_t lights) {
-    std::vector<LightShadowStats> out(lights);
-    for (const LightShadowStats& l : stats.lights) {
-        if (l.sceneIndex >= 0 && static_cast<std::size_t>(l.sceneIndex) < lights) {
-            out[static_cast<std::size_t>(l.sceneIndex)] = l;
-        }
-    }
-    return out;
-}
-
 /// Three lights over three separate areas of a ground plane, each with a static box under it;
 /// a bobbing box lies under the first spot light only.
 struct ThreeAreas {
@@ -134,7 +123,7 @@ TEST(Cache, OnlyTheLightSeeingTheMovingCasterRedraws) {
     for (int f = 0; f < kFrames; ++f) {
         const test::RenderedFrame frame = test::renderFrame(runner, s.scene, 128, 96, f * kDt);
         ASSERT_EQ(frame.stats.lights.size(), 3u);
-        const std::vector<LightShadowStats> lights = statsBySceneIndex(frame.stats, 3);
+        const std::vector<LightShadowStats>& lights = frame.stats.lights;  // indexed by scene light
         std::printf("[ measured ] frame %d drawn/reused:", f);
         for (const LightShadowStats& l : lights)
             std::printf("  %s %d/%d", l.name.c_str(), l.layersDrawn, l.layersReused);

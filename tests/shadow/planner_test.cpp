@@ -525,10 +525,15 @@ TEST(Planner, LightsWithoutShadowOrWithTechniqueNoneGetNoPlan) {
 
     ShadowPlanner planner;
     const ShadowFrame& frame = planner.prepare(t.scene.world, t.update(), t.scene.lights);
-    ASSERT_EQ(frame.lights.size(), 1u);
-    EXPECT_EQ(frame.lights[0].entity, shadowed);
-    EXPECT_EQ(frame.lights[0].sceneIndex, 1);
-    EXPECT_EQ(frame.lights[0].name, "shadowed");
+    ASSERT_EQ(frame.lights.size(), 3u) << "one entry per scene light";
+    EXPECT_FALSE(frame.lights[0].hasMap());
+    EXPECT_FALSE(frame.lights[2].hasMap());
+    EXPECT_TRUE(frame.lights[1].hasMap());
+    EXPECT_EQ(frame.lights[1].entity, shadowed);
+    EXPECT_EQ(frame.lights[1].sceneIndex, 1);
+    EXPECT_EQ(frame.lights[1].name, "shadowed");
+    EXPECT_EQ(frame.techniquesInUse, (1u << static_cast<unsigned>(ShadowTechnique::None)) |
+                                         (1u << static_cast<unsigned>(ShadowTechnique::Hard)));
 }
 
 }  // namespace

@@ -118,7 +118,8 @@ TEST(Stability, TexelBudgetHalvesFarLightsFirstAndKeepsEveryShadow) {
                        " ms");
     test::expectSaneFrame(frame.images, runner.shadows(), "64 lights at 2048");
     const ShadowFrame& plans = runner.shadows().frame();
-    ASSERT_EQ(plans.lights.size(), static_cast<std::size_t>(kLights)) << "a light lost its shadow";
+    ASSERT_EQ(plans.lights.size(), static_cast<std::size_t>(kLights));
+    for (const ShadowLightPlan& p : plans.lights) ASSERT_TRUE(p.hasMap()) << p.name << " lost its shadow";
     std::int64_t total = 0;
     int reduced = 0;
     for (const ShadowLightPlan& p : plans.lights) {

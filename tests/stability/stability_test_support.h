@@ -5,7 +5,7 @@
 // Header-only on purpose: tests/CMakeLists.txt globs only *_test.cpp files.
 #pragma once
 
-#include <shadow/renderer.h>
+#include <shadow/frame_runner.h>
 #include <shadow/shadow_system.h>
 
 #include <array>

@@ -102,6 +102,9 @@ struct Light {
     float angularRadius = 0.0f;
 };
 
+/// A light type's name as stats.json spells it ("directional", "spot", "point").
+[[nodiscard]] const char* lightTypeName(LightType t);
+
 /// How a light's visibility is computed from its shadow map.
 enum class ShadowTechnique : std::uint8_t {
     None,  ///< no shadow map; visibility 1

@@ -47,9 +47,17 @@ enum class ExrPixelType { Half, Float };
 /// Reads every channel of an EXR, in the order of `names` (each must exist). Rows top first.
 [[nodiscard]] Result<ImageF> readExr(const std::string& path, const std::vector<std::string>& names);
 
-/// Linear HDR RGB to 8-bit sRGB, after exposure `exposure` and a filmic curve that maps
-/// [0, inf) into [0, 1). Non-finite values become 0.
+/// Linear HDR RGB(A) to 8-bit sRGB, after exposure `exposure` and the Reinhard curve x/(1+x)
+/// applied to luminance (Rec. 709), the colour scaled with it so that hue survives; a colour
+/// whose brightest channel would pass 1 is scaled down whole. Grey maps exactly as the curve
+/// per channel. NaN, negative and -inf channels become 0; +inf is full brightness. Alpha is
+/// copied linearly.
 [[nodiscard]] std::vector<std::uint8_t> toneMapToSrgb8(const ImageF& rgb, float exposure);
+
+/// The exposure that brings the image's log-average luminance (over pixels with light, so a
+/// black background does not count) to `key` (Reinhard et al. 2002, "Photographic tone
+/// reproduction"); 1 for an image with no light.
+[[nodiscard]] float autoExposure(const ImageF& rgb, float key = 0.18f);
 
 /// Writes `text` to `path` through a temporary file and a rename.
 [[nodiscard]] Status writeTextFileAtomic(const std::string& path, const std::string& text);

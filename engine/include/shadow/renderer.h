@@ -2,12 +2,14 @@
 // lights (the split of the seeds' approximated rendering equation), into linear HDR colour;
 // optional AOVs (world position, camera distance, per-light visibility).
 //
-// Lights are shaded SG_MAX_LIGHTS_PER_PASS (8) at a time; more lights add further passes with
-// additive blending. Shader variants are compiled on first use for the set of techniques the
-// frame's lights use, and cached: a frame whose lights use only PCF compiles no PCSS code.
+// Lights are shaded SG_MAX_LIGHTS_PER_PASS (8) at a time; more lights add further passes on the
+// first pass's surfaces (depth test EQUAL) with additive blending. Each pass's program is specialised for its
+// lights' types and techniques (compiled on first use and cached): a frame whose lights use only
+// PCF compiles no PCSS code, and no pixel runs code for a light type it does not have.
 #pragma once
 
 #include <shadow/image_io.h>
+#include <shadow/mesh_cache.h>
 #include <shadow/scene.h>
 #include <shadow/shadow_system.h>
 #include <shadow/stats.h>
@@ -17,25 +19,6 @@
 #include <vector>
 
 namespace shadow {
-
-/// GPU copies of the scene's meshes, shared by the shadow system and the renderer. Each
-/// `MeshData` is uploaded once, on first use.
-class MeshCache {
-public:
-    MeshCache();
-    ~MeshCache();
-    MeshCache(const MeshCache&) = delete;
-    MeshCache& operator=(const MeshCache&) = delete;
-
-    /// Binds the vertex array of `mesh` (uploading it on first use) and returns its index count.
-    int bind(const std::shared_ptr<const MeshData>& mesh);
-    /// Number of meshes uploaded so far.
-    [[nodiscard]] std::size_t size() const;
-
-private:
-    struct Impl;
-    std::unique_ptr<Impl> impl_;
-};
 
 /// Debug views of the main pass (`--debug NAME`).
 enum class DebugView {
@@ -55,6 +38,11 @@ struct RenderOptions {
     DebugView debugView = DebugView::None;
     int debugLight = 0;  ///< scene light index the debug view shows
     glm::vec3 ambient{0.03f};  ///< constant ambient radiance times albedo (unshadowed)
+    /// Fill the depth buffer first, so that the lit passes shade each visible pixel once. Off by
+    /// default: on a CPU rasteriser the second pass over the triangles costs more than the
+    /// overdraw it saves (BENCHMARKS.md, fragment costs: overdraw 1.01 on the bunny scene, the
+    /// pre-pass +44 ms at 1280x720); on a GPU with deep overdraw it pays.
+    bool depthPrepass = false;
 };
 
 /// Images read back after a frame. Rows top first. Empty when not requested.
@@ -74,10 +62,12 @@ public:
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
-    /// Renders one frame of `lights` (the scene's light order) seen by `camera`, sampling the
-    /// maps of `shadows` (prepared and rendered this frame). Adds timings and counters.
-    void render(World& world, const CameraView& camera, const std::vector<Entity>& lights,
-                const ShadowSystem& shadows, const RenderOptions& options, FrameStats& stats);
+    /// Renders one frame seen by `camera` (optionally after a depth pre-pass), lighting every
+    /// light of `shadows.frame()` (prepared and rendered this frame; its lights are the scene's,
+    /// in scene order) with its own technique. Adds timings and counters. Throws `GlError` when
+    /// a program or the framebuffer cannot be made.
+    void render(World& world, const CameraView& camera, const ShadowSystem& shadows, const RenderOptions& options,
+                FrameStats& stats);
 
     /// Reads back the last frame. `camera` turns camera-relative positions back into world ones.
     [[nodiscard]] FrameImages readback(const CameraView& camera, FrameStats& stats) const;
@@ -87,28 +77,6 @@ public:
     void present(int width, int height) const;
 
     [[nodiscard]] MeshCache& meshes();
-
-private:
-    struct Impl;
-    std::unique_ptr<Impl> impl_;
-};
-
-/// Everything a frame needs, in the documented order: animate, transforms, shadow prepare,
-/// shadow render, main pass. A convenience for samples and games with no loop of their own.
-class FrameRunner {
-public:
-    FrameRunner();
-    ~FrameRunner();
-    FrameRunner(const FrameRunner&) = delete;
-    FrameRunner& operator=(const FrameRunner&) = delete;
-
-    /// Runs one frame of `scene` at time `t` (s) through camera entity `camera`.
-    FrameStats runFrame(Scene& scene, double t, Entity camera, const RenderOptions& options);
-
-    [[nodiscard]] ShadowSystem& shadows();
-    [[nodiscard]] Renderer& renderer();
-    /// The camera view of the last frame.
-    [[nodiscard]] const CameraView& lastCamera() const;
 
 private:
     struct Impl;

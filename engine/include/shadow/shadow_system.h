@@ -45,24 +45,43 @@ struct ShadowLayerPlan {
     bool dirty = true;
 };
 
-/// One shadowed light as decided by `prepare`.
+/// One scene light as decided by `prepare`: entry i of `ShadowFrame::lights` is light i of
+/// `Scene::lights` (the `lights` handed to `prepare`), shadowed or not. This is the one index
+/// space from the decide step to the renderer's light records, `FrameStats::lights` and the
+/// `visibility_<i>` AOVs.
 struct ShadowLightPlan {
     Entity entity;
-    int sceneIndex = -1;  ///< position in `Scene::lights`
+    int sceneIndex = -1;  ///< position in `Scene::lights` (= the index of this entry)
     std::string name;
-    Light light;          ///< with the emitter size clamped
-    Shadow settings;      ///< clamped to the documented ranges; `mapSize` is the one asked for
+    /// False when the entity has no `Light` or `WorldTransform`, or its transform is not finite:
+    /// it shades nothing and its visibility is 1.
+    bool shaded = false;
+    Light light;          ///< clamped to the documented ranges, once, here
+    glm::dvec3 wsPosition{0.0};                 ///< light position (point, spot)
+    glm::dvec3 wsDirection{0.0, 0.0, -1.0};     ///< unit direction the light travels (node -Z)
+    /// Clamped to the documented ranges; `mapSize` is the one asked for. `technique` is the
+    /// light's own, None when it has no `Shadow`.
+    Shadow settings;
     /// Texels per layer edge allocated: `settings.mapSize`, or less when the shadow texel budget
-    /// (`ShadowLimits::maxShadowTexels`) halved it.
+    /// (`ShadowLimits::maxShadowTexels`) halved it; 0 without a map.
     int mapSize = 0;
+    /// The layers of its map; empty when the light has no map this frame (no shadow, technique
+    /// None, or dropped by the texel budget).
     std::vector<ShadowLayerPlan> layers;
     bool affectsView = true;
+
+    /// True when the light has a shadow map this frame.
+    [[nodiscard]] bool hasMap() const { return !layers.empty(); }
+    /// The technique its pixels use: its own when it has a map, None otherwise.
+    [[nodiscard]] ShadowTechnique technique() const { return hasMap() ? settings.technique : ShadowTechnique::None; }
 };
 
-/// The hand-off from `prepare` to `render` and to the renderer.
+/// The hand-off from `prepare` to `render` and to the renderer: everything lighting needs.
 struct ShadowFrame {
-    /// Shadowed lights only, in scene order (lights the texel budget dropped are absent).
+    /// Every scene light, in scene order (see `ShadowLightPlan`).
     std::vector<ShadowLightPlan> lights;
+    /// Bit `1 << t` for every technique t (`ShadowTechnique`) some light's pixels use.
+    unsigned techniquesInUse = 0;
     /// Clamped settings, skipped lights and the texel budget's decisions, one line each.
     std::vector<std::string> warnings;
 };
@@ -142,9 +161,10 @@ public:
     [[nodiscard]] const ShadowFrame& frame() const { return planner_.frame(); }
     [[nodiscard]] ShadowPlanner& planner() { return planner_; }
 
-    /// The GL texture name of the array of frame light `i` (for the renderer and debug views).
+    /// The GL texture name of the depth array of scene light `i`, 0 when it has no map.
     [[nodiscard]] unsigned textureOf(std::size_t i) const;
-    /// Reads layer `layer` of frame light `i` as linear depth in metres (debug views, tests).
+    /// Reads layer `layer` of scene light `i` as linear depth in metres (debug views, tests);
+    /// empty when it has no such layer.
     [[nodiscard]] std::vector<float> readLayerDepth(std::size_t i, int layer) const;
 
 private:

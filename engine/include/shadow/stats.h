@@ -17,9 +17,9 @@ struct LightShadowStats {
     int sceneIndex = -1;        ///< `<i>` of visibility_<i>.exr
     std::string name;
     std::string type;           ///< "directional" | "spot" | "point"
-    std::string technique;      ///< "none" | "hard" | "pcf" | "pcss"
+    std::string technique;      ///< the technique its pixels use: "none" | "hard" | "pcf" | "pcss" | …
     int mapSize = 0;            ///< texels per layer edge actually allocated (0 = no map)
-    int requestedMapSize = 0;   ///< the light's mapSize setting (clamped to the GL limit)
+    int requestedMapSize = 0;   ///< the light's mapSize setting (clamped to the GL limit); 0 without a shadow
     int layers = 0;
     int layersDrawn = 0;        ///< redrawn this frame
     int layersReused = 0;       ///< unchanged since the last frame, not redrawn
@@ -39,6 +39,7 @@ struct FrameStats {
     double cpuTransformsMs = 0.0;
     double cpuShadowPrepareMs = 0.0;
     double cpuRenderSubmitMs = 0.0;
+    /// Per scene light, index = position in `Scene::lights` (every light, shadowed or not).
     std::vector<LightShadowStats> lights;
     int shadowLayersDrawn = 0;
     int shadowLayersReused = 0;

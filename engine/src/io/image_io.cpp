@@ -286,11 +286,31 @@ std::uint8_t toUnorm8(float v) {
     return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
 }
 
-std::uint8_t toneMapColor(float linear, float exposure) {
-    if (!std::isfinite(linear)) return 0;
-    const float x = linear * exposure;  // may overflow to +inf: that is "very bright", not 0
-    if (!(x > 0.0f)) return 0;          // negative, zero, or NaN from a NaN exposure
-    return toUnorm8(srgbOetf(filmicCurve(x)));
+/// Rec. 709 luminance of linear RGB.
+float luminance(const float* rgb) {
+    return 0.2126f * rgb[0] + 0.7152f * rgb[1] + 0.0722f * rgb[2];
+}
+
+/// Tone maps one linear RGB pixel into `out`: the curve acts on luminance and the colour is
+/// scaled with it, so the ratios between channels (the hue) survive; a colour whose brightest
+/// channel would pass 1 is scaled down as a whole rather than clipped channel by channel.
+void toneMapPixel(const float* rgb, float exposure, std::uint8_t* out) {
+    float c[3];
+    for (int k = 0; k < 3; ++k) {
+        const float v = std::isfinite(rgb[k]) ? rgb[k] * exposure : 0.0f;
+        c[k] = v > 0.0f ? v : 0.0f;  // negative, NaN (from a NaN exposure) and -inf are black
+    }
+    const float lum = luminance(c);
+    float scale = 0.0f;
+    if (std::isinf(lum) || std::isinf(c[0]) || std::isinf(c[1]) || std::isinf(c[2])) {
+        for (int k = 0; k < 3; ++k) c[k] = std::isinf(c[k]) ? 1.0f : 0.0f;  // "very bright"
+        scale = 1.0f;
+    } else if (lum > 0.0f) {
+        scale = filmicCurve(lum) / lum;
+    }
+    const float brightest = std::max({c[0] * scale, c[1] * scale, c[2] * scale});
+    if (brightest > 1.0f) scale /= brightest;
+    for (int k = 0; k < 3; ++k) out[k] = toUnorm8(srgbOetf(c[k] * scale));
 }
 
 /// Alpha is coverage, not light: stored linearly, clamped, no exposure or curve.
@@ -340,11 +360,27 @@ std::vector<std::uint8_t> toneMapToSrgb8(const ImageF& rgb, float exposure) {
     assert(rgb.pixels.size() == static_cast<std::size_t>(rgb.width) * rgb.height * rgb.channels);
     if (rgb.channels != 3 && rgb.channels != 4) return {};
     std::vector<std::uint8_t> out(rgb.pixels.size());
-    for (std::size_t i = 0; i < rgb.pixels.size(); ++i) {
-        const bool isAlpha = i % static_cast<std::size_t>(rgb.channels) == 3;
-        out[i] = isAlpha ? alphaTo8(rgb.pixels[i]) : toneMapColor(rgb.pixels[i], exposure);
+    const std::size_t channels = static_cast<std::size_t>(rgb.channels);
+    for (std::size_t i = 0; i < rgb.pixels.size(); i += channels) {
+        toneMapPixel(&rgb.pixels[i], exposure, &out[i]);
+        if (channels == 4) out[i + 3] = alphaTo8(rgb.pixels[i + 3]);
     }
     return out;
+}
+
+float autoExposure(const ImageF& rgb, float key) {
+    if (rgb.channels < 3) return 1.0f;
+    double logSum = 0.0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i + 2 < rgb.pixels.size(); i += static_cast<std::size_t>(rgb.channels)) {
+        const float lum = luminance(&rgb.pixels[i]);
+        if (!(std::isfinite(lum) && lum > 1e-6f)) continue;  // background and broken pixels
+        logSum += std::log(static_cast<double>(lum));
+        ++count;
+    }
+    if (count == 0) return 1.0f;
+    const double exposure = key / std::exp(logSum / static_cast<double>(count));
+    return std::isfinite(exposure) ? static_cast<float>(std::clamp(exposure, 1e-8, 1e8)) : 1.0f;
 }
 
 Status writeTextFileAtomic(const std::string& path, const std::string& text) {

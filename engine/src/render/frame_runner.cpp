@@ -1,6 +1,6 @@
 // FrameRunner: the frame in its documented order (design.md, "The frame, as data flows").
 #include <shadow/context.h>
-#include <shadow/renderer.h>
+#include <shadow/frame_runner.h>
 
 #include <chrono>
 #include <sstream>
@@ -55,7 +55,7 @@ FrameStats FrameRunner::runFrame(Scene& scene, double t, Entity camera, const Re
 
     t0 = std::chrono::steady_clock::now();
     impl_->shadows.render(scene.world, impl_->renderer.meshes(), stats);
-    impl_->renderer.render(scene.world, impl_->camera, scene.lights, impl_->shadows, options, stats);
+    impl_->renderer.render(scene.world, impl_->camera, impl_->shadows, options, stats);
     stats.cpuRenderSubmitMs = msSince(t0);
     return stats;
 }

@@ -207,11 +207,46 @@ Result<Scene> makeBunny() {
     return scene;
 }
 
+/// The bunny under one spot light, the scene of the peer comparison (benchmarks/run_peers.sh):
+/// the Stanford bunny on an 8 m ground, a spot light with a 0.7 rad cone and a 2048^2 PCSS map.
+Result<Scene> makeBunnySpot() {
+    auto bunny = loadObjMesh(kBunnyObjPath);
+    if (!bunny) return Error{"builtin:bunny-spot: " + bunny.error().message + " (install glmark2-data)"};
+    Scene scene;
+    scene.name = "bunny-spot";
+    World& w = scene.world;
+    addMeshInstance(w, "ground", makePlaneMesh(4.0f, 16), at(0, 0, 0), matte(0.85f, 0.8f, 0.75f));
+    const Aabb b = (*bunny)->bounds;
+    const double scale = 1.2 / std::max(1e-6f, b.max.y - b.min.y);
+    Transform t = at(-scale * b.center().x, -scale * b.min.y, -scale * b.center().z);
+    t.scale = glm::dvec3(scale);
+    addMeshInstance(w, "bunny", std::move(bunny).value(), t, matte(0.85f, 0.8f, 0.7f));
+
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.color = {1.0f, 0.9f, 0.8f};
+    spot.intensity = 60.0f;
+    spot.outerConeAngle = 0.7f;
+    spot.innerConeAngle = 0.55f;
+    spot.radius = 0.08f;
+    Shadow shadow;
+    shadow.technique = ShadowTechnique::Pcss;
+    shadow.mapSize = 2048;
+    addLight(scene, "spot", spot, shadow, {-2.0, 3.5, 1.5}, glm::normalize(glm::dvec3(2.0, -3.3, -1.5)));
+    Camera camera;
+    camera.yfov = 0.7f;
+    camera.znear = 0.05f;
+    camera.zfar = 50.0f;
+    addCamera(scene, "camera", camera, {2.6, 2.2, 3.4}, {0.0, 0.5, 0.0});
+    return scene;
+}
+
 const std::map<std::string, std::function<Result<Scene>()>>& registry() {
     static const std::map<std::string, std::function<Result<Scene>()>> scenes = {
         {"default", [] { return Result<Scene>(makeDefault()); }},
         {"plates", [] { return Result<Scene>(makePlatesScene()); }},
         {"bunny", makeBunny},
+        {"bunny-spot", makeBunnySpot},
     };
     return scenes;
 }

@@ -2,6 +2,15 @@
 
 namespace shadow {
 
+const char* lightTypeName(LightType t) {
+    switch (t) {
+        case LightType::Directional: return "directional";
+        case LightType::Spot: return "spot";
+        case LightType::Point: return "point";
+    }
+    return "point";
+}
+
 const char* techniqueName(ShadowTechnique t) {
     switch (t) {
         case ShadowTechnique::None: return "none";

@@ -37,6 +37,24 @@ const char* lightName(const World& world, Entity e) {
     return n != nullptr ? n->value.c_str() : "light";
 }
 
+/// Scene light `index` as far as the scene says: name, pose and unclamped `Light`; no shadow yet.
+ShadowLightPlan describeLight(const World& world, Entity e, int index) {
+    ShadowLightPlan plan;
+    plan.entity = e;
+    plan.sceneIndex = index;
+    plan.name = lightName(world, e);
+    plan.settings.technique = ShadowTechnique::None;
+    const Light* light = world.tryGet<Light>(e);
+    const WorldTransform* wt = world.tryGet<WorldTransform>(e);
+    plan.shaded = light != nullptr && wt != nullptr && wt->finite;
+    if (!plan.shaded) return plan;
+    plan.light = *light;
+    const LightPose pose = lightPose(*wt);
+    plan.wsPosition = pose.wsPosition;
+    plan.wsDirection = pose.wsDirection;
+    return plan;
+}
+
 /// Smallest map edge the texel budget halves a light to before it drops its shadow.
 constexpr int kMinBudgetMapSize = 256;
 
@@ -159,44 +177,51 @@ void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, co
 
 const ShadowFrame& ShadowPlanner::prepare(World& world, const CameraView& camera,
                                           const std::vector<Entity>& lights) {
-    frame_.lights.clear();
     frame_.warnings.clear();
+    frame_.techniquesInUse = 0;
+    frame_.lights.resize(lights.size());
     const SceneGeometry geometry = gatherGeometry(world);
     const Frustum cameraFrustum = Frustum::fromMatrix(cameraClipFromWorld(camera));
 
+    // Every light is clamped once, here; the shadowed ones become candidates for a map.
     std::vector<Candidate> candidates;
     for (std::size_t i = 0; i < lights.size(); ++i) {
-        const Entity e = lights[i];
-        const Light* light = world.tryGet<Light>(e);
-        const Shadow* shadow = world.tryGet<Shadow>(e);
-        const WorldTransform* wt = world.tryGet<WorldTransform>(e);
-        if (light == nullptr || shadow == nullptr || wt == nullptr) continue;
-        if (shadow->technique == ShadowTechnique::None) continue;
-        if (!wt->finite) continue;  // reported by the transform system (TransformStats::skipped)
-        ShadowLightPlan plan;
-        plan.entity = e;
-        plan.sceneIndex = static_cast<int>(i);
-        plan.name = lightName(world, e);
-        plan.light = *light;
+        ShadowLightPlan& plan = frame_.lights[i];
+        plan = describeLight(world, lights[i], static_cast<int>(i));
+        if (!plan.shaded) continue;  // a non-finite transform is reported by the transform system
+        const Shadow* shadow = world.tryGet<Shadow>(plan.entity);
+        if (shadow == nullptr || shadow->technique == ShadowTechnique::None) {
+            plan.settings.technique = ShadowTechnique::None;
+            clampLight(plan.light, plan.name, frame_.warnings);
+            plan.affectsView = lightAffectsView(plan.light, {plan.wsPosition, plan.wsDirection}, cameraFrustum);
+            continue;
+        }
         plan.settings = *shadow;
         clampShadowSettings(plan.settings, plan.light, limits_, plan.name, frame_.warnings);
         plan.mapSize = plan.settings.mapSize;
-        const LightPose pose = lightPose(*wt);
+        const LightPose pose{plan.wsPosition, plan.wsDirection};
         plan.affectsView = lightAffectsView(plan.light, pose, cameraFrustum);
-        candidates.push_back({std::move(plan), pose});
+        candidates.push_back({plan, pose});
     }
     // Sizes first: the layers' texel snapping and margins depend on them.
     fitTexelBudget(candidates, camera.wsPosition, limits_.maxShadowTexels, frame_.warnings);
     for (Candidate& c : candidates) {
-        if (c.dropped) continue;
-        c.plan.layers = planLayers(c.plan, c.pose, camera, geometry);
-        markDirty(world, c.plan);
-        frame_.lights.push_back(std::move(c.plan));
+        ShadowLightPlan& plan = frame_.lights[static_cast<std::size_t>(c.plan.sceneIndex)];
+        if (c.dropped) {
+            plan.mapSize = 0;
+            continue;
+        }
+        plan.mapSize = c.plan.mapSize;
+        plan.layers = planLayers(c.plan, c.pose, camera, geometry);
+        markDirty(world, plan);
+    }
+    for (const ShadowLightPlan& plan : frame_.lights) {
+        frame_.techniquesInUse |= 1u << static_cast<unsigned>(plan.technique());
     }
     // Forget lights that are gone so their memory does not grow without bound.
     std::erase_if(memory_, [&](const auto& m) {
         return std::none_of(frame_.lights.begin(), frame_.lights.end(),
-                            [&](const ShadowLightPlan& p) { return p.entity == m.first; });
+                            [&](const ShadowLightPlan& p) { return p.hasMap() && p.entity == m.first; });
     });
     return frame_;
 }

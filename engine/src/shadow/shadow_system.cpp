@@ -1,16 +1,17 @@
 // ShadowSystem: the GPU "do" phase. Each shadowed light owns one GL_TEXTURE_2D_ARRAY of
 // GL_DEPTH_COMPONENT32F layers holding linear depth (see shaders/shadow_depth.frag.glsl).
 #include <shadow/context.h>
-#include <shadow/renderer.h>
+#include <shadow/mesh_cache.h>
 #include <shadow/shadow_system.h>
 
 #include "gl/objects.h"
+#include "gl/pass_timer.h"
 #include "gl/program.h"
-#include "render/pass_timer.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <optional>
 
 namespace shadow {
 
@@ -61,14 +62,100 @@ std::string layerName(const ShadowLightPlan& plan, std::size_t k) {
     return "Shadow/" + plan.name + "/layer" + std::to_string(k);
 }
 
+/// Depth-only state of the shadow passes.
+void beginDepthOnly() {
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LESS);
+    gl.DepthMask(GL_TRUE);
+    gl.Disable(GL_CULL_FACE);  // open meshes (planes) cast from both sides
+    gl.Disable(GL_BLEND);
+    gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+}
+
+void endDepthOnly() {
+    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl.BindVertexArray(0);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+LightShadowStats statsOf(const ShadowLightPlan& plan) {
+    LightShadowStats ls;
+    ls.sceneIndex = plan.sceneIndex;
+    ls.name = plan.name;
+    ls.type = lightTypeName(plan.light.type);
+    ls.technique = techniqueName(plan.technique());
+    ls.mapSize = plan.mapSize;
+    ls.requestedMapSize = plan.hasMap() || plan.settings.technique != ShadowTechnique::None ? plan.settings.mapSize : 0;
+    ls.layers = static_cast<int>(plan.layers.size());
+    ls.affectsView = plan.affectsView;
+    return ls;
+}
+
 }  // namespace
 
 struct ShadowGpu {
     DepthProgram depth;
     bool softwareRenderer = false;
-    /// Maps in the order of the last frame's lights.
+    /// Per scene light (index = `ShadowFrame::lights`): its map, or null without one.
     std::vector<std::pair<Entity, std::unique_ptr<ShadowMapGpu>>> maps;
+
+    /// Gives every light of `frame` with a map an array of its size, reusing last frame's.
+    void syncMaps(const ShadowFrame& frame);
+    /// Draws layer `k` of `plan`'s map: its casters, depth only.
+    void drawLayer(World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k, LightShadowStats& ls);
 };
+
+void ShadowGpu::syncMaps(const ShadowFrame& frame) {
+    std::vector<std::pair<Entity, std::unique_ptr<ShadowMapGpu>>> next(frame.lights.size());
+    for (std::size_t i = 0; i < frame.lights.size(); ++i) {
+        const ShadowLightPlan& plan = frame.lights[i];
+        next[i].first = plan.entity;
+        if (!plan.hasMap()) continue;
+        auto it = std::find_if(maps.begin(), maps.end(), [&](const auto& m) { return m.second && m.first == plan.entity; });
+        std::unique_ptr<ShadowMapGpu> map = it != maps.end() ? std::move(it->second) : nullptr;
+        if (!map || map->mapSize != plan.mapSize || map->layers != static_cast<int>(plan.layers.size())) {
+            map = allocate(plan);
+        }
+        next[i].second = std::move(map);
+    }
+    maps = std::move(next);
+}
+
+void ShadowGpu::drawLayer(World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k,
+                          LightShadowStats& ls) {
+    const ShadowLayerPlan& layer = plan.layers[k];
+    const ShadowMapGpu& map = *maps[static_cast<std::size_t>(plan.sceneIndex)].second;
+    const float far = 1.0f;
+    if (layer.casters.empty()) {
+        // Nothing casts into this layer: clear it to the far depth, draw nothing.
+        gl.ClearTexSubImage(map.array.get(), 0, 0, 0, static_cast<GLint>(k), map.mapSize, map.mapSize, 1,
+                            GL_DEPTH_COMPONENT, GL_FLOAT, &far);
+        ++ls.layersCleared;
+        return;
+    }
+    const GLuint program = depth.program.get();
+    gl.NamedFramebufferTextureLayer(map.framebuffer.get(), GL_DEPTH_ATTACHMENT, map.array.get(), 0,
+                                    static_cast<GLint>(k));
+    gl.BindFramebuffer(GL_FRAMEBUFFER, map.framebuffer.get());
+    gl.Viewport(0, 0, map.mapSize, map.mapSize);
+    gl.ClearNamedFramebufferfv(map.framebuffer.get(), GL_DEPTH, 0, &far);
+    gl.UseProgram(program);
+    gl.ProgramUniformMatrix4fv(program, depth.clipFromLight, 1, GL_FALSE, glm::value_ptr(glm::mat4(layer.clipFromLight)));
+    gl.ProgramUniform1f(program, depth.depthScale, layer.depthScale);
+    gl.ProgramUniform1i(program, depth.orthographic, layer.orthographic ? 1 : 0);
+    for (Entity caster : layer.casters) {
+        const Mesh* mesh = world.tryGet<Mesh>(caster);
+        const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
+        if (mesh == nullptr || wt == nullptr || !wt->finite || mesh->data == nullptr) continue;
+        // Composed in double: light-relative float values stay precise far from the origin.
+        const glm::mat4 lightFromLocal(layer.lightFromWorld * wt->worldFromLocal);
+        gl.ProgramUniformMatrix4fv(program, depth.lightFromLocal, 1, GL_FALSE, glm::value_ptr(lightFromLocal));
+        const int count = meshes.bind(mesh->data);
+        gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+        ++ls.castersDrawn;
+    }
+    ++ls.layersDrawn;
+}
 
 ShadowSystem::ShadowSystem() : gpu_(std::make_unique<ShadowGpu>()) {
     const GlInfo info = queryGlInfo();
@@ -85,78 +172,21 @@ const ShadowFrame& ShadowSystem::prepare(World& world, const CameraView& camera,
 
 void ShadowSystem::render(World& world, MeshCache& meshes, FrameStats& stats) {
     const ShadowFrame& frame = planner_.frame();
+    gpu_->syncMaps(frame);
+    stats.warnings.insert(stats.warnings.end(), frame.warnings.begin(), frame.warnings.end());
     gpu::PassTimer timer(gpu_->softwareRenderer);
-    auto& maps = gpu_->maps;
-    // Keep GPU maps in the order of the frame's lights; drop those of lights that are gone.
-    std::vector<std::pair<Entity, std::unique_ptr<ShadowMapGpu>>> next;
-    next.reserve(frame.lights.size());
+    beginDepthOnly();
     for (const ShadowLightPlan& plan : frame.lights) {
-        auto it = std::find_if(maps.begin(), maps.end(), [&](const auto& m) { return m.first == plan.entity; });
-        std::unique_ptr<ShadowMapGpu> map = it != maps.end() ? std::move(it->second) : nullptr;
-        if (!map || map->mapSize != plan.mapSize || map->layers != static_cast<int>(plan.layers.size())) {
-            map = allocate(plan);
-        }
-        next.emplace_back(plan.entity, std::move(map));
-    }
-    maps = std::move(next);
-    for (const std::string& w : frame.warnings) stats.warnings.push_back(w);
-
-    DepthProgram& program = gpu_->depth;
-    gl.Enable(GL_DEPTH_TEST);
-    gl.DepthFunc(GL_LESS);
-    gl.DepthMask(GL_TRUE);
-    gl.Disable(GL_CULL_FACE);  // open meshes (planes) cast from both sides
-    gl.Disable(GL_BLEND);
-    gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-
-    for (std::size_t i = 0; i < frame.lights.size(); ++i) {
-        const ShadowLightPlan& plan = frame.lights[i];
-        ShadowMapGpu& map = *maps[i].second;
-        LightShadowStats ls;
-        ls.sceneIndex = plan.sceneIndex;
-        ls.name = plan.name;
-        ls.mapSize = plan.mapSize;
-        ls.requestedMapSize = plan.settings.mapSize;
-        ls.layers = static_cast<int>(plan.layers.size());
-        ls.affectsView = plan.affectsView;
+        LightShadowStats ls = statsOf(plan);
         for (std::size_t k = 0; k < plan.layers.size(); ++k) {
-            const ShadowLayerPlan& layer = plan.layers[k];
-            if (!layer.dirty) {
+            if (!plan.layers[k].dirty) {
                 ++ls.layersReused;
                 continue;
             }
-            const float far = 1.0f;
-            if (layer.casters.empty()) {
-                // Nothing casts into this layer: clear it to the far depth, draw nothing.
-                gl.ClearTexSubImage(map.array.get(), 0, 0, 0, static_cast<GLint>(k), map.mapSize, map.mapSize, 1,
-                                    GL_DEPTH_COMPONENT, GL_FLOAT, &far);
-                ++ls.layersCleared;
-                continue;
-            }
-            gpu::ScopedPass pass(timer, layerName(plan, k));
-            gl.NamedFramebufferTextureLayer(map.framebuffer.get(), GL_DEPTH_ATTACHMENT, map.array.get(), 0,
-                                            static_cast<GLint>(k));
-            gl.BindFramebuffer(GL_FRAMEBUFFER, map.framebuffer.get());
-            gl.Viewport(0, 0, map.mapSize, map.mapSize);
-            gl.ClearNamedFramebufferfv(map.framebuffer.get(), GL_DEPTH, 0, &far);
-            gl.UseProgram(program.program.get());
-            gl.ProgramUniformMatrix4fv(program.program.get(), program.clipFromLight, 1, GL_FALSE,
-                                       glm::value_ptr(glm::mat4(layer.clipFromLight)));
-            gl.ProgramUniform1f(program.program.get(), program.depthScale, layer.depthScale);
-            gl.ProgramUniform1i(program.program.get(), program.orthographic, layer.orthographic ? 1 : 0);
-            for (Entity caster : layer.casters) {
-                const Mesh* mesh = world.tryGet<Mesh>(caster);
-                const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
-                if (mesh == nullptr || wt == nullptr || !wt->finite || mesh->data == nullptr) continue;
-                // Composed in double: light-relative float values stay precise far from the origin.
-                const glm::mat4 lightFromLocal(layer.lightFromWorld * wt->worldFromLocal);
-                gl.ProgramUniformMatrix4fv(program.program.get(), program.lightFromLocal, 1, GL_FALSE,
-                                           glm::value_ptr(lightFromLocal));
-                const int count = meshes.bind(mesh->data);
-                gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
-                ++ls.castersDrawn;
-            }
-            ++ls.layersDrawn;
+            const bool drawn = !plan.layers[k].casters.empty();
+            std::optional<gpu::ScopedPass> pass;
+            if (drawn) pass.emplace(timer, layerName(plan, k));
+            gpu_->drawLayer(world, meshes, plan, k, ls);
         }
         stats.shadowLayersDrawn += ls.layersDrawn;
         stats.shadowLayersReused += ls.layersReused;
@@ -164,9 +194,7 @@ void ShadowSystem::render(World& world, MeshCache& meshes, FrameStats& stats) {
         stats.shadowDrawCalls += ls.castersDrawn;
         stats.lights.push_back(std::move(ls));
     }
-    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    gl.BindVertexArray(0);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    endDepthOnly();
     gpu::checkGlError("shadow pass");
     timer.collect(stats);
 }
@@ -179,7 +207,7 @@ unsigned ShadowSystem::textureOf(std::size_t i) const {
 std::vector<float> ShadowSystem::readLayerDepth(std::size_t i, int layer) const {
     const ShadowFrame& frame = planner_.frame();
     const auto& maps = gpu_->maps;
-    if (i >= maps.size() || i >= frame.lights.size()) return {};
+    if (i >= maps.size() || i >= frame.lights.size() || !maps[i].second) return {};
     const ShadowMapGpu& map = *maps[i].second;
     if (layer < 0 || layer >= map.layers) return {};
     std::vector<float> depth(static_cast<std::size_t>(map.mapSize) * map.mapSize);

@@ -1,4 +1,4 @@
-#include "render/pass_timer.h"
+#include "gl/pass_timer.h"
 
 namespace shadow::gpu {
 

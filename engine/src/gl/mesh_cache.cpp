@@ -1,4 +1,4 @@
-#include <shadow/renderer.h>
+#include <shadow/mesh_cache.h>
 
 #include "gl/objects.h"
 

@@ -1,0 +1,34 @@
+// FrameRunner: one frame of a scene in the documented order (design.md, "The frame, as data
+// flows"): animate, transforms, shadow prepare, shadow render, main pass.
+#pragma once
+
+#include <shadow/renderer.h>
+#include <shadow/shadow_system.h>
+
+#include <memory>
+
+namespace shadow {
+
+/// Everything a frame needs, in the documented order: animate, transforms, shadow prepare,
+/// shadow render, main pass. A convenience for samples and games with no loop of their own.
+class FrameRunner {
+public:
+    FrameRunner();
+    ~FrameRunner();
+    FrameRunner(const FrameRunner&) = delete;
+    FrameRunner& operator=(const FrameRunner&) = delete;
+
+    /// Runs one frame of `scene` at time `t` (s) through camera entity `camera`.
+    FrameStats runFrame(Scene& scene, double t, Entity camera, const RenderOptions& options);
+
+    [[nodiscard]] ShadowSystem& shadows();
+    [[nodiscard]] Renderer& renderer();
+    /// The camera view of the last frame.
+    [[nodiscard]] const CameraView& lastCamera() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace shadow

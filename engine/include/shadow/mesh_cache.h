@@ -1,0 +1,32 @@
+// GPU copies of the scene's meshes, shared by the shadow passes and the main pass. It sits below
+// both: the shadow subsystem and the renderer use it, neither owns it.
+#pragma once
+
+#include <shadow/scene.h>
+
+#include <cstddef>
+#include <memory>
+
+namespace shadow {
+
+/// Each `MeshData` is uploaded once, on first use, and kept while its `MeshData` lives.
+/// Requires a current OpenGL 4.5 context with `loadGl` done; `bind` throws `GlError` when an
+/// upload fails.
+class MeshCache {
+public:
+    MeshCache();
+    ~MeshCache();
+    MeshCache(const MeshCache&) = delete;
+    MeshCache& operator=(const MeshCache&) = delete;
+
+    /// Binds the vertex array of `mesh` (uploading it on first use) and returns its index count.
+    int bind(const std::shared_ptr<const MeshData>& mesh);
+    /// Number of meshes uploaded so far.
+    [[nodiscard]] std::size_t size() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace shadow

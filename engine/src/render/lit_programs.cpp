@@ -1,0 +1,134 @@
+#include "render/lit_programs.h"
+
+#include <shadow/components.h>
+
+#include "gl/program.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace shadow::render {
+namespace {
+
+/// Best-candidate (Mitchell) Poisson disk in the unit disk: each point is the candidate farthest
+/// from those before it, so every prefix of the sequence is well spread. Deterministic.
+std::vector<glm::vec2> poissonDisk(int count) {
+    std::vector<glm::vec2> points;
+    std::uint32_t state = 0x9e3779b9u;
+    auto next = [&state] {  // xorshift32
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        return static_cast<float>(state) * (1.0f / 4294967296.0f);
+    };
+    while (static_cast<int>(points.size()) < count) {
+        glm::vec2 best(0.0f);
+        float bestDistance = -1.0f;
+        for (int c = 0; c < 32 * static_cast<int>(points.size() + 1); ++c) {
+            const float r = std::sqrt(next());
+            const float a = 6.28318531f * next();
+            const glm::vec2 candidate(r * std::cos(a), r * std::sin(a));
+            float nearest = 4.0f;
+            for (const glm::vec2& p : points) nearest = std::min(nearest, glm::distance(p, candidate));
+            if (nearest > bestDistance) {
+                bestDistance = nearest;
+                best = candidate;
+            }
+        }
+        points.push_back(best);
+    }
+    return points;
+}
+
+const char* typeLabel(int type) {
+    return lightTypeName(static_cast<LightType>(type));
+}
+
+MeshUniforms meshUniforms(GLuint program) {
+    MeshUniforms m;
+    m.csFromLocal = gl.GetUniformLocation(program, "uCsFromLocal");
+    m.normalFromLocal = gl.GetUniformLocation(program, "uNormalFromLocal");
+    m.clipFromCs = gl.GetUniformLocation(program, "uClipFromCs");
+    return m;
+}
+
+LitProgram buildLit(const LitVariant& variant) {
+    LitProgram p;
+    p.program = gpu::buildProgram({variantLabel(variant), "lit.vert.glsl", "lit.frag.glsl", variantDefines(variant)});
+    const GLuint id = p.program.get();
+    auto loc = [id](const char* n) { return gl.GetUniformLocation(id, n); };
+    p.mesh = meshUniforms(id);
+    p.receiveShadows = loc("uReceiveShadows");
+    p.albedo = loc("uAlbedo");
+    p.specular = loc("uSpecular");
+    p.shininess = loc("uShininess");
+    p.ambient = loc("uAmbient");
+    p.cameraForward = loc("uCameraForward");
+    static const std::vector<glm::vec2> disk = poissonDisk(SG_MAX_SAMPLES);
+    const GLint poisson = loc("uPoissonDisk");
+    if (poisson >= 0) gl.ProgramUniform2fv(id, poisson, SG_MAX_SAMPLES, glm::value_ptr(disk[0]));
+    return p;
+}
+
+}  // namespace
+
+std::string variantLabel(const LitVariant& v) {
+    std::string name;
+    for (int i = 0; i < v.lights; ++i) {
+        if (!name.empty()) name += ',';
+        name += typeLabel(v.type[static_cast<std::size_t>(i)]);
+        name += ':';
+        name += techniqueName(static_cast<ShadowTechnique>(v.technique[static_cast<std::size_t>(i)]));
+    }
+    if (v.aovs) name += name.empty() ? "AOV" : ",AOV";
+    if (v.debugView != SG_DEBUG_NONE) name += ",debug" + std::to_string(v.debugView);
+    return "Main/Lit[" + name + "]";
+}
+
+std::vector<std::string> variantDefines(const LitVariant& v) {
+    std::vector<std::string> defines;
+    defines.push_back("SG_PASS_LIGHTS " + std::to_string(v.lights));
+    static const char* const kEnabled[] = {nullptr, "SG_TECH_HARD_ENABLED", "SG_TECH_PCF_ENABLED",
+                                           "SG_TECH_PCSS_ENABLED", "SG_TECH_PCSS_TEXTBOOK_ENABLED"};
+    unsigned used = 0;
+    for (int i = 0; i < SG_MAX_LIGHTS_PER_PASS; ++i) {
+        const bool inUse = i < v.lights;
+        const int type = inUse ? v.type[static_cast<std::size_t>(i)] : SG_LIGHT_POINT;
+        const int technique = inUse ? v.technique[static_cast<std::size_t>(i)] : SG_TECH_NONE;
+        const int kernel = inUse ? v.kernel[static_cast<std::size_t>(i)] : SG_KERNEL_VOGEL;
+        defines.push_back("SG_SLOT" + std::to_string(i) + "_TYPE " + std::to_string(type));
+        defines.push_back("SG_SLOT" + std::to_string(i) + "_TECH " + std::to_string(technique));
+        defines.push_back("SG_SLOT" + std::to_string(i) + "_KERNEL " + std::to_string(kernel));
+        used |= 1u << technique;
+    }
+    for (int t = SG_TECH_HARD; t <= SG_TECH_PCSS_TEXTBOOK; ++t) {
+        if (used & (1u << t)) defines.emplace_back(kEnabled[t]);
+    }
+    if (v.aovs) defines.emplace_back("SG_WRITE_AOVS");
+    if (v.debugView != SG_DEBUG_NONE) {
+        defines.emplace_back("SG_DEBUG_VIEWS");
+        defines.push_back("SG_DEBUG_VIEW " + std::to_string(v.debugView));
+        defines.push_back("SG_DEBUG_SLOT " + std::to_string(v.debugSlot));
+    }
+    return defines;
+}
+
+LitProgram& LitProgramCache::get(const LitVariant& variant, int& compiled) {
+    auto it = programs_.find(variant);
+    if (it == programs_.end()) {
+        it = programs_.emplace(variant, buildLit(variant)).first;
+        ++compiled;
+    }
+    return it->second;
+}
+
+DepthPrepassProgram buildDepthPrepass() {
+    DepthPrepassProgram p;
+    p.program = gpu::buildProgram({"Main/DepthPrepass", "lit.vert.glsl", "depth_prepass.frag.glsl", {}});
+    p.mesh = meshUniforms(p.program.get());
+    return p;
+}
+
+}  // namespace shadow::render

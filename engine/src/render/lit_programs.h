@@ -1,0 +1,50 @@
+// The main pass's programs: the depth pre-pass, and the lit program specialised for each light
+// configuration (`LitVariant`), compiled on first use and cached.
+#pragma once
+
+#include "gl/objects.h"
+#include "render/light_packing.h"
+
+#include <map>
+#include <string>
+
+namespace shadow::render {
+
+/// Uniform locations shared by the pre-pass and the lit programs (lit.vert.glsl).
+struct MeshUniforms {
+    GLint csFromLocal = -1, normalFromLocal = -1, clipFromCs = -1;
+};
+
+/// A compiled lit variant and its uniform locations.
+struct LitProgram {
+    gpu::Program program;
+    MeshUniforms mesh;
+    GLint receiveShadows = -1, albedo = -1, specular = -1, shininess = -1, ambient = -1, cameraForward = -1;
+};
+
+/// The depth pre-pass program: the lit vertex shader and no fragment work.
+struct DepthPrepassProgram {
+    gpu::Program program;
+    MeshUniforms mesh;
+};
+
+/// The GL label of a variant, e.g. "Main/Lit[spot:pcss,point:hard,AOV]".
+std::string variantLabel(const LitVariant& variant);
+
+/// The `#define`s of a variant (see lit.frag.glsl).
+std::vector<std::string> variantDefines(const LitVariant& variant);
+
+/// Lit programs by variant, built on first use. Throws `GlError` when a variant does not build.
+class LitProgramCache {
+public:
+    /// The program of `variant`; `compiled` is incremented when it had to be built.
+    LitProgram& get(const LitVariant& variant, int& compiled);
+    [[nodiscard]] std::size_t size() const { return programs_.size(); }
+
+private:
+    std::map<LitVariant, LitProgram> programs_;
+};
+
+DepthPrepassProgram buildDepthPrepass();
+
+}  // namespace shadow::render

@@ -1,0 +1,91 @@
+#include "render/render_targets.h"
+
+#include "shared_constants.h"
+
+#include <array>
+#include <string>
+
+namespace shadow::render {
+namespace {
+
+gpu::Texture makeTarget(const std::string& label, GLenum format, int w, int h) {
+    gpu::Texture t = gpu::makeTexture(label, GL_TEXTURE_2D);
+    gl.TextureStorage2D(t.get(), 1, format, w, h);
+    return t;
+}
+
+}  // namespace
+
+void RenderTargets::ensure(int width, int height, bool aovs, int passes) {
+    const int aovPasses = aovs ? passes : 0;
+    if (framebuffer_ && width_ == width && height_ == height && aovs_ == aovs && passes_ >= aovPasses) return;
+    *this = RenderTargets{};
+    width_ = width;
+    height_ = height;
+    aovs_ = aovs;
+    passes_ = aovPasses;
+    framebuffer_ = gpu::makeFramebuffer("Main/framebuffer");
+    color_ = makeTarget("Main/color", GL_RGBA32F, width, height);
+    depthBuffer_ = makeTarget("Main/depthBuffer", GL_DEPTH_COMPONENT32F, width, height);
+    const GLuint fb = framebuffer_.get();
+    gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0 + SG_OUT_COLOR, color_.get(), 0);
+    gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, depthBuffer_.get(), 0);
+    if (!aovs) return;
+    position_ = makeTarget("Main/position", GL_RGBA32F, width, height);
+    depthAov_ = makeTarget("Main/depth", GL_R32F, width, height);
+    for (int i = 0; i < 2 * aovPasses; ++i) {
+        visibility_.push_back(makeTarget("Main/visibility" + std::to_string(i), GL_RGBA32F, width, height));
+    }
+    gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0 + SG_OUT_POSITION, position_.get(), 0);
+    gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0 + SG_OUT_DEPTH, depthAov_.get(), 0);
+}
+
+GLuint RenderTargets::visibility(int pass, int slot) const {
+    return visibility_[static_cast<std::size_t>(2 * pass + slot / 4)].get();
+}
+
+void RenderTargets::bindPass(int pass) {
+    const GLuint fb = framebuffer_.get();
+    std::array<GLenum, 5> buffers = {GL_COLOR_ATTACHMENT0 + SG_OUT_COLOR, GL_NONE, GL_NONE, GL_NONE, GL_NONE};
+    GLsizei count = 1;
+    if (aovs_) {
+        gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0 + SG_OUT_VISIBILITY0, visibility(pass, 0), 0);
+        gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0 + SG_OUT_VISIBILITY1, visibility(pass, 4), 0);
+        // Position and depth are written once, by the first pass.
+        const GLenum position = pass == 0 ? GLenum{GL_COLOR_ATTACHMENT0 + SG_OUT_POSITION} : GLenum{GL_NONE};
+        const GLenum depth = pass == 0 ? GLenum{GL_COLOR_ATTACHMENT0 + SG_OUT_DEPTH} : GLenum{GL_NONE};
+        buffers = {GL_COLOR_ATTACHMENT0 + SG_OUT_COLOR, position, depth, GL_COLOR_ATTACHMENT0 + SG_OUT_VISIBILITY0,
+                   GL_COLOR_ATTACHMENT0 + SG_OUT_VISIBILITY1};
+        count = 5;
+        const float one[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+        gl.NamedFramebufferDrawBuffers(fb, count, buffers.data());
+        gl.ClearNamedFramebufferfv(fb, GL_COLOR, 3, one);
+        gl.ClearNamedFramebufferfv(fb, GL_COLOR, 4, one);
+        return;
+    }
+    gl.NamedFramebufferDrawBuffers(fb, count, buffers.data());
+}
+
+void RenderTargets::clear() {
+    const GLuint fb = framebuffer_.get();
+    std::array<GLenum, 3> buffers = {GL_COLOR_ATTACHMENT0 + SG_OUT_COLOR, GL_NONE, GL_NONE};
+    if (aovs_) {
+        buffers = {GL_COLOR_ATTACHMENT0 + SG_OUT_COLOR, GL_COLOR_ATTACHMENT0 + SG_OUT_POSITION,
+                   GL_COLOR_ATTACHMENT0 + SG_OUT_DEPTH};
+    }
+    gl.NamedFramebufferDrawBuffers(fb, aovs_ ? 3 : 1, buffers.data());
+    if (gl.CheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        throw GlError("main pass framebuffer is incomplete");
+    }
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    const float farDepth = 1.0f;
+    gl.DepthMask(GL_TRUE);
+    gl.ClearNamedFramebufferfv(fb, GL_DEPTH, 0, &farDepth);
+    gl.ClearNamedFramebufferfv(fb, GL_COLOR, 0, zero);
+    if (aovs_) {
+        gl.ClearNamedFramebufferfv(fb, GL_COLOR, 1, zero);
+        gl.ClearNamedFramebufferfv(fb, GL_COLOR, 2, zero);
+    }
+}
+
+}  // namespace shadow::render

@@ -1,0 +1,23 @@
+// The resources shadow sampling reads: the pass's light and layer records (uniform blocks, one
+// slot per light of the pass) and each slot's depth array through two samplers.
+//
+// A uniform block indexed by a compile-time slot is read as scalars; a storage buffer indexed
+// per pixel is gathered lane by lane on a CPU rasteriser (BENCHMARKS.md, fragment costs).
+#ifndef SG_SHADOW_BINDINGS
+#define SG_SHADOW_BINDINGS
+#include "glsl_types.glsl"
+
+layout(std140, binding = SG_BINDING_LIGHTS) uniform LightBlock {
+    GpuLight uLights[SG_MAX_LIGHTS_PER_PASS];
+};
+// Layer k of slot s is uLayers[s * SG_MAX_LAYERS_PER_LIGHT + k] (GpuLight::firstLayer).
+layout(std140, binding = SG_BINDING_LAYERS) uniform LayerBlock {
+    GpuShadowLayer uLayers[SG_MAX_LIGHTS_PER_PASS * SG_MAX_LAYERS_PER_LIGHT];
+};
+
+layout(binding = SG_UNIT_SHADOW_COMPARE) uniform sampler2DArrayShadow uShadowCompare[SG_MAX_LIGHTS_PER_PASS];
+#if defined(SG_TECH_PCSS_ENABLED) || defined(SG_TECH_PCSS_TEXTBOOK_ENABLED)
+layout(binding = SG_UNIT_SHADOW_DEPTH) uniform sampler2DArray uShadowDepth[SG_MAX_LIGHTS_PER_PASS];
+#endif
+
+#endif

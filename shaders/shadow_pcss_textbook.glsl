@@ -1,0 +1,49 @@
+// The seeds' PCSS, compiled only into the variants of the benchmarks that measure against it.
+#ifndef SG_SHADOW_PCSS_TEXTBOOK
+#define SG_SHADOW_PCSS_TEXTBOOK
+#include "shadow_pcf.glsl"
+#include "shadow_debug.glsl"
+
+// The seeds' PCSS, kept as the baseline every speed-up is measured against: a fixed-count
+// Poisson blocker search and PCF around the receiver's own shadow-map UV (no receiver-plane
+// taps, no per-tap layer choice, no early-outs), with the same physical search region,
+// penumbra formula, bias and clamp as pcssVisibility.
+float pcssTextbookVisibility(int slot, GpuLight L, Receiver r) {
+    Tap center = lateralTap(L, r, vec2(0.0));
+    GpuShadowLayer S = uLayers[L.firstLayer + center.layer];
+    vec3 ls = (S.lightFromCs * vec4(r.csPosition, 1.0)).xyz;
+    float uvPerMetre = 0.5 * S.clipFromLight[0][0] / (L.type == SG_LIGHT_DIRECTIONAL ? 1.0 : max(-ls.z, 1e-6));
+    float dReceiver = center.depth;
+    float size = max(L.emitterSize, 0.0);
+    float maxRadius = L.maxFilterTexels * r.texelMetres;
+    float searchRadius = L.type == SG_LIGHT_DIRECTIONAL
+                             ? dReceiver * tan(size)
+                             : size * max(dReceiver - S.depthNear, 0.0) / max(S.depthNear, 1e-6);
+    searchRadius = clamp(searchRadius, r.texelMetres, maxRadius);
+    DiskWalk disk = beginDisk(pixelRotation(), 0);
+
+    float blockerSum = 0.0;
+    int blockers = 0;
+    for (int i = 0; i < L.blockerSamples; ++i) {
+        vec2 uv = center.uv + nextDiskSample(SG_KERNEL_POISSON, disk, i) * searchRadius * uvPerMetre;
+        float stored = texture(uShadowDepth[slot], vec3(uv, float(center.layer))).r * S.depthScale;
+        if (stored < dReceiver - r.depthBias) {
+            blockerSum += stored;
+            ++blockers;
+        }
+    }
+    float dBlocker = blockers > 0 ? blockerSum / float(blockers) : dReceiver;
+    float penumbra = L.type == SG_LIGHT_DIRECTIONAL ? (dReceiver - dBlocker) * tan(size)
+                                                    : (dReceiver - dBlocker) * size / max(dBlocker, 1e-6);
+    penumbra = clamp(penumbra, 0.0, maxRadius);
+    SG_DEBUG_STORE(gDebugBlockerDepth, dBlocker);
+    SG_DEBUG_STORE(gDebugPenumbra, penumbra);
+    float reference = min((dReceiver - r.depthBias) / S.depthScale, 1.0);
+    float sum = 0.0;
+    for (int i = 0; i < L.pcfSamples; ++i) {
+        vec2 uv = center.uv + nextDiskSample(SG_KERNEL_POISSON, disk, i) * penumbra * uvPerMetre;
+        sum += texture(uShadowCompare[slot], vec4(uv, float(center.layer), reference));
+    }
+    return sum / float(L.pcfSamples);
+}
+#endif
