@@ -78,6 +78,10 @@ struct Material {
     glm::vec3 albedo{0.8f};     ///< diffuse reflectance, linear RGB in [0,1]
     glm::vec3 specular{0.04f};  ///< specular reflectance, linear RGB in [0,1]
     float shininess = 32.0f;    ///< Blinn-Phong exponent, [1, 4096]
+    /// Seen from both sides (open surfaces). A closed mesh sets false, so that the main pass culls
+    /// its back faces: on a CPU rasteriser that halves the triangles it sets up (BENCHMARKS.md,
+    /// fragment costs). Shadow passes draw both sides either way.
+    bool doubleSided = true;
 };
 
 enum class LightType : std::uint8_t { Directional, Spot, Point };

@@ -159,8 +159,18 @@ void Renderer::Impl::bindShadowMaps(const PassLights& pass, const ShadowSystem& 
 template <typename PerMesh>
 void Renderer::Impl::drawMeshes(World& world, const CameraView& cam, GLuint program, const render::MeshUniforms& uniforms,
                                 PerMesh&& perMesh, int& draws) {
+    bool culling = false;
+    gl.Disable(GL_CULL_FACE);
     world.view<Mesh, WorldTransform, Material>().each([&](Entity, Mesh& mesh, WorldTransform& wt, Material& m) {
         if (!wt.finite || mesh.data == nullptr || mesh.data->indices.empty()) return;
+        if (culling == m.doubleSided) {
+            culling = !m.doubleSided;
+            if (culling) {
+                gl.Enable(GL_CULL_FACE);
+            } else {
+                gl.Disable(GL_CULL_FACE);
+            }
+        }
         const glm::dmat3 linear(wt.worldFromLocal);
         if (!(std::abs(glm::determinant(linear)) > 1e-30)) return;  // collapsed to zero area: nothing to see
         glm::dmat4 csFromLocal = wt.worldFromLocal;
@@ -173,6 +183,7 @@ void Renderer::Impl::drawMeshes(World& world, const CameraView& cam, GLuint prog
         gl.DrawElements(GL_TRIANGLES, indices, GL_UNSIGNED_INT, nullptr);
         ++draws;
     });
+    gl.Disable(GL_CULL_FACE);
 }
 
 void Renderer::Impl::depthPrepass(World& world, const CameraView& cam, FrameStats& stats) {
@@ -243,7 +254,7 @@ void Renderer::render(World& world, const CameraView& camera, const ShadowSystem
     gpu::PassTimer timer(r.softwareRenderer);
     gl.BindFramebuffer(GL_FRAMEBUFFER, r.targets.framebuffer());
     gl.Viewport(0, 0, options.width, options.height);
-    gl.Disable(GL_CULL_FACE);  // two-sided: open meshes are seen from both sides
+    gl.CullFace(GL_BACK);  // counter-clockwise front faces, GL's default and glTF's
     gl.Disable(GL_BLEND);
     gl.Enable(GL_DEPTH_TEST);
     r.targets.clear();

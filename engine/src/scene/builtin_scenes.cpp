@@ -17,6 +17,13 @@ Material matte(float r, float g, float b) {
     return m;
 }
 
+/// A matte material for a closed mesh: its back faces are never seen, so the main pass culls them.
+Material solid(float r, float g, float b) {
+    Material m = matte(r, g, b);
+    m.doubleSided = false;
+    return m;
+}
+
 Transform at(double x, double y, double z) {
     Transform t;
     t.translation = {x, y, z};
@@ -40,16 +47,16 @@ Scene makeDefault() {
                             Pillar{"pillar tall", -1.0, 3.0, 3.2}}) {
         Transform t = at(p.x, 0.5 * p.height, p.z);
         t.scale = {0.8, p.height, 0.8};
-        addMeshInstance(w, p.name, unitBox, t, matte(0.8f, 0.55f, 0.35f));
+        addMeshInstance(w, p.name, unitBox, t, solid(0.8f, 0.55f, 0.35f));
     }
     // A plate on thin legs: a blocker well above the ground, for soft penumbrae.
     Transform plate = at(3.0, 1.4, 2.0);
     plate.scale = {1.6, 0.08, 1.2};
-    addMeshInstance(w, "table top", unitBox, plate, matte(0.35f, 0.55f, 0.8f));
+    addMeshInstance(w, "table top", unitBox, plate, solid(0.35f, 0.55f, 0.8f));
 
     // Moving casters.
     const Entity orbiter = addMeshInstance(w, "orbiting box", makeBoxMesh(glm::vec3(0.4f)), at(0, 0.4, 0),
-                                           matte(0.85f, 0.25f, 0.25f));
+                                           solid(0.85f, 0.25f, 0.25f));
     ProceduralMotion orbit;
     orbit.kind = ProceduralMotion::Kind::Orbit;
     orbit.center = {0.0, 0.4, 0.0};
@@ -58,7 +65,7 @@ Scene makeDefault() {
     w.emplace<ProceduralMotion>(orbiter, orbit);
 
     const Entity bobber = addMeshInstance(w, "bobbing sphere", makeSphereMesh(0.5f, 32, 16), at(-3.5, 1.5, 1.5),
-                                          matte(0.3f, 0.75f, 0.35f));
+                                          solid(0.3f, 0.75f, 0.35f));
     ProceduralMotion bob;
     bob.kind = ProceduralMotion::Kind::Bob;
     bob.center = {-3.5, 1.6, 1.5};
@@ -69,7 +76,7 @@ Scene makeDefault() {
 
     Transform spinT = at(1.0, 1.0, -0.5);
     spinT.scale = {1.6, 0.3, 0.3};
-    const Entity spinner = addMeshInstance(w, "spinning bar", unitBox, spinT, matte(0.9f, 0.8f, 0.3f));
+    const Entity spinner = addMeshInstance(w, "spinning bar", unitBox, spinT, solid(0.9f, 0.8f, 0.3f));
     ProceduralMotion spin;
     spin.kind = ProceduralMotion::Kind::Spin;
     spin.axis = {0.0, 1.0, 0.0};
@@ -173,7 +180,7 @@ Result<Scene> makeBunny() {
     const double scale = 1.2 / std::max(1e-6f, b.max.y - b.min.y);
     Transform t = at(-scale * b.center().x, -scale * b.min.y, -scale * b.center().z);
     t.scale = glm::dvec3(scale);
-    addMeshInstance(w, "bunny", std::move(bunny).value(), t, matte(0.85f, 0.8f, 0.7f));
+    addMeshInstance(w, "bunny", std::move(bunny).value(), t, solid(0.85f, 0.8f, 0.7f));
 
     Light sun;
     sun.type = LightType::Directional;
@@ -215,12 +222,14 @@ Result<Scene> makeBunnySpot() {
     Scene scene;
     scene.name = "bunny-spot";
     World& w = scene.world;
-    addMeshInstance(w, "ground", makePlaneMesh(4.0f, 16), at(0, 0, 0), matte(0.85f, 0.8f, 0.75f));
+    // The ground only receives: it hides nothing from the light (the peer is set up the same way).
+    const Entity ground = addMeshInstance(w, "ground", makePlaneMesh(4.0f, 16), at(0, 0, 0), matte(0.85f, 0.8f, 0.75f));
+    w.get<Mesh>(ground).castShadows = false;
     const Aabb b = (*bunny)->bounds;
     const double scale = 1.2 / std::max(1e-6f, b.max.y - b.min.y);
     Transform t = at(-scale * b.center().x, -scale * b.min.y, -scale * b.center().z);
     t.scale = glm::dvec3(scale);
-    addMeshInstance(w, "bunny", std::move(bunny).value(), t, matte(0.85f, 0.8f, 0.7f));
+    addMeshInstance(w, "bunny", std::move(bunny).value(), t, solid(0.85f, 0.8f, 0.7f));
 
     Light spot;
     spot.type = LightType::Spot;
