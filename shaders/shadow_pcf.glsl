@@ -1,4 +1,6 @@
-// Percentage-closer filtering over a disk of lateral metres at the receiver.
+// Percentage-closer filtering over a disk of lateral metres at the receiver, with as many taps
+// as the disk's area in texels asks for, and none where the min/max pyramid shows the whole disk
+// lit or in umbra.
 //
 // Reference: W. Reeves, D. Salesin, R. Cook, "Rendering Antialiased Shadows with Depth Maps",
 // SIGGRAPH 1987.
@@ -6,16 +8,34 @@
 #define SG_SHADOW_PCF
 #include "shadow_hard.glsl"
 #include "shadow_kernels.glsl"
+#include "shadow_region.glsl"
 
-// Percentage-closer filtering over a disk of `radius` metres (lateral, at the receiver).
-float pcfVisibility(int slot, GpuLight L, Receiver r, float radius, int samples) {
-    if (radius <= 0.0 || samples <= 1) return hardVisibility(slot, L, r);
-    DiskWalk disk = beginDisk(pixelRotation(), samples);
+// Taps a disk of `radiusTexels` texels needs: about one per texel of its area (each tap is a 2x2
+// bilinear filter itself), at least one, at most `samples`.
+int tapsFor(float radiusTexels, int samples) {
+    return clamp(int(ceil(radiusTexels * radiusTexels)), 1, max(samples, 1));
+}
+
+// The mean of `taps` comparison taps over a disk of `radius` metres; a single tap sits at the
+// receiver. A loop, not a branch: with taps = 0 in a whole SIMD group it costs one empty trip.
+float pcfTaps(int slot, GpuLight L, Receiver r, float radius, int taps) {
+    DiskWalk disk = beginDisk(pixelRotation(), taps);
+    float scale = taps > 1 ? radius : 0.0;
     float sum = 0.0;
-    for (int i = 0; i < samples; ++i) {
-        sum += compareTap(slot, L, r, lateralTap(L, r, nextDiskSample(L.kernel, disk, i) * radius));
+    for (int i = 0; i < taps; ++i) {
+        sum += compareTap(slot, L, r, lateralTap(L, r, nextDiskSample(L.kernel, disk, i) * scale));
     }
-    return sum / float(samples);
+    return sum / float(max(taps, 1));
+}
+
+// PCF of the light's own radius (`pcfRadius`, at most `maxFilterTexels` texels).
+float pcfVisibility(int slot, GpuLight L, Receiver r) {
+    float radius = min(L.pcfRadius, L.maxFilterTexels * r.texelMetres);
+    Tap center = lateralTap(L, r, vec2(0.0));
+    float known = regionVisibility(slot, L, r, center, radius);
+    int taps = known >= 0.0 ? 0 : tapsFor(radius / r.texelMetres, L.pcfSamples);
+    float filtered = pcfTaps(slot, L, r, radius, taps);
+    return known >= 0.0 ? known : filtered;
 }
 
 #endif

@@ -1,5 +1,7 @@
 // Percentage-closer soft shadows: blocker search, penumbra width from similar triangles in the
-// emitter's physical size (design.md, emitter conventions), then PCF over that width.
+// emitter's physical size (design.md, emitter conventions), then PCF over that width. The
+// min/max pyramid answers for the whole search region first: where it holds no blocker or only
+// blockers, neither the search nor the filter takes a tap.
 //
 // Reference: R. Fernando, "Percentage-Closer Soft Shadows", SIGGRAPH 2005 sketch.
 #ifndef SG_SHADOW_PCSS
@@ -7,56 +9,51 @@
 #include "shadow_pcf.glsl"
 #include "shadow_debug.glsl"
 
-// Percentage-closer soft shadows: blocker search, penumbra from similar triangles, PCF.
+// Blocker search region (lateral metres at the receiver): the cone from the receiver to the
+// emitter, widest at the nearest depth a blocker can have.
+float pcssSearchRadius(GpuLight L, Receiver r, float dReceiver, float size) {
+    if (L.type == SG_LIGHT_DIRECTIONAL) return dReceiver * tan(size);
+    float near = max(uLayers[L.firstLayer + r.layer].depthNear, 1e-6);
+    return size * max(dReceiver - near, 0.0) / near;
+}
+
 float pcssVisibility(int slot, GpuLight L, Receiver r) {
     float maxRadius = L.maxFilterTexels * r.texelMetres;
     Tap center = lateralTap(L, r, vec2(0.0));
     float dReceiver = center.depth;
     float size = max(L.emitterSize, 0.0);
-    if (size <= 0.0 || maxRadius <= 0.0) return compareTap(slot, L, r, center);
+    bool pointEmitter = size <= 0.0 || maxRadius <= 0.0;  // a hard shadow: one tap at the receiver
+    float searchRadius = clamp(pcssSearchRadius(L, r, dReceiver, size), r.texelMetres, maxRadius);
+    float known = pointEmitter ? -1.0 : regionVisibility(slot, L, r, center, searchRadius);
 
-    // Blocker search region, lateral metres at the receiver: the cone from the receiver to
-    // the emitter, widest at the nearest depth a blocker can have.
-    GpuShadowLayer S = uLayers[L.firstLayer + r.layer];
-    float searchRadius;
-    if (L.type == SG_LIGHT_DIRECTIONAL) {
-        searchRadius = dReceiver * tan(size);
-    } else {
-        float near = max(S.depthNear, 1e-6);
-        searchRadius = size * max(dReceiver - near, 0.0) / near;
-    }
-    searchRadius = clamp(searchRadius, r.texelMetres, maxRadius);
-
-    DiskWalk disk = beginDisk(pixelRotation(), L.blockerSamples);
+    // The search reads `blockerSamples` depths as gathers of 2x2 texels at blockerSamples / 4
+    // points of the disk: a quarter of the fetches of single taps (textureGather, GL 4.0).
+    int gathers = (L.blockerSamples + 3) / 4;
+    DiskWalk disk = beginDisk(pixelRotation(), gathers);
+    int searchGathers = known >= 0.0 || pointEmitter ? 0 : gathers;
     float blockerSum = 0.0;
-    int blockers = 0;
-    for (int i = 0; i < L.blockerSamples; ++i) {
+    float blockers = 0.0;
+    for (int i = 0; i < searchGathers; ++i) {
         Tap t = lateralTap(L, r, nextDiskSample(L.kernel, disk, i) * searchRadius);
-        float stored = texture(uShadowDepth[slot], vec3(t.uv, float(t.layer))).r *
-                       (t.layer == r.layer ? r.depthScale : uLayers[L.firstLayer + t.layer].depthScale);
-        if (stored < t.depth - r.depthBias) {
-            // Blocker depth expressed at the center's lateral position: the tap's own shift
-            // along the tangent plane is removed so a sloped receiver does not bias it.
-            blockerSum += stored + (dReceiver - t.depth);
-            ++blockers;
-        }
+        float scale = t.layer == r.layer ? r.depthScale : uLayers[L.firstLayer + t.layer].depthScale;
+        vec4 stored = textureGather(uShadowDepth[slot], vec3(t.uv, float(t.layer))) * scale;
+        vec4 blocks = vec4(lessThan(stored, vec4(t.depth - r.depthBias)));
+        // Blocker depth expressed at the center's lateral position: the tap's own shift along
+        // the tangent plane is removed so a sloped receiver does not bias it.
+        blockerSum += dot(blocks, stored + (dReceiver - t.depth));
+        blockers += dot(blocks, vec4(1.0));
     }
-    if (blockers == 0) {
-        SG_DEBUG_STORE(gDebugBlockerDepth, 0.0);
-        SG_DEBUG_STORE(gDebugPenumbra, 0.0);
-        return 1.0;
-    }
-    float dBlocker = clamp(blockerSum / float(blockers), 0.0, dReceiver);
+    float dBlocker = clamp(blockerSum / max(blockers, 1.0), 0.0, dReceiver);
     // Penumbra half-width at the receiver (m), by similar triangles.
-    float penumbra;
-    if (L.type == SG_LIGHT_DIRECTIONAL) {
-        penumbra = (dReceiver - dBlocker) * tan(size);
-    } else {
-        penumbra = (dReceiver - dBlocker) * size / max(dBlocker, 1e-6);
-    }
-    penumbra = min(penumbra, maxRadius);
-    SG_DEBUG_STORE(gDebugBlockerDepth, dBlocker);
+    float penumbra = L.type == SG_LIGHT_DIRECTIONAL ? (dReceiver - dBlocker) * tan(size)
+                                                    : (dReceiver - dBlocker) * size / max(dBlocker, 1e-6);
+    penumbra = blockers > 0.0 ? min(penumbra, maxRadius) : 0.0;
+    int taps = pointEmitter ? 1 : (blockers > 0.0 ? tapsFor(penumbra / r.texelMetres, L.pcfSamples) : 0);
+    float filtered = pcfTaps(slot, L, r, penumbra, taps);
+    SG_DEBUG_STORE(gDebugBlockerDepth, blockers > 0.0 ? dBlocker : 0.0);
     SG_DEBUG_STORE(gDebugPenumbra, penumbra);
-    return pcfVisibility(slot, L, r, penumbra, L.pcfSamples);
+    if (known >= 0.0) return known;
+    return taps > 0 ? filtered : 1.0;
 }
+
 #endif

@@ -1,7 +1,8 @@
 // The seeds' PCSS, compiled only into the variants of the benchmarks that measure against it.
 #ifndef SG_SHADOW_PCSS_TEXTBOOK
 #define SG_SHADOW_PCSS_TEXTBOOK
-#include "shadow_pcf.glsl"
+#include "shadow_kernels.glsl"
+#include "shadow_receiver.glsl"
 #include "shadow_debug.glsl"
 
 // The seeds' PCSS, kept as the baseline every speed-up is measured against: a fixed-count

@@ -58,6 +58,7 @@ struct Receiver {
     vec4 clipOffsetPerTexel;
     float depthScale;
     float texelPerAxial;  // perspective: texel footprint per metre of axial distance
+    float depthSlope;     // |change of a tap's depth| per lateral metre along the tangent plane
     bool orthographic;
 };
 
@@ -146,6 +147,7 @@ Receiver makeReceiver(GpuLight L, vec3 csPosition, vec3 wsNormal, float viewDist
     if (denom == 0.0) denom = 1.0;
     r.csTangent1 = t1 - r.toLight * (dot(wsNormal, t1) / denom);
     r.csTangent2 = t2 - r.toLight * (dot(wsNormal, t2) / denom);
+    r.depthSlope = length(vec2(dot(wsNormal, t1), dot(wsNormal, t2))) / abs(denom);
 
     GpuShadowLayer S = uLayers[L.firstLayer + r.layer];
     mat3 linear = mat3(S.lightFromCs);

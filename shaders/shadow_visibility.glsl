@@ -25,10 +25,7 @@ float techniqueVisibility(int slot, GpuLight L, Receiver r) {
     if (L.technique == SG_TECH_HARD) v = hardVisibility(slot, L, r);
 #endif
 #ifdef SG_TECH_PCF_ENABLED
-    if (L.technique == SG_TECH_PCF) {
-        float radius = min(L.pcfRadius, L.maxFilterTexels * r.texelMetres);
-        v = pcfVisibility(slot, L, r, radius, L.pcfSamples);
-    }
+    if (L.technique == SG_TECH_PCF) v = pcfVisibility(slot, L, r);
 #endif
 #ifdef SG_TECH_PCSS_ENABLED
     if (L.technique == SG_TECH_PCSS) v = pcssVisibility(slot, L, r);

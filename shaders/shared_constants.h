@@ -36,6 +36,13 @@
 // raw-depth sampler (PCSS blocker search) is unit SG_UNIT_SHADOW_DEPTH + i.
 #define SG_UNIT_SHADOW_COMPARE 0
 #define SG_UNIT_SHADOW_DEPTH 8
+// The min/max depth pyramid of pass slot i (PCF and PCSS lights) is unit SG_UNIT_SHADOW_MINMAX + i.
+#define SG_UNIT_SHADOW_MINMAX 16
+// Unit the pyramid builder reads its source from.
+#define SG_UNIT_MINMAX_SOURCE 0
+
+// Texels of the shadow map along one edge of a tile of the min/max pyramid's level 0.
+#define SG_MINMAX_TILE 4
 
 // Fragment outputs of the main pass.
 #define SG_OUT_COLOR 0

@@ -163,6 +163,9 @@ public:
 
     /// The GL texture name of the depth array of scene light `i`, 0 when it has no map.
     [[nodiscard]] unsigned textureOf(std::size_t i) const;
+    /// The GL texture name of the min/max depth pyramid of scene light `i` (RG32F array, one
+    /// mip chain per layer; PCF and PCSS lights), 0 when it has none.
+    [[nodiscard]] unsigned minMaxOf(std::size_t i) const;
     /// Reads layer `layer` of scene light `i` as linear depth in metres (debug views, tests);
     /// empty when it has no such layer.
     [[nodiscard]] std::vector<float> readLayerDepth(std::size_t i, int layer) const;

@@ -57,6 +57,8 @@ namespace shadow::gpu {
     X(PFNGLTEXTURESTORAGE2DPROC, TextureStorage2D)                              \
     X(PFNGLTEXTURESTORAGE3DPROC, TextureStorage3D)                              \
     X(PFNGLTEXTUREPARAMETERIPROC, TextureParameteri)                            \
+    X(PFNGLGENTEXTURESPROC, GenTextures)                                        \
+    X(PFNGLTEXTUREVIEWPROC, TextureView)                                        \
     X(PFNGLTEXTUREPARAMETERFVPROC, TextureParameterfv)                          \
     X(PFNGLBINDTEXTUREUNITPROC, BindTextureUnit)                                \
     X(PFNGLGETTEXTURESUBIMAGEPROC, GetTextureSubImage)                          \

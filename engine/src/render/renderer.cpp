@@ -153,6 +153,8 @@ void Renderer::Impl::bindShadowMaps(const PassLights& pass, const ShadowSystem& 
         gl.BindSampler(SG_UNIT_SHADOW_COMPARE + slot, compareSampler.get());
         gl.BindTextureUnit(SG_UNIT_SHADOW_DEPTH + slot, texture);
         gl.BindSampler(SG_UNIT_SHADOW_DEPTH + slot, depthSampler.get());
+        gl.BindTextureUnit(SG_UNIT_SHADOW_MINMAX + slot, light >= 0 ? shadows.minMaxOf(static_cast<std::size_t>(light)) : 0u);
+        gl.BindSampler(SG_UNIT_SHADOW_MINMAX + slot, 0);  // nearest, per level: the texture's own
     }
 }
 

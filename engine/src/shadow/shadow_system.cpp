@@ -7,6 +7,7 @@
 #include "gl/objects.h"
 #include "gl/pass_timer.h"
 #include "gl/program.h"
+#include "shadow/minmax_pyramid.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -23,7 +24,15 @@ struct ShadowMapGpu {
     gpu::Framebuffer framebuffer;
     int mapSize = 0;
     int layers = 0;
+    /// For PCF and PCSS lights only; `pyramidCurrent[k]` once layer k's pyramid matches its map.
+    std::optional<MinMaxPyramid> pyramid;
+    std::vector<bool> pyramidCurrent;
 };
+
+/// Techniques that read the min/max pyramid to skip taps outside penumbrae.
+bool readsPyramid(ShadowTechnique t) {
+    return t == ShadowTechnique::Pcf || t == ShadowTechnique::Pcss;
+}
 
 /// The depth-only program shared by every light type.
 struct DepthProgram {
@@ -51,6 +60,8 @@ std::unique_ptr<ShadowMapGpu> allocate(const ShadowLightPlan& plan) {
     gl.TextureStorage3D(map->array.get(), 1, GL_DEPTH_COMPONENT32F, map->mapSize, map->mapSize, map->layers);
     gl.TextureParameteri(map->array.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     gl.TextureParameteri(map->array.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl.TextureParameteri(map->array.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);  // the pyramid's gathers
+    gl.TextureParameteri(map->array.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     map->framebuffer = gpu::makeFramebuffer(label + "/framebuffer");
     gl.NamedFramebufferDrawBuffer(map->framebuffer.get(), GL_NONE);
     gl.NamedFramebufferReadBuffer(map->framebuffer.get(), GL_NONE);
@@ -95,6 +106,7 @@ LightShadowStats statsOf(const ShadowLightPlan& plan) {
 
 struct ShadowGpu {
     DepthProgram depth;
+    MinMaxBuilder minMax;
     bool softwareRenderer = false;
     /// Per scene light (index = `ShadowFrame::lights`): its map, or null without one.
     std::vector<std::pair<Entity, std::unique_ptr<ShadowMapGpu>>> maps;
@@ -103,6 +115,8 @@ struct ShadowGpu {
     void syncMaps(const ShadowFrame& frame);
     /// Draws layer `k` of `plan`'s map: its casters, depth only.
     void drawLayer(World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k, LightShadowStats& ls);
+    /// Brings the pyramid of every layer of `plan` whose map changed up to date.
+    void updatePyramids(const ShadowLightPlan& plan, gpu::PassTimer& timer);
 };
 
 void ShadowGpu::syncMaps(const ShadowFrame& frame) {
@@ -116,9 +130,30 @@ void ShadowGpu::syncMaps(const ShadowFrame& frame) {
         if (!map || map->mapSize != plan.mapSize || map->layers != static_cast<int>(plan.layers.size())) {
             map = allocate(plan);
         }
+        if (readsPyramid(plan.technique()) && !map->pyramid) {
+            map->pyramid = MinMaxPyramid::allocate("Shadow/" + plan.name, map->mapSize, map->layers);
+            map->pyramidCurrent.assign(static_cast<std::size_t>(map->layers), false);
+        } else if (!readsPyramid(plan.technique())) {
+            map->pyramid.reset();  // no technique of the light reads it: no memory for it
+        }
         next[i].second = std::move(map);
     }
     maps = std::move(next);
+}
+
+void ShadowGpu::updatePyramids(const ShadowLightPlan& plan, gpu::PassTimer& timer) {
+    ShadowMapGpu& map = *maps[static_cast<std::size_t>(plan.sceneIndex)].second;
+    if (!map.pyramid) return;
+    for (std::size_t k = 0; k < plan.layers.size(); ++k) {
+        if (!plan.layers[k].dirty && map.pyramidCurrent[k]) continue;
+        if (plan.layers[k].casters.empty()) {
+            map.pyramid->clearLayer(map.mapSize, static_cast<int>(k));
+        } else {
+            const gpu::ScopedPass pass(timer, "Shadow/" + plan.name + "/minmax" + std::to_string(k));
+            minMax.build(map.array.get(), *map.pyramid, map.mapSize, static_cast<int>(k));
+        }
+        map.pyramidCurrent[k] = true;
+    }
 }
 
 void ShadowGpu::drawLayer(World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k,
@@ -195,6 +230,12 @@ void ShadowSystem::render(World& world, MeshCache& meshes, FrameStats& stats) {
         stats.lights.push_back(std::move(ls));
     }
     endDepthOnly();
+    gl.Disable(GL_DEPTH_TEST);
+    for (const ShadowLightPlan& plan : frame.lights) {
+        if (plan.hasMap()) gpu_->updatePyramids(plan, timer);
+    }
+    gl.Enable(GL_DEPTH_TEST);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gpu::checkGlError("shadow pass");
     timer.collect(stats);
 }
@@ -202,6 +243,11 @@ void ShadowSystem::render(World& world, MeshCache& meshes, FrameStats& stats) {
 unsigned ShadowSystem::textureOf(std::size_t i) const {
     const auto& maps = gpu_->maps;
     return i < maps.size() && maps[i].second ? maps[i].second->array.get() : 0u;
+}
+
+unsigned ShadowSystem::minMaxOf(std::size_t i) const {
+    const auto& maps = gpu_->maps;
+    return i < maps.size() && maps[i].second && maps[i].second->pyramid ? maps[i].second->pyramid->texture.get() : 0u;
 }
 
 std::vector<float> ShadowSystem::readLayerDepth(std::size_t i, int layer) const {

@@ -1,0 +1,48 @@
+// The min/max depth pyramid of a light's shadow-map array: per layer, a mip chain whose texel
+// (level k) holds the least and greatest stored depth of a tile of SG_MINMAX_TILE * 2^k map
+// texels. Built after a layer is drawn, cached with it. PCF and PCSS read it to decide "no
+// blocker" or "only blockers" for a whole filter region from four fetches.
+#pragma once
+
+#include "gl/objects.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace shadow {
+
+/// The programs that build pyramids, shared by every light; built on first use.
+class MinMaxBuilder {
+public:
+    /// Builds every level of `layer` of `pyramid` from `depthArray`, a `mapSize`^2 array.
+    void build(GLuint depthArray, const struct MinMaxPyramid& pyramid, int mapSize, int layer);
+
+private:
+    struct Programs {
+        gpu::Program fromDepth, fromBelow;
+        GLint fromDepthLayer = -1, fromBelowLayer = -1;
+        gpu::VertexArray empty;
+    };
+    std::optional<Programs> programs_;
+};
+
+/// One light's pyramid texture (RG32F array, one mip chain per layer).
+struct MinMaxPyramid {
+    gpu::Texture texture;
+    /// Views of one level each: the builder reads level k - 1 through its own texture object while
+    /// it draws level k, so no level is ever sampled and drawn at once.
+    std::vector<gpu::Texture> levelViews;
+    gpu::Framebuffer framebuffer;
+    int levels = 0;
+
+    /// Edge of level 0 for a map of `mapSize` texels: the power of two of at least
+    /// mapSize / SG_MINMAX_TILE texels.
+    [[nodiscard]] static int baseSize(int mapSize);
+    /// Allocates the pyramid of a `mapSize`^2 array of `layers` layers.
+    static MinMaxPyramid allocate(const std::string& label, int mapSize, int layers);
+    /// Sets every level of `layer` to (1, 1): a cleared layer, nothing in front of the far plane.
+    void clearLayer(int mapSize, int layer) const;
+};
+
+}  // namespace shadow
