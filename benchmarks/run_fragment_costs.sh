@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Fragment-shader cost probes at 1280x720 on this machine's renderer, and their table.
+#   bash benchmarks/run_fragment_costs.sh [--frames N]
+# Builds build/bin/fragment_costs if needed (set SHADOW_BUILD_DIR to use another build folder;
+# a fresh build/ is set up by .ci/setup), runs it and writes benchmarks/results/fragment_costs.md.
+# Takes about a minute on two cores; timings on llvmpipe vary from run to run, so compare rows of
+# one run.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build=${SHADOW_BUILD_DIR:-build}
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  if [ "$build" = build ]; then
+    bash .ci/setup >/dev/null
+  else
+    cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DSHADOW_BUILD_TESTS=OFF -DSHADOW_BUILD_VIEWER=OFF >/dev/null
+  fi
+fi
+cmake --build "$build" --target fragment_costs -j"${SHADOW_BUILD_JOBS:-1}" >/dev/null
+
+results=benchmarks/results
+mkdir -p "$results"
+"./$build/bin/fragment_costs" --out "$results/fragment_costs.md" "$@" >/dev/null
+cat "$results/fragment_costs.md"
