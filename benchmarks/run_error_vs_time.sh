@@ -2,7 +2,7 @@
 # Error against time for every technique on three scenes, and BENCHMARKS.md from the results.
 #   bash benchmarks/run_error_vs_time.sh [--quick]
 # Sets up and builds (.ci/setup), traces the references with shadow_reference (Embree), runs the
-# sweep (build/bin/error_vs_time), plots with gnuplot, and rewrites BENCHMARKS.md. --quick uses
+# sweep (build/bin/error_vs_time), plots with gnuplot, and rewrites its section of BENCHMARKS.md. --quick uses
 # fewer reference samples and timed frames (for a smoke run; the committed figures are full).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,7 +14,7 @@ frames=5
 if [ "${1:-}" = "--quick" ]; then samples=64; frames=1; fi
 results=benchmarks/results
 refs=$results/tmp/references
-mkdir -p "$refs"
+mkdir -p "$refs" "$results/tmp"
 for scene in plates bunny default; do
   ./build/bin/shadow_reference "builtin:$scene" --out "$refs/$scene" --size "$size" --samples "$samples"
 done
@@ -24,10 +24,6 @@ done
 
 {
   cat <<'MD'
-# Benchmarks
-
-## Error against time
-
 Every shadow technique and setting, on three scenes — `builtin:plates` (a disk light over two
 square plates: the scene whose visibility has a closed form), `builtin:bunny` (the Stanford
 bunny from Debian's glmark2-data on a plane under a PCSS sun, a PCF spot and a hard point
@@ -41,7 +37,7 @@ Timings on llvmpipe (a CPU rasteriser) are noisy from run to run; compare rows o
 configuration sets every shadowed light of the scene. `pcss-textbook` is the seeds' PCSS (fixed
 Poisson taps around the receiver's UV), kept so our PCSS is measured against it in the same run.
 
-Reproduce (about 2 minutes here after the build: `time bash benchmarks/run_error_vs_time.sh`; rewrites this file and `benchmarks/results/`):
+Reproduce (about 2 minutes here after the build: `time bash benchmarks/run_error_vs_time.sh`; rewrites this section and `benchmarks/results/`):
 
 ```sh
 bash benchmarks/run_error_vs_time.sh
@@ -53,12 +49,6 @@ Data: `benchmarks/results/error_vs_time.csv` and `.json`.
 
 MD
   cat "$results/error_vs_time.md"
-  cat <<'MD'
-
-## CPU cost of the per-frame systems
-
-`./build/bin/cpu_systems_bench` (Google Benchmark) times animation + transforms and the shadow
-system's decide phase on the default scene; run it to get this machine's figures.
-MD
-} > BENCHMARKS.md
+} > "$results/tmp/error_vs_time_section.md"
+python3 benchmarks/benchmarks_section.py error-vs-time "Error against time" "$results/tmp/error_vs_time_section.md"
 echo "wrote BENCHMARKS.md and $results/"

@@ -215,20 +215,9 @@ body = "\n".join(out) + "\n"
 
 with open("benchmarks/results/peers.md", "w") as f:
     f.write("# Peer comparison: OpenSceneGraph\n\n" + body + "\n![OSG (top) and ours (bottom), crop](peers_crop.png)\n")
+with open("benchmarks/results/tmp/peers_section.md", "w") as f:
+    f.write(body + "\n![OSG (top) and ours (bottom), crop](benchmarks/results/peers_crop.png)\n")
 
-# BENCHMARKS.md: replace the text between the markers; add heading and markers after the title
-# line when absent. Everything else in the file stays as it is.
-begin, end = "<!-- peers:begin -->", "<!-- peers:end -->"
-path = "BENCHMARKS.md"
-text = open(path).read() if os.path.exists(path) else "# Benchmarks\n"
-if begin not in text or end not in text:
-    title, _, rest = text.partition("\n")
-    text = f"{title}\n\n## Peer comparison: OpenSceneGraph\n\n{begin}\n{end}\n{rest}"
-head, _, tail = text.partition(begin)
-_, _, tail = tail.partition(end)
-section = f"{begin}\n{body}\n![OSG (top) and ours (bottom), crop](benchmarks/results/peers_crop.png)\n{end}"
-with open(path, "w") as f:
-    f.write(head + section + tail)
 PY
 
 # --- The crop: the same rectangle around the bunny's shadow from every image ----------------------
@@ -259,4 +248,5 @@ else
   row "$work/row_ours.png" "${bottom[@]}"
   "$imagemagick" "$work/row_osg.png" "$work/row_ours.png" -append "$results/peers_crop.png"
 fi
+python3 benchmarks/benchmarks_section.py peers "Peer comparison: OpenSceneGraph" "$results/tmp/peers_section.md"
 echo "peers: wrote $results/peers.md, $results/peers_crop.png and the peers section of BENCHMARKS.md (${elapsed} s of runs)"

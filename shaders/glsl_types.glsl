@@ -1,4 +1,5 @@
-// GLSL side of gpu_types.h: the shared struct declarations in GLSL types.
+// GLSL side of gpu_structs.h (the C++ side is engine/src/render/gpu_types.h): the shared struct
+// declarations in GLSL types.
 #include "shared_constants.h"
 #define SG_STRUCT(name) struct name {
 #define SG_END_STRUCT };

@@ -162,9 +162,11 @@ struct Shadow {
     float pcfRadius = 0.05f;
     /// Sample pattern of PCF and the blocker search. Default Vogel.
     FilterKernel kernel = FilterKernel::Vogel;
-    /// Taps of the PCF filter, [1, 64]. Default 16.
+    /// Most taps of the PCF filter, [1, 64]. Default 16. A pixel takes about one tap per texel of
+    /// its filter disk's area, up to this many, and none where the layer's min/max pyramid
+    /// shows the whole disk lit or in umbra.
     int pcfSamples = 16;
-    /// Taps of the PCSS blocker search, [1, 64]. Default 16.
+    /// Depths the PCSS blocker search reads, [1, 64], in gathers of four (rounded up). Default 16.
     int blockerSamples = 16;
     /// Largest PCSS filter radius in texels (the clamp of the penumbra), [1, 256]. Default 32.
     float maxFilterTexels = 32.0f;

@@ -83,18 +83,6 @@ Texture makeTexture(std::string_view label, GLenum target);
 /// Makes a framebuffer, labelled.
 Framebuffer makeFramebuffer(std::string_view label);
 
-/// A debug group around a pass (glPushDebugGroup / glPopDebugGroup), named for captures.
-class DebugGroup {
-public:
-    explicit DebugGroup(std::string_view name) {
-        gl.PushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, static_cast<GLsizei>(name.size()),
-                          name.data());
-    }
-    ~DebugGroup() { gl.PopDebugGroup(); }
-    DebugGroup(const DebugGroup&) = delete;
-    DebugGroup& operator=(const DebugGroup&) = delete;
-};
-
 /// Throws `GlError` naming `where` and the error if the GL error flag is set.
 void checkGlError(std::string_view where);
 
