@@ -26,9 +26,10 @@ float pcssVisibility(int slot, GpuLight L, Receiver r) {
     float searchRadius = clamp(pcssSearchRadius(L, r, dReceiver, size), r.texelMetres, maxRadius);
     float known = pointEmitter ? -1.0 : regionVisibility(slot, L, r, center, searchRadius);
 
-    // The search reads `blockerSamples` depths as gathers of 2x2 texels at blockerSamples / 4
-    // points of the disk: a quarter of the fetches of single taps (textureGather, GL 4.0).
-    int gathers = (L.blockerSamples + 3) / 4;
+    // The search gathers 2x2 depth texels at blockerSamples / 2 points of the disk (textureGather,
+    // GL 4.0): twice the depths of single taps for half the fetches. A quarter as many points
+    // measured 5-20 % more error on the bunny scene (clustered samples), half as many the same.
+    int gathers = (L.blockerSamples + 1) / 2;
     DiskWalk disk = beginDisk(pixelRotation(), gathers);
     int searchGathers = known >= 0.0 || pointEmitter ? 0 : gathers;
     float blockerSum = 0.0;

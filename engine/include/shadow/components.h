@@ -166,7 +166,8 @@ struct Shadow {
     /// its filter disk's area, up to this many, and none where the layer's min/max pyramid
     /// shows the whole disk lit or in umbra.
     int pcfSamples = 16;
-    /// Depths the PCSS blocker search reads, [1, 64], in gathers of four (rounded up). Default 16.
+    /// Points of the PCSS blocker search disk, [1, 64]; it reads them in pairs, each pair as one
+    /// gather of 2x2 depth texels (half the fetches, twice the depths). Default 16.
     int blockerSamples = 16;
     /// Largest PCSS filter radius in texels (the clamp of the penumbra), [1, 256]. Default 32.
     float maxFilterTexels = 32.0f;
