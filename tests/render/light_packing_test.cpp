@@ -9,6 +9,14 @@
 namespace shadow::render {
 namespace {
 
+/// A view that sees every test light whole: no light has a range, so each covers the screen.
+const ScreenView kView{glm::dmat4(1.0), 64, 48};
+std::vector<PackingEntry> scratch;
+
+void pack(const ShadowFrame& frame, const glm::dvec3& camera, std::vector<PassLights>& passes) {
+    packLights(frame, camera, kView, passes, scratch);
+}
+
 ShadowLightPlan spotPlan(int index, bool withMap) {
     ShadowLightPlan p;
     p.sceneIndex = index;
@@ -39,7 +47,7 @@ TEST(LightPacking, SkipsLightsThatCannotShadeAndFillsPassesInSceneOrder) {
     frame.lights[2].affectsView = false;  // its range misses the view
     const glm::dvec3 camera(1000.0, 2.0, -1990.0);
     std::vector<PassLights> passes;
-    packLights(frame, camera, passes);
+    pack(frame, camera, passes);
 
     ASSERT_EQ(passes.size(), 2u) << "10 lights shade the view: 8 + 2";
     EXPECT_EQ(passes[0].variant.lights, 8);
@@ -64,7 +72,7 @@ TEST(LightPacking, RecordsAreCameraRelative) {
     frame.lights.push_back(spotPlan(0, true));
     const glm::dvec3 camera(1000.0, 2.0, -1990.0);
     std::vector<PassLights> passes;
-    packLights(frame, camera, passes);
+    pack(frame, camera, passes);
     ASSERT_EQ(passes.size(), 1u);
     const gpu::GpuLight& g = passes[0].lights[0];
     EXPECT_NEAR(g.csPosition.x, 0.0f, 1e-6f);
@@ -83,19 +91,83 @@ TEST(LightPacking, RecordsAreCameraRelative) {
 TEST(LightPacking, NoLightsStillMakeOnePassAndReusesStorage) {
     ShadowFrame frame;
     std::vector<PassLights> passes;
-    packLights(frame, glm::dvec3(0.0), passes);
+    pack(frame, glm::dvec3(0.0), passes);
     ASSERT_EQ(passes.size(), 1u) << "the first pass writes the ambient term and the AOVs";
     EXPECT_EQ(passes[0].variant.lights, 0);
 
     for (int i = 0; i < 20; ++i) frame.lights.push_back(spotPlan(i, true));
-    packLights(frame, glm::dvec3(0.0), passes);
+    pack(frame, glm::dvec3(0.0), passes);
     ASSERT_EQ(passes.size(), 3u);
     const PassLights* storage = passes.data();
     frame.lights.resize(9);
-    packLights(frame, glm::dvec3(0.0), passes);
+    pack(frame, glm::dvec3(0.0), passes);
     EXPECT_EQ(passes.size(), 2u);
-    packLights(frame, glm::dvec3(0.0), passes);
+    pack(frame, glm::dvec3(0.0), passes);
     EXPECT_EQ(passes.data(), storage) << "packing again must not reallocate";
+}
+
+/// Lights with a 1 m range on a grid seen from straight above: an orthographic view of 40 x 40 m.
+TEST(LightPacking, ManyLocalLightsGetPassesBoundedByTheirReach) {
+    ShadowFrame frame;
+    ShadowLightPlan sun = spotPlan(0, true);
+    sun.light.type = LightType::Directional;
+    frame.lights.push_back(sun);
+    for (int i = 1; i <= 12; ++i) {
+        ShadowLightPlan p = spotPlan(i, false);
+        p.light.type = LightType::Point;
+        p.light.range = 1.0f;
+        p.wsPosition = {-17.5 + 5.0 * (i % 8), 0.0, -17.5 + 5.0 * (i / 8)};
+        frame.lights.push_back(p);
+    }
+    ScreenView view;
+    view.width = 400;
+    view.height = 400;
+    // Looking down -Y: x to the right, -z up on screen; w = 1 everywhere (orthographic).
+    view.clipFromWorld = glm::dmat4(glm::dvec4(0.05, 0, 0, 0), glm::dvec4(0, 0, -0.01, 0), glm::dvec4(0, -0.05, 0, 0),
+                                    glm::dvec4(0, 0, 0.5, 1));
+    const PixelRect one = screenBounds(frame.lights[1], view);
+    EXPECT_NEAR(one.x1 - one.x0, 20, 1) << "a sphere of 1 m radius is 20 pixels wide at 10 pixels per metre";
+    std::vector<PassLights> passes;
+    packLights(frame, glm::dvec3(0.0), view, passes, scratch);
+    ASSERT_EQ(passes.size(), 13u) << "the sun's whole-screen pass, then one pass per local light";
+    EXPECT_EQ(passes[0].bounds, (PixelRect{0, 0, 400, 400}));
+    EXPECT_EQ(passes[0].variant.lights, 1);
+    EXPECT_EQ(passes[0].sceneLight[0], 0);
+    EXPECT_TRUE(passes[0].unbounded);
+    long long covered = 0;
+    for (std::size_t p = 1; p < passes.size(); ++p) {
+        ASSERT_EQ(passes[p].variant.lights, 1);
+        const ShadowLightPlan& light = frame.lights[static_cast<std::size_t>(passes[p].sceneLight[0])];
+        EXPECT_EQ(passes[p].bounds, screenBounds(light, view));
+        EXPECT_FALSE(passes[p].unbounded);
+        EXPECT_EQ(passes[p].wsReach.min, light.wsPosition - glm::dvec3(1.0));
+        EXPECT_EQ(passes[p].wsReach.max, light.wsPosition + glm::dvec3(1.0));
+        covered += passes[p].bounds.area();
+    }
+    EXPECT_LE(covered, 12LL * 21 * 21) << "each local pass covers its light's sphere only";
+}
+
+TEST(LightPacking, SphereBehindTheEyeCoversTheScreenAndOffScreenLightsAreSkipped) {
+    ScreenView view;
+    view.width = 100;
+    view.height = 100;
+    view.clipFromWorld = glm::perspective(1.0, 1.0, 0.1, 100.0) *
+                         glm::lookAt(glm::dvec3(0, 0, 0), glm::dvec3(0, 0, -1), glm::dvec3(0, 1, 0));
+    ShadowLightPlan around = spotPlan(0, false);
+    around.light.type = LightType::Point;
+    around.light.range = 2.0f;
+    around.wsPosition = {0.0, 0.0, 0.5};  // the camera is inside its sphere
+    EXPECT_EQ(screenBounds(around, view), (PixelRect{0, 0, 100, 100}));
+    ShadowLightPlan aside = around;
+    aside.sceneIndex = 1;
+    aside.wsPosition = {-500.0, 0.0, -10.0};  // in front, far off to the side
+    EXPECT_TRUE(screenBounds(aside, view).empty());
+    ShadowFrame frame;
+    frame.lights = {around, aside};
+    std::vector<PassLights> passes;
+    packLights(frame, glm::dvec3(0.0), view, passes, scratch);
+    ASSERT_EQ(passes.size(), 1u);
+    EXPECT_EQ(passes[0].variant.lights, 1) << "a light whose sphere is off screen shades nothing";
 }
 
 }  // namespace

@@ -2,7 +2,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace shadow::render {
 namespace {
@@ -69,7 +71,57 @@ gpu::GpuShadowLayer packLayer(const ShadowLayerPlan& layer, const glm::dvec3& ws
     return l;
 }
 
-void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, std::vector<PassLights>& passes) {
+PixelRect screenBounds(const ShadowLightPlan& plan, const ScreenView& view) {
+    const PixelRect whole{0, 0, view.width, view.height};
+    if (plan.light.type == LightType::Directional || !(plan.light.range > 0.0f)) return whole;
+    // The eight corners of the sphere's box, projected; any at or behind the eye plane: whole.
+    glm::dvec2 lo(1e300), hi(-1e300);
+    const double r = plan.light.range;
+    for (int c = 0; c < 8; ++c) {
+        const glm::dvec3 corner = plan.wsPosition + glm::dvec3(c & 1 ? r : -r, c & 2 ? r : -r, c & 4 ? r : -r);
+        const glm::dvec4 clip = view.clipFromWorld * glm::dvec4(corner, 1.0);
+        if (!(clip.w > 1e-9)) return whole;
+        const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
+        lo = glm::min(lo, ndc);
+        hi = glm::max(hi, ndc);
+    }
+    auto pixel = [](double ndc, int size, bool up) {
+        const double p = (ndc * 0.5 + 0.5) * size;
+        return static_cast<int>(std::clamp(up ? std::ceil(p) : std::floor(p), 0.0, static_cast<double>(size)));
+    };
+    return {pixel(lo.x, view.width, false), pixel(lo.y, view.height, false), pixel(hi.x, view.width, true),
+            pixel(hi.y, view.height, true)};
+}
+
+namespace {
+
+PixelRect unite(const PixelRect& a, const PixelRect& b) {
+    if (a.empty()) return b;
+    if (b.empty()) return a;
+    return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
+}
+
+}  // namespace
+
+void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const ScreenView& view,
+                std::vector<PassLights>& passes, std::vector<PackingEntry>& order) {
+    const PixelRect whole{0, 0, view.width, view.height};
+    // Sort key: whole-screen lights first (key 0, scene order), then by Morton code of the centre.
+    order.clear();
+    for (const ShadowLightPlan& plan : frame.lights) {
+        if (!plan.shaded || !plan.affectsView) continue;  // contributes nothing; visibility 1
+        const PixelRect b = screenBounds(plan, view);
+        if (b.empty()) continue;  // its sphere is off screen
+        // Lights that reach a quarter of the screen or more join the first, whole-screen pass
+        // while it has room: another pass over the scene's triangles would cost more than the
+        // pixels they leave out.
+        const bool wide = 4 * b.area() >= whole.area();
+        order.push_back({wide ? 0u : 1u, plan.sceneIndex, b});
+    }
+    // Wide lights first, in scene order; the local ones after them.
+    std::stable_sort(order.begin(), order.end(),
+                     [](const PackingEntry& a, const PackingEntry& b) { return a.key < b.key; });
+
     std::size_t used = 0;
     auto openPass = [&]() -> PassLights& {
         if (used == passes.size()) passes.emplace_back();
@@ -80,12 +132,21 @@ void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, std::vecto
         p.variant.type.fill(0);
         p.variant.technique.fill(0);
         p.variant.kernel.fill(0);
+        p.bounds = used == 1 ? whole : PixelRect{};
+        p.wsReach = DAabb{};
+        p.unbounded = used == 1;
         return p;
     };
+    // When every light fits in one pass, one pass it is (another pass over the triangles costs
+    // more than the pixels it would spare); otherwise local lights start passes of their own.
+    const bool onePass = order.size() <= SG_MAX_LIGHTS_PER_PASS;
     PassLights* pass = &openPass();
-    for (const ShadowLightPlan& plan : frame.lights) {
-        if (!plan.shaded || !plan.affectsView) continue;  // contributes nothing; visibility 1
-        if (pass->variant.lights == SG_MAX_LIGHTS_PER_PASS) pass = &openPass();
+    for (const PackingEntry& entry : order) {
+        const ShadowLightPlan& plan = frame.lights[static_cast<std::size_t>(entry.sceneLight)];
+        const bool local = !onePass && entry.key != 0u;
+        if (pass->variant.lights == SG_MAX_LIGHTS_PER_PASS || (local && (used == 1 || pass->variant.lights > 0))) {
+            pass = &openPass();
+        }
         const int slot = pass->variant.lights++;
         gpu::GpuLight& g = pass->lights[static_cast<std::size_t>(slot)];
         g = packLight(plan, wsCamera);
@@ -95,6 +156,13 @@ void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, std::vecto
         pass->variant.type[static_cast<std::size_t>(slot)] = static_cast<std::uint8_t>(g.type);
         pass->variant.technique[static_cast<std::size_t>(slot)] = static_cast<std::uint8_t>(g.technique);
         pass->variant.kernel[static_cast<std::size_t>(slot)] = static_cast<std::uint8_t>(g.kernel);
+        pass->bounds = unite(pass->bounds, entry.bounds);
+        if (entry.key == 0u || plan.light.type == LightType::Directional || !(plan.light.range > 0.0f)) {
+            pass->unbounded = true;
+        } else {
+            pass->wsReach.extend(plan.wsPosition - glm::dvec3(plan.light.range));
+            pass->wsReach.extend(plan.wsPosition + glm::dvec3(plan.light.range));
+        }
     }
     passes.resize(used);
 }

@@ -27,6 +27,34 @@ struct LitVariant {
     auto operator<=>(const LitVariant&) const = default;
 };
 
+/// A rectangle of pixels, [x0, x1) x [y0, y1), GL's bottom-up rows.
+struct PixelRect {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+
+    [[nodiscard]] bool empty() const { return x1 <= x0 || y1 <= y0; }
+    [[nodiscard]] long long area() const { return empty() ? 0 : static_cast<long long>(x1 - x0) * (y1 - y0); }
+    auto operator<=>(const PixelRect&) const = default;
+};
+
+/// What the packing needs of the view to bound each light on screen.
+struct ScreenView {
+    glm::dmat4 clipFromWorld{1.0};
+    int width = 1, height = 1;
+};
+
+/// The pixels light `plan` can reach: the screen rectangle of its range sphere; the whole screen
+/// for a light without a range (directional, or range 0) or whose sphere reaches behind the
+/// camera's near plane.
+PixelRect screenBounds(const ShadowLightPlan& plan, const ScreenView& view);
+
+/// A light on its way into a pass: 0 for a wide light (a quarter of the screen or more), 1 for
+/// a local one; its scene index and screen bounds.
+struct PackingEntry {
+    std::uint32_t key = 0;
+    int sceneLight = -1;
+    PixelRect bounds;
+};
+
 /// One main pass: its lights' records, the scene light of each slot, and its variant.
 struct PassLights {
     std::array<gpu::GpuLight, SG_MAX_LIGHTS_PER_PASS> lights{};
@@ -34,13 +62,26 @@ struct PassLights {
     std::array<gpu::GpuShadowLayer, SG_MAX_LIGHTS_PER_PASS * SG_MAX_LAYERS_PER_LIGHT> layers{};
     std::array<int, SG_MAX_LIGHTS_PER_PASS> sceneLight{};  ///< -1 for an unused slot
     LitVariant variant;
+    /// The pixels its lights can reach (the union of their bounds); the first pass covers the
+    /// whole screen (it resolves depth and adds the ambient term).
+    PixelRect bounds;
+    /// The world box its lights can reach (the union of their range spheres' boxes); empty for a
+    /// pass with a light of unbounded reach, which draws every mesh.
+    DAabb wsReach;
+    bool unbounded = true;
 };
 
 /// Packs the lights of `frame` that can shade the view (`shaded` and `affectsView`) into
-/// `passes`, SG_MAX_LIGHTS_PER_PASS per pass in scene order, positions relative to
-/// `wsCamera`. There is always at least one pass (it writes the ambient term and the AOVs).
-/// Reuses the capacity of `passes`: no allocation once it has grown.
-void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, std::vector<PassLights>& passes);
+/// `passes`, positions relative to `wsCamera`. When they all fit (SG_MAX_LIGHTS_PER_PASS), one
+/// whole-screen pass holds them. Otherwise lights that reach a quarter of the screen or more fill
+/// whole-screen passes of up to SG_MAX_LIGHTS_PER_PASS, in scene order, and every other light gets
+/// a pass of its own, bounded on screen and in the world by its range: a pixel then pays for the
+/// lights that can reach it, since a CPU rasteriser runs every light of a pass at every pixel of
+/// it (both sides of an `if` run; BENCHMARKS.md, fragment costs). There is always at least one
+/// pass (it resolves depth and writes the ambient term and the AOVs). Reuses the capacity of
+/// `passes` and `order` (scratch): no allocation once they have grown.
+void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const ScreenView& view,
+                std::vector<PassLights>& passes, std::vector<PackingEntry>& order);
 
 /// `light` as the shader reads it, without its shadow (technique None).
 gpu::GpuLight packLight(const ShadowLightPlan& light, const glm::dvec3& wsCamera);

@@ -9,6 +9,7 @@
 #include "render/light_packing.h"
 #include "render/lit_programs.h"
 #include "render/render_targets.h"
+#include "shadow/light_projection.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -82,6 +83,7 @@ struct Renderer::Impl {
     std::optional<render::DepthPrepassProgram> prepass;  ///< built on first use
     render::RenderTargets targets;
     std::vector<PassLights> passes;
+    std::vector<render::PackingEntry> packingOrder;  ///< scratch of packLights
     PassBlocks lightBlocks, layerBlocks;
     gpu::Sampler compareSampler, depthSampler;
     GLint uniformAlignment = 256;
@@ -93,9 +95,11 @@ struct Renderer::Impl {
     void uploadPasses();
     void bindShadowMaps(const PassLights& pass, const ShadowSystem& shadows) const;
     /// Draws every visible mesh with `uniforms`; `perMesh` sets the material uniforms.
+    /// Draws every visible mesh (those whose bounds meet `reach`, unless it is null) with
+    /// `uniforms`; `perMesh` sets the material uniforms.
     template <typename PerMesh>
-    void drawMeshes(World& world, const CameraView& cam, GLuint program, const render::MeshUniforms& uniforms, PerMesh&& perMesh,
-                    int& draws);
+    void drawMeshes(World& world, const CameraView& cam, GLuint program, const render::MeshUniforms& uniforms,
+                    const DAabb* reach, PerMesh&& perMesh, int& draws);
     void depthPrepass(World& world, const CameraView& cam, FrameStats& stats);
     void litPass(World& world, const CameraView& cam, std::size_t pass, const ShadowSystem& shadows,
                  const RenderOptions& options, FrameStats& stats);
@@ -160,11 +164,18 @@ void Renderer::Impl::bindShadowMaps(const PassLights& pass, const ShadowSystem& 
 
 template <typename PerMesh>
 void Renderer::Impl::drawMeshes(World& world, const CameraView& cam, GLuint program, const render::MeshUniforms& uniforms,
-                                PerMesh&& perMesh, int& draws) {
+                                const DAabb* reach, PerMesh&& perMesh, int& draws) {
     bool culling = false;
     gl.Disable(GL_CULL_FACE);
-    world.view<Mesh, WorldTransform, Material>().each([&](Entity, Mesh& mesh, WorldTransform& wt, Material& m) {
+    world.view<Mesh, WorldTransform, Material>().each([&](Entity e, Mesh& mesh, WorldTransform& wt, Material& m) {
         if (!wt.finite || mesh.data == nullptr || mesh.data->indices.empty()) return;
+        if (reach != nullptr) {
+            const WorldBounds* b = world.tryGet<WorldBounds>(e);
+            if (b != nullptr && !b->box.empty() &&
+                glm::any(glm::lessThan(b->box.max, reach->min) || glm::greaterThan(b->box.min, reach->max))) {
+                return;  // beyond the pass's lights
+            }
+        }
         if (culling == m.doubleSided) {
             culling = !m.doubleSided;
             if (culling) {
@@ -199,7 +210,7 @@ void Renderer::Impl::depthPrepass(World& world, const CameraView& cam, FrameStat
     gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl.DepthMask(GL_TRUE);
     gl.DepthFunc(GL_LESS);
-    drawMeshes(world, cam, id, prepass->mesh, [](const Mesh&, const Material&) {}, stats.mainDrawCalls);
+    drawMeshes(world, cam, id, prepass->mesh, nullptr, [](const Mesh&, const Material&) {}, stats.mainDrawCalls);
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
@@ -207,7 +218,9 @@ void Renderer::Impl::litPass(World& world, const CameraView& cam, std::size_t in
                              const RenderOptions& options, FrameStats& stats) {
     const PassLights& pass = passes[index];
     const render::LitProgram& p = programs.get(pass.variant, stats.programsCompiled);
-    targets.bindPass(static_cast<int>(index));
+    // Without AOVs every pass writes colour alone: the draw buffers set by the first stay (a
+    // framebuffer change makes a CPU rasteriser flush its batch).
+    if (index == 0 || options.aovs) targets.bindPass(static_cast<int>(index));
     lightBlocks.bind(SG_BINDING_LIGHTS, index);
     layerBlocks.bind(SG_BINDING_LAYERS, index);
     bindShadowMaps(pass, shadows);
@@ -221,6 +234,13 @@ void Renderer::Impl::litPass(World& world, const CameraView& cam, std::size_t in
         gl.BlendFunc(GL_ONE, GL_ONE);
     }
     const GLuint id = p.program.get();
+    // A pass lights only its lights' screen bounds. With AOVs every pass covers the screen, so
+    // that each light's visibility is written wherever there is geometry.
+    const bool scissored = !options.aovs && pass.bounds != render::PixelRect{0, 0, options.width, options.height};
+    if (scissored) {
+        gl.Enable(GL_SCISSOR_TEST);
+        gl.Scissor(pass.bounds.x0, pass.bounds.y0, pass.bounds.x1 - pass.bounds.x0, pass.bounds.y1 - pass.bounds.y0);
+    }
     gl.UseProgram(id);
     const MainCamera mc = mainCamera(cam);
     gl.ProgramUniformMatrix4fv(id, p.mesh.clipFromCs, 1, GL_FALSE, glm::value_ptr(mc.clipFromCs));
@@ -228,7 +248,7 @@ void Renderer::Impl::litPass(World& world, const CameraView& cam, std::size_t in
     const glm::vec3 ambient = index == 0 ? options.ambient : glm::vec3(0.0f);
     gl.ProgramUniform3fv(id, p.ambient, 1, glm::value_ptr(ambient));
     drawMeshes(
-        world, cam, id, p.mesh,
+        world, cam, id, p.mesh, scissored && !pass.unbounded ? &pass.wsReach : nullptr,
         [&p, id](const Mesh& mesh, const Material& m) {
             gl.ProgramUniform1i(id, p.receiveShadows, mesh.receiveShadows ? 1 : 0);
             gl.ProgramUniform3fv(id, p.albedo, 1, glm::value_ptr(m.albedo));
@@ -237,6 +257,7 @@ void Renderer::Impl::litPass(World& world, const CameraView& cam, std::size_t in
         },
         stats.mainDrawCalls);
     gl.Disable(GL_BLEND);
+    gl.Disable(GL_SCISSOR_TEST);
 }
 
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
@@ -248,7 +269,8 @@ void Renderer::render(World& world, const CameraView& camera, const ShadowSystem
                       const RenderOptions& options, FrameStats& stats) {
     Impl& r = *impl_;
     r.lightCount = shadows.frame().lights.size();
-    render::packLights(shadows.frame(), camera.wsPosition, r.passes);
+    const render::ScreenView view{cameraClipFromWorld(camera), options.width, options.height};
+    render::packLights(shadows.frame(), camera.wsPosition, view, r.passes, r.packingOrder);
     r.choosePrograms(options, stats);
     r.uploadPasses();
     r.targets.ensure(options.width, options.height, options.aovs, static_cast<int>(r.passes.size()));
@@ -264,11 +286,16 @@ void Renderer::render(World& world, const CameraView& camera, const ShadowSystem
         gpu::ScopedPass timed(timer, "Main/DepthPrepass");
         r.depthPrepass(world, camera, stats);
     }
-    for (std::size_t pass = 0; pass < r.passes.size(); ++pass) {
-        gpu::ScopedPass timed(timer, pass == 0 ? "Main/Lit" : "Main/Lit" + std::to_string(pass));
-        r.litPass(world, camera, pass, shadows, options, stats);
-        ++stats.mainPasses;
+    {
+        gpu::ScopedPass timed(timer, "Main/Lit");
+        r.litPass(world, camera, 0, shadows, options, stats);
     }
+    if (r.passes.size() > 1) {
+        // Timed as one: a fence per small pass would cost more than many of them.
+        gpu::ScopedPass timed(timer, "Main/LitMore");
+        for (std::size_t pass = 1; pass < r.passes.size(); ++pass) r.litPass(world, camera, pass, shadows, options, stats);
+    }
+    stats.mainPasses += static_cast<int>(r.passes.size());
     gl.DepthMask(GL_TRUE);
     gl.DepthFunc(GL_LESS);
     gl.BindVertexArray(0);

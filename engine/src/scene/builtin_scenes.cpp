@@ -250,12 +250,48 @@ Result<Scene> makeBunnySpot() {
     return scene;
 }
 
+/// The many-lights benchmark: a 40 m floor with an 8 x 8 grid of boxes, and `lights` small
+/// lights (4 m range) over the boxes, spot and point in turn, each with its own shadow map.
+/// `lights` = 64 is builtin:many-lights, 1 is builtin:many-lights-1 (the same scene, one light).
+Scene makeManyLights(int lights) {
+    Scene scene;
+    scene.name = lights == 1 ? "many-lights-1" : "many-lights";
+    World& w = scene.world;
+    addMeshInstance(w, "floor", makePlaneMesh(20.0f, 16), at(0, 0, 0), matte(0.75f, 0.75f, 0.72f));
+    const auto box = makeBoxMesh(glm::vec3(0.4f));
+    for (int i = 0; i < 64; ++i) {
+        const double x = -17.5 + 5.0 * (i % 8), z = -17.5 + 5.0 * (i / 8);
+        addMeshInstance(w, "box " + std::to_string(i), box, at(x + 0.6, 0.4, z + 0.3), solid(0.8f, 0.55f, 0.35f));
+        if (i >= lights) continue;
+        Light light;
+        light.type = i % 2 == 0 ? LightType::Spot : LightType::Point;
+        light.color = i % 3 == 0 ? glm::vec3(1.0f, 0.85f, 0.7f) : glm::vec3(0.75f, 0.85f, 1.0f);
+        light.intensity = 8.0f;
+        light.range = 4.0f;
+        light.outerConeAngle = 0.9f;
+        light.innerConeAngle = 0.7f;
+        light.radius = 0.05f;
+        Shadow shadow;
+        shadow.technique = light.type == LightType::Spot ? ShadowTechnique::Pcf : ShadowTechnique::Hard;
+        shadow.mapSize = 256;
+        addLight(scene, "light " + std::to_string(i), light, shadow, {x, 2.5, z}, {0, -1, 0});
+    }
+    Camera camera;
+    camera.yfov = 0.9f;
+    camera.znear = 0.5f;
+    camera.zfar = 200.0f;
+    addCamera(scene, "camera", camera, {0.0, 34.0, 30.0}, {0.0, 0.0, -2.0});
+    return scene;
+}
+
 const std::map<std::string, std::function<Result<Scene>()>>& registry() {
     static const std::map<std::string, std::function<Result<Scene>()>> scenes = {
         {"default", [] { return Result<Scene>(makeDefault()); }},
         {"plates", [] { return Result<Scene>(makePlatesScene()); }},
         {"bunny", makeBunny},
         {"bunny-spot", makeBunnySpot},
+        {"many-lights", [] { return Result<Scene>(makeManyLights(64)); }},
+        {"many-lights-1", [] { return Result<Scene>(makeManyLights(1)); }},
     };
     return scenes;
 }
