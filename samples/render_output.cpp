@@ -207,7 +207,12 @@ std::string statsJson(const Scene& scene, const std::vector<FrameStats>& frames,
                             {"mainMs", f.passMs("Main/")}});
     }
     j["perFrame"] = perFrame;
-    j["warnings"] = last.warnings;
+    // One object per warning; "message" is the line the CLI prints on stderr.
+    nlohmann::json warnings = nlohmann::json::array();
+    for (const Warning& w : last.warnings) {
+        warnings.push_back({{"code", warningCodeName(w.code)}, {"element", w.element}, {"message", w.message}});
+    }
+    j["warnings"] = warnings;
     return j.dump(2) + "\n";
 }
 

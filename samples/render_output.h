@@ -47,8 +47,9 @@ struct Spread {
 };
 [[nodiscard]] Spread spreadOf(std::vector<double> values);
 
-/// stats.json: the light mapping, the last frame's counters, and per-pass timing spreads over
-/// `frames` (the first, warm-up frame left out when there are more).
+/// stats.json: the light mapping, the last frame's counters and warnings (each
+/// `{"code", "element", "message"}`, codes as `warningCodeName` spells them), and per-pass
+/// timing spreads over `frames` (the first, warm-up frame left out when there are more).
 [[nodiscard]] std::string statsJson(const Scene& scene, const std::vector<FrameStats>& frames, int width,
                                     int height, const std::string& technique);
 

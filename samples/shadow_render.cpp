@@ -173,7 +173,7 @@ int run(const Options& o) {
     const std::string json =
         samples::statsJson(scene, frames, options.width, options.height, o.technique.value_or(""));
     if (Status s = writeTextFileAtomic(o.out + "/stats.json", json); !s) return fail(kExitFailure, s.error().message);
-    for (const std::string& w : frames.back().warnings) std::cerr << "shadow_render: warning: " << w << "\n";
+    for (const Warning& w : frames.back().warnings) std::cerr << "shadow_render: warning: " << w.message << "\n";
     return 0;
 }
 

@@ -1,17 +1,55 @@
-// Helpers every test binary may use: a fresh temporary folder per test, and running one of the
-// project's programs with its output captured. Header-only: test sources are globbed per folder.
+// Helpers every test binary may use: a fresh temporary folder per test, running one of the
+// project's programs with its output captured, and finding warnings by code and element.
+// Header-only: test sources are globbed per folder.
 #pragma once
 
+#include <shadow/warnings.h>
+
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <ostream>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <vector>
+
+namespace shadow {
+
+/// How GoogleTest prints a `Warning` in a failure: code, element and message.
+inline void PrintTo(const Warning& w, std::ostream* os) {
+    *os << warningCodeName(w.code) << " [" << w.element << "] " << w.message;
+}
+
+}  // namespace shadow
 
 namespace shadow::test {
+
+/// How many of `warnings` have `code` and name `element`.
+[[nodiscard]] inline long countWarnings(const std::vector<Warning>& warnings, WarningCode code,
+                                        std::string_view element) {
+    return std::count_if(warnings.begin(), warnings.end(),
+                         [&](const Warning& w) { return w.code == code && w.element == element; });
+}
+
+/// Whether some warning has `code` and names `element`.
+[[nodiscard]] inline bool hasWarning(const std::vector<Warning>& warnings, WarningCode code, std::string_view element) {
+    return countWarnings(warnings, code, element) > 0;
+}
+
+/// Every warning, one per line, for a failure message.
+[[nodiscard]] inline std::string describe(const std::vector<Warning>& warnings) {
+    std::ostringstream out;
+    for (const Warning& w : warnings) {
+        PrintTo(w, &out);
+        out << "\n";
+    }
+    return out.str();
+}
 
 /// A fresh folder under $SHADOW_TEST_TMP (or the system temp folder), removed afterwards.
 class TempDir {

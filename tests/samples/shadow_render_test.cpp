@@ -126,10 +126,42 @@ TEST(ShadowRenderCli, DefaultSceneWritesEveryOutputOfTheContract) {
     EXPECT_EQ(stats["size"], nlohmann::json::array({kWidth, kHeight}));
     ASSERT_TRUE(stats["lights"].is_array());
     ASSERT_EQ(stats["lights"].size(), 3u);
+    EXPECT_EQ(stats["warnings"], nlohmann::json::array()) << "the default scene is in range";
     for (int i = 0; i < 3; ++i) {
         EXPECT_EQ(stats["lights"][i].value("visibility", ""),
                   "visibility_" + std::to_string(i) + ".exr");
     }
+}
+
+// A setting out of range is clamped and reported: one line on stderr, and in stats.json an
+// object with the warning's code, the light it concerns and the same line.
+TEST(ShadowRenderCli, ClampedSettingIsReportedInStatsJsonAndOnStderr) {
+    TempDir tmp;
+    const std::string scene = tmp / "lamp.gltf";
+    {
+        std::ofstream f(scene);
+        f << R"({
+  "asset": {"version": "2.0"},
+  "extensions": {"KHR_lights_punctual": {"lights": [
+    {"type": "spot", "intensity": 20, "spot": {"outerConeAngle": 0.7},
+     "extras": {"shadow": {"technique": "pcf", "mapSize": 256, "pcfSamples": 100}}}]}},
+  "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.05, "zfar": 100}}],
+  "nodes": [
+    {"name": "lamp", "translation": [0, 4, 0], "rotation": [-0.7071068, 0, 0, 0.7071068],
+     "extensions": {"KHR_lights_punctual": {"light": 0}}},
+    {"name": "camera", "translation": [0, 2, 6], "camera": 0}
+  ]
+})";
+    }
+    const std::string out = tmp / "out";
+    const CliRun run = runCli(tmp, quoted(scene) + " --size 32x18 --out " + quoted(out));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const std::string line = "lamp: pcfSamples 100 clamped to 64";
+    EXPECT_NE(run.output.find("shadow_render: warning: " + line + "\n"), std::string::npos) << run.output;
+    const nlohmann::json stats = readJson(out + "/stats.json");
+    ASSERT_FALSE(stats.is_discarded()) << "stats.json is not JSON";
+    const nlohmann::json expected = {{{"code", "SettingClamped"}, {"element", "lamp"}, {"message", line}}};
+    EXPECT_EQ(stats["warnings"], expected) << stats["warnings"].dump(2);
 }
 
 struct BadInput {

@@ -1,6 +1,7 @@
 // Acceptance tests of the soft-shadow techniques (PCF, PCSS) against geometry and closed
-// forms, and of the hard technique where soft and hard must agree: no acne on a lit plane, no
-// gap between a caster and its shadow, and a scene whose lights each keep their own technique.
+// forms, and of the hard technique where soft and hard must agree: no acne on a lit plane, and
+// no gap between a caster and its shadow. (Lights of different techniques in one frame:
+// mixed_techniques_test.cpp.)
 //
 // Visibility is read from the per-light AOVs and mapped to world points with the position AOV,
 // so every expectation is stated in metres on the receiver, not in pixels.
@@ -8,8 +9,10 @@
 #include <shadow/shadow_system.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "shadow/soft_test_support.h"
@@ -36,9 +39,18 @@ constexpr double kFarPlateHeight = 3.0;
 const glm::dvec3 kPlateHalf{0.75, 0.0005, 0.5};
 constexpr double kNearPlateZ = -0.8;  // plate covers z in [-1.3, -0.3]
 constexpr double kFarPlateZ = 0.6;    // plate covers z in [0.1, 1.1]
-/// Allowed relative error of the measured 5-95 % band against the closed form. Measured on
-/// llvmpipe: near 0.0444 m against 0.0439 m, far 0.4857 m against 0.4832 m (within 1.2 %).
-constexpr double kBandTolerance = 0.25;
+/// Allowed relative error of the measured 5-95 % band against the closed form: three times the
+/// largest deviation measured, and no less than 3 %. Measured on llvmpipe (LLVM 15.0.6, 256
+/// bits) by `shadow_gl_tests --gtest_filter=SoftShadow.PcssContactHardeningMatchesGeometry`
+/// (the "[ measured ]" lines): near 0.04441 m against 0.04393 m (+1.10 %), far 0.48535 m
+/// against 0.48323 m (+0.44 %). (The figures recorded here before the min/max pyramid, 13e6d50,
+/// were within 0.1 % of these.)
+constexpr double kBandTolerance = 0.033;
+/// Allowed distance (m) of the profile's 50 % point from the geometric edge, x = 0: half a
+/// shadow-map texel at the ground (2 x 6 m x tan(0.55 rad) / 2048 = 3.6 mm a texel), a floor
+/// well above three times what the same command measures (near 0.00000 m, far -0.00012 m). A
+/// map or a kernel shifted by half a texel or more fails.
+constexpr double kMidpointTolerance = 0.0018;
 
 struct EdgeMeasurement {
     double measured = 0.0;   ///< width (m) of the 5-95 % band of the mean profile
@@ -122,24 +134,22 @@ TEST(SoftShadow, PcssContactHardeningMatchesGeometry) {
     const EdgeMeasurement farEdge =
         measureEdge(runner, scene, farCamera, kFarPlateHeight, 0.8, 1.6, 0.6);
 
-    std::printf(
-        "[ measured ] PCSS near plate (h=%.1f m): 5-95%% band %.4f m, closed form %.4f m (full "
-        "%.4f m), 50%% at x=%.4f m\n",
-        kNearPlateHeight, nearEdge.measured, nearEdge.expected, nearEdge.fullWidth,
-        nearEdge.midpoint);
-    std::printf(
-        "[ measured ] PCSS far plate  (h=%.1f m): 5-95%% band %.4f m, closed form %.4f m (full "
-        "%.4f m), 50%% at x=%.4f m\n",
-        kFarPlateHeight, farEdge.measured, farEdge.expected, farEdge.fullWidth, farEdge.midpoint);
+    for (const auto& [name, height, e] :
+         {std::tuple{"near", kNearPlateHeight, nearEdge}, std::tuple{"far ", kFarPlateHeight, farEdge}}) {
+        std::printf(
+            "[ measured ] PCSS %s plate (h=%.1f m): 5-95%% band %.5f m, closed form %.5f m (%+.2f %%; full "
+            "%.4f m), 50%% at x=%+.5f m (%.2f %% of the full width)\n",
+            name, height, e.measured, e.expected, 100.0 * (e.measured / e.expected - 1.0), e.fullWidth, e.midpoint,
+            100.0 * std::abs(e.midpoint) / e.fullWidth);
+    }
     EXPECT_GE(nearEdge.minPixelsPerBin, 20) << "too few pixels per profile bin near the near edge";
     EXPECT_GE(farEdge.minPixelsPerBin, 20) << "too few pixels per profile bin near the far edge";
     EXPECT_NEAR(nearEdge.measured, nearEdge.expected, kBandTolerance * nearEdge.expected);
     EXPECT_NEAR(farEdge.measured, farEdge.expected, kBandTolerance * farEdge.expected);
     EXPECT_LT(nearEdge.measured, farEdge.measured) << "no contact hardening";
-    // The 50 % point of a symmetric profile is the geometric edge, x = 0: within a tenth of
-    // the full width plus two texels (3.2 mm each at the ground) for rasterisation.
-    EXPECT_NEAR(nearEdge.midpoint, 0.0, 0.1 * nearEdge.fullWidth + 0.0065);
-    EXPECT_NEAR(farEdge.midpoint, 0.0, 0.1 * farEdge.fullWidth + 0.0065);
+    // The 50 % point of a symmetric profile is the geometric edge, x = 0.
+    EXPECT_NEAR(nearEdge.midpoint, 0.0, kMidpointTolerance);
+    EXPECT_NEAR(farEdge.midpoint, 0.0, kMidpointTolerance);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -148,6 +158,7 @@ TEST(SoftShadow, PcssContactHardeningMatchesGeometry) {
 
 /// Largest fraction of lit-plane pixels allowed to read visibility < 0.5. Measured on llvmpipe:
 /// 0 for every technique, light and elevation (the taps lie on the receiver's tangent plane).
+/// No multiple of 0 is a tolerance: this is a floor, 8-18 of the 7,600-18,000 pixels judged.
 constexpr double kMaxAcneFraction = 0.001;
 constexpr std::array<ShadowTechnique, 3> kTechniques{ShadowTechnique::Hard, ShadowTechnique::Pcf,
                                                      ShadowTechnique::Pcss};
@@ -229,8 +240,11 @@ TEST(SoftShadow, NoAcneOnLitPlaneAtAnyElevation) {
 // No peter-panning: a caster resting on the plane casts a shadow that starts at its base.
 // ---------------------------------------------------------------------------------------------
 
-/// Largest lit gap (in shadow texels) allowed between a box's base and its shadow.
-constexpr double kMaxGapTexels = 2.0;
+/// Largest lit gap (in shadow texels) allowed between a box's base and its shadow: one texel, a
+/// floor (a ground pixel here is ~0.4 texel) since `shadow_gl_tests
+/// --gtest_filter=SoftShadow.BoxShadowTouchesBox` measures no lit pixel beyond the base at all
+/// (gap 0.00 texels, every technique and elevation, llvmpipe LLVM 15.0.6).
+constexpr double kMaxGapTexels = 1.0;
 /// x of the shadowed face of the casters below: the light travels towards +x.
 constexpr double kBaseX = 0.5;
 
@@ -348,82 +362,6 @@ TEST(SoftShadow, ThinWallShadowGapStaysWithinTheDepthBias) {
                 << techniqueName(technique) << ", sun at " << elevationDeg << " deg";
         }
     }
-}
-
-// ---------------------------------------------------------------------------------------------
-// Mixed techniques: each light is sampled with its own technique in one frame.
-// ---------------------------------------------------------------------------------------------
-
-/// Fraction of ground pixels in (0.05, 0.95) allowed for a hard light (edge pixels only).
-constexpr double kMaxHardPenumbraFraction = 0.015;
-/// Fraction a soft light must exceed: measured 0.033 (PCSS sun) and 0.050 (PCF spot) against
-/// 0.0004-0.0017 for the same lights forced to hard.
-constexpr double kMinSoftPenumbraFraction = 0.02;
-
-TEST(Mixed, EachLightUsesItsOwnTechnique) {
-    Scene scene;
-    test::addGround(scene, 6.0f);
-    // Floating boxes (1.3 m above the ground) so every technique has room for a penumbra.
-    const glm::dvec3 half{0.6, 0.2, 0.6};
-    test::addBox(scene, "sun box", {-2.5, 1.5, -1.0}, half);
-    test::addBox(scene, "spot box", {2.5, 1.5, -1.5}, half);
-    test::addBox(scene, "bulb box", {0.0, 1.5, 2.0}, half);
-
-    Light sun = test::pointSizedLight(LightType::Directional);
-    sun.angularRadius = 0.1f;
-    addLight(scene, "sun", sun, test::shadowWith(ShadowTechnique::Pcss, 1024), {0, 10, 0},
-             glm::normalize(glm::dvec3(0.4, -1.0, 0.3)));
-
-    Light spot = test::pointSizedLight(LightType::Spot, 0.6f);
-    Shadow pcf = test::shadowWith(ShadowTechnique::Pcf, 1024);
-    pcf.pcfRadius = 0.15f;
-    const glm::dvec3 spotPosition{2.8, 5.0, -1.2};
-    const glm::dvec3 spotDirection = glm::normalize(glm::dvec3(2.3, 0.0, -2.0) - spotPosition);
-    addLight(scene, "spot", spot, pcf, spotPosition, spotDirection);
-
-    Light bulb = test::pointSizedLight(LightType::Point);
-    bulb.radius = 0.05f;
-    addLight(scene, "bulb", bulb, test::shadowWith(ShadowTechnique::Hard, 1024), {0.0, 3.5, 2.4},
-             {0, -1, 0});
-    addCamera(scene, "camera", Camera{}, {0.0, 10.0, 10.0}, {0.0, 0.0, 0.0});
-
-    test::glContext();
-    FrameRunner runner;
-    auto penumbraFractions = [&] {
-        const test::RenderedFrame frame = test::renderFrame(runner, scene, 256, 192);
-        test::expectSaneAovs(frame.images);
-        std::array<double, 3> f{};
-        for (std::size_t i = 0; i < 3; ++i) {
-            const GroundCounts c = countGround(frame.images, i, [&](const glm::dvec3& p) {
-                return i != 1 || test::insideCone(p, spotPosition, spotDirection, 0.58);
-            });
-            EXPECT_GT(c.dark, c.ground / 100)
-                << "light " << i << " casts (almost) no shadow in view";
-            f[i] = c.penumbraFraction();
-        }
-        return f;
-    };
-    const std::array<double, 3> own = penumbraFractions();
-    for (Entity light : scene.lights)
-        scene.world.get<Shadow>(light).technique = ShadowTechnique::Hard;
-    const std::array<double, 3> allHard = penumbraFractions();
-    std::printf(
-        "[ measured ] penumbra fraction own technique: sun/pcss %.4f, spot/pcf %.4f, bulb/hard "
-        "%.4f\n",
-        own[0], own[1], own[2]);
-    std::printf("[ measured ] penumbra fraction all hard:      sun %.4f, spot %.4f, bulb %.4f\n",
-                allHard[0], allHard[1], allHard[2]);
-
-    EXPECT_LT(own[2], kMaxHardPenumbraFraction) << "the hard light is not binary";
-    for (std::size_t i = 0; i < 2; ++i) {
-        // A soft technique: a penumbra band several times wider than a hard edge's.
-        EXPECT_GT(own[i], kMinSoftPenumbraFraction) << "light " << i << " shows no soft penumbra";
-        EXPECT_LT(allHard[i], kMaxHardPenumbraFraction)
-            << "light " << i << " forced to hard is not binary";
-        EXPECT_LT(allHard[i], 0.5 * own[i]) << "light " << i << ": forcing hard did not sharpen it";
-    }
-    // The hard light did not change.
-    EXPECT_NEAR(allHard[2], own[2], 1e-9);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "stability/stability_test_support.h"
+#include "test_support.h"
 
 namespace shadow {
 namespace {
@@ -136,12 +137,11 @@ TEST(Stability, EmitterSizesBeyondTheirRangeAreClampedWithAWarning) {
     addLight(scene, "sun", sun, test::shadowWith(ShadowTechnique::Pcss, 256), {0, 8, 0},
              {0.2, -1, 0.1});
     const test::RenderedFrame frame = render(scene);
-    auto warned = [&](const std::string& text) {
-        return std::any_of(frame.stats.warnings.begin(), frame.stats.warnings.end(),
-                           [&](const std::string& w) { return w.find(text) != std::string::npos; });
-    };
-    EXPECT_TRUE(warned("spot: radius")) << "no warning for the spot's radius";
-    EXPECT_TRUE(warned("sun: angularRadius")) << "no warning for the sun's angular radius";
+    const std::vector<Warning>& w = frame.stats.warnings;
+    // One field out of range each: the spot's radius, the sun's angular radius.
+    EXPECT_EQ(test::countWarnings(w, WarningCode::SettingClamped, "spot"), 1) << test::describe(w);
+    EXPECT_EQ(test::countWarnings(w, WarningCode::SettingClamped, "sun"), 1) << test::describe(w);
+    EXPECT_EQ(w.size(), 2u) << test::describe(w);
 }
 
 }  // namespace

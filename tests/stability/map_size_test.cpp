@@ -12,6 +12,7 @@
 #include <string>
 
 #include "stability/stability_test_support.h"
+#include "test_support.h"
 
 namespace shadow {
 namespace {
@@ -30,12 +31,6 @@ Scene boxScene(LightType type, int mapSize) {
     addLight(scene, "light", light, test::shadowWith(ShadowTechnique::Hard, mapSize),
              {0.3, 4.0, 0.2}, glm::normalize(glm::dvec3(0.1, -1.0, 0.05)));
     return scene;
-}
-
-bool warned(const std::vector<std::string>& warnings, const std::string& a, const std::string& b) {
-    return std::any_of(warnings.begin(), warnings.end(), [&](const std::string& w) {
-        return w.find(a) != std::string::npos && w.find(b) != std::string::npos;
-    });
 }
 
 /// MemAvailable of /proc/meminfo in GiB (0 when unknown).
@@ -62,7 +57,7 @@ TEST(Stability, TinyMapsOfOneAndThreeTexelsStayFinite) {
                 scene, 96, 72, name,
                 [&](ShadowTechnique, const test::RenderedFrame& frame, FrameRunner& runner) {
                     EXPECT_EQ(runner.shadows().frame().lights.at(0).mapSize, size);
-                    EXPECT_TRUE(frame.stats.warnings.empty()) << name;
+                    EXPECT_TRUE(frame.stats.warnings.empty()) << name << ":\n" << test::describe(frame.stats.warnings);
                 });
         }
     }
@@ -80,7 +75,8 @@ TEST(Stability, MapSizeBeyondTheGlLimitIsClampedWithAWarning) {
         test::expectSaneFrame(frame.images, runner.shadows(), "INT_MAX map");
         const ShadowLightPlan& plan = runner.shadows().frame().lights.at(0);
         EXPECT_EQ(plan.settings.mapSize, 2048);
-        EXPECT_TRUE(warned(frame.stats.warnings, "light: mapSize", "clamped to 2048"));
+        EXPECT_EQ(test::countWarnings(frame.stats.warnings, WarningCode::SettingClamped, "light"), 1)
+            << test::describe(frame.stats.warnings);
         EXPECT_GT(test::countGround(frame.images, 0).dark, 100);
     }
 }
@@ -112,7 +108,8 @@ TEST(Stability, MapAtTheGlLimitRendersWhenMemoryAllows) {
         test::expectSaneAovs(frame.images);
         const ShadowLightPlan& plan = runner.shadows().frame().lights.at(0);
         EXPECT_EQ(plan.mapSize, info.maxTextureSize);
-        EXPECT_TRUE(warned(frame.stats.warnings, "light: mapSize", "clamped"));
+        EXPECT_TRUE(test::hasWarning(frame.stats.warnings, WarningCode::SettingClamped, "light"))
+            << test::describe(frame.stats.warnings);
         EXPECT_GT(test::countGround(frame.images, 0).dark, 100);
         // The depths themselves: finite and inside the layer's range.
         const test::ShadowMapCheck maps = test::checkShadowMaps(runner.shadows());
@@ -128,7 +125,8 @@ TEST(Stability, MapAtTheGlLimitRendersWhenMemoryAllows) {
         test::reportFigure("point asking for INT_MAX: map edge after the budget", plan.mapSize);
         EXPECT_LE(static_cast<std::int64_t>(plan.mapSize) * plan.mapSize * 6,
                   ShadowLimits{}.maxShadowTexels);
-        EXPECT_TRUE(warned(frame.stats.warnings, "light: mapSize", "shadow texel budget"));
+        EXPECT_TRUE(test::hasWarning(frame.stats.warnings, WarningCode::MapSizeReduced, "light"))
+            << test::describe(frame.stats.warnings);
     }
 }
 
@@ -176,11 +174,9 @@ TEST(Stability, TexelBudgetHalvesTheFarthestLightsFirst) {
     EXPECT_EQ(mapSizeOf(frame, "spot1"), 1024);
     EXPECT_EQ(mapSizeOf(frame, "spot2"), 512);
     EXPECT_EQ(mapSizeOf(frame, "spot3"), 512);
-    EXPECT_TRUE(
-        warned(frame.warnings, "spot2: mapSize 1024 reduced to 512", "shadow texel budget"));
-    EXPECT_TRUE(
-        warned(frame.warnings, "spot3: mapSize 1024 reduced to 512", "shadow texel budget"));
-    EXPECT_EQ(frame.warnings.size(), 2u);
+    EXPECT_TRUE(test::hasWarning(frame.warnings, WarningCode::MapSizeReduced, "spot2"));
+    EXPECT_TRUE(test::hasWarning(frame.warnings, WarningCode::MapSizeReduced, "spot3"));
+    EXPECT_EQ(frame.warnings.size(), 2u) << test::describe(frame.warnings);
     // Deterministic: the same decision every frame.
     const ShadowFrame& again = b.prepare(planner);
     EXPECT_EQ(mapSizeOf(again, "spot2"), 512);
@@ -207,12 +203,11 @@ TEST(Stability, TexelBudgetDropsTheFarthestShadowsWhenHalvingIsNotEnough) {
     EXPECT_EQ(sun.name, "sun");
     EXPECT_TRUE(sun.hasMap());
     EXPECT_EQ(sun.mapSize, 256);
-    EXPECT_TRUE(warned(frame.warnings, "sun: mapSize 1024 reduced to 256", "budget"));
+    EXPECT_TRUE(test::hasWarning(frame.warnings, WarningCode::MapSizeReduced, "sun"));
     for (int i = 0; i < 4; ++i) {
-        EXPECT_TRUE(
-            warned(frame.warnings, "spot" + std::to_string(i) + ": shadow dropped", "budget"));
+        EXPECT_TRUE(test::hasWarning(frame.warnings, WarningCode::ShadowDropped, "spot" + std::to_string(i)));
     }
-    EXPECT_EQ(frame.warnings.size(), 5u);
+    EXPECT_EQ(frame.warnings.size(), 5u) << test::describe(frame.warnings);
 }
 
 TEST(Stability, TexelBudgetRanksLightsThatCannotReachTheViewAsFarthest) {

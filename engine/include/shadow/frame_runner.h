@@ -11,6 +11,7 @@ namespace shadow {
 
 /// Everything a frame needs, in the documented order: animate, transforms, shadow prepare,
 /// shadow render, main pass. A convenience for samples and games with no loop of their own.
+/// Requires a current OpenGL 4.5 context with `loadGl` done, from construction on.
 class FrameRunner {
 public:
     FrameRunner();
@@ -18,7 +19,10 @@ public:
     FrameRunner(const FrameRunner&) = delete;
     FrameRunner& operator=(const FrameRunner&) = delete;
 
-    /// Runs one frame of `scene` at time `t` (s) through camera entity `camera`.
+    /// Runs one frame of `scene` at time `t` (s) through camera entity `camera`. Bad input
+    /// (settings out of range, non-finite transforms) never throws: it is clamped or skipped and
+    /// reported in `FrameStats::warnings`. Throws `GlError` only when the GL side fails (a
+    /// shader that does not compile, an incomplete framebuffer: a broken build or driver).
     FrameStats runFrame(Scene& scene, double t, Entity camera, const RenderOptions& options);
 
     [[nodiscard]] ShadowSystem& shadows();

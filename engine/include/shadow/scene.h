@@ -2,11 +2,15 @@
 //
 // Frame order (fixed): animate -> updateTransforms -> ShadowSystem::prepare ->
 // ShadowSystem::render -> Renderer::render.
+//
+// Nothing declared here throws on bad input (files, settings, NaN transforms): loaders return an
+// `Error`, systems skip or clamp and report. Only running out of memory throws (std::bad_alloc).
 #pragma once
 
 #include <shadow/components.h>
 #include <shadow/ecs.h>
 #include <shadow/result.h>
+#include <shadow/warnings.h>
 
 #include <string>
 #include <vector>
@@ -23,9 +27,9 @@ struct Scene {
     std::vector<Entity> cameras;
     /// Longest animation clip (s); 0 when nothing is keyframed.
     double animationDuration = 0.0;
-    /// Problems the loader let pass under lenient `GltfLoadOptions`, one line each, naming the
-    /// file and element.
-    std::vector<std::string> warnings;
+    /// Problems the loader let pass under lenient `GltfLoadOptions`
+    /// (`ShadowSettingsIgnored`); each message names the file and the element.
+    std::vector<Warning> warnings;
 };
 
 /// How `loadGltf` treats a light's or mesh node's `extras.shadow` that does not parse (a
@@ -33,9 +37,9 @@ struct Scene {
 struct GltfLoadOptions {
     /// true (the default, and the CLIs): the load fails with one message naming the element.
     /// false (a game that must show what it can): that `extras.shadow` object is ignored, the
-    /// light or mesh keeps the documented defaults (a light: hard shadows, mapSize 1024), and
-    /// the message goes to `Scene::warnings`. Either way one light's settings never affect
-    /// another light. Errors outside `extras.shadow` always fail the load.
+    /// light or mesh keeps the documented defaults (a light: hard shadows, mapSize 1024), and a
+    /// `ShadowSettingsIgnored` warning goes to `Scene::warnings`. Either way one light's
+    /// settings never affect another light. Errors outside `extras.shadow` always fail the load.
     bool strictShadowSettings = true;
 };
 
@@ -61,6 +65,10 @@ struct TransformStats {
 /// It does not affect other entities.
 TransformStats updateTransforms(World& world);
 
+/// Appends one `NonFiniteTransform` warning per entity of `stats.skipped`, in that order; the
+/// element is the entity's `Name`, or `entity <index>` without one.
+void reportSkippedTransforms(const World& world, const TransformStats& stats, std::vector<Warning>& warnings);
+
 /// Camera pose and projection for one frame, derived from a camera entity.
 struct CameraView {
     glm::dvec3 wsPosition{0.0};
@@ -78,10 +86,12 @@ struct CameraView {
 /// A camera looking at the scene's bounds from above and to the side; for scenes without one.
 [[nodiscard]] Entity addDefaultCamera(Scene& scene);
 
-/// Loads `SCENE` as the CLI names it: a `.gltf`/`.glb` path or `builtin:NAME`.
+/// Loads `SCENE` as the CLI names it: a `.gltf`/`.glb` path or `builtin:NAME`. Never throws: bad
+/// input is an error value naming the file and element.
 [[nodiscard]] Result<Scene> loadScene(const std::string& spec, const GltfLoadOptions& options = {});
 
-/// Loads a glTF 2.0 file (`.gltf` with embedded or external buffers, or `.glb`).
+/// Loads a glTF 2.0 file (`.gltf` with embedded or external buffers, or `.glb`). Never throws:
+/// a bad file is an error value naming the file and element.
 [[nodiscard]] Result<Scene> loadGltf(const std::string& path, const GltfLoadOptions& options = {});
 
 /// Names of the built-in procedural scenes.

@@ -17,6 +17,7 @@
 #include <shadow/components.h>
 #include <shadow/scene.h>
 #include <shadow/stats.h>
+#include <shadow/warnings.h>
 
 #include <cstdint>
 #include <memory>
@@ -82,8 +83,8 @@ struct ShadowFrame {
     std::vector<ShadowLightPlan> lights;
     /// Bit `1 << t` for every technique t (`ShadowTechnique`) some light's pixels use.
     unsigned techniquesInUse = 0;
-    /// Clamped settings, skipped lights and the texel budget's decisions, one line each.
-    std::vector<std::string> warnings;
+    /// Clamped settings and the texel budget's decisions, one each (codes in warnings.h).
+    std::vector<Warning> warnings;
 };
 
 /// Limits the planner must respect: the GL implementation's, and the memory the shadow maps
@@ -103,14 +104,15 @@ struct ShadowLimits {
 };
 
 /// Clamps the fields of `light` to their documented ranges (components.h), NaN to the low end;
-/// appends one warning per clamped field, prefixed by `who`. A light out of range is drawn as
-/// clamped, so one bad light never makes the others' pixels NaN.
-void clampLight(Light& light, std::string_view who, std::vector<std::string>& warnings);
+/// appends one `SettingClamped` warning per clamped field, its element `who`. A light out of
+/// range is drawn as clamped, so one bad light never makes the others' pixels NaN. Never throws.
+void clampLight(Light& light, std::string_view who, std::vector<Warning>& warnings);
 
 /// Clamps `s` and `light` (`clampLight`, and a spot's cone to what a map covers, 85 degrees)
-/// to the documented ranges; appends one warning per clamped field, prefixed by `who`.
+/// to the documented ranges; appends one `SettingClamped` warning per clamped field, its
+/// element `who`. Never throws.
 void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, const std::string& who,
-                         std::vector<std::string>& warnings);
+                         std::vector<Warning>& warnings);
 
 /// CPU half of the shadow system. Keeps last frame's decisions to find what changed.
 class ShadowPlanner {

@@ -1,6 +1,8 @@
 // Per-frame statistics: pass timings and the counters that show what work was skipped.
 #pragma once
 
+#include <shadow/warnings.h>
+
 #include <string>
 #include <vector>
 
@@ -49,10 +51,11 @@ struct FrameStats {
     int mainPasses = 0;
     int programsCompiled = 0;    ///< shader programs built this frame (0 in steady state)
     /// Entities whose world matrix (or an ancestor's) is not finite, skipped by every pass
-    /// (`TransformStats::nonFinite`); each is also named in `warnings`.
+    /// (`TransformStats::nonFinite`); each is also a `NonFiniteTransform` warning.
     int entitiesSkippedNonFinite = 0;
-    /// Settings clamped to their documented range, over-budget degradations, and the like.
-    std::vector<std::string> warnings;
+    /// The frame's warnings: non-finite transforms first, then the shadow planner's
+    /// (`ShadowFrame::warnings`: clamped settings, the texel budget's decisions).
+    std::vector<Warning> warnings;
 
     /// Total time of the passes whose name starts with `prefix`.
     [[nodiscard]] double passMs(const std::string& prefix) const {

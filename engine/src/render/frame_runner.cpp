@@ -3,7 +3,6 @@
 #include <shadow/frame_runner.h>
 
 #include <chrono>
-#include <sstream>
 
 namespace shadow {
 namespace {
@@ -37,14 +36,7 @@ FrameStats FrameRunner::runFrame(Scene& scene, double t, Entity camera, const Re
     const TransformStats ts = updateTransforms(scene.world);
     stats.cpuTransformsMs = msSince(t0);
     stats.entitiesSkippedNonFinite = ts.nonFinite;
-    for (Entity e : ts.skipped) {
-        const Name* name = scene.world.tryGet<Name>(e);
-        std::ostringstream msg;
-        msg << (name != nullptr ? name->value : "entity " + std::to_string(e.index()))
-            << ": world transform is not finite (NaN, Inf, or beyond " << kMaxWorldCoordinate
-            << " m); skipped by every pass";
-        stats.warnings.push_back(msg.str());
-    }
+    reportSkippedTransforms(scene.world, ts, stats.warnings);
 
     const float aspect = static_cast<float>(options.width) / static_cast<float>(std::max(options.height, 1));
     impl_->camera = makeCameraView(scene.world, camera, aspect);

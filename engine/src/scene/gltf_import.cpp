@@ -388,9 +388,9 @@ struct Importer {
         const tinygltf::Node& node = model.nodes[nodeIndex];
         auto parts = meshParts(static_cast<std::size_t>(node.mesh));
         if (!parts) return parts.error();
-        auto flags =
-            gltf::orDefaults(gltf::parseMeshShadowExtras(node.extras, indexed("nodes", nodeIndex)),
-                             options.strictShadowSettings, scene.warnings);
+        const std::string where = indexed("nodes", nodeIndex);
+        auto flags = gltf::orDefaults(gltf::parseMeshShadowExtras(node.extras, where), options.strictShadowSettings,
+                                      where, scene.warnings);
         if (!flags) return flags.error();
         const auto attach = [&](Entity target, const gltf::MeshPart& part) {
             scene.world.emplace<Mesh>(target, Mesh{part.data, flags->cast, flags->receive});
@@ -491,12 +491,12 @@ Result<Scene> buildScene(const tinygltf::Model& model, const std::string& name,
 }
 
 /// The scene of a parsed model; `source` (the file, or the in-memory name) prefixes every
-/// error and warning.
+/// error and warning message (a warning's element stays the glTF element alone).
 Result<Scene> sceneOf(const tinygltf::Model& model, const std::string& source,
                       const std::string& name, const GltfLoadOptions& options) {
     auto scene = buildScene(model, name, options);
     if (!scene) return Error{source + ": " + scene.error().message};
-    for (std::string& w : scene->warnings) w = source + ": " + w;
+    for (Warning& w : scene->warnings) w.message = source + ": " + w.message;
     return scene;
 }
 

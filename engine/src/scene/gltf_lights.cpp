@@ -66,8 +66,8 @@ Status parseSpot(const tinygltf::Value& light, const std::string& where, Light& 
     return Ok{};
 }
 
-Result<LightDefinition> parseLight(const tinygltf::Value& value, const std::string& where,
-                                   bool strict, std::vector<std::string>& warnings) {
+Result<LightDefinition> parseLight(const tinygltf::Value& value, const std::string& where, bool strict,
+                                   std::vector<Warning>& warnings) {
     if (!value.IsObject()) return elementError(where, "must be an object");
     LightDefinition def;
     auto type = parseType(value, where);
@@ -92,8 +92,7 @@ Result<LightDefinition> parseLight(const tinygltf::Value& value, const std::stri
     }
     const tinygltf::Value* extras = member(value, "extras");
     auto settings =
-        orDefaults(parseShadowExtras(extras != nullptr ? *extras : tinygltf::Value(), where),
-                   strict, warnings);
+        orDefaults(parseShadowExtras(extras != nullptr ? *extras : tinygltf::Value(), where), strict, where, warnings);
     if (!settings) return settings.error();
     def.light.radius = settings->radius;
     def.light.angularRadius = settings->angularRadius;
@@ -103,9 +102,8 @@ Result<LightDefinition> parseLight(const tinygltf::Value& value, const std::stri
 
 }  // namespace
 
-Result<std::vector<LightDefinition>> importLights(const tinygltf::Model& model,
-                                                  bool strictShadowSettings,
-                                                  std::vector<std::string>& warnings) {
+Result<std::vector<LightDefinition>> importLights(const tinygltf::Model& model, bool strictShadowSettings,
+                                                  std::vector<Warning>& warnings) {
     std::vector<LightDefinition> out;
     const auto extension = model.extensions.find(kExtension);
     if (extension == model.extensions.end()) return out;

@@ -8,6 +8,7 @@
 
 #include <shadow/components.h>
 #include <shadow/result.h>
+#include <shadow/warnings.h>
 #include <tiny_gltf.h>
 
 #include <optional>
@@ -26,10 +27,9 @@ struct LightDefinition {
 
 /// Every light of the file, in file order; empty when the extension is absent. With
 /// `strictShadowSettings` off, a light whose `extras.shadow` does not parse keeps the defaults
-/// and the error goes to `warnings`.
-[[nodiscard]] Result<std::vector<LightDefinition>> importLights(const tinygltf::Model& model,
-                                                                bool strictShadowSettings,
-                                                                std::vector<std::string>& warnings);
+/// and a `ShadowSettingsIgnored` warning goes to `warnings`.
+[[nodiscard]] Result<std::vector<LightDefinition>> importLights(const tinygltf::Model& model, bool strictShadowSettings,
+                                                                std::vector<Warning>& warnings);
 
 /// The light `nodes[nodeIndex]` references through its KHR_lights_punctual extension, or
 /// nullopt for none. The index is checked against `lightCount`.

@@ -16,6 +16,7 @@
 
 #include <shadow/components.h>
 #include <shadow/result.h>
+#include <shadow/warnings.h>
 #include <tiny_gltf.h>
 
 #include <string>
@@ -50,12 +51,14 @@ struct MeshShadowFlags {
                                                             const std::string& where);
 
 /// `parsed` itself when it holds a value or `strict` is set; otherwise the defaults `T{}`, with
-/// the error appended to `warnings` (the lenient `GltfLoadOptions`).
+/// the error appended to `warnings` as `ShadowSettingsIgnored` (the lenient `GltfLoadOptions`).
+/// `where` names the element whose `extras.shadow` was parsed (`nodes[0]`).
 template <typename T>
-[[nodiscard]] Result<T> orDefaults(Result<T> parsed, bool strict,
-                                   std::vector<std::string>& warnings) {
+[[nodiscard]] Result<T> orDefaults(Result<T> parsed, bool strict, const std::string& where,
+                                   std::vector<Warning>& warnings) {
     if (parsed.ok() || strict) return parsed;
-    warnings.push_back(parsed.error().message + " (ignored: the defaults are used)");
+    warnings.push_back({WarningCode::ShadowSettingsIgnored, where + ".extras.shadow",
+                        parsed.error().message + " (ignored: the defaults are used)"});
     return T{};
 }
 

@@ -4,6 +4,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <sstream>
+#include <string>
 #include <vector>
 
 namespace shadow {
@@ -103,6 +105,17 @@ TransformStats updateTransforms(World& world) {
         }
     });
     return stats;
+}
+
+void reportSkippedTransforms(const World& world, const TransformStats& stats, std::vector<Warning>& warnings) {
+    for (Entity e : stats.skipped) {
+        const Name* name = world.tryGet<Name>(e);
+        std::string element = name != nullptr ? name->value : "entity " + std::to_string(e.index());
+        std::ostringstream msg;
+        msg << element << ": world transform is not finite (NaN, Inf, or beyond " << kMaxWorldCoordinate
+            << " m); skipped by every pass";
+        warnings.push_back({WarningCode::NonFiniteTransform, std::move(element), msg.str()});
+    }
 }
 
 }  // namespace shadow

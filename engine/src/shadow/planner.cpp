@@ -16,9 +16,9 @@
 namespace shadow {
 namespace {
 
+/// Clamps `value` to [lo, hi] (NaN and infinities: to `lo`), one warning when it changed.
 template <typename T>
-void clampField(T& value, T lo, T hi, std::string_view who, const char* field,
-                std::vector<std::string>& warnings) {
+void clampField(T& value, T lo, T hi, std::string_view who, const char* field, std::vector<Warning>& warnings) {
     T clamped = value;
     if constexpr (std::is_floating_point_v<T>) {
         if (!std::isfinite(value)) clamped = lo;
@@ -27,7 +27,7 @@ void clampField(T& value, T lo, T hi, std::string_view who, const char* field,
     if (clamped != value) {
         std::ostringstream msg;
         msg << who << ": " << field << " " << value << " clamped to " << clamped;
-        warnings.push_back(msg.str());
+        warnings.push_back({WarningCode::SettingClamped, std::string(who), msg.str()});
         value = clamped;
     }
 }
@@ -106,7 +106,7 @@ std::vector<std::size_t> budgetOrder(const std::vector<Candidate>& lights,
 
 /// Fits the lights' maps into `budget` texels by the policy of `ShadowLimits::maxShadowTexels`.
 void fitTexelBudget(std::vector<Candidate>& lights, const glm::dvec3& camera, std::int64_t budget,
-                    std::vector<std::string>& warnings) {
+                    std::vector<Warning>& warnings) {
     std::int64_t total = 0;
     for (const Candidate& c : lights) total += texelsOf(c.plan);
     if (total <= budget) return;
@@ -132,18 +132,18 @@ void fitTexelBudget(std::vector<Candidate>& lights, const glm::dvec3& camera, st
         " to fit the shadow texel budget (" + std::to_string(budget) + " texels)";
     for (const Candidate& c : lights) {
         if (c.dropped) {
-            warnings.push_back(c.plan.name + ": shadow dropped" + why);
+            warnings.push_back({WarningCode::ShadowDropped, c.plan.name, c.plan.name + ": shadow dropped" + why});
         } else if (c.plan.mapSize != c.plan.settings.mapSize) {
-            warnings.push_back(c.plan.name + ": mapSize " +
-                               std::to_string(c.plan.settings.mapSize) + " reduced to " +
-                               std::to_string(c.plan.mapSize) + why);
+            warnings.push_back({WarningCode::MapSizeReduced, c.plan.name,
+                                c.plan.name + ": mapSize " + std::to_string(c.plan.settings.mapSize) + " reduced to " +
+                                    std::to_string(c.plan.mapSize) + why});
         }
     }
 }
 
 }  // namespace
 
-void clampLight(Light& light, std::string_view who, std::vector<std::string>& warnings) {
+void clampLight(Light& light, std::string_view who, std::vector<Warning>& warnings) {
     static const char* const kColor[3] = {"color.r", "color.g", "color.b"};
     for (int c = 0; c < 3; ++c) clampField(light.color[c], 0.0f, 1e3f, who, kColor[c], warnings);
     clampField(light.intensity, 0.0f, 1e12f, who, "intensity", warnings);
@@ -155,7 +155,7 @@ void clampLight(Light& light, std::string_view who, std::vector<std::string>& wa
 }
 
 void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, const std::string& who,
-                         std::vector<std::string>& warnings) {
+                         std::vector<Warning>& warnings) {
     clampField(s.mapSize, 1, std::max(1, limits.maxTextureSize), who, "mapSize", warnings);
     clampField(s.constantBias, 0.0f, 10.0f, who, "constantBias", warnings);
     clampField(s.slopeBias, 0.0f, 16.0f, who, "slopeBias", warnings);

@@ -1,0 +1,64 @@
+// Warnings: what the engine let pass, and how it carried on (after sokol's named log items).
+//
+// A warning never stops a load or a frame. Settings out of their documented range are clamped,
+// lights over the shadow texel budget get a smaller map or none, an entity whose transform is
+// not finite is skipped, and under lenient `GltfLoadOptions` a glTF `extras.shadow` that does
+// not parse is ignored. Each such decision is one `Warning`: a code for programs and tests to
+// branch on, the element at fault, and the line a person reads (what the CLI prints and
+// stats.json lists). Producing warnings never throws.
+//
+// Where they are collected: `Scene::warnings` (loading), `ShadowFrame::warnings` (the shadow
+// planner, every frame), `FrameStats::warnings` (a whole frame: the transform system's and the
+// planner's).
+#pragma once
+
+#include <string>
+
+namespace shadow {
+
+/// What happened. New codes are appended; stats.json spells a code by `warningCodeName`.
+enum class WarningCode {
+    /// A `Light` or `Shadow` field was out of its documented range (components.h), or NaN, and
+    /// was clamped to it (a spot's cone also to what a map covers, 85 degrees). Element: the
+    /// light. One warning per field.
+    SettingClamped,
+    /// The shadow texel budget (`ShadowLimits::maxShadowTexels`) halved a light's map. Element:
+    /// the light.
+    MapSizeReduced,
+    /// The shadow texel budget left a light without a shadow this frame (visibility 1).
+    /// Element: the light.
+    ShadowDropped,
+    /// An entity's world matrix (or an ancestor's) is not finite or reaches beyond
+    /// `kMaxWorldCoordinate`; every pass skips it. Element: the entity's name, or
+    /// `entity <index>` when it has none.
+    NonFiniteTransform,
+    /// A glTF `extras.shadow` object did not parse and lenient loading used the defaults in its
+    /// place. Element: the object, e.g. `KHR_lights_punctual.lights[1].extras.shadow` or
+    /// `nodes[0].extras.shadow` (the message names the file and the member at fault).
+    ShadowSettingsIgnored,
+};
+
+/// One decision the engine reports.
+struct Warning {
+    WarningCode code = WarningCode::SettingClamped;
+    /// The light, entity or glTF element at fault (see `WarningCode`).
+    std::string element;
+    /// The whole line for a person, naming the element and what was done, e.g.
+    /// `lamp: mapSize 99999 clamped to 16384`.
+    std::string message;
+};
+
+/// The code's name as written in stats.json ("SettingClamped", ...); "Unknown" for a value
+/// outside the enum.
+[[nodiscard]] constexpr const char* warningCodeName(WarningCode code) {
+    switch (code) {
+        case WarningCode::SettingClamped: return "SettingClamped";
+        case WarningCode::MapSizeReduced: return "MapSizeReduced";
+        case WarningCode::ShadowDropped: return "ShadowDropped";
+        case WarningCode::NonFiniteTransform: return "NonFiniteTransform";
+        case WarningCode::ShadowSettingsIgnored: return "ShadowSettingsIgnored";
+    }
+    return "Unknown";
+}
+
+}  // namespace shadow

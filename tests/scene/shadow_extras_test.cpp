@@ -1,0 +1,48 @@
+// The `extras.shadow` parsers (engine/src/scene/shadow_extras.cpp) on their own, as the glTF
+// fuzzer drives them: values that are not what the key wants fail naming the key.
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "scene/shadow_extras.h"
+
+namespace shadow {
+namespace {
+
+tinygltf::Value object(tinygltf::Value::Object members) { return tinygltf::Value(std::move(members)); }
+
+TEST(GltfShadowExtras, RejectsNonFiniteNumbers) {
+    const auto extras = object({{"shadow", object({{"radius", tinygltf::Value(std::nan(""))}})}});
+    const auto result = gltf::parseShadowExtras(extras, "L");
+    ASSERT_FALSE(result.ok());
+    EXPECT_EQ(result.error().message, "L.extras.shadow.radius: not finite");
+}
+
+TEST(GltfShadowExtras, AcceptsIntegralRealAsInteger) {
+    const auto extras = object({{"shadow", object({{"mapSize", tinygltf::Value(512.0)}})}});
+    const auto result = gltf::parseShadowExtras(extras, "L");
+    ASSERT_TRUE(result.ok()) << result.error().message;
+    EXPECT_EQ(result->shadow.mapSize, 512);
+    EXPECT_FALSE(gltf::parseShadowExtras(object({{"shadow", object({{"mapSize", tinygltf::Value(1e12)}})}}), "L").ok());
+}
+
+TEST(GltfShadowExtras, RejectsShadowThatIsNotAnObjectButIgnoresOtherExtras) {
+    const auto bad = gltf::parseShadowExtras(object({{"shadow", tinygltf::Value(true)}}), "L");
+    ASSERT_FALSE(bad.ok());
+    EXPECT_EQ(bad.error().message, "L.extras.shadow: must be an object");
+    EXPECT_TRUE(gltf::parseShadowExtras(tinygltf::Value(std::string("note")), "L").ok());
+    EXPECT_TRUE(gltf::parseShadowExtras(tinygltf::Value(), "L").ok());
+}
+
+TEST(GltfShadowExtras, MeshFlagsMustBeBooleans) {
+    const auto bad =
+        gltf::parseMeshShadowExtras(object({{"shadow", object({{"cast", tinygltf::Value(1)}})}}), "nodes[2]");
+    ASSERT_FALSE(bad.ok());
+    EXPECT_EQ(bad.error().message, "nodes[2].extras.shadow.cast: must be true or false");
+}
+
+}  // namespace
+}  // namespace shadow

@@ -1,0 +1,62 @@
+// The transform system's report of what it skipped (engine/src/scene/transforms.cpp): one
+// NonFiniteTransform warning per skipped entity, named so a reader can find it. (Rendering with
+// such entities is tested in tests/stability/animation_extremes_test.cpp.)
+#include <gtest/gtest.h>
+#include <shadow/scene.h>
+
+#include <algorithm>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace shadow {
+namespace {
+
+TEST(Transforms, SkippedEntitiesAreReportedByNameOrIndexInVisitOrder) {
+    World world;
+    const Entity fine = world.create();
+    world.emplace<Name>(fine, Name{"fine"});
+    world.emplace<Transform>(fine, Transform{});
+    const Entity broken = world.create();
+    world.emplace<Name>(broken, Name{"nan box"});
+    Transform nan;
+    nan.translation.x = std::numeric_limits<double>::quiet_NaN();
+    world.emplace<Transform>(broken, nan);
+    // An unnamed child inherits the parent's NaN and is named by its index.
+    const Entity child = world.create();
+    Transform local;
+    local.parent = broken;
+    world.emplace<Transform>(child, local);
+
+    const TransformStats stats = updateTransforms(world);
+    ASSERT_EQ(stats.nonFinite, 2);
+    std::vector<Warning> warnings;
+    reportSkippedTransforms(world, stats, warnings);
+    ASSERT_EQ(warnings.size(), stats.skipped.size());
+    for (std::size_t i = 0; i < warnings.size(); ++i) {
+        const Entity e = stats.skipped[i];
+        const std::string element = e == broken ? "nan box" : "entity " + std::to_string(e.index());
+        EXPECT_EQ(warnings[i].code, WarningCode::NonFiniteTransform);
+        EXPECT_EQ(warnings[i].element, element);
+        EXPECT_EQ(warnings[i].message, element +
+                                           ": world transform is not finite (NaN, Inf, or beyond 1e+09 m); "
+                                           "skipped by every pass");
+    }
+    // Both are reported, the fine entity is not.
+    std::vector<std::string> elements = {warnings[0].element, warnings[1].element};
+    std::sort(elements.begin(), elements.end());
+    EXPECT_EQ(elements, (std::vector<std::string>{"entity " + std::to_string(child.index()), "nan box"}));
+}
+
+TEST(Transforms, NothingSkippedReportsNothing) {
+    World world;
+    const Entity e = world.create();
+    world.emplace<Transform>(e, Transform{});
+    const TransformStats stats = updateTransforms(world);
+    std::vector<Warning> warnings;
+    reportSkippedTransforms(world, stats, warnings);
+    EXPECT_TRUE(warnings.empty());
+}
+
+}  // namespace
+}  // namespace shadow

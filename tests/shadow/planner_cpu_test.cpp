@@ -1,0 +1,240 @@
+// ShadowPlanner, the CPU "decide" phase of the shadow system (engine/src/shadow/planner.cpp):
+// which layers are dirty from frame to frame (caching), the clamping of settings with its
+// warnings, and which lights get a plan at all. The layers' geometry is tested in
+// planner_layers_cpu_test.cpp. No GL: these run in shadow_planner_tests.
+#include <gtest/gtest.h>
+#include <shadow/scene.h>
+#include <shadow/shadow_system.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "shadow/planner_test_support.h"
+#include "test_support.h"
+
+namespace shadow {
+namespace {
+
+using test::at;
+using test::contains;
+using test::hard;
+using test::lightOf;
+using test::planOf;
+using test::TestScene;
+
+// ---- Caching ----
+
+/// A point light beside box A and box B (near plane and range fixed so that moving a box
+/// cannot change its matrices), a narrow spot over the middle that sees neither box, and a
+/// directional light.
+struct CachingScene : TestScene {
+    CachingScene() {
+        Light point = lightOf(LightType::Point);
+        point.range = 20.0f;
+        Shadow s = hard();
+        s.nearPlane = 0.1f;
+        addLight(scene, "bulb", point, s, {0, 3, 0}, {0, -1, 0});
+        Light spot = lightOf(LightType::Spot);
+        spot.outerConeAngle = 0.3f;
+        spot.range = 20.0f;
+        addLight(scene, "spot", spot, s, {0, 6, 0}, {0, -1, 0});
+        addLight(scene, "sun", lightOf(LightType::Directional), hard(), {0, 10, 0}, {0.2, -1, 0.1});
+    }
+
+    void move(Entity e, const glm::dvec3& to) { scene.world.get<Transform>(e).translation = to; }
+};
+
+std::vector<bool> dirtyFlags(const ShadowFrame& frame) {
+    std::vector<bool> out;
+    for (const ShadowLightPlan& p : frame.lights) {
+        for (const ShadowLayerPlan& l : p.layers) out.push_back(l.dirty);
+    }
+    return out;
+}
+
+TEST(Planner, EveryLayerIsDirtyOnTheFirstFrame) {
+    CachingScene t;
+    ShadowPlanner planner;
+    const ShadowFrame& frame = planner.prepare(t.scene.world, t.update(), t.scene.lights);
+    ASSERT_EQ(frame.lights.size(), 3u);
+    const std::vector<bool> dirty = dirtyFlags(frame);
+    EXPECT_EQ(dirty.size(), 8u);
+    EXPECT_TRUE(std::all_of(dirty.begin(), dirty.end(), [](bool d) { return d; }));
+}
+
+TEST(Planner, ReusesEveryLayerWhenNothingMoved) {
+    CachingScene t;
+    ShadowPlanner planner;
+    (void)planner.prepare(t.scene.world, t.update(), t.scene.lights);
+    const ShadowFrame& frame = planner.prepare(t.scene.world, t.update(), t.scene.lights);
+    ASSERT_EQ(frame.lights.size(), 3u);
+    for (const ShadowLightPlan& p : frame.lights) {
+        for (std::size_t k = 0; k < p.layers.size(); ++k) EXPECT_FALSE(p.layers[k].dirty) << p.name << " layer " << k;
+    }
+}
+
+/// Moves `box` to `to` after a settled frame and checks that exactly the layers that held it
+/// before or after are dirty.
+void expectOnlyLayersOfMovedCasterDirty(CachingScene& t, Entity box, const glm::dvec3& to) {
+    ShadowPlanner planner;
+    (void)planner.prepare(t.scene.world, t.update(), t.scene.lights);
+    const ShadowFrame before = planner.prepare(t.scene.world, t.update(), t.scene.lights);
+    t.move(box, to);
+    const ShadowFrame& after = planner.prepare(t.scene.world, t.update(), t.scene.lights);
+    ASSERT_EQ(before.lights.size(), after.lights.size());
+    int expectedDirty = 0;
+    int clean = 0;
+    for (std::size_t i = 0; i < after.lights.size(); ++i) {
+        const ShadowLightPlan& p = after.lights[i];
+        ASSERT_EQ(p.layers.size(), before.lights[i].layers.size());
+        for (std::size_t k = 0; k < p.layers.size(); ++k) {
+            const bool holds = contains(before.lights[i].layers[k].casters, box) || contains(p.layers[k].casters, box);
+            EXPECT_EQ(p.layers[k].dirty, holds) << p.name << " layer " << k;
+            expectedDirty += holds ? 1 : 0;
+            clean += holds ? 0 : 1;
+        }
+    }
+    // Guards against a vacuous pass: something moved, and something must stay cached.
+    EXPECT_GT(expectedDirty, 0);
+    EXPECT_GT(clean, 0);
+}
+
+TEST(Planner, MovingOneCasterDirtiesOnlyTheLayersHoldingIt) {
+    CachingScene t;
+    // Box A stays in the bulb's +X face: that face and the sun's layer redraw; the bulb's other
+    // faces and the spot, which never see box A, stay cached.
+    expectOnlyLayersOfMovedCasterDirty(t, t.boxA, {3, 3, 0.3});
+}
+
+TEST(Planner, CasterCrossingCubeFacesDirtiesBothFaces) {
+    CachingScene t;
+    ShadowPlanner planner;
+    (void)planner.prepare(t.scene.world, t.update(), t.scene.lights);
+    (void)planner.prepare(t.scene.world, t.update(), t.scene.lights);
+    t.move(t.boxA, {0, 3, 3});  // from the +X face to the +Z face of the bulb
+    const ShadowFrame& frame = planner.prepare(t.scene.world, t.update(), t.scene.lights);
+    const ShadowLightPlan* bulb = planOf(frame, "bulb");
+    ASSERT_NE(bulb, nullptr);
+    ASSERT_EQ(bulb->layers.size(), 6u);
+    EXPECT_TRUE(bulb->layers[0].dirty) << "+X face lost box A";
+    EXPECT_TRUE(bulb->layers[4].dirty) << "+Z face gained box A";
+    EXPECT_FALSE(bulb->layers[1].dirty) << "-X face holds only box B and the ground";
+    EXPECT_FALSE(bulb->layers[2].dirty) << "+Y face holds nothing";
+    EXPECT_FALSE(bulb->layers[3].dirty) << "-Y face holds only the ground";
+    EXPECT_FALSE(bulb->layers[5].dirty) << "-Z face never held box A";
+    const ShadowLightPlan* spot = planOf(frame, "spot");
+    ASSERT_NE(spot, nullptr);
+    EXPECT_FALSE(spot->layers[0].dirty) << "the spot sees neither position of box A";
+}
+
+TEST(Planner, CachingOffMakesEveryLayerDirty) {
+    CachingScene t;
+    ShadowPlanner planner;
+    planner.setCaching(false);
+    (void)planner.prepare(t.scene.world, t.update(), t.scene.lights);
+    const ShadowFrame& frame = planner.prepare(t.scene.world, t.update(), t.scene.lights);
+    const std::vector<bool> dirty = dirtyFlags(frame);
+    ASSERT_EQ(dirty.size(), 8u);
+    EXPECT_TRUE(std::all_of(dirty.begin(), dirty.end(), [](bool d) { return d; }));
+}
+
+TEST(Planner, LayerWithoutCastersHasEmptyCasterList) {
+    CachingScene t;
+    ShadowPlanner planner;
+    const ShadowFrame& frame = planner.prepare(t.scene.world, t.update(), t.scene.lights);
+    const ShadowLightPlan* bulb = planOf(frame, "bulb");
+    ASSERT_NE(bulb, nullptr);
+    ASSERT_EQ(bulb->layers.size(), 6u);
+    EXPECT_TRUE(bulb->layers[2].casters.empty()) << "nothing lies above the bulb";
+    EXPECT_TRUE(contains(bulb->layers[0].casters, t.boxA));
+    EXPECT_FALSE(contains(bulb->layers[0].casters, t.boxB));
+    EXPECT_TRUE(contains(bulb->layers[1].casters, t.boxB));
+    EXPECT_FALSE(contains(bulb->layers[1].casters, t.boxA));
+}
+
+// ---- Settings and which lights get a plan ----
+
+TEST(Planner, ClampShadowSettingsClampsAndNamesTheLightAndField) {
+    const ShadowLimits limits{4096, 2048};
+    {
+        Shadow s;
+        s.mapSize = 0;
+        Light l;
+        std::vector<Warning> warnings;
+        clampShadowSettings(s, l, limits, "lamp", warnings);
+        EXPECT_EQ(s.mapSize, 1);
+        ASSERT_EQ(warnings.size(), 1u);
+        EXPECT_EQ(warnings[0].code, WarningCode::SettingClamped);
+        EXPECT_EQ(warnings[0].element, "lamp");
+        // The line the CLI prints and stats.json lists: light, field, value and the clamp.
+        EXPECT_EQ(warnings[0].message, "lamp: mapSize 0 clamped to 1");
+    }
+    {
+        Shadow s;
+        s.mapSize = 100000;
+        s.constantBias = -1.0f;
+        s.pcfRadius = std::nanf("");
+        Light l;
+        l.radius = -2.0f;
+        std::vector<Warning> warnings;
+        clampShadowSettings(s, l, limits, "lamp", warnings);
+        // One warning per field, each about the lamp; the values show which fields.
+        EXPECT_EQ(s.mapSize, 4096);
+        EXPECT_EQ(s.constantBias, 0.0f);
+        EXPECT_EQ(s.pcfRadius, 0.0f) << "NaN goes to the low end";
+        EXPECT_EQ(l.radius, 0.0f);
+        EXPECT_EQ(test::countWarnings(warnings, WarningCode::SettingClamped, "lamp"), 4) << test::describe(warnings);
+        EXPECT_EQ(warnings.size(), 4u);
+    }
+    {
+        Shadow s;  // the defaults are in range: nothing to say
+        Light l;
+        std::vector<Warning> warnings;
+        clampShadowSettings(s, l, limits, "lamp", warnings);
+        EXPECT_TRUE(warnings.empty());
+    }
+}
+
+TEST(Planner, PrepareClampsMapSizeToTheLimitsAndWarns) {
+    TestScene t;
+    Shadow s = hard();
+    s.mapSize = 8192;
+    addLight(t.scene, "big lamp", lightOf(LightType::Spot), s, {0, 5, 0}, {0, -1, 0});
+    ShadowPlanner planner;
+    planner.setLimits({2048, 2048});
+    const ShadowFrame& frame = planner.prepare(t.scene.world, t.update(), t.scene.lights);
+    ASSERT_EQ(frame.lights.size(), 1u);
+    EXPECT_EQ(frame.lights[0].mapSize, 2048);
+    EXPECT_EQ(frame.lights[0].settings.mapSize, 2048);
+    EXPECT_EQ(test::countWarnings(frame.warnings, WarningCode::SettingClamped, "big lamp"), 1)
+        << test::describe(frame.warnings);
+}
+
+TEST(Planner, LightsWithoutShadowOrWithTechniqueNoneGetNoPlan) {
+    TestScene t;
+    Shadow none = hard();
+    none.technique = ShadowTechnique::None;
+    addLight(t.scene, "unshadowed", lightOf(LightType::Point), none, {0, 4, 0}, {0, -1, 0});  // no Shadow component
+    const Entity shadowed = addLight(t.scene, "shadowed", lightOf(LightType::Spot), hard(), {0, 5, 0}, {0, -1, 0});
+    const Entity switchedOff =
+        addLight(t.scene, "switched off", lightOf(LightType::Point), hard(), {1, 4, 0}, {0, -1, 0});
+    t.scene.world.get<Shadow>(switchedOff).technique = ShadowTechnique::None;
+    ASSERT_FALSE(t.scene.world.has<Shadow>(t.scene.lights[0]));
+
+    ShadowPlanner planner;
+    const ShadowFrame& frame = planner.prepare(t.scene.world, t.update(), t.scene.lights);
+    ASSERT_EQ(frame.lights.size(), 3u) << "one entry per scene light";
+    EXPECT_FALSE(frame.lights[0].hasMap());
+    EXPECT_FALSE(frame.lights[2].hasMap());
+    EXPECT_TRUE(frame.lights[1].hasMap());
+    EXPECT_EQ(frame.lights[1].entity, shadowed);
+    EXPECT_EQ(frame.lights[1].sceneIndex, 1);
+    EXPECT_EQ(frame.lights[1].name, "shadowed");
+    EXPECT_EQ(frame.techniquesInUse, (1u << static_cast<unsigned>(ShadowTechnique::None)) |
+                                         (1u << static_cast<unsigned>(ShadowTechnique::Hard)));
+}
+
+}  // namespace
+}  // namespace shadow
