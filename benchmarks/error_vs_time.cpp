@@ -62,7 +62,8 @@ std::vector<Config> sweep() {
         for (int taps : {4, 8, 16, 32}) out.push_back({ShadowTechnique::Pcss, 1024, taps, taps, k});
     }
     out.push_back({ShadowTechnique::Pcss, 2048, 32, 32, FilterKernel::Vogel});
-    for (int taps : {4, 8, 16, 32}) out.push_back({ShadowTechnique::PcssTextbook, 1024, taps, taps, FilterKernel::Poisson});
+    for (int taps : {4, 8, 16, 32})
+        out.push_back({ShadowTechnique::PcssTextbook, 1024, taps, taps, FilterKernel::Poisson});
     return out;
 }
 
@@ -163,14 +164,17 @@ nlohmann::json versusTextbook(const std::vector<Row>& rows) {
         const Row* bestAsFast = nullptr;
         for (const Row& r : rows) {
             if (r.scene != t.scene || r.config.technique != ShadowTechnique::Pcss) continue;
-            if (r.errors.rmse <= t.errors.rmse && (!fastestAsGood || r.frameMs.median < fastestAsGood->frameMs.median)) {
+            if (r.errors.rmse <= t.errors.rmse &&
+                (!fastestAsGood || r.frameMs.median < fastestAsGood->frameMs.median)) {
                 fastestAsGood = &r;
             }
             if (r.frameMs.median <= t.frameMs.median && (!bestAsFast || r.errors.rmse < bestAsFast->errors.rmse)) {
                 bestAsFast = &r;
             }
         }
-        nlohmann::json j{{"scene", t.scene}, {"textbook", t.config.label()}, {"textbookMs", t.frameMs.median},
+        nlohmann::json j{{"scene", t.scene},
+                         {"textbook", t.config.label()},
+                         {"textbookMs", t.frameMs.median},
                          {"textbookRmse", t.errors.rmse}};
         if (fastestAsGood) {
             j["equalError"] = {{"ours", fastestAsGood->config.label()},
@@ -178,9 +182,10 @@ nlohmann::json versusTextbook(const std::vector<Row>& rows) {
                                {"speedup", t.frameMs.median / fastestAsGood->frameMs.median}};
         }
         if (bestAsFast) {
-            j["equalTime"] = {{"ours", bestAsFast->config.label()},
-                              {"oursRmse", bestAsFast->errors.rmse},
-                              {"errorRatio", bestAsFast->errors.rmse > 0 ? t.errors.rmse / bestAsFast->errors.rmse : 0.0}};
+            j["equalTime"] = {
+                {"ours", bestAsFast->config.label()},
+                {"oursRmse", bestAsFast->errors.rmse},
+                {"errorRatio", bestAsFast->errors.rmse > 0 ? t.errors.rmse / bestAsFast->errors.rmse : 0.0}};
         }
         out.push_back(j);
     }
@@ -205,8 +210,8 @@ void writeCsv(const std::string& path, const std::vector<Row>& rows) {
           << r.config.mapSize << ',' << r.config.pcfSamples << ',' << r.config.blockerSamples << ','
           << filterKernelName(r.config.kernel) << ',' << r.frameMs.median << ',' << r.frameMs.min << ','
           << r.frameMs.max << ',' << r.shadowMs.median << ',' << r.mainMs.median << ',' << r.errors.rmse << ','
-          << r.errors.penumbraRmse << ',' << r.errors.mae << ',' << r.errors.p99 << ',' << r.errors.acneFraction
-          << ',' << r.errors.leakFraction << ',' << (r.pareto ? 1 : 0) << '\n';
+          << r.errors.penumbraRmse << ',' << r.errors.mae << ',' << r.errors.p99 << ',' << r.errors.acneFraction << ','
+          << r.errors.leakFraction << ',' << (r.pareto ? 1 : 0) << '\n';
     }
 }
 
@@ -242,7 +247,8 @@ void writeMarkdown(const std::string& path, const std::vector<Row>& rows, const 
     for (const Row& r : rows) {
         if (r.scene != scene) {
             scene = r.scene;
-            f << "\n### " << scene << "\n\n| configuration | frame ms (median) | shadow ms | main ms | RMSE | penumbra RMSE "
+            f << "\n### " << scene
+              << "\n\n| configuration | frame ms (median) | shadow ms | main ms | RMSE | penumbra RMSE "
                  "| p99 abs error | acne | leak | Pareto |\n|---|---|---|---|---|---|---|---|---|---|\n";
         }
         f.precision(1);
@@ -294,17 +300,21 @@ void writePlot(const std::string& out, const std::vector<Row>& rows) {
             for (const Row& r : rows) {
                 if (r.scene == s && r.config.technique == t) sel.push_back(&r);
             }
-            std::sort(sel.begin(), sel.end(), [](const Row* a, const Row* b) { return a->frameMs.median < b->frameMs.median; });
+            std::sort(sel.begin(), sel.end(),
+                      [](const Row* a, const Row* b) { return a->frameMs.median < b->frameMs.median; });
             std::ofstream f(out + "/plot/" + s + "_" + techniqueName(t) + ".dat");
-            for (const Row* r : sel) f << r->frameMs.median << ' ' << r->errors.rmse << ' ' << r->errors.penumbraRmse << '\n';
+            for (const Row* r : sel)
+                f << r->frameMs.median << ' ' << r->errors.rmse << ' ' << r->errors.penumbraRmse << '\n';
         }
         std::vector<const Row*> front;
         for (const Row& r : rows) {
             if (r.scene == s && r.pareto) front.push_back(&r);
         }
-        std::sort(front.begin(), front.end(), [](const Row* a, const Row* b) { return a->frameMs.median < b->frameMs.median; });
+        std::sort(front.begin(), front.end(),
+                  [](const Row* a, const Row* b) { return a->frameMs.median < b->frameMs.median; });
         std::ofstream f(out + "/plot/" + s + "_pareto.dat");
-        for (const Row* r : front) f << r->frameMs.median << ' ' << r->errors.rmse << ' ' << r->errors.penumbraRmse << '\n';
+        for (const Row* r : front)
+            f << r->frameMs.median << ' ' << r->errors.rmse << ' ' << r->errors.penumbraRmse << '\n';
     }
     std::ofstream gp(out + "/error_vs_time.gp");
     gp << "# Generated by error_vs_time. Run from " << out << ": gnuplot error_vs_time.gp\n"

@@ -290,8 +290,8 @@ Target makeTarget(const std::string& label, const std::vector<GLenum>& colorForm
     std::vector<GLenum> drawBuffers;
     for (GLenum format : colorFormats) {
         const auto i = static_cast<GLenum>(t.colors.size());
-        gpu::Texture& texture =
-            t.colors.emplace_back(gpu::makeTexture("FragmentCosts/" + label + "/color" + std::to_string(i), GL_TEXTURE_2D));
+        gpu::Texture& texture = t.colors.emplace_back(
+            gpu::makeTexture("FragmentCosts/" + label + "/color" + std::to_string(i), GL_TEXTURE_2D));
         gl.TextureStorage2D(texture.get(), 1, format, kWidth, kHeight);
         gl.NamedFramebufferTexture(t.fbo.get(), GL_COLOR_ATTACHMENT0 + i, texture.get(), 0);
         drawBuffers.push_back(GL_COLOR_ATTACHMENT0 + i);
@@ -363,12 +363,12 @@ struct Probe {
         : name(std::move(n)), baseline(std::move(b)), frame(std::move(f)) {}
 
     std::string name;
-    std::string baseline;          ///< row the delta is taken against; empty for none
-    std::function<void()> frame;   ///< draws one timed frame
-    double firstFrameMs = 0.0;     ///< first warm-up frame: includes the JIT of the variant
-    std::vector<double> ms;        ///< timed frames
-    glm::vec4 pixelLow{0.0f};      ///< colour at (640, 100) after warm-up (full-screen probes)
-    glm::vec4 pixelHigh{0.0f};     ///< colour at (640, 620)
+    std::string baseline;         ///< row the delta is taken against; empty for none
+    std::function<void()> frame;  ///< draws one timed frame
+    double firstFrameMs = 0.0;    ///< first warm-up frame: includes the JIT of the variant
+    std::vector<double> ms;       ///< timed frames
+    glm::vec4 pixelLow{0.0f};     ///< colour at (640, 100) after warm-up (full-screen probes)
+    glm::vec4 pixelHigh{0.0f};    ///< colour at (640, 620)
 };
 
 double timeFrame(const std::function<void()>& frame) {
@@ -455,8 +455,8 @@ FragmentCosts::FragmentCosts(Scene& scene, const std::string& sceneName)
     gl.TextureParameteri(shadowMap_.get(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     gl.TextureParameteri(shadowMap_.get(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     const float half = 0.5f;
-    gl.ClearTexSubImage(shadowMap_.get(), 0, 0, 0, 0, kShadowMapSize, kShadowMapSize, 1, GL_DEPTH_COMPONENT,
-                        GL_FLOAT, &half);
+    gl.ClearTexSubImage(shadowMap_.get(), 0, 0, 0, 0, kShadowMapSize, kShadowMapSize, 1, GL_DEPTH_COMPONENT, GL_FLOAT,
+                        &half);
     // The sampler-array probes see the same map in every element: only the indexing differs.
     for (int i = 0; i < kSamplerArraySize; ++i) gl.BindTextureUnit(kShadowUnit + i, shadowMap_.get());
 
@@ -478,13 +478,13 @@ FragmentCosts::FragmentCosts(Scene& scene, const std::string& sceneName)
     (void)updateTransforms(scene.world);
     const Entity camera = scene.cameras.empty() ? addDefaultCamera(scene) : scene.cameras.front();
     const CameraView view = makeCameraView(scene.world, camera, static_cast<float>(kWidth) / kHeight);
-    const glm::dmat4 clipFromWorld =
-        glm::perspective(static_cast<double>(view.yfov), static_cast<double>(view.aspect),
-                         static_cast<double>(view.znear), static_cast<double>(view.zfar)) *
-        view.viewFromWorld;
+    const glm::dmat4 clipFromWorld = glm::perspective(static_cast<double>(view.yfov), static_cast<double>(view.aspect),
+                                                      static_cast<double>(view.znear), static_cast<double>(view.zfar)) *
+                                     view.viewFromWorld;
     scene.world.view<Mesh, WorldTransform>().each([&](Entity, Mesh& mesh, WorldTransform& wt) {
         if (mesh.data && wt.finite) {
-            sceneDraws_.push_back({mesh.data, glm::mat4(clipFromWorld * wt.worldFromLocal), glm::mat4(wt.worldFromLocal)});
+            sceneDraws_.push_back(
+                {mesh.data, glm::mat4(clipFromWorld * wt.worldFromLocal), glm::mat4(wt.worldFromLocal)});
         }
     });
     sceneShadeProgram_ = program(sceneName + "/16 taps", kSceneVs, {kIo, kCompareTapsFs}, {"TAP_COUNT 16"});
@@ -563,8 +563,8 @@ std::vector<Probe> FragmentCosts::listProbes() {
     const std::string slotLoop = "LIGHT_LOOP for (int i = 0; i < SG_MAX_LIGHTS_PER_PASS; ++i) if (i < uLightCount)";
     const std::string countLoop = "LIGHT_LOOP for (int i = 0; i < uLightCount; ++i)";
     p.push_back(fullScreen(spotUniforms, varying, rgba16f_, {kIo, kSpotLighting, kLightFromUniformsFs}));
-    p.push_back(fullScreen(spotSsbo, spotUniforms, rgba16f_, {kIo, kSpotLighting, kLightRecordsFs},
-                           {"LIGHT(i) uLights[i]"}));
+    p.push_back(
+        fullScreen(spotSsbo, spotUniforms, rgba16f_, {kIo, kSpotLighting, kLightRecordsFs}, {"LIGHT(i) uLights[i]"}));
     p.push_back(fullScreen("6. spot from UBO[0] (GpuLight, std140)", spotUniforms, rgba16f_,
                            {kIo, kSpotLighting, kLightRecordsFs}, {"LIGHTS_UBO", "LIGHT(i) uSlots[i]"}));
     // The index is 0 everywhere but per-pixel to the compiler, as a cascade or layer index is.
@@ -589,7 +589,8 @@ std::vector<Probe> FragmentCosts::listProbes() {
 
     // 10. Early-outs: a block that never runs should cost nothing over the baseline.
     p.push_back(compareTaps("10. 16 taps in if (uniform false)", varying, {"TAP_COUNT 16", "TAP_GUARD uZero != 0"}));
-    p.push_back(compareTaps("10. 16 taps in if (per-pixel false)", varying, {"TAP_COUNT 16", "TAP_GUARD vUv.x < -1.0"}));
+    p.push_back(
+        compareTaps("10. 16 taps in if (per-pixel false)", varying, {"TAP_COUNT 16", "TAP_GUARD vUv.x < -1.0"}));
     p.push_back(compareTaps("10. tap loop, per-pixel trip count 0", varying, {"TAP_COUNT int(vUv.x * 0.5)"}));
     p.push_back(compareTaps("10. tap loop, per-pixel trip count 16", taps16, {"TAP_COUNT (16 + int(vUv.x * 0.5))"}));
 
@@ -639,18 +640,18 @@ std::vector<Probe> FragmentCosts::listProbes() {
                      gl.Disable(GL_CULL_FACE);
                      gl.Disable(GL_DEPTH_TEST);
                  }});
-    p.push_back({"11. scene: pre-pass + 16 taps EQUAL, no depth writes", sceneLess,
-                 [this, &st, depthPrePass, shadeProgram] {
-                     gl.BindFramebuffer(GL_FRAMEBUFFER, st.fbo.get());
-                     clearTarget(st);
-                     gl.Enable(GL_DEPTH_TEST);
-                     depthPrePass();
-                     gl.DepthFunc(GL_EQUAL);
-                     gl.DepthMask(GL_FALSE);
-                     drawScene(shadeProgram);
-                     gl.DepthMask(GL_TRUE);
-                     gl.Disable(GL_DEPTH_TEST);
-                 }});
+    p.push_back(
+        {"11. scene: pre-pass + 16 taps EQUAL, no depth writes", sceneLess, [this, &st, depthPrePass, shadeProgram] {
+             gl.BindFramebuffer(GL_FRAMEBUFFER, st.fbo.get());
+             clearTarget(st);
+             gl.Enable(GL_DEPTH_TEST);
+             depthPrePass();
+             gl.DepthFunc(GL_EQUAL);
+             gl.DepthMask(GL_FALSE);
+             drawScene(shadeProgram);
+             gl.DepthMask(GL_TRUE);
+             gl.Disable(GL_DEPTH_TEST);
+         }});
 
     // 12. Screen-space masks: reading one, writing one, and the pass break a mask pass costs.
     p.push_back(fullScreen("12. texelFetch R8 screen mask", varying, rgba16f_, {kIo, kMaskFetchFs},
@@ -820,8 +821,8 @@ std::string markdown(const std::vector<Probe>& probes, const SceneCounts& counts
         std::string delta = "—";
         if (!p.baseline.empty()) {
             const double base = spread(row(probes, p.baseline).ms).median;
-            delta = (s.median >= base ? "+" : "") + fixed(s.median - base) + " (×" + fixed(s.median / base) +
-                    ") vs " + p.baseline;
+            delta = (s.median >= base ? "+" : "") + fixed(s.median - base) + " (×" + fixed(s.median / base) + ") vs " +
+                    p.baseline;
         }
         md << "| " << p.name << " | " << fixed(s.median) << " | " << fixed(s.min) << " | " << fixed(s.max) << " | "
            << fixed(s.median / kMegapixels) << " | " << delta << " | " << fixed(p.firstFrameMs, 1) << " |\n";
@@ -830,9 +831,7 @@ std::string markdown(const std::vector<Probe>& probes, const SceneCounts& counts
     const auto median = [&probes](const std::string& name) { return spread(row(probes, name).ms).median; };
     const double base = median("varying → RGBA16F");
     const double block = median("8. 16 compare taps") - base;
-    const auto paid = [&](const std::string& name) {
-        return fixed(100.0 * (median(name) - base) / block, 0) + " %";
-    };
+    const auto paid = [&](const std::string& name) { return fixed(100.0 * (median(name) - base) / block, 0) + " %"; };
     const double less = median("11. scene: 16 taps, depth LESS");
     // Shading alone in the scene: the LESS pass minus the depth-only pass (same triangles, same
     // depth work), per shaded fragment, against the full-screen 16-tap pass per pixel.
@@ -850,18 +849,20 @@ std::string markdown(const std::vector<Probe>& probes, const SceneCounts& counts
        << "- loop whose per-pixel trip count is 0 everywhere: " << paid("10. tap loop, per-pixel trip count 0")
        << "\n\n"
        << "Sampler array: the first frame (JIT) of 16 taps through `sampler[8]` takes "
-       << fixed(uniformIndex.firstFrameMs, 0) << " ms with a uniform index against " << fixed(constantIndex.firstFrameMs, 0)
-       << " ms with a constant one.\n\n"
+       << fixed(uniformIndex.firstFrameMs, 0) << " ms with a uniform index against "
+       << fixed(constantIndex.firstFrameMs, 0) << " ms with a constant one.\n\n"
        << "Scene `" << sceneName << "` (its own camera; fragments counted with GL_SAMPLES_PASSED):\n\n"
        << "- triangles drawn per pass: " << counts.triangles << "\n"
        << "- fragments rasterised (depth test ALWAYS): " << counts.rasterised << " — depth complexity "
-       << fixed(static_cast<double>(counts.rasterised) / static_cast<double>(std::max<std::uint64_t>(counts.visible, 1)))
+       << fixed(static_cast<double>(counts.rasterised) /
+                static_cast<double>(std::max<std::uint64_t>(counts.visible, 1)))
        << "\n"
        << "- fragments shaded with depth LESS in submission order: " << counts.shadedLess << "\n"
        << "- visible fragments (EQUAL after the pre-pass): " << counts.visible << " ("
        << fixed(100.0 * static_cast<double>(counts.visible) / (kWidth * kHeight), 1) << " % of the screen)\n"
        << "- overdraw factor of the shaded pass (LESS / visible): "
-       << fixed(static_cast<double>(counts.shadedLess) / static_cast<double>(std::max<std::uint64_t>(counts.visible, 1)))
+       << fixed(static_cast<double>(counts.shadedLess) /
+                static_cast<double>(std::max<std::uint64_t>(counts.visible, 1)))
        << "\n"
        << "- shading cost per fragment, scene vs full screen (small triangles shade partly covered 4x4 "
        << "blocks): " << fixed(sceneShadingPerMFrag) << " vs " << fixed(screenShadingPerMPix) << " ms per M (×"

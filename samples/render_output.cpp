@@ -27,8 +27,8 @@ Result<std::pair<int, int>> parseSize(const std::string& text) {
 Result<Entity> chooseCamera(Scene& scene, std::optional<int> index, double time) {
     if (index) {
         if (*index < 0 || *index >= static_cast<int>(scene.cameras.size())) {
-            return Error{"--camera " + std::to_string(*index) + ": the scene has " + std::to_string(scene.cameras.size()) +
-                         " cameras"};
+            return Error{"--camera " + std::to_string(*index) + ": the scene has " +
+                         std::to_string(scene.cameras.size()) + " cameras"};
         }
         return scene.cameras[static_cast<std::size_t>(*index)];
     }
@@ -44,11 +44,16 @@ Result<OutputSelection> parseAovList(const std::string& list) {
     std::string item;
     bool any = false;
     while (std::getline(in, item, ',')) {
-        if (item == "color") s.color = true;
-        else if (item == "visibility") s.visibility = true;
-        else if (item == "position") s.position = true;
-        else if (item == "depth") s.depth = true;
-        else return Error{"--aov: unknown output '" + item + "' (known: color, visibility, position, depth)"};
+        if (item == "color")
+            s.color = true;
+        else if (item == "visibility")
+            s.visibility = true;
+        else if (item == "position")
+            s.position = true;
+        else if (item == "depth")
+            s.depth = true;
+        else
+            return Error{"--aov: unknown output '" + item + "' (known: color, visibility, position, depth)"};
         any = true;
     }
     if (!any) return Error{"--aov: empty list (known: color, visibility, position, depth)"};

@@ -50,8 +50,8 @@ struct Spread {
 /// stats.json: the light mapping, the last frame's counters and warnings (each
 /// `{"code", "element", "message"}`, codes as `warningCodeName` spells them), and per-pass
 /// timing spreads over `frames` (the first, warm-up frame left out when there are more).
-[[nodiscard]] std::string statsJson(const Scene& scene, const std::vector<FrameStats>& frames, int width,
-                                    int height, const std::string& technique);
+[[nodiscard]] std::string statsJson(const Scene& scene, const std::vector<FrameStats>& frames, int width, int height,
+                                    const std::string& technique);
 
 /// Parses a technique name; error names the value.
 [[nodiscard]] Result<ShadowTechnique> parseTechnique(const std::string& name);

@@ -100,8 +100,7 @@ int run(const Options& o) {
     json lights = json::array();
     for (const LightComparison& light : comparison->lights) {
         const std::string heatMap =
-            (std::filesystem::path(outDir) / ("error_" + std::to_string(light.index) + ".png"))
-                .string();
+            (std::filesystem::path(outDir) / ("error_" + std::to_string(light.index) + ".png")).string();
         if (Status s = writeHeatMapPng(heatMap, light.heatMap); !s) {
             return fail(kExitFailure, s.error().message);
         }
@@ -120,8 +119,7 @@ int run(const Options& o) {
     report["warnings"] = comparison->warnings;
     report["definitions"] = definitionsJson();
     std::cout << report.dump(2) << "\n";
-    for (const std::string& w : comparison->warnings)
-        std::cerr << "shadow_compare: warning: " << w << "\n";
+    for (const std::string& w : comparison->warnings) std::cerr << "shadow_compare: warning: " << w << "\n";
     return 0;
 }
 
@@ -132,10 +130,8 @@ int main(int argc, char** argv) {
     CLI::App app{
         "Compares the visibility_<i>.exr images of two render folders and prints the errors as "
         "JSON.\nA = ESTIMATE_DIR (images under test), B = TRUTH_DIR (reference); error = A - B."};
-    app.add_option("ESTIMATE_DIR", o.estimateDir, "A: folder with the estimated visibility_<i>.exr")
-        ->required();
-    app.add_option("TRUTH_DIR", o.truthDir, "B: folder with the true visibility_<i>.exr")
-        ->required();
+    app.add_option("ESTIMATE_DIR", o.estimateDir, "A: folder with the estimated visibility_<i>.exr")->required();
+    app.add_option("TRUTH_DIR", o.truthDir, "B: folder with the true visibility_<i>.exr")->required();
     app.add_option("--out", o.out, "folder for the error_<i>.png heat maps (default: A)");
     app.add_option("--mask", o.mask,
                    "EXR whose A (or Y) channel > 0.5 marks receiver pixels (default: B's "

@@ -52,8 +52,6 @@ int fail(int code, const std::string& message) {
     return code;
 }
 
-
-
 /// Prints "tracing NN%" over itself, only when stderr is a terminal.
 std::function<void(int, int)> progressPrinter() {
     if (::isatty(STDERR_FILENO) == 0) return {};
@@ -61,8 +59,7 @@ std::function<void(int, int)> progressPrinter() {
         const int percent = 100 * done / std::max(total, 1);
         if (percent == last) return;
         last = percent;
-        std::fprintf(stderr, "\rshadow_reference: tracing %3d%%%s", percent,
-                     done == total ? "\n" : "");
+        std::fprintf(stderr, "\rshadow_reference: tracing %3d%%%s", percent, done == total ? "\n" : "");
         std::fflush(stderr);
     };
 }
@@ -98,8 +95,8 @@ nlohmann::json lightsJson(const Scene& scene, const reference::ReferenceResult& 
     return lights;
 }
 
-std::string referenceJson(const Scene& scene, const Options& o, int cameraIndex, int width,
-                          int height, const reference::ReferenceResult& r, double totalSeconds) {
+std::string referenceJson(const Scene& scene, const Options& o, int cameraIndex, int width, int height,
+                          const reference::ReferenceResult& r, double totalSeconds) {
     nlohmann::json j;
     j["scene"] = scene.name;
     j["sceneSpec"] = o.scene;
@@ -113,8 +110,7 @@ std::string referenceJson(const Scene& scene, const Options& o, int cameraIndex,
     j["threads"] = r.threads;
     j["epsilon"] = r.epsilon;
     j["standardErrorModel"] = "binomial sqrt(v(1-v)/N); an upper bound for stratified samples";
-    j["timeSeconds"] = {
-        {"build", r.buildSeconds}, {"trace", r.traceSeconds}, {"total", totalSeconds}};
+    j["timeSeconds"] = {{"build", r.buildSeconds}, {"trace", r.traceSeconds}, {"total", totalSeconds}};
     j["pixels"] = {{"covered", r.coveredPixels},
                    {"nonReceiver", r.nonReceiverPixels},
                    {"positionsWithoutSurface", r.positionsWithoutSurface}};
@@ -140,24 +136,20 @@ int run(Options& o) {
     const auto start = std::chrono::steady_clock::now();
     auto size = samples::parseSize(o.size);
     if (!size) return fail(kExitBadInput, size.error().message);
-    if (o.samples < 1 || o.samples > (1 << 20))
-        return fail(kExitBadInput, "--samples: must be in [1, 1048576]");
+    if (o.samples < 1 || o.samples > (1 << 20)) return fail(kExitBadInput, "--samples: must be in [1, 1048576]");
     if (o.threads < 0 || o.threads > 1024)
         return fail(kExitBadInput, "--threads: must be in [0, 1024] (0 = all cores)");
-    if (!std::isfinite(o.time))
-        return fail(kExitBadInput, "--time: must be a finite number of seconds");
+    if (!std::isfinite(o.time)) return fail(kExitBadInput, "--time: must be a finite number of seconds");
     if (o.camera && *o.camera < 0)
         return fail(kExitBadInput, "--camera " + std::to_string(*o.camera) + ": must be >= 0");
 
     std::optional<ImageF> positions;
     if (!o.positions.empty()) {
         Result<ImageF> read = readExr(o.positions, {"R", "G", "B", "A"});
-        if (!read)
-            return fail(kExitBadInput, "--positions " + o.positions + ": " + read.error().message);
+        if (!read) return fail(kExitBadInput, "--positions " + o.positions + ": " + read.error().message);
         if (o.sizeGiven && (read->width != size->first || read->height != size->second)) {
-            return fail(kExitBadInput,
-                        "--positions " + o.positions + ": image is " + std::to_string(read->width) +
-                            "x" + std::to_string(read->height) + " but --size is " + o.size);
+            return fail(kExitBadInput, "--positions " + o.positions + ": image is " + std::to_string(read->width) +
+                                           "x" + std::to_string(read->height) + " but --size is " + o.size);
         }
         *size = {read->width, read->height};
         positions = std::move(*read);
@@ -178,8 +170,7 @@ int run(Options& o) {
     }
 
     // Input is valid: now the output folder, checked before any tracing.
-    if (Status s = samples::prepareOutputDir(o.out); !s)
-        return fail(kExitBadInput, s.error().message);
+    if (Status s = samples::prepareOutputDir(o.out); !s) return fail(kExitBadInput, s.error().message);
 
     reference::ReferenceOptions options;
     options.width = size->first;
@@ -194,9 +185,9 @@ int run(Options& o) {
     Result<reference::ReferenceResult> traced = reference::traceVisibility(scene, view, options);
     if (!traced) return fail(kExitBadInput, traced.error().message);
 
-    const std::string json = referenceJson(
-        scene, o, cameraIndex, size->first, size->second, *traced,
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    const std::string json =
+        referenceJson(scene, o, cameraIndex, size->first, size->second, *traced,
+                      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     if (Status s = writeOutputs(o.out, *traced); !s) return fail(kExitFailure, s.error().message);
     if (Status s = writeTextFileAtomic(o.out + "/reference.json", json); !s)
         return fail(kExitFailure, s.error().message);
@@ -207,17 +198,15 @@ int run(Options& o) {
 
 int main(int argc, char** argv) {
     Options o;
-    CLI::App app{
-        "Ray-traces every light's visibility (the reference the shadow maps approximate)."};
+    CLI::App app{"Ray-traces every light's visibility (the reference the shadow maps approximate)."};
     app.add_option("scene", o.scene, "a .gltf/.glb file or builtin:NAME")->required();
     app.add_option("--out", o.out, "output folder (created if missing)");
-    CLI::Option* sizeOption = app.add_option(
-        "--size", o.size, "image size WxH (default 640x360, or that of --positions)");
+    CLI::Option* sizeOption =
+        app.add_option("--size", o.size, "image size WxH (default 640x360, or that of --positions)");
     app.add_option("--camera", o.camera, "index of the scene camera to use (default: the first)");
     app.add_option("--time", o.time, "animation time (s)");
     app.add_option("--samples", o.samples, "shadow rays per pixel and light, [1, 1048576]");
-    app.add_option("--positions", o.positions,
-                   "shade the world positions of an engine position.exr");
+    app.add_option("--positions", o.positions, "shade the world positions of an engine position.exr");
     app.add_option("--threads", o.threads, "worker threads (0 = all cores)");
     app.add_option("--seed", o.seed, "seed of the sample patterns");
     try {

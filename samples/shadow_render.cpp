@@ -81,7 +81,8 @@ Status writeShadowMaps(const std::string& dir, const ShadowSystem& shadows) {
                         static_cast<std::uint8_t>(std::lround(255.0f * std::clamp(d / scale, 0.0f, 1.0f)));
                 }
             }
-            const std::string stem = dir + "/shadowmap_" + std::to_string(plan.sceneIndex) + "_layer" + std::to_string(k);
+            const std::string stem =
+                dir + "/shadowmap_" + std::to_string(plan.sceneIndex) + "_layer" + std::to_string(k);
             if (Status s = writeExr(stem + ".exr", img, {"Y"}); !s) return s;
             std::vector<std::uint8_t> rgb(grey.size() * 3);
             for (std::size_t p = 0; p < grey.size(); ++p) rgb[3 * p] = rgb[3 * p + 1] = rgb[3 * p + 2] = grey[p];
@@ -110,7 +111,8 @@ int run(const Options& o) {
     }
     if (!std::isfinite(o.dt)) return fail(kExitBadInput, "--dt: must be a finite number of seconds");
     if (o.frames < 1 || o.frames > 100000) return fail(kExitBadInput, "--frames: must be in [1, 100000]");
-    if (o.camera && *o.camera < 0) return fail(kExitBadInput, "--camera " + std::to_string(*o.camera) + ": must be >= 0");
+    if (o.camera && *o.camera < 0)
+        return fail(kExitBadInput, "--camera " + std::to_string(*o.camera) + ": must be >= 0");
 
     Result<Scene> loaded = loadScene(o.scene);
     if (!loaded) return fail(kExitBadInput, loaded.error().message);
@@ -170,8 +172,7 @@ int run(const Options& o) {
     if (o.debug == "shadowmap") {
         if (Status s = writeShadowMaps(o.out, runner.shadows()); !s) return fail(kExitFailure, s.error().message);
     }
-    const std::string json =
-        samples::statsJson(scene, frames, options.width, options.height, o.technique.value_or(""));
+    const std::string json = samples::statsJson(scene, frames, options.width, options.height, o.technique.value_or(""));
     if (Status s = writeTextFileAtomic(o.out + "/stats.json", json); !s) return fail(kExitFailure, s.error().message);
     for (const Warning& w : frames.back().warnings) std::cerr << "shadow_render: warning: " << w.message << "\n";
     return 0;

@@ -78,8 +78,8 @@ int main(int argc, char** argv) {
                 scene.world.view<Shadow>().each([&](Entity e, Shadow& s) {
                     s.technique = techniqueMode == 0 ? own[e.bits()] : forced[techniqueMode];
                 });
-                std::cout << "technique: " << (techniqueMode == 0 ? "scene's own" : techniqueName(forced[techniqueMode]))
-                          << "\n";
+                std::cout << "technique: "
+                          << (techniqueMode == 0 ? "scene's own" : techniqueName(forced[techniqueMode])) << "\n";
             }
             if (!paused) t += dt;
             moveCamera(**window, scene.world, camera, dt);

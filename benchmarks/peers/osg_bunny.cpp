@@ -68,9 +68,7 @@ constexpr int kShadowMapSize = 2048;
 constexpr unsigned kReceives = 0x1;
 constexpr unsigned kCasts = 0x2;
 
-double degrees(double rad) {
-    return rad * 180.0 / kPi;
-}
+double degrees(double rad) { return rad * 180.0 / kPi; }
 
 struct Options {
     std::string mode;
@@ -84,10 +82,9 @@ struct Options {
 };
 
 [[noreturn]] void usage(const std::string& problem) {
-    std::cerr
-        << "osg_bunny: " << problem << "\n"
-        << "usage: osg_bunny none|sm|vdsm|soft [--warmup W] [--frames N] [--png PATH] [--size WxH]"
-           " [--grid N] [--obj PATH]\n";
+    std::cerr << "osg_bunny: " << problem << "\n"
+              << "usage: osg_bunny none|sm|vdsm|soft [--warmup W] [--frames N] [--png PATH] [--size WxH]"
+                 " [--grid N] [--obj PATH]\n";
     std::exit(2);
 }
 
@@ -95,8 +92,8 @@ int parseInt(const std::string& flag, const std::string& text, int lo, int hi) {
     char* end = nullptr;
     const long v = std::strtol(text.c_str(), &end, 10);
     if (text.empty() || *end != '\0' || v < lo || v > hi) {
-        usage(flag + ": expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-              "], got '" + text + "'");
+        usage(flag + ": expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got '" + text +
+              "'");
     }
     return static_cast<int>(v);
 }
@@ -159,10 +156,8 @@ osg::ref_ptr<osg::Geometry> makeGround(int n) {
     positions->reserve(static_cast<std::size_t>(n + 1) * (n + 1));
     for (int j = 0; j <= n; ++j) {
         for (int i = 0; i <= n; ++i) {
-            const float x = -kGroundHalfSize +
-                            2.0f * kGroundHalfSize * static_cast<float>(i) / static_cast<float>(n);
-            const float z = -kGroundHalfSize +
-                            2.0f * kGroundHalfSize * static_cast<float>(j) / static_cast<float>(n);
+            const float x = -kGroundHalfSize + 2.0f * kGroundHalfSize * static_cast<float>(i) / static_cast<float>(n);
+            const float z = -kGroundHalfSize + 2.0f * kGroundHalfSize * static_cast<float>(j) / static_cast<float>(n);
             positions->push_back(osg::Vec3(x, 0.0f, z));
             normals->push_back(osg::Vec3(0.0f, 1.0f, 0.0f));
         }
@@ -233,8 +228,7 @@ osg::ref_ptr<osg::LightSource> makeSpot() {
     light->setSpotExponent(static_cast<float>(std::log(0.5) / std::log(std::cos(mid))));
     osg::ref_ptr<osg::LightSource> source = new osg::LightSource;
     source->setLight(light.get());
-    source->setReferenceFrame(
-        osg::LightSource::RELATIVE_RF);  // world coordinates under the view matrix
+    source->setReferenceFrame(osg::LightSource::RELATIVE_RF);  // world coordinates under the view matrix
     return source;
 }
 
@@ -286,8 +280,7 @@ int main(int argc, char** argv) {
     osg::ref_ptr<osgDB::Options> objOptions = new osgDB::Options("noRotation");
     osg::ref_ptr<osg::Node> bunny = osgDB::readRefNodeFile(o.obj, objOptions.get());
     if (!bunny) {
-        std::cerr << "osg_bunny: cannot read " << o.obj
-                  << " (install glmark2-data and the OSG obj plugin)\n";
+        std::cerr << "osg_bunny: cannot read " << o.obj << " (install glmark2-data and the OSG obj plugin)\n";
         return 1;
     }
     PrepareGeometry bunnyCheck;
@@ -304,10 +297,9 @@ int main(int argc, char** argv) {
     const osg::BoundingBox b = boundsVisitor.getBoundingBox();
     const double scale = kBunnyHeight / std::max(1e-6, static_cast<double>(b.yMax() - b.yMin()));
     // Scale first, then stand the bunny on the ground centred on the origin (as ours).
-    osg::ref_ptr<osg::MatrixTransform> bunnyXform =
-        new osg::MatrixTransform(osg::Matrix::scale(scale, scale, scale) *
-                                 osg::Matrix::translate(-scale * b.center().x(), -scale * b.yMin(),
-                                                        -scale * b.center().z()));
+    osg::ref_ptr<osg::MatrixTransform> bunnyXform = new osg::MatrixTransform(
+        osg::Matrix::scale(scale, scale, scale) *
+        osg::Matrix::translate(-scale * b.center().x(), -scale * b.yMin(), -scale * b.center().z()));
     bunnyXform->addChild(bunny.get());
     bunnyXform->setNodeMask(kReceives | kCasts);
     bunnyXform->getOrCreateStateSet()->setAttributeAndModes(matte(kBunnyAlbedo).get());
@@ -389,8 +381,7 @@ int main(int argc, char** argv) {
     traits->windowDecoration = false;
     traits->doubleBuffer = true;
     traits->vsync = false;  // time the work, not the display
-    osg::ref_ptr<osg::GraphicsContext> gc =
-        osg::GraphicsContext::createGraphicsContext(traits.get());
+    osg::ref_ptr<osg::GraphicsContext> gc = osg::GraphicsContext::createGraphicsContext(traits.get());
     if (!gc) {
         std::cerr << "osg_bunny: cannot create a " << o.width << "x" << o.height
                   << " window (is DISPLAY set? run under xvfb-run)\n";
@@ -409,8 +400,7 @@ int main(int argc, char** argv) {
     camera->setReadBuffer(GL_BACK);
     camera->setClearColor(osg::Vec4(0, 0, 0, 1));
     camera->setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
-    camera->setProjectionMatrixAsPerspective(degrees(kYfov),
-                                             static_cast<double>(o.width) / o.height, kNear, kFar);
+    camera->setProjectionMatrixAsPerspective(degrees(kYfov), static_cast<double>(o.width) / o.height, kNear, kFar);
     camera->setViewMatrixAsLookAt(kEye, kTarget, osg::Vec3d(0, 1, 0));
     camera->setSmallFeatureCullingPixelSize(0.0f);
     osg::ref_ptr<FinishAndCapture> finish = new FinishAndCapture;
@@ -435,14 +425,12 @@ int main(int argc, char** argv) {
         const Clock::time_point t1 = Clock::now();
         if (f >= o.warmup) {
             frameMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-            drawMs.push_back(
-                std::chrono::duration<double, std::milli>(finish->drawDone - t0).count());
+            drawMs.push_back(std::chrono::duration<double, std::milli>(finish->drawDone - t0).count());
         }
     }
     if (finish->capture.valid()) {
         if (!osgDB::writeImageFile(*finish->capture, o.png)) {
-            std::cerr << "osg_bunny: cannot write " << o.png
-                      << " (is the OSG png plugin installed?)\n";
+            std::cerr << "osg_bunny: cannot write " << o.png << " (is the OSG png plugin installed?)\n";
             return 1;
         }
     }
@@ -456,10 +444,8 @@ int main(int argc, char** argv) {
         " \"drawMs\": {\"median\": %.3f},\n"
         " \"bunny\": {\"vertices\": %zu, \"triangles\": %zu, \"scale\": %.6f},\n"
         " \"ground\": {\"vertices\": %zu, \"triangles\": %zu}}\n",
-        osgGetVersion(), o.mode.c_str(), jsonEscape(finish->renderer).c_str(),
-        jsonEscape(finish->version).c_str(), o.width, o.height,
-        o.mode == "none" ? 0 : kShadowMapSize, o.warmup, o.frames, median(frameMs), *minIt, *maxIt,
-        median(drawMs), bunnyStats.vertices, bunnyStats.triangles, scale, groundStats.vertices,
-        groundStats.triangles);
+        osgGetVersion(), o.mode.c_str(), jsonEscape(finish->renderer).c_str(), jsonEscape(finish->version).c_str(),
+        o.width, o.height, o.mode == "none" ? 0 : kShadowMapSize, o.warmup, o.frames, median(frameMs), *minIt, *maxIt,
+        median(drawMs), bunnyStats.vertices, bunnyStats.triangles, scale, groundStats.vertices, groundStats.triangles);
     return 0;
 }

@@ -68,8 +68,7 @@ const std::vector<float> kEstimate4x4 = {
 // clang-format on
 
 TEST(ErrorMetrics, HandComputedStatisticsOn4x4) {
-    const Result<VisibilityErrors> r =
-        compareVisibility(imageOf(4, 4, kEstimate4x4), imageOf(4, 4, kTruth4x4));
+    const Result<VisibilityErrors> r = compareVisibility(imageOf(4, 4, kEstimate4x4), imageOf(4, 4, kTruth4x4));
     ASSERT_TRUE(r.ok()) << r.error().message;
     const VisibilityErrors& e = *r;
     EXPECT_EQ(e.receiverPixels, 16);
@@ -101,18 +100,15 @@ TEST(ErrorMetrics, P99IsNearestRank) {
     constexpr int kN = 150;
     std::vector<float> truth(kN, 0.0f);
     std::vector<float> estimate(kN);
-    for (int i = 0; i < kN; ++i)
-        estimate[static_cast<std::size_t>(i)] = static_cast<float>((i * 7) % kN + 1) / 256.0f;
-    const Result<VisibilityErrors> r =
-        compareVisibility(imageOf(kN, 1, estimate), imageOf(kN, 1, truth));
+    for (int i = 0; i < kN; ++i) estimate[static_cast<std::size_t>(i)] = static_cast<float>((i * 7) % kN + 1) / 256.0f;
+    const Result<VisibilityErrors> r = compareVisibility(imageOf(kN, 1, estimate), imageOf(kN, 1, truth));
     ASSERT_TRUE(r.ok()) << r.error().message;
     EXPECT_DOUBLE_EQ(r->p99, 149.0 / 256.0);
     EXPECT_DOUBLE_EQ(r->maxAbsError, 150.0 / 256.0);
 
     // N = 100: rank 99, not the maximum.
     std::vector<float> est100(100);
-    for (int i = 0; i < 100; ++i)
-        est100[static_cast<std::size_t>(i)] = static_cast<float>(100 - i) / 128.0f;
+    for (int i = 0; i < 100; ++i) est100[static_cast<std::size_t>(i)] = static_cast<float>(100 - i) / 128.0f;
     const Result<VisibilityErrors> r100 =
         compareVisibility(imageOf(100, 1, est100), imageOf(100, 1, std::vector<float>(100, 0.0f)));
     ASSERT_TRUE(r100.ok());
@@ -124,8 +120,7 @@ TEST(ErrorMetrics, MaskRestrictsToReceiversUsingItsLastChannel) {
     std::vector<float> coverage(16, 0.0f);
     for (int i = 0; i < 6; ++i) coverage[static_cast<std::size_t>(i)] = 1.0f;
     const ImageF mask = rgbaMask(4, 4, coverage);
-    const Result<VisibilityErrors> r =
-        compareVisibility(imageOf(4, 4, kEstimate4x4), imageOf(4, 4, kTruth4x4), &mask);
+    const Result<VisibilityErrors> r = compareVisibility(imageOf(4, 4, kEstimate4x4), imageOf(4, 4, kTruth4x4), &mask);
     ASSERT_TRUE(r.ok()) << r.error().message;
     EXPECT_EQ(r->receiverPixels, 6);
     EXPECT_EQ(r->validPixels, 6);
@@ -148,8 +143,7 @@ TEST(ErrorMetrics, NonFiniteMaskedOutPixelsAreIgnoredAndEmptyMaskGivesZeros) {
     coverage[15] = 0.0f;
     coverage[14] = kNaN;  // a NaN mask value is not a receiver
     const ImageF mask = rgbaMask(4, 4, coverage);
-    const Result<VisibilityErrors> r =
-        compareVisibility(imageOf(4, 4, estimate), imageOf(4, 4, kTruth4x4), &mask);
+    const Result<VisibilityErrors> r = compareVisibility(imageOf(4, 4, estimate), imageOf(4, 4, kTruth4x4), &mask);
     ASSERT_TRUE(r.ok());
     EXPECT_EQ(r->receiverPixels, 14);
     EXPECT_EQ(r->nonFinite, 0);
@@ -158,8 +152,7 @@ TEST(ErrorMetrics, NonFiniteMaskedOutPixelsAreIgnoredAndEmptyMaskGivesZeros) {
     EXPECT_DOUBLE_EQ(r->rmse, std::sqrt(3.328125 / 14.0));
 
     const ImageF none = rgbaMask(4, 4, std::vector<float>(16, 0.0f));
-    const Result<VisibilityErrors> empty =
-        compareVisibility(imageOf(4, 4, estimate), imageOf(4, 4, kTruth4x4), &none);
+    const Result<VisibilityErrors> empty = compareVisibility(imageOf(4, 4, estimate), imageOf(4, 4, kTruth4x4), &none);
     ASSERT_TRUE(empty.ok());
     EXPECT_EQ(empty->receiverPixels, 0);
     EXPECT_EQ(empty->rmse, 0.0);
@@ -173,8 +166,7 @@ TEST(ErrorMetrics, NonFiniteReceiversAreCountedNotPropagated) {
     estimate[3] = kNaN;   // a lit pixel with e = -0.25
     truth[7] = kInf;      // an umbra pixel with e = 0
     estimate[9] = -kInf;  // an umbra pixel with e = +0.75 (a leak)
-    const Result<VisibilityErrors> r =
-        compareVisibility(imageOf(4, 4, estimate), imageOf(4, 4, truth));
+    const Result<VisibilityErrors> r = compareVisibility(imageOf(4, 4, estimate), imageOf(4, 4, truth));
     ASSERT_TRUE(r.ok());
     EXPECT_EQ(r->receiverPixels, 16);
     EXPECT_EQ(r->nonFinite, 3);
@@ -185,9 +177,8 @@ TEST(ErrorMetrics, NonFiniteReceiversAreCountedNotPropagated) {
     const double sumSq = 3.578125 - 0.0625 - 0.5625;
     EXPECT_DOUBLE_EQ(r->rmse, std::sqrt(sumSq / 13.0));
     EXPECT_DOUBLE_EQ(r->mae, (4.875 - 0.25 - 0.75) / 13.0);
-    for (double v : {r->rmse, r->mae, r->meanError, r->p99, r->maxAbsError, r->fractionOver0_1,
-                     r->penumbraRmse, r->acneFraction, r->acneMeanDarkening, r->leakFraction,
-                     r->leakMeanLightening}) {
+    for (double v : {r->rmse, r->mae, r->meanError, r->p99, r->maxAbsError, r->fractionOver0_1, r->penumbraRmse,
+                     r->acneFraction, r->acneMeanDarkening, r->leakFraction, r->leakMeanLightening}) {
         EXPECT_TRUE(std::isfinite(v));
     }
 }
@@ -196,8 +187,7 @@ TEST(ErrorMetrics, ClassEpsilonAbsorbsNearBinaryTruth) {
     // 0.9995 is lit and 0.0005 umbra (within ε = 1e-3); 0.002 and 0.998 are penumbra.
     const std::vector<float> truth = {0.9995f, 0.0005f, 0.002f, 0.998f};
     const std::vector<float> estimate = {0.4f, 0.6f, 0.002f, 0.998f};
-    const Result<VisibilityErrors> r =
-        compareVisibility(imageOf(4, 1, estimate), imageOf(4, 1, truth));
+    const Result<VisibilityErrors> r = compareVisibility(imageOf(4, 1, estimate), imageOf(4, 1, truth));
     ASSERT_TRUE(r.ok());
     EXPECT_EQ(r->litPixels, 1);
     EXPECT_EQ(r->umbraPixels, 1);
@@ -229,10 +219,8 @@ TEST(ErrorMetrics, SizeMismatchNamesBothSizes) {
 
 TEST(ErrorMetrics, PooledLightsArePixelWeighted) {
     // Light 0: the 4x4 case; light 1: 16 exactly estimated lit pixels. Pooled over 32 pixels.
-    const std::vector<ImageF> estimates = {imageOf(4, 4, kEstimate4x4),
-                                           imageOf(4, 4, std::vector<float>(16, 1.0f))};
-    const std::vector<ImageF> truths = {imageOf(4, 4, kTruth4x4),
-                                        imageOf(4, 4, std::vector<float>(16, 1.0f))};
+    const std::vector<ImageF> estimates = {imageOf(4, 4, kEstimate4x4), imageOf(4, 4, std::vector<float>(16, 1.0f))};
+    const std::vector<ImageF> truths = {imageOf(4, 4, kTruth4x4), imageOf(4, 4, std::vector<float>(16, 1.0f))};
     const Result<VisibilityErrors> all = compareVisibilityPooled(estimates, truths);
     ASSERT_TRUE(all.ok()) << all.error().message;
     EXPECT_EQ(all->validPixels, 32);
@@ -276,8 +264,7 @@ TEST(ErrorHeatMap, ColoursAtMinusOneZeroPlusOne) {
     expectColor(errorColor(0.25), 1, 0.75f, 0.75f);
     expectColor(errorColor(-3.0), 0, 0, 1);  // saturates
     expectColor(errorColor(7.0), 1, 0, 0);
-    expectColor(errorColor(std::nan("")), kHeatMapBadColor[0], kHeatMapBadColor[1],
-                kHeatMapBadColor[2]);
+    expectColor(errorColor(std::nan("")), kHeatMapBadColor[0], kHeatMapBadColor[1], kHeatMapBadColor[2]);
 }
 
 TEST(ErrorHeatMap, ImageColoursReceiversAndGreysBackground) {
@@ -292,8 +279,7 @@ TEST(ErrorHeatMap, ImageColoursReceiversAndGreysBackground) {
         {0, 0, 1}, {1, 1, 1}, {1, 0, 0}, kHeatMapBackground, kHeatMapBadColor};
     for (int x = 0; x < 5; ++x) {
         for (int c = 0; c < 3; ++c) {
-            EXPECT_FLOAT_EQ(map->at(x, 0, c),
-                            expected[static_cast<std::size_t>(x)][static_cast<std::size_t>(c)])
+            EXPECT_FLOAT_EQ(map->at(x, 0, c), expected[static_cast<std::size_t>(x)][static_cast<std::size_t>(c)])
                 << "pixel " << x << " channel " << c;
         }
     }
@@ -340,8 +326,7 @@ TEST_F(MetricsDirTest, HeatMapPngHasTheExpectedBytes) {
     stbi_image_free(data);
     EXPECT_EQ(w, 5);
     EXPECT_EQ(h, 1);
-    const std::vector<unsigned char> expected = {0, 0,   255, 255, 255, 255, 255, 0,
-                                                 0, 128, 128, 128, 0,   0,   0};
+    const std::vector<unsigned char> expected = {0, 0, 255, 255, 255, 255, 255, 0, 0, 128, 128, 128, 0, 0, 0};
     EXPECT_EQ(bytes, expected);
 }
 
@@ -412,8 +397,7 @@ TEST_F(MetricsDirTest, CompareFoldersMissingEstimateLightNamesTheFile) {
     writeVisibility(est, 0, imageOf(2, 2, {1, 1, 1, 1}));
     const Result<FolderComparison> r = compareFolders(est, tru);
     ASSERT_FALSE(r.ok());
-    EXPECT_NE(r.error().message.find(est + "/visibility_1.exr"), std::string::npos)
-        << r.error().message;
+    EXPECT_NE(r.error().message.find(est + "/visibility_1.exr"), std::string::npos) << r.error().message;
     EXPECT_NE(r.error().message.find("missing"), std::string::npos) << r.error().message;
 }
 
@@ -443,8 +427,7 @@ TEST_F(MetricsDirTest, CompareFoldersBadInputNamesTheProblem) {
     }
     r = compareFolders(est, tru);
     ASSERT_FALSE(r.ok());
-    EXPECT_NE(r.error().message.find(est + "/visibility_0.exr"), std::string::npos)
-        << r.error().message;
+    EXPECT_NE(r.error().message.find(est + "/visibility_0.exr"), std::string::npos) << r.error().message;
 
     writeVisibility(est, 0, imageOf(2, 2, {1, 1, 1, 1}));
     r = compareFolders(est, tru, path("no_mask.exr"));

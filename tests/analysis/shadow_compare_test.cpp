@@ -64,8 +64,7 @@ ImageF imageOf(int width, int height, const std::vector<float>& values) {
 class ShadowCompareCli : public ::testing::Test {
 protected:
     void SetUp() override {
-        ASSERT_TRUE(fs::exists(compareBinary()))
-            << compareBinary() << " is missing: build the shadow_compare target";
+        ASSERT_TRUE(fs::exists(compareBinary())) << compareBinary() << " is missing: build the shadow_compare target";
         tmp_ = std::make_unique<test::TempDir>("shadow_compare_test");
         dir_ = tmp_->path();
         estimate_ = (dir_ / "est").string();
@@ -79,8 +78,8 @@ protected:
     [[nodiscard]] CliRun run(const std::string& args) const {
         const std::string outFile = (dir_ / "stdout.txt").string();
         const std::string errFile = (dir_ / "stderr.txt").string();
-        const std::string command = shellQuoted(compareBinary().string()) + " " + args + " > " +
-                                    shellQuoted(outFile) + " 2> " + shellQuoted(errFile);
+        const std::string command = shellQuoted(compareBinary().string()) + " " + args + " > " + shellQuoted(outFile) +
+                                    " 2> " + shellQuoted(errFile);
         const int raw = std::system(command.c_str());
         CliRun r;
         r.exitCode = raw != -1 && WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -115,8 +114,7 @@ protected:
 TEST_F(ShadowCompareCli, PrintsJsonWithTheExpectedNumbersAndWritesHeatMaps) {
     writeTwoLights();
     const std::string heatDir = (dir_ / "heat").string();
-    const CliRun r =
-        run(shellQuoted(estimate_) + " " + shellQuoted(truth_) + " --out " + shellQuoted(heatDir));
+    const CliRun r = run(shellQuoted(estimate_) + " " + shellQuoted(truth_) + " --out " + shellQuoted(heatDir));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
     ASSERT_FALSE(j.is_discarded()) << "stdout is not JSON:\n" << r.out;

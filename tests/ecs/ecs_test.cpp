@@ -289,8 +289,7 @@ TEST(World, ViewWritesReachTheWorld) {
     World world;
     const auto bySubset = populateSubsets(world);
     world.view<Position, Velocity>().each([](Entity, Position& p, Velocity& v) { p.y = v.dx * 2; });
-    for (Entity e : withAll(bySubset, 3))
-        EXPECT_EQ(world.get<Position>(e).y, world.get<Velocity>(e).dx * 2);
+    for (Entity e : withAll(bySubset, 3)) EXPECT_EQ(world.get<Position>(e).y, world.get<Velocity>(e).dx * 2);
 }
 
 TEST(World, ViewOfATypeNeverEmplacedVisitsNothing) {

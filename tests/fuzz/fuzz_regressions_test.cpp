@@ -21,8 +21,7 @@ std::vector<fs::path> inputsIn(const fs::path& dir) {
     std::vector<fs::path> files;
     for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
         const std::string name = e.path().filename().string();
-        if (e.is_regular_file() && name.front() != '.' && name != "README.md")
-            files.push_back(e.path());
+        if (e.is_regular_file() && name.front() != '.' && name != "README.md") files.push_back(e.path());
     }
     std::sort(files.begin(), files.end());
     return files;
@@ -30,8 +29,7 @@ std::vector<fs::path> inputsIn(const fs::path& dir) {
 
 std::string bytesOf(const fs::path& path) {
     std::string bytes(fs::file_size(path), '\0');
-    std::ifstream(path, std::ios::binary)
-        .read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    std::ifstream(path, std::ios::binary).read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     return bytes;
 }
 

@@ -36,18 +36,15 @@ inline void check(bool ok, const char* what) {
 inline tinygltf::Value toValue(const nlohmann::json& j, int maxDepth = 64) {
     if (maxDepth <= 0) return {};
     switch (j.type()) {
-        case nlohmann::json::value_t::boolean:
-            return tinygltf::Value(j.get<bool>());
+        case nlohmann::json::value_t::boolean: return tinygltf::Value(j.get<bool>());
         case nlohmann::json::value_t::number_integer:
         case nlohmann::json::value_t::number_unsigned: {
             const double d = j.get<double>();
             if (std::abs(d) < 2147483647.0) return tinygltf::Value(static_cast<int>(d));
             return tinygltf::Value(d);
         }
-        case nlohmann::json::value_t::number_float:
-            return tinygltf::Value(j.get<double>());
-        case nlohmann::json::value_t::string:
-            return tinygltf::Value(j.get<std::string>());
+        case nlohmann::json::value_t::number_float: return tinygltf::Value(j.get<double>());
+        case nlohmann::json::value_t::string: return tinygltf::Value(j.get<std::string>());
         case nlohmann::json::value_t::array: {
             tinygltf::Value::Array a;
             for (const nlohmann::json& e : j) a.push_back(toValue(e, maxDepth - 1));
@@ -58,8 +55,7 @@ inline tinygltf::Value toValue(const nlohmann::json& j, int maxDepth = 64) {
             for (const auto& [key, e] : j.items()) o.emplace(key, toValue(e, maxDepth - 1));
             return tinygltf::Value(std::move(o));
         }
-        default:
-            return {};
+        default: return {};
     }
 }
 
@@ -95,13 +91,10 @@ inline void runCpuFrames(Scene& scene) {
             check(plan.hasMap() ? plan.mapSize >= 1 && plan.mapSize <= limits.maxTextureSize : plan.mapSize == 0,
                   "map size inside the limits");
             for (const ShadowLayerPlan& layer : plan.layers) {
-                check(finiteAsFloat(layer.lightFromWorld * worldFromCs) &&
-                          finiteAsFloat(layer.clipFromLight),
+                check(finiteAsFloat(layer.lightFromWorld * worldFromCs) && finiteAsFloat(layer.clipFromLight),
                       "layer matrices finite as the GPU's floats");
-                check(std::isfinite(layer.depthScale) && layer.depthScale > 0.0f,
-                      "positive finite depth scale");
-                check(std::isfinite(layer.depthNear) && layer.depthNear >= 0.0f,
-                      "finite depth near");
+                check(std::isfinite(layer.depthScale) && layer.depthScale > 0.0f, "positive finite depth scale");
+                check(std::isfinite(layer.depthNear) && layer.depthNear >= 0.0f, "finite depth near");
                 texels += static_cast<std::int64_t>(plan.mapSize) * plan.mapSize;
             }
         }
@@ -118,8 +111,7 @@ inline void runOneInput(const std::uint8_t* data, std::size_t size) {
         Result<Scene> scene = gltf::loadGltfFromMemory(bytes, "fuzz.gltf", options);
         if (scene.ok()) runCpuFrames(*scene);
     }
-    const nlohmann::json j =
-        nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, /*allow_exceptions=*/false);
+    const nlohmann::json j = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, /*allow_exceptions=*/false);
     if (j.is_discarded()) return;
     const tinygltf::Value value = toValue(j);
     (void)gltf::parseShadowExtras(value, "fuzz");

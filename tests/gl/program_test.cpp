@@ -38,8 +38,7 @@ int lineContaining(const std::string& file, const std::string& needle) {
 }
 
 TEST(Program, ExpandShaderPutsVersionAndDefinesFirst) {
-    const gpu::ExpandedSource src =
-        gpu::expandShader("lit.frag.glsl", {"SG_TECH_PCF_ENABLED", "SG_FOO 3"});
+    const gpu::ExpandedSource src = gpu::expandShader("lit.frag.glsl", {"SG_TECH_PCF_ENABLED", "SG_FOO 3"});
     const std::vector<std::string> lines = linesOf(src.text);
     ASSERT_GE(lines.size(), 4u);
     EXPECT_EQ(lines[0], "#version 450 core");
@@ -58,8 +57,7 @@ TEST(Program, ExpandShaderInlinesEveryInclude) {
     for (const char* f : {"shadow_visibility.glsl", "shadow_receiver.glsl", "shadow_bindings.glsl",
                           "shadow_kernels.glsl", "shadow_pcf.glsl", "shadow_pcss.glsl", "glsl_types.glsl",
                           "shared_constants.h", "gpu_structs.h", "shadow_common.glsl", "lighting.glsl"}) {
-        EXPECT_NE(std::find(src.files.begin(), src.files.end(), f), src.files.end())
-            << f << " not in the file table";
+        EXPECT_NE(std::find(src.files.begin(), src.files.end(), f), src.files.end()) << f << " not in the file table";
     }
     // The text of an included file is there.
     EXPECT_NE(src.text.find("float shadowVisibility("), std::string::npos);
@@ -69,8 +67,7 @@ TEST(Program, ExpandShaderInlinesEveryInclude) {
 // Every line of the expansion must be the line of the file its #line directive says: a compiler
 // message at F:N then points at the right source line.
 TEST(Program, ExpandShaderLineDirectivesMapEveryLineToItsSource) {
-    for (const char* file :
-         {"lit.frag.glsl", "lit.vert.glsl", "shadow_depth.frag.glsl", "shadow_depth.vert.glsl"}) {
+    for (const char* file : {"lit.frag.glsl", "lit.vert.glsl", "shadow_depth.frag.glsl", "shadow_depth.vert.glsl"}) {
         const gpu::ExpandedSource src = gpu::expandShader(file, {"SG_TECH_HARD_ENABLED"});
         int currentFile = -1;
         int currentLine = 0;
@@ -95,8 +92,8 @@ TEST(Program, ExpandShaderLineDirectivesMapEveryLineToItsSource) {
                 << file << ": line " << currentLine << " past the end of "
                 << src.files[static_cast<std::size_t>(currentFile)];
             EXPECT_EQ(line, source[static_cast<std::size_t>(currentLine - 1)])
-                << file << ": expanded line claims to be "
-                << src.files[static_cast<std::size_t>(currentFile)] << ":" << currentLine;
+                << file << ": expanded line claims to be " << src.files[static_cast<std::size_t>(currentFile)] << ":"
+                << currentLine;
             ++currentLine;
             ++checked;
         }
@@ -125,8 +122,7 @@ TEST(Program, MapShaderLogReplacesFileNumbersByNames) {
     EXPECT_EQ(gpu::mapShaderLog("0:12(5): error: x\n1:3(1): error: y", {"a.glsl", "b.glsl"}),
               "a.glsl:12(5): error: x\nb.glsl:3(1): error: y");
     // NVIDIA's "F(L) : " form.
-    EXPECT_EQ(gpu::mapShaderLog("1(7) : error C0000: z", {"a.glsl", "b.glsl"}),
-              "b.glsl(7) : error C0000: z");
+    EXPECT_EQ(gpu::mapShaderLog("1(7) : error C0000: z", {"a.glsl", "b.glsl"}), "b.glsl(7) : error C0000: z");
     // A number outside the table is kept, not invented.
     EXPECT_EQ(gpu::mapShaderLog("5:1(1): error: w", {"a.glsl"}), "5:1(1): error: w");
 }
@@ -137,8 +133,7 @@ TEST(Program, BuildProgramWithMissingFileThrowsNamingIt) {
         (void)gpu::buildProgram({"Test/missing", "nonexistent.vert.glsl", "lit.frag.glsl", {}});
         FAIL() << "expected GlError";
     } catch (const GlError& e) {
-        EXPECT_NE(std::string(e.what()).find("nonexistent.vert.glsl"), std::string::npos)
-            << e.what();
+        EXPECT_NE(std::string(e.what()).find("nonexistent.vert.glsl"), std::string::npos) << e.what();
     }
 }
 
@@ -158,9 +153,7 @@ TEST(Program, CompileErrorNamesTheIncludedFileAndLine) {
     } catch (const GlError& e) {
         const std::string what = e.what();
         EXPECT_NE(what.find("Test/broken"), std::string::npos) << what;
-        EXPECT_NE(what.find("shadow_kernels.glsl:" + std::to_string(line) + "("),
-                  std::string::npos)
-            << what;
+        EXPECT_NE(what.find("shadow_kernels.glsl:" + std::to_string(line) + "("), std::string::npos) << what;
     }
 }
 
@@ -197,15 +190,15 @@ TEST(Program, EveryLitVariantAndTheDepthProgramCompile) {
         }
     }
     try {
-        const gpu::Program prepass = gpu::buildProgram(
-            {"Test/DepthPrepass", "lit.vert.glsl", "depth_prepass.frag.glsl", {}});
+        const gpu::Program prepass =
+            gpu::buildProgram({"Test/DepthPrepass", "lit.vert.glsl", "depth_prepass.frag.glsl", {}});
         EXPECT_NE(prepass.get(), 0u);
     } catch (const GlError& e) {
         ADD_FAILURE() << "depth pre-pass: " << e.what();
     }
     try {
-        const gpu::Program depth = gpu::buildProgram(
-            {"Test/Depth", "shadow_depth.vert.glsl", "shadow_depth.frag.glsl", {}});
+        const gpu::Program depth =
+            gpu::buildProgram({"Test/Depth", "shadow_depth.vert.glsl", "shadow_depth.frag.glsl", {}});
         EXPECT_NE(depth.get(), 0u);
     } catch (const GlError& e) {
         ADD_FAILURE() << "shadow_depth: " << e.what();

@@ -73,8 +73,8 @@ ImageF patternImage(int width, int height, int channels) {
         for (int x = 0; x < width; ++x) {
             for (int c = 0; c < channels; ++c) {
                 const float sign = (x + y + c) % 3 == 0 ? -1.0f : 1.0f;
-                image.at(x, y, c) = sign * (0.1f + x + 10.0f * y + 0.25f * c) *
-                                    std::pow(4.0f, static_cast<float>((x + c) % 5 - 2));
+                image.at(x, y, c) =
+                    sign * (0.1f + x + 10.0f * y + 0.25f * c) * std::pow(4.0f, static_cast<float>((x + c) % 5 - 2));
             }
         }
     }
@@ -82,8 +82,7 @@ ImageF patternImage(int width, int height, int channels) {
 }
 
 std::vector<std::string> namesFor(int channels) {
-    return channels == 1 ? std::vector<std::string>{"Y"}
-                         : std::vector<std::string>{"R", "G", "B", "A"};
+    return channels == 1 ? std::vector<std::string>{"Y"} : std::vector<std::string>{"R", "G", "B", "A"};
 }
 
 // ---- EXR ------------------------------------------------------------------------------------
@@ -115,8 +114,7 @@ TEST_F(Exr, HalfRoundTripIsWithinHalfPrecision) {
         for (std::size_t i = 0; i < image.pixels.size(); ++i) {
             // Half has an 11-bit significand: round-to-nearest errs by at most 2^-11 relative
             // (all pattern values are normal halves).
-            EXPECT_NEAR(read->pixels[i], image.pixels[i], std::abs(image.pixels[i]) / 2048.0f)
-                << "sample " << i;
+            EXPECT_NEAR(read->pixels[i], image.pixels[i], std::abs(image.pixels[i]) / 2048.0f) << "sample " << i;
         }
     }
 }
@@ -170,8 +168,7 @@ struct Bytes {
     std::vector<std::uint8_t> data;
     void u8(std::uint8_t v) { data.push_back(v); }
     void i32(std::int32_t v) {
-        for (int i = 0; i < 4; ++i)
-            u8(static_cast<std::uint8_t>(static_cast<std::uint32_t>(v) >> (8 * i)));
+        for (int i = 0; i < 4; ++i) u8(static_cast<std::uint8_t>(static_cast<std::uint32_t>(v) >> (8 * i)));
     }
     void u64(std::uint64_t v) {
         for (int i = 0; i < 8; ++i) u8(static_cast<std::uint8_t>(v >> (8 * i)));
@@ -240,8 +237,7 @@ TEST_F(Exr, ReadsFromTheDataWindowWhateverItsOrigin) {
     const std::string file = path("window.exr");
     const std::vector<std::uint8_t> bytes = offsetWindowExr(-3, 2, 4, 3);
     std::ofstream(file, std::ios::binary)
-        .write(reinterpret_cast<const char*>(bytes.data()),
-               static_cast<std::streamsize>(bytes.size()));
+        .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
     const Result<ImageF> read = readExr(file, {"Y"});
     ASSERT_TRUE(read.ok()) << read.error().message;
     EXPECT_EQ(read->width, 4);
@@ -326,8 +322,8 @@ TEST_F(Exr, OverwritesAnExistingFile) {
 // ---- PNG ------------------------------------------------------------------------------------
 
 std::uint32_t bigEndian32(const std::vector<std::uint8_t>& b, std::size_t at) {
-    return (std::uint32_t{b[at]} << 24) | (std::uint32_t{b[at + 1]} << 16) |
-           (std::uint32_t{b[at + 2]} << 8) | std::uint32_t{b[at + 3]};
+    return (std::uint32_t{b[at]} << 24) | (std::uint32_t{b[at + 1]} << 16) | (std::uint32_t{b[at + 2]} << 8) |
+           std::uint32_t{b[at + 3]};
 }
 
 std::vector<std::uint8_t> bytePattern(int width, int height, int channels) {
@@ -385,8 +381,7 @@ TEST_F(Png, WriteIntoMissingDirectoryFailsAndLeavesNoFile) {
     const Status status = writePng(file, 2, 2, 3, bytePattern(2, 2, 3));
     ASSERT_FALSE(status.ok());
     EXPECT_NE(status.error().message.find(file), std::string::npos);
-    EXPECT_NE(status.error().message.find("No such file or directory"), std::string::npos)
-        << status.error().message;
+    EXPECT_NE(status.error().message.find("No such file or directory"), std::string::npos) << status.error().message;
     EXPECT_TRUE(entries().empty());
 }
 
@@ -414,8 +409,7 @@ TEST_F(ImageIo, TextFileIntoMissingDirectoryFailsNamingPathAndCause) {
     const Status status = writeTextFileAtomic(file, "{}");
     ASSERT_FALSE(status.ok());
     EXPECT_NE(status.error().message.find(file), std::string::npos);
-    EXPECT_NE(status.error().message.find("No such file or directory"), std::string::npos)
-        << status.error().message;
+    EXPECT_NE(status.error().message.find("No such file or directory"), std::string::npos) << status.error().message;
     EXPECT_TRUE(entries().empty());
 }
 
@@ -442,13 +436,9 @@ int toneMapOne(float v, float exposure) {
     return toneMapToSrgb8(image, exposure).at(0);
 }
 
-double srgbOetf(double v) {
-    return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
-}
+double srgbOetf(double v) { return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055; }
 
-TEST(ToneMap, ZeroMapsToZero) {
-    EXPECT_EQ(toneMapOne(0.0f, 1.0f), 0);
-}
+TEST(ToneMap, ZeroMapsToZero) { EXPECT_EQ(toneMapOne(0.0f, 1.0f), 0); }
 
 TEST(ToneMap, IsMonotonic) {
     int previous = 0;
@@ -498,8 +488,7 @@ TEST(ToneMap, KeepsChannelCountAndCopiesAlphaLinearlyClamped) {
 }
 
 TEST(ToneMap, ExposureMultipliesTheInput) {
-    for (float v : {0.01f, 0.2f, 1.0f, 7.0f})
-        EXPECT_EQ(toneMapOne(v, 4.0f), toneMapOne(4.0f * v, 1.0f));
+    for (float v : {0.01f, 0.2f, 1.0f, 7.0f}) EXPECT_EQ(toneMapOne(v, 4.0f), toneMapOne(4.0f * v, 1.0f));
 }
 
 }  // namespace

@@ -85,9 +85,7 @@ TEST(ClosedForms, DiskRectAreaMatchesNumericIntegration) {
         worst = std::max(worst, std::abs(exact - numeric));
         ASSERT_NEAR(exact, numeric, 1e-6) << "trial " << trial;
     }
-    std::printf(
-        "[ measured ] disk ∩ rectangle: worst |closed form − numeric| = %.2e over 60 cases\n",
-        worst);
+    std::printf("[ measured ] disk ∩ rectangle: worst |closed form − numeric| = %.2e over 60 cases\n", worst);
 }
 
 TEST(ClosedForms, UnionAreaMatchesNumericIntegration) {
@@ -102,8 +100,7 @@ TEST(ClosedForms, UnionAreaMatchesNumericIntegration) {
         }
         const glm::dvec2 c(0.5 * u(rng), 0.5 * u(rng));
         const double r = 0.3 + 0.4 * (u(rng) + 1.0);
-        ASSERT_NEAR(diskRectUnionArea(c, r, rects), numericArea(c, r, rects, 20000), 1e-6)
-            << "trial " << trial;
+        ASSERT_NEAR(diskRectUnionArea(c, r, rects), numericArea(c, r, rects, 20000), 1e-6) << "trial " << trial;
     }
 }
 
@@ -113,8 +110,7 @@ TEST(ClosedForms, CircularSegmentFractionEnds) {
     EXPECT_DOUBLE_EQ(circularSegmentFraction(1.0), 0.0);
     // A half-plane cut of a disk: the same number as the rectangle route.
     const double u0 = 0.37;
-    EXPECT_NEAR(circularSegmentFraction(u0),
-                diskRectArea({0, 0}, 1.0, {{u0, -2}, {2, 2}}) / std::numbers::pi, 1e-12);
+    EXPECT_NEAR(circularSegmentFraction(u0), diskRectArea({0, 0}, 1.0, {{u0, -2}, {2, 2}}) / std::numbers::pi, 1e-12);
 }
 
 TEST(ClosedForms, PlatesVisibilityUmbraAndFullLight) {

@@ -33,8 +33,7 @@ TEST(Emitters, MultiJitteredSamplesAreStratified) {
     EXPECT_EQ(rows.size(), 64u);
     // Any count: one sample per row of height 1/N.
     rows.clear();
-    for (std::uint32_t k = 0; k < 50; ++k)
-        rows.insert(static_cast<int>(multiJitteredSample(k, 50, 5).y * 50));
+    for (std::uint32_t k = 0; k < 50; ++k) rows.insert(static_cast<int>(multiJitteredSample(k, 50, 5).y * 50));
     EXPECT_EQ(rows.size(), 50u);
 }
 
@@ -79,8 +78,7 @@ TEST(Emitters, DirectionalConeRimHasTheHalfAngle) {
     for (int k = 0; k < 12; ++k) {
         const double phi = 2.0 * std::numbers::pi * k / 12;
         const ShadowRayAim aim = aimAtEmitter(e, {}, {std::cos(phi), std::sin(phi)});
-        EXPECT_NEAR(std::acos(std::clamp(glm::dot(aim.direction, e.wsTowardLight), -1.0, 1.0)), 0.1,
-                    1e-7);
+        EXPECT_NEAR(std::acos(std::clamp(glm::dot(aim.direction, e.wsTowardLight), -1.0, 1.0)), 0.1, 1e-7);
         EXPECT_TRUE(std::isinf(aim.distance));
     }
     EXPECT_NEAR(glm::length(aimAtEmitter(e, {}, {0, 0}).direction - e.wsTowardLight), 0.0, 1e-15);
@@ -139,8 +137,7 @@ Scene edgeScene(const Light& light, const glm::dvec3& position, const glm::dvec3
 ReferenceResult traceAt(Scene& scene, const std::vector<glm::dvec3>& points, int samples) {
     ImageF positions = makeImage(static_cast<int>(points.size()), 1, 4);
     for (std::size_t k = 0; k < points.size(); ++k) {
-        for (int c = 0; c < 3; ++c)
-            positions.at(static_cast<int>(k), 0, c) = static_cast<float>(points[k][c]);
+        for (int c = 0; c < 3; ++c) positions.at(static_cast<int>(k), 0, c) = static_cast<float>(points[k][c]);
         positions.at(static_cast<int>(k), 0, 3) = 1.0f;
     }
     ReferenceOptions options;
@@ -157,8 +154,7 @@ ReferenceResult traceAt(Scene& scene, const std::vector<glm::dvec3>& points, int
 
 std::vector<glm::dvec3> pointsAlongX(double from, double to, int count) {
     std::vector<glm::dvec3> points;
-    for (int k = 0; k < count; ++k)
-        points.emplace_back(from + (to - from) * k / (count - 1), 0.0, 0.0);
+    for (int k = 0; k < count; ++k) points.emplace_back(from + (to - from) * k / (count - 1), 0.0, 0.0);
     return points;
 }
 
@@ -168,16 +164,14 @@ TEST(Reference, ZeroSizeEmittersCastExactlyHardShadows) {
         glm::dvec3 position, direction;
     };
     for (const Case& c :
-         {Case{LightType::Spot, {0.5, 3.0, 0.2}, {0, -1, 0}},
-          Case{LightType::Point, {-0.7, 2.5, 0.4}, {0, -1, 0}},
+         {Case{LightType::Spot, {0.5, 3.0, 0.2}, {0, -1, 0}}, Case{LightType::Point, {-0.7, 2.5, 0.4}, {0, -1, 0}},
           Case{LightType::Directional, {0, 20, 0}, glm::normalize(glm::dvec3(0.4, -1.0, 0.3))}}) {
         Light light;
         light.type = c.type;
         Scene scene = edgeScene(light, c.position, c.direction);
         std::vector<glm::dvec3> points;
         for (int i = 0; i < 40; ++i) {
-            for (int j = 0; j < 40; ++j)
-                points.emplace_back(-3.0 + 6.0 * i / 39, 0.0, -3.0 + 6.0 * j / 39);
+            for (int j = 0; j < 40; ++j) points.emplace_back(-3.0 + 6.0 * i / 39, 0.0, -3.0 + 6.0 * j / 39);
         }
         const ReferenceResult r = traceAt(scene, points, 64);
         EXPECT_EQ(r.lights.at(0).raysPerPixel, 1);
@@ -189,17 +183,13 @@ TEST(Reference, ZeroSizeEmittersCastExactlyHardShadows) {
             ASSERT_EQ(r.standardError[0].pixels[k], 0.0f);
             // The hard-shadow truth: where the ray to the light's centre crosses the plate plane.
             const glm::dvec3 p = points[k];
-            const glm::dvec3 toLight =
-                c.type == LightType::Directional ? -c.direction : glm::normalize(c.position - p);
+            const glm::dvec3 toLight = c.type == LightType::Directional ? -c.direction : glm::normalize(c.position - p);
             const glm::dvec3 crossing = p + toLight * ((kBlockerHeight - p.y) / toLight.y);
-            const bool onAnEdge = std::abs(crossing.x) < 1e-6 ||
-                                  std::abs(crossing.x + 8.0) < 1e-6 ||
+            const bool onAnEdge = std::abs(crossing.x) < 1e-6 || std::abs(crossing.x + 8.0) < 1e-6 ||
                                   std::abs(4.0 - std::abs(crossing.z)) < 1e-6;
             if (onAnEdge) continue;
-            const bool blocked =
-                crossing.x < 0.0 && crossing.x > -8.0 && std::abs(crossing.z) < 4.0;
-            EXPECT_EQ(v, blocked ? 0.0f : 1.0f)
-                << "light type " << int(c.type) << " at (" << p.x << ", " << p.z << ")";
+            const bool blocked = crossing.x < 0.0 && crossing.x > -8.0 && std::abs(crossing.z) < 4.0;
+            EXPECT_EQ(v, blocked ? 0.0f : 1.0f) << "light type " << int(c.type) << " at (" << p.x << ", " << p.z << ")";
             lit += v == 1.0f ? 1 : 0;
             ++checked;
         }

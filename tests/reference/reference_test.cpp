@@ -49,13 +49,11 @@ struct PlatesSetup {
     PlatesSetup(int width, int height) {
         animate(scene.world, 0.0);
         (void)updateTransforms(scene.world);
-        view = makeCameraView(scene.world, scene.cameras.at(0),
-                              static_cast<float>(width) / static_cast<float>(height));
+        view = makeCameraView(scene.world, scene.cameras.at(0), static_cast<float>(width) / static_cast<float>(height));
     }
 };
 
-ReferenceResult trace(PlatesSetup& setup, int width, int height, int samples,
-                      std::uint32_t seed = 1) {
+ReferenceResult trace(PlatesSetup& setup, int width, int height, int samples, std::uint32_t seed = 1) {
     ReferenceOptions options;
     options.width = width;
     options.height = height;
@@ -74,10 +72,9 @@ struct AnalyticHit {
 };
 
 AnalyticHit analyticHit(const CameraView& view, int width, int height, double px, double py) {
-    const glm::dmat4 clipFromWorld =
-        glm::perspective(static_cast<double>(view.yfov), static_cast<double>(view.aspect),
-                         static_cast<double>(view.znear), static_cast<double>(view.zfar)) *
-        view.viewFromWorld;
+    const glm::dmat4 clipFromWorld = glm::perspective(static_cast<double>(view.yfov), static_cast<double>(view.aspect),
+                                                      static_cast<double>(view.znear), static_cast<double>(view.zfar)) *
+                                     view.viewFromWorld;
     const glm::dmat4 worldFromClip = glm::inverse(clipFromWorld);
     const glm::dvec2 ndc(2.0 * px / width - 1.0, 1.0 - 2.0 * py / height);  // (0,0) top-left
     const glm::dvec4 nearH = worldFromClip * glm::dvec4(ndc, -1.0, 1.0);
@@ -99,8 +96,7 @@ AnalyticHit analyticHit(const CameraView& view, int width, int height, double px
     tryPlane(0, 0.0, {0.0, 0.0}, g.receiverHalfSize);
     for (std::size_t k = 0; k < g.plates.size(); ++k) {
         const PlatesGeometry::Plate& plate = g.plates[k];
-        tryPlane(static_cast<int>(k) + 1, plate.center.y, {plate.center.x, plate.center.z},
-                 plate.halfSize);
+        tryPlane(static_cast<int>(k) + 1, plate.center.y, {plate.center.x, plate.center.z}, plate.halfSize);
     }
     return best;
 }
@@ -108,8 +104,8 @@ AnalyticHit analyticHit(const CameraView& view, int width, int height, double px
 /// True when the pixel's centre and its four corners all see the receiver: no silhouette or
 /// receiver border crosses it, so any rasteriser must cover its centre with the receiver.
 bool interiorReceiverPixel(const CameraView& view, int width, int height, int x, int y) {
-    for (const glm::dvec2& o : {glm::dvec2(0.5, 0.5), glm::dvec2(0, 0), glm::dvec2(1, 0),
-                                glm::dvec2(0, 1), glm::dvec2(1, 1)}) {
+    for (const glm::dvec2& o :
+         {glm::dvec2(0.5, 0.5), glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(0, 1), glm::dvec2(1, 1)}) {
         if (analyticHit(view, width, height, x + o.x, y + o.y).surface != 0) return false;
     }
     return true;
@@ -146,8 +142,7 @@ TEST(Reference, PlatesMatchClosedFormWithinThreeStandardErrors) {
                 EXPECT_EQ(r.standardError[0].at(x, y, 0), 0.0f);
                 continue;
             }
-            const glm::dvec3 p(r.wsPosition.at(x, y, 0), r.wsPosition.at(x, y, 1),
-                               r.wsPosition.at(x, y, 2));
+            const glm::dvec3 p(r.wsPosition.at(x, y, 0), r.wsPosition.at(x, y, 1), r.wsPosition.at(x, y, 2));
             const double exact = platesVisibility(g, p);
             const double v = r.visibility[0].at(x, y, 0);
             const double se = r.standardError[0].at(x, y, 0);
@@ -169,8 +164,8 @@ TEST(Reference, PlatesMatchClosedFormWithinThreeStandardErrors) {
     std::printf(
         "[ measured ] plates %dx%d, %d rays: %d receiver pixels, %d in penumbra; %.4f within 3 SE; "
         "mean |err| / mean SE = %.3f (penumbra); worst %.2f SE; trace %.2f s on %d threads\n",
-        kWidth, kHeight, kSamples, receiver, penumbra, fractionWithin, errorOverSe, worstSigma,
-        r.traceSeconds, r.threads);
+        kWidth, kHeight, kSamples, receiver, penumbra, fractionWithin, errorOverSe, worstSigma, r.traceSeconds,
+        r.threads);
     EXPECT_GT(receiver, kWidth * kHeight / 2);
     EXPECT_GT(penumbra, 300);
     EXPECT_GE(fractionWithin, 0.997);
@@ -187,8 +182,7 @@ TEST(Reference, EnginePositionsMatchCameraRayPlaneIntersections) {
     TempDir tmp;
     const std::string size = std::to_string(kWidth) + "x" + std::to_string(kHeight);
     const CliRun engine = runProgram(
-        tmp, "shadow_render",
-        "builtin:plates --aov position --size " + size + " --out " + quoted(tmp / "engine"));
+        tmp, "shadow_render", "builtin:plates --aov position --size " + size + " --out " + quoted(tmp / "engine"));
     ASSERT_EQ(engine.exitCode, 0) << engine.output;
     Result<ImageF> enginePositions = readExr(tmp / "engine/position.exr", {"R", "G", "B", "A"});
     ASSERT_TRUE(enginePositions.ok()) << enginePositions.error().message;
@@ -203,13 +197,10 @@ TEST(Reference, EnginePositionsMatchCameraRayPlaneIntersections) {
     for (int y = 0; y < kHeight; ++y) {
         for (int x = 0; x < kWidth; ++x) {
             if (!interiorReceiverPixel(setup.view, kWidth, kHeight, x, y)) continue;
-            const glm::dvec3 expected =
-                analyticHit(setup.view, kWidth, kHeight, x + 0.5, y + 0.5).wsPosition;
+            const glm::dvec3 expected = analyticHit(setup.view, kWidth, kHeight, x + 0.5, y + 0.5).wsPosition;
             ++compared;
-            ASSERT_EQ(enginePositions->at(x, y, 3), 1.0f)
-                << "engine pixel (" << x << ", " << y << ")";
-            ASSERT_EQ(reference.wsPosition.at(x, y, 3), 1.0f)
-                << "reference pixel (" << x << ", " << y << ")";
+            ASSERT_EQ(enginePositions->at(x, y, 3), 1.0f) << "engine pixel (" << x << ", " << y << ")";
+            ASSERT_EQ(reference.wsPosition.at(x, y, 3), 1.0f) << "reference pixel (" << x << ", " << y << ")";
             const double e = positionError(*enginePositions, x, y, expected);
             const double rr = positionError(reference.wsPosition, x, y, expected);
             engineWorst = std::max(engineWorst, e);
@@ -226,16 +217,15 @@ TEST(Reference, EnginePositionsMatchCameraRayPlaneIntersections) {
 
     // The engine's positions shade in positions mode: each finds its surface on the camera ray.
     const CliRun shaded = runProgram(tmp, "shadow_reference",
-                                     "builtin:plates --samples 16 --positions " +
-                                         quoted(tmp / "engine/position.exr") + " --out " +
-                                         quoted(tmp / "from-engine"));
+                                     "builtin:plates --samples 16 --positions " + quoted(tmp / "engine/position.exr") +
+                                         " --out " + quoted(tmp / "from-engine"));
     ASSERT_EQ(shaded.exitCode, 0) << shaded.output;
     std::ifstream in(tmp / "from-engine/reference.json");
     const nlohmann::json j = nlohmann::json::parse(in);
     const int covered = j["pixels"]["covered"].get<int>();
     const int withoutSurface = j["pixels"]["positionsWithoutSurface"].get<int>();
-    std::printf("[ measured ] engine positions: %d covered, %d without a surface within 0.1 %%\n",
-                covered, withoutSurface);
+    std::printf("[ measured ] engine positions: %d covered, %d without a surface within 0.1 %%\n", covered,
+                withoutSurface);
     EXPECT_LE(withoutSurface, covered / 100);
 }
 
@@ -244,15 +234,12 @@ TEST(Reference, EnginePositionsMatchCameraRayPlaneIntersections) {
 TEST(Reference, PositionsModeGivesTheVisibilityOfCameraMode) {
     constexpr int kSamples = 128;
     TempDir tmp;
-    const std::string common =
-        "builtin:plates --samples " + std::to_string(kSamples) + " --seed 5 --threads 2";
-    const CliRun camera = runProgram(tmp, "shadow_reference",
-                                     common + " --size 64x48 --out " + quoted(tmp / "camera"));
+    const std::string common = "builtin:plates --samples " + std::to_string(kSamples) + " --seed 5 --threads 2";
+    const CliRun camera = runProgram(tmp, "shadow_reference", common + " --size 64x48 --out " + quoted(tmp / "camera"));
     ASSERT_EQ(camera.exitCode, 0) << camera.output;
-    const CliRun positions =
-        runProgram(tmp, "shadow_reference",
-                   common + " --positions " + quoted(tmp / "camera/position.exr") + " --out " +
-                       quoted(tmp / "positions"));
+    const CliRun positions = runProgram(
+        tmp, "shadow_reference",
+        common + " --positions " + quoted(tmp / "camera/position.exr") + " --out " + quoted(tmp / "positions"));
     ASSERT_EQ(positions.exitCode, 0) << positions.output;
 
     const std::vector<std::string> rgba{"R", "G", "B", "A"};
@@ -297,8 +284,7 @@ TEST(Reference, PositionsModeGivesTheVisibilityOfCameraMode) {
     ASSERT_EQ(j["lights"].size(), 1u);
     EXPECT_EQ(j["lights"][0]["raysPerPixel"], kSamples);
     EXPECT_GT(j["lights"][0]["meanStandardError"].get<double>(), 0.0);
-    EXPECT_GE(j["lights"][0]["maxStandardError"].get<double>(),
-              j["lights"][0]["meanStandardError"].get<double>());
+    EXPECT_GE(j["lights"][0]["maxStandardError"].get<double>(), j["lights"][0]["meanStandardError"].get<double>());
     EXPECT_GE(j["timeSeconds"]["trace"].get<double>(), 0.0);
     EXPECT_EQ(j["pixels"]["positionsWithoutSurface"], 0);
 }
@@ -342,9 +328,8 @@ TEST(Reference, CliRejectsBadInputWithExitCodeTwoAndWritesNothing) {
         "builtin:plates --time nan" + out,
         "builtin:plates --seed -1" + out,
         "builtin:plates --positions " + quoted(tmp / "missing.exr") + out,
-        "builtin:plates --positions " + quoted(tmp / "grey.exr") + out,  // no R,G,B,A
-        "builtin:plates --positions " + quoted(tmp / "small.exr") + " --size 9x6" +
-            out,  // size mismatch
+        "builtin:plates --positions " + quoted(tmp / "grey.exr") + out,                   // no R,G,B,A
+        "builtin:plates --positions " + quoted(tmp / "small.exr") + " --size 9x6" + out,  // size mismatch
         "builtin:plates --bogus" + out,
         "builtin:plates --size 8x6 --out " + quoted(regularFile),  // output is not a folder
     };

@@ -53,7 +53,8 @@ TEST(LightPacking, SkipsLightsThatCannotShadeAndFillsPassesInSceneOrder) {
     EXPECT_EQ(passes[0].variant.lights, 8);
     EXPECT_EQ(passes[1].variant.lights, 2);
     const std::vector<int> expected = {0, 3, 4, 5, 6, 7, 8, 9};
-    for (int s = 0; s < 8; ++s) EXPECT_EQ(passes[0].sceneLight[static_cast<std::size_t>(s)], expected[static_cast<std::size_t>(s)]);
+    for (int s = 0; s < 8; ++s)
+        EXPECT_EQ(passes[0].sceneLight[static_cast<std::size_t>(s)], expected[static_cast<std::size_t>(s)]);
     EXPECT_EQ(passes[1].sceneLight[0], 10);
     EXPECT_EQ(passes[1].sceneLight[1], 11);
     EXPECT_EQ(passes[1].sceneLight[2], -1) << "unused slots name no light";

@@ -27,8 +27,7 @@ namespace shadow::test {
 inline GlContext& glContext() {
     static const std::unique_ptr<GlContext> context = [] {
         Result<std::unique_ptr<GlContext>> made = createOsMesaContext();
-        if (!made)
-            throw std::runtime_error("cannot create the OSMesa context: " + made.error().message);
+        if (!made) throw std::runtime_error("cannot create the OSMesa context: " + made.error().message);
         return std::move(made.value());
     }();
     context->makeCurrent();
@@ -43,8 +42,8 @@ struct RenderedFrame {
 
 /// Runs one frame of `scene` at time `t` through `runner` with AOVs at `width` x `height` and reads
 /// it back. The camera is the scene's first unless `camera` names another.
-inline RenderedFrame renderFrame(FrameRunner& runner, Scene& scene, int width, int height,
-                                 double t = 0.0, Entity camera = Entity::null()) {
+inline RenderedFrame renderFrame(FrameRunner& runner, Scene& scene, int width, int height, double t = 0.0,
+                                 Entity camera = Entity::null()) {
     glContext();
     if (camera.isNull()) camera = scene.cameras.at(0);
     RenderOptions options;
@@ -74,13 +73,11 @@ inline Transform placed(const glm::dvec3& position, const glm::dvec3& scale = gl
 
 /// A square ground plane at y = 0, centred on the origin.
 inline Entity addGround(Scene& scene, float halfSize) {
-    return addMeshInstance(scene.world, "ground", makePlaneMesh(halfSize, 4),
-                           placed(glm::dvec3(0.0)));
+    return addMeshInstance(scene.world, "ground", makePlaneMesh(halfSize, 4), placed(glm::dvec3(0.0)));
 }
 
 /// An axis-aligned box of `halfExtents` centred at `center`; returns its entity.
-inline Entity addBox(Scene& scene, const std::string& name, const glm::dvec3& center,
-                     const glm::dvec3& halfExtents) {
+inline Entity addBox(Scene& scene, const std::string& name, const glm::dvec3& center, const glm::dvec3& halfExtents) {
     return addMeshInstance(scene.world, name, makeBoxMesh(glm::vec3(halfExtents)), placed(center));
 }
 
@@ -106,8 +103,8 @@ inline Light pointSizedLight(LightType type, float outerConeAngle = 0.7f) {
 
 /// Whether the segment `origin + t * dir`, t in (tMin, tMax), meets the closed box (slab test in
 /// double; `dir` need not be unit).
-inline bool segmentHitsBox(const glm::dvec3& origin, const glm::dvec3& dir, double tMin,
-                           double tMax, const DAabb& box) {
+inline bool segmentHitsBox(const glm::dvec3& origin, const glm::dvec3& dir, double tMin, double tMax,
+                           const DAabb& box) {
     for (int a = 0; a < 3; ++a) {
         if (std::abs(dir[a]) < 1e-300) {
             if (origin[a] < box.min[a] || origin[a] > box.max[a]) return false;
@@ -174,23 +171,21 @@ inline int layerOf(const ShadowLightPlan& plan, const glm::dvec3& p) {
 /// Size on the ground (m) of one shadow texel at ground point `p`: the texel's lateral size,
 /// 2 / (clipFromLight[0][0] * mapSize), times the axial distance for perspective layers, and
 /// stretched by 1 / cos(incidence) since the ground is tilted against the light's rays.
-inline double groundTexelAt(const ShadowLightPlan& plan, const AnalyticLight& light,
-                            const glm::dvec3& p) {
+inline double groundTexelAt(const ShadowLightPlan& plan, const AnalyticLight& light, const glm::dvec3& p) {
     const ShadowLayerPlan& layer = plan.layers[static_cast<std::size_t>(layerOf(plan, p))];
     double texel = 2.0 / (layer.clipFromLight[0][0] * plan.mapSize);
     if (!layer.orthographic) texel *= std::max(-(layer.lightFromWorld * glm::dvec4(p, 1.0)).z, 0.0);
-    const glm::dvec3 toLight = light.type == LightType::Directional
-                                   ? -light.direction
-                                   : glm::normalize(light.position - p);
+    const glm::dvec3 toLight =
+        light.type == LightType::Directional ? -light.direction : glm::normalize(light.position - p);
     return texel / std::max(std::abs(toLight.y), 0.25);
 }
 
 /// How a hard shadow on the ground agrees with ray casting against boxes.
 struct GeometryAgreement {
     int groundPixels = 0;
-    int shadowedPixels = 0;  ///< analytically shadowed ground pixels
-    int mismatches = 0;      ///< ground pixels where (visibility > 0.5) != analytic
-    int outsideBand = 0;     ///< of those, farther than the edge band from the analytic edge
+    int shadowedPixels = 0;                 ///< analytically shadowed ground pixels
+    int mismatches = 0;                     ///< ground pixels where (visibility > 0.5) != analytic
+    int outsideBand = 0;                    ///< of those, farther than the edge band from the analytic edge
     std::array<int, 6> shadowedPerLayer{};  ///< analytically shadowed pixels by layer (point: face)
 };
 
@@ -201,10 +196,9 @@ struct GeometryAgreement {
 /// is accepted; `outsideBand` counts the mismatches beyond it.
 /// `keep`, when given, further selects the ground points compared.
 template <typename Boxes>
-GeometryAgreement compareWithGeometry(const FrameImages& images, const ImageF& visibility,
-                                      const ShadowLightPlan& plan, const AnalyticLight& light,
-                                      const Boxes& boxes, double bandTexels, double spotCone = 0.0,
-                                      const std::function<bool(const glm::dvec3&)>& keep = {}) {
+GeometryAgreement compareWithGeometry(const FrameImages& images, const ImageF& visibility, const ShadowLightPlan& plan,
+                                      const AnalyticLight& light, const Boxes& boxes, double bandTexels,
+                                      double spotCone = 0.0, const std::function<bool(const glm::dvec3&)>& keep = {}) {
     GeometryAgreement m;
     for (int y = 0; y < visibility.height; ++y) {
         for (int x = 0; x < visibility.width; ++x) {
@@ -212,8 +206,8 @@ GeometryAgreement compareWithGeometry(const FrameImages& images, const ImageF& v
             const glm::dvec3 p = positionAt(images, x, y);
             if (keep && !keep(p)) continue;
             // A spot's map covers its cone only; outside it there is no light to shadow.
-            if (light.type == LightType::Spot && glm::dot(glm::normalize(p - light.position),
-                                                          light.direction) < std::cos(spotCone)) {
+            if (light.type == LightType::Spot &&
+                glm::dot(glm::normalize(p - light.position), light.direction) < std::cos(spotCone)) {
                 continue;
             }
             ++m.groundPixels;
@@ -239,8 +233,8 @@ GeometryAgreement compareWithGeometry(const FrameImages& images, const ImageF& v
 
 /// Number of values of `image` that are NaN or Inf.
 inline int countNonFinite(const ImageF& image) {
-    return static_cast<int>(std::count_if(image.pixels.begin(), image.pixels.end(),
-                                          [](float v) { return !std::isfinite(v); }));
+    return static_cast<int>(
+        std::count_if(image.pixels.begin(), image.pixels.end(), [](float v) { return !std::isfinite(v); }));
 }
 
 /// The AOV invariants every frame must keep (design.md): nothing NaN/Inf, visibility in [0, 1],

@@ -49,8 +49,7 @@ struct ShadowAgreement {
     int mismatches = 0;
 };
 
-ShadowAgreement agreement(const FrameImages& images, std::size_t light,
-                          const glm::dvec3& position) {
+ShadowAgreement agreement(const FrameImages& images, std::size_t light, const glm::dvec3& position) {
     ShadowAgreement a;
     const test::AnalyticLight analytic{LightType::Point, position, {0, -1, 0}};
     const std::array<DAabb, 1> boxes{test::boxBounds(kBoxCenter, kBoxHalf)};
@@ -82,8 +81,7 @@ TEST(Renderer, SceneWithoutLightsRendersAmbientOnly) {
             const bool geometry = frame.images.position.at(x, y, 3) > 0.5f;
             covered += geometry ? 1 : 0;
             for (int c = 0; c < 3; ++c) {
-                if (std::abs(frame.images.color.at(x, y, c) - (geometry ? ambient : 0.0f)) > 1e-5f)
-                    ++wrong;
+                if (std::abs(frame.images.color.at(x, y, c) - (geometry ? ambient : 0.0f)) > 1e-5f) ++wrong;
             }
         }
     }
@@ -108,13 +106,10 @@ TEST(Renderer, NineLightsRenderInTwoPassesWithAVisibilityEach) {
         // Each light's AOV holds that light's own shadow: the box seen from its position. Edge
         // pixels may go either way; 2 % of the ground is far more than the edges cover here.
         const ShadowAgreement a = agreement(frame.images, i, positions[i]);
-        std::printf(
-            "[ measured ] light %zu: shadowed %.2f %% of %d ground px, mismatches %.3f %%\n", i,
-            100.0 * a.shadowed / std::max(a.ground, 1), a.ground,
-            100.0 * a.mismatches / std::max(a.ground, 1));
+        std::printf("[ measured ] light %zu: shadowed %.2f %% of %d ground px, mismatches %.3f %%\n", i,
+                    100.0 * a.shadowed / std::max(a.ground, 1), a.ground, 100.0 * a.mismatches / std::max(a.ground, 1));
         EXPECT_GT(a.shadowed, 0.02 * a.ground) << "light " << i;
-        EXPECT_LT(a.mismatches, 0.02 * a.ground)
-            << "light " << i << ": visibility is not this light's shadow";
+        EXPECT_LT(a.mismatches, 0.02 * a.ground) << "light " << i << ": visibility is not this light's shadow";
     }
 }
 
@@ -178,10 +173,9 @@ TEST(Renderer, LightWithTechniqueNoneHasVisibilityOneEverywhere) {
     Shadow none = test::hardShadow();
     none.technique = ShadowTechnique::None;
     // One light never had a Shadow component; the other has one switched to None.
-    addLight(scene, "unshadowed", test::pointSizedLight(LightType::Point), none, {0.3, 3.2, 0.2},
-             {0, -1, 0});
-    const Entity off = addLight(scene, "switched off", test::pointSizedLight(LightType::Spot),
-                                test::hardShadow(), {-0.3, 3.5, 0.0}, {0, -1, 0});
+    addLight(scene, "unshadowed", test::pointSizedLight(LightType::Point), none, {0.3, 3.2, 0.2}, {0, -1, 0});
+    const Entity off = addLight(scene, "switched off", test::pointSizedLight(LightType::Spot), test::hardShadow(),
+                                {-0.3, 3.5, 0.0}, {0, -1, 0});
     scene.world.get<Shadow>(off).technique = ShadowTechnique::None;
     FrameRunner runner;
     const test::RenderedFrame frame = test::renderFrame(runner, scene, kWidth, kHeight);
@@ -202,13 +196,11 @@ std::string boundProgramLabel() {
     GLint program = 0;
     gl.GetIntegerv(GL_CURRENT_PROGRAM, &program);
     if (program == 0) return "";
-    auto getLabel =
-        reinterpret_cast<PFNGLGETOBJECTLABELPROC>(test::glContext().loader()("glGetObjectLabel"));
+    auto getLabel = reinterpret_cast<PFNGLGETOBJECTLABELPROC>(test::glContext().loader()("glGetObjectLabel"));
     if (getLabel == nullptr) return "";
     std::array<char, 256> label{};
     GLsizei length = 0;
-    getLabel(GL_PROGRAM, static_cast<GLuint>(program), static_cast<GLsizei>(label.size()), &length,
-             label.data());
+    getLabel(GL_PROGRAM, static_cast<GLuint>(program), static_cast<GLsizei>(label.size()), &length, label.data());
     return std::string(label.data(), static_cast<std::size_t>(length));
 }
 
@@ -220,8 +212,7 @@ TEST(Renderer, CompilesOnlyTheTechniquesInUse) {
     Shadow pcf = test::hardShadow(256);
     pcf.technique = ShadowTechnique::Pcf;
     addLight(scene, "a", test::pointSizedLight(LightType::Spot), pcf, {0.5, 3.5, 0}, {0, -1, 0});
-    const Entity b = addLight(scene, "b", test::pointSizedLight(LightType::Spot), pcf,
-                              {-0.5, 3.5, 0}, {0, -1, 0});
+    const Entity b = addLight(scene, "b", test::pointSizedLight(LightType::Spot), pcf, {-0.5, 3.5, 0}, {0, -1, 0});
     FrameRunner runner;
 
     const test::RenderedFrame f1 = test::renderFrame(runner, scene, kWidth, kHeight);
@@ -244,8 +235,7 @@ TEST(Renderer, CompilesOnlyTheTechniquesInUse) {
     }
 
     scene.world.get<Shadow>(b).technique = ShadowTechnique::Pcf;
-    EXPECT_EQ(test::renderFrame(runner, scene, kWidth, kHeight).stats.programsCompiled, 0)
-        << "{PCF} is cached";
+    EXPECT_EQ(test::renderFrame(runner, scene, kWidth, kHeight).stats.programsCompiled, 0) << "{PCF} is cached";
     std::printf("[ measured ] labels: '%s', '%s'\n", pcfLabel.c_str(), bothLabel.c_str());
 }
 
@@ -270,8 +260,8 @@ TEST(Renderer, PositionAndDepthAovsMatchTheCameraRayHitOnTheGround) {
     camera.znear = 0.1f;
     camera.zfar = 200.0f;
     addCamera(scene, "camera", camera, {1.0, 2.5, 6.0}, {0.3, 0.0, -4.0});
-    addLight(scene, "sun", test::pointSizedLight(LightType::Directional), test::hardShadow(256),
-             {0, 10, 0}, {0.3, -1.0, 0.2});
+    addLight(scene, "sun", test::pointSizedLight(LightType::Directional), test::hardShadow(256), {0, 10, 0},
+             {0.3, -1.0, 0.2});
     FrameRunner runner;
     const test::RenderedFrame frame = test::renderFrame(runner, scene, kWidth, kHeight);
     test::expectSaneAovs(frame.images);
@@ -293,8 +283,8 @@ TEST(Renderer, PositionAndDepthAovsMatchTheCameraRayHitOnTheGround) {
             // Leave out the pixels a rasteriser may decide either way: along the ground's edge and
             // at the horizon, where a pixel spans metres of ground.
             const bool ambiguous =
-                t > 100.0 || (t > 0.0 && (std::abs(std::abs(hit.x) - kHalf) < 0.5 ||
-                                          std::abs(std::abs(hit.z) - kHalf) < 0.5));
+                t > 100.0 ||
+                (t > 0.0 && (std::abs(std::abs(hit.x) - kHalf) < 0.5 || std::abs(std::abs(hit.z) - kHalf) < 0.5));
             if (ambiguous) continue;
             if (covered != onGround) {
                 ++coverageWrong;
@@ -302,19 +292,16 @@ TEST(Renderer, PositionAndDepthAovsMatchTheCameraRayHitOnTheGround) {
             }
             if (!onGround) {
                 ++misses;
-                EXPECT_EQ(frame.images.depth.at(x, y, 0), 0.0f)
-                    << "background depth at " << x << "," << y;
+                EXPECT_EQ(frame.images.depth.at(x, y, 0), 0.0f) << "background depth at " << x << "," << y;
                 continue;
             }
             ++hits;
-            worstPosition =
-                std::max(worstPosition, glm::distance(test::positionAt(frame.images, x, y), hit));
+            worstPosition = std::max(worstPosition, glm::distance(test::positionAt(frame.images, x, y), hit));
             worstDepth = std::max(worstDepth, std::abs(frame.images.depth.at(x, y, 0) - t));
         }
     }
-    std::printf(
-        "[ measured ] %d ground px, %d background px: position error %.2e m, depth error %.2e m\n",
-        hits, misses, worstPosition, worstDepth);
+    std::printf("[ measured ] %d ground px, %d background px: position error %.2e m, depth error %.2e m\n", hits,
+                misses, worstPosition, worstDepth);
     EXPECT_GT(hits, kWidth * kHeight / 3);
     EXPECT_GT(misses, kWidth * 4) << "the sky must be in view";
     EXPECT_EQ(coverageWrong, 0);

@@ -61,12 +61,11 @@ TEST(ShadowRenderCli, DefaultSceneWritesEveryOutputOfTheContract) {
     const CliRun run = runCli(tmp, "builtin:default --out " + quoted(out) + " --size 96x54");
     ASSERT_EQ(run.exitCode, 0) << run.output;
 
-    for (const char* name : {"color.png", "color.exr", "visibility_0.exr", "visibility_1.exr",
-                             "visibility_2.exr", "position.exr", "depth.exr", "stats.json"}) {
+    for (const char* name : {"color.png", "color.exr", "visibility_0.exr", "visibility_1.exr", "visibility_2.exr",
+                             "position.exr", "depth.exr", "stats.json"}) {
         EXPECT_TRUE(fs::is_regular_file(fs::path(out) / name)) << name;
     }
-    EXPECT_FALSE(fs::exists(fs::path(out) / "visibility_3.exr"))
-        << "the default scene has three lights";
+    EXPECT_FALSE(fs::exists(fs::path(out) / "visibility_3.exr")) << "the default scene has three lights";
     {
         std::ifstream png(out + "/color.png", std::ios::binary);
         char signature[8] = {};
@@ -116,8 +115,7 @@ TEST(ShadowRenderCli, DefaultSceneWritesEveryOutputOfTheContract) {
         }
         EXPECT_EQ(invalid, 0) << "visibility_" << i;
         EXPECT_EQ(darkBackground, 0) << "visibility_" << i << " on the background";
-        EXPECT_GT(shadowed, 0) << "visibility_" << i
-                               << ": every light of the default scene casts a shadow in view";
+        EXPECT_GT(shadowed, 0) << "visibility_" << i << ": every light of the default scene casts a shadow in view";
     }
 
     const nlohmann::json stats = readJson(out + "/stats.json");
@@ -128,8 +126,7 @@ TEST(ShadowRenderCli, DefaultSceneWritesEveryOutputOfTheContract) {
     ASSERT_EQ(stats["lights"].size(), 3u);
     EXPECT_EQ(stats["warnings"], nlohmann::json::array()) << "the default scene is in range";
     for (int i = 0; i < 3; ++i) {
-        EXPECT_EQ(stats["lights"][i].value("visibility", ""),
-                  "visibility_" + std::to_string(i) + ".exr");
+        EXPECT_EQ(stats["lights"][i].value("visibility", ""), "visibility_" + std::to_string(i) + ".exr");
     }
 }
 
@@ -272,11 +269,9 @@ TEST(ShadowRenderCli, FramesAndDtRenderTheLastFrameAndReportThem) {
     const std::string animated = tmp / "animated";
     const std::string still = tmp / "still";
     const std::string start = tmp / "start";
-    const CliRun run =
-        runCli(tmp, "builtin:default --size 96x54 --frames 3 --dt 0.1 --out " + quoted(animated));
+    const CliRun run = runCli(tmp, "builtin:default --size 96x54 --frames 3 --dt 0.1 --out " + quoted(animated));
     ASSERT_EQ(run.exitCode, 0) << run.output;
-    ASSERT_EQ(
-        runCli(tmp, "builtin:default --size 96x54 --time 0.2 --out " + quoted(still)).exitCode, 0);
+    ASSERT_EQ(runCli(tmp, "builtin:default --size 96x54 --time 0.2 --out " + quoted(still)).exitCode, 0);
     ASSERT_EQ(runCli(tmp, "builtin:default --size 96x54 --out " + quoted(start)).exitCode, 0);
 
     const nlohmann::json stats = readJson(animated + "/stats.json");
@@ -300,8 +295,7 @@ TEST(ShadowRenderCli, FramesAndDtRenderTheLastFrameAndReportThem) {
         const ImageF b = readOrFail(still + name, {"Y"});
         ASSERT_EQ(a.pixels.size(), b.pixels.size());
         float worst = 0.0f;
-        for (std::size_t p = 0; p < a.pixels.size(); ++p)
-            worst = std::max(worst, std::abs(a.pixels[p] - b.pixels[p]));
+        for (std::size_t p = 0; p < a.pixels.size(); ++p) worst = std::max(worst, std::abs(a.pixels[p] - b.pixels[p]));
         EXPECT_LT(worst, 1e-5f) << name;
     }
 }

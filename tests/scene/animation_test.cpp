@@ -50,9 +50,7 @@ double translationX(World& world, Entity e, double t) {
 TEST(Animation, InterpolatesTranslationLinearlyAtMidpoint) {
     World world;
     const Entity e = animated(
-        world,
-        {channel(Path::Translation, Interpolation::Linear, {0, 2}, {{0, 0, 0, 0}, {2, 4, -6, 0}})},
-        2.0);
+        world, {channel(Path::Translation, Interpolation::Linear, {0, 2}, {{0, 0, 0, 0}, {2, 4, -6, 0}})}, 2.0);
     animate(world, 1.0);
     const glm::dvec3 p = world.get<Transform>(e).translation;
     EXPECT_NEAR(p.x, 1.0, 1e-12);
@@ -63,15 +61,11 @@ TEST(Animation, InterpolatesTranslationLinearlyAtMidpoint) {
 TEST(Animation, SlerpsRotationAlongTheShorterArc) {
     const double quarter = glm::half_pi<double>();
     World world;
-    const Entity plain = animated(world,
-                                  {channel(Path::Rotation, Interpolation::Linear, {0, 1},
-                                           {yRotation(0), yRotation(quarter)})},
-                                  1.0);
+    const Entity plain = animated(
+        world, {channel(Path::Rotation, Interpolation::Linear, {0, 1}, {yRotation(0), yRotation(quarter)})}, 1.0);
     // 270 degrees is -90 degrees the short way: the midpoint is -45, not +135.
-    const Entity longWay = animated(world,
-                                    {channel(Path::Rotation, Interpolation::Linear, {0, 1},
-                                             {yRotation(0), yRotation(3 * quarter)})},
-                                    1.0);
+    const Entity longWay = animated(
+        world, {channel(Path::Rotation, Interpolation::Linear, {0, 1}, {yRotation(0), yRotation(3 * quarter)})}, 1.0);
     animate(world, 0.5);
     expectRotationAboutY(world.get<Transform>(plain).rotation, quarter / 2);
     expectRotationAboutY(world.get<Transform>(longWay).rotation, -quarter / 2);
@@ -81,10 +75,10 @@ TEST(Animation, SlerpsRotationAlongTheShorterArc) {
 
 TEST(Animation, StepHoldsEachKeyUntilTheNext) {
     World world;
-    const Entity e = animated(world,
-                              {channel(Path::Translation, Interpolation::Step, {0, 1, 2},
-                                       {{10, 0, 0, 0}, {20, 0, 0, 0}, {30, 0, 0, 0}})},
-                              3.0);
+    const Entity e = animated(
+        world,
+        {channel(Path::Translation, Interpolation::Step, {0, 1, 2}, {{10, 0, 0, 0}, {20, 0, 0, 0}, {30, 0, 0, 0}})},
+        3.0);
     EXPECT_DOUBLE_EQ(translationX(world, e, 0.99), 10.0);
     EXPECT_DOUBLE_EQ(translationX(world, e, 1.0), 20.0);
     EXPECT_DOUBLE_EQ(translationX(world, e, 1.5), 20.0);
@@ -94,15 +88,11 @@ TEST(Animation, StepHoldsEachKeyUntilTheNext) {
 TEST(Animation, CubicSplineMatchesHermiteWithScaledTangents) {
     // Keys at t = 1 (value 1, out-tangent 2) and t = 3 (in-tangent -1, value 3); dt = 2.
     World world;
-    const Entity e = animated(world,
-                              {channel(Path::Translation, Interpolation::CubicSpline, {1, 3},
-                                       {{99, 0, 0, 0},
-                                        {1, 0, 0, 0},
-                                        {2, 0, 0, 0},
-                                        {-1, 0, 0, 0},
-                                        {3, 0, 0, 0},
-                                        {99, 0, 0, 0}})},
-                              4.0);
+    const Entity e =
+        animated(world,
+                 {channel(Path::Translation, Interpolation::CubicSpline, {1, 3},
+                          {{99, 0, 0, 0}, {1, 0, 0, 0}, {2, 0, 0, 0}, {-1, 0, 0, 0}, {3, 0, 0, 0}, {99, 0, 0, 0}})},
+                 4.0);
     const auto hermite = [](double u) {
         const double dt = 2.0;
         return (2 * u * u * u - 3 * u * u + 1) * 1.0 + (u * u * u - 2 * u * u + u) * dt * 2.0 +
@@ -118,51 +108,42 @@ TEST(Animation, CubicSplineMatchesHermiteWithScaledTangents) {
 TEST(Animation, CubicSplineRotationIsNormalized) {
     World world;
     const glm::vec4 zero(0.0f);
-    const Entity e = animated(
-        world,
-        {channel(Path::Rotation, Interpolation::CubicSpline, {0, 1},
-                 {zero, yRotation(0), zero, zero, yRotation(glm::half_pi<double>()), zero})},
-        1.0);
+    const Entity e = animated(world,
+                              {channel(Path::Rotation, Interpolation::CubicSpline, {0, 1},
+                                       {zero, yRotation(0), zero, zero, yRotation(glm::half_pi<double>()), zero})},
+                              1.0);
     animate(world, 0.5);  // zero tangents: the midpoint is the normalised average
     expectRotationAboutY(world.get<Transform>(e).rotation, glm::half_pi<double>() / 2);
 }
 
 TEST(Animation, ClampsBeforeFirstAndAfterLastKey) {
     World world;
-    const Entity e = animated(
-        world,
-        {channel(Path::Translation, Interpolation::Linear, {1, 2}, {{5, 0, 0, 0}, {7, 0, 0, 0}})},
-        3.0);
+    const Entity e =
+        animated(world, {channel(Path::Translation, Interpolation::Linear, {1, 2}, {{5, 0, 0, 0}, {7, 0, 0, 0}})}, 3.0);
     EXPECT_DOUBLE_EQ(translationX(world, e, 0.5), 5.0);
     EXPECT_DOUBLE_EQ(translationX(world, e, 2.5), 7.0);
 }
 
 TEST(Animation, WrapsAroundTheDuration) {
     World world;
-    const Entity e = animated(
-        world,
-        {channel(Path::Translation, Interpolation::Linear, {0, 2}, {{0, 0, 0, 0}, {2, 0, 0, 0}})},
-        2.0);
+    const Entity e =
+        animated(world, {channel(Path::Translation, Interpolation::Linear, {0, 2}, {{0, 0, 0, 0}, {2, 0, 0, 0}})}, 2.0);
     EXPECT_NEAR(translationX(world, e, 2.5), 0.5, 1e-12);
     EXPECT_NEAR(translationX(world, e, 7.25), 1.25, 1e-12);
 }
 
 TEST(Animation, KeepsPrecisionAtTenMillionSeconds) {
     World world;
-    const Entity e = animated(
-        world,
-        {channel(Path::Translation, Interpolation::Linear, {0, 3}, {{0, 0, 0, 0}, {3, 0, 0, 0}})},
-        3.0);
+    const Entity e =
+        animated(world, {channel(Path::Translation, Interpolation::Linear, {0, 3}, {{0, 0, 0, 0}, {3, 0, 0, 0}})}, 3.0);
     EXPECT_NEAR(translationX(world, e, 1e7), 1.0, 1e-6);  // 1e7 = 3 * 3333333 + 1
     EXPECT_NEAR(translationX(world, e, 1e7 + 0.25), 1.25, 1e-6);
 }
 
 TEST(Animation, TreatsNegativeAndNonFiniteTimeAsZero) {
     World world;
-    const Entity e = animated(
-        world,
-        {channel(Path::Translation, Interpolation::Linear, {0, 4}, {{0, 0, 0, 0}, {4, 0, 0, 0}})},
-        4.0);
+    const Entity e =
+        animated(world, {channel(Path::Translation, Interpolation::Linear, {0, 4}, {{0, 0, 0, 0}, {4, 0, 0, 0}})}, 4.0);
     EXPECT_DOUBLE_EQ(translationX(world, e, -1.0), 0.0);  // not 3, as a positive modulo gives
     EXPECT_DOUBLE_EQ(translationX(world, e, std::numeric_limits<double>::quiet_NaN()), 0.0);
     EXPECT_DOUBLE_EQ(translationX(world, e, std::numeric_limits<double>::infinity()), 0.0);
@@ -170,18 +151,15 @@ TEST(Animation, TreatsNegativeAndNonFiniteTimeAsZero) {
 
 TEST(Animation, ZeroDurationSamplesTimeZero) {
     World world;
-    const Entity e = animated(
-        world,
-        {channel(Path::Translation, Interpolation::Linear, {0, 1}, {{1, 0, 0, 0}, {2, 0, 0, 0}})},
-        0.0);
+    const Entity e =
+        animated(world, {channel(Path::Translation, Interpolation::Linear, {0, 1}, {{1, 0, 0, 0}, {2, 0, 0, 0}})}, 0.0);
     EXPECT_DOUBLE_EQ(translationX(world, e, 0.7), 1.0);
 }
 
 TEST(Animation, ZeroScaleKeyStaysFinite) {
     World world;
-    const Entity e = animated(
-        world, {channel(Path::Scale, Interpolation::Linear, {0, 1}, {{1, 1, 1, 0}, {0, 0, 0, 0}})},
-        2.0);
+    const Entity e =
+        animated(world, {channel(Path::Scale, Interpolation::Linear, {0, 1}, {{1, 1, 1, 0}, {0, 0, 0, 0}})}, 2.0);
     animate(world, 1.0);
     EXPECT_EQ(world.get<Transform>(e).scale, glm::dvec3(0.0));
     animate(world, 0.5);
@@ -191,15 +169,13 @@ TEST(Animation, ZeroScaleKeyStaysFinite) {
 TEST(Animation, NormalizesQuaternionKeys) {
     const double quarter = glm::half_pi<double>();
     World world;
-    const Entity step =
-        animated(world,
-                 {channel(Path::Rotation, Interpolation::Step, {0, 1, 2},
-                          {yRotation(0, 2.0), yRotation(quarter, 3.0), glm::vec4(0.0f)})},
-                 3.0);
-    const Entity linear = animated(world,
-                                   {channel(Path::Rotation, Interpolation::Linear, {0, 1},
-                                            {yRotation(0, 0.5), yRotation(quarter, 4.0)})},
-                                   1.0);
+    const Entity step = animated(world,
+                                 {channel(Path::Rotation, Interpolation::Step, {0, 1, 2},
+                                          {yRotation(0, 2.0), yRotation(quarter, 3.0), glm::vec4(0.0f)})},
+                                 3.0);
+    const Entity linear = animated(
+        world, {channel(Path::Rotation, Interpolation::Linear, {0, 1}, {yRotation(0, 0.5), yRotation(quarter, 4.0)})},
+        1.0);
     animate(world, 0.5);
     expectRotationAboutY(world.get<Transform>(step).rotation, 0.0);
     expectRotationAboutY(world.get<Transform>(linear).rotation, quarter / 2);
@@ -211,10 +187,8 @@ TEST(Animation, NormalizesQuaternionKeys) {
 
 TEST(Animation, IgnoresChannelsWithTooFewValues) {
     World world;
-    const Entity e = animated(world,
-                              {channel(Path::Translation, Interpolation::CubicSpline, {0, 1},
-                                       {{1, 0, 0, 0}, {2, 0, 0, 0}})},
-                              1.0);
+    const Entity e = animated(
+        world, {channel(Path::Translation, Interpolation::CubicSpline, {0, 1}, {{1, 0, 0, 0}, {2, 0, 0, 0}})}, 1.0);
     world.get<Transform>(e).translation = glm::dvec3(9.0);
     animate(world, 0.5);
     EXPECT_EQ(world.get<Transform>(e).translation, glm::dvec3(9.0));
@@ -281,10 +255,8 @@ TEST(AnimationProcedural, ZeroSpinAxisLeavesRotationFinite) {
 
 TEST(AnimationProcedural, OverridesKeyframesOfTheSameComponent) {
     World world;
-    const Entity e = animated(
-        world,
-        {channel(Path::Translation, Interpolation::Linear, {0, 1}, {{5, 0, 0, 0}, {5, 0, 0, 0}})},
-        1.0);
+    const Entity e =
+        animated(world, {channel(Path::Translation, Interpolation::Linear, {0, 1}, {{5, 0, 0, 0}, {5, 0, 0, 0}})}, 1.0);
     ProceduralMotion m;
     m.kind = ProceduralMotion::Kind::Bob;
     m.axis = {1, 0, 0};

@@ -12,8 +12,7 @@ namespace {
 /// vertices 0 and 2, plus a tilted triangle facing +Z.
 MeshData quadAndWall() {
     MeshData mesh;
-    mesh.positions = {{0, 0, 0},  {0, 0, 1},  {1, 0, 1}, {1, 0, 0},
-                      {0, 0, -2}, {1, 0, -2}, {0, 1, -2}};
+    mesh.positions = {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}, {0, 0, -2}, {1, 0, -2}, {0, 1, -2}};
     mesh.indices = {0, 1, 2, 0, 2, 3, 4, 5, 6};
     return mesh;
 }
@@ -34,9 +33,8 @@ TEST(MeshUtils, ComputeBoundsOfNoPositionsIsEmpty) {
 
 TEST(MeshUtils, ComputeBoundsSkipsNonFinitePositions) {
     MeshData mesh;
-    mesh.positions = {{1, 2, 3},
-                      {std::numeric_limits<float>::quiet_NaN(), 0, 0},
-                      {std::numeric_limits<float>::infinity(), 0, 0}};
+    mesh.positions = {
+        {1, 2, 3}, {std::numeric_limits<float>::quiet_NaN(), 0, 0}, {std::numeric_limits<float>::infinity(), 0, 0}};
     computeBounds(mesh);
     EXPECT_EQ(mesh.bounds.min, glm::vec3(1, 2, 3));
     EXPECT_EQ(mesh.bounds.max, glm::vec3(1, 2, 3));
@@ -48,10 +46,8 @@ TEST(MeshUtils, FlatNormalsGiveEachTriangleItsOwnVertices) {
     ASSERT_EQ(mesh.positions.size(), 9u);
     ASSERT_EQ(mesh.normals.size(), 9u);
     for (std::uint32_t i = 0; i < 9; ++i) EXPECT_EQ(mesh.indices[i], i);
-    for (int i = 0; i < 6; ++i)
-        EXPECT_EQ(mesh.normals[static_cast<std::size_t>(i)], glm::vec3(0, 1, 0));
-    for (int i = 6; i < 9; ++i)
-        EXPECT_EQ(mesh.normals[static_cast<std::size_t>(i)], glm::vec3(0, 0, 1));
+    for (int i = 0; i < 6; ++i) EXPECT_EQ(mesh.normals[static_cast<std::size_t>(i)], glm::vec3(0, 1, 0));
+    for (int i = 6; i < 9; ++i) EXPECT_EQ(mesh.normals[static_cast<std::size_t>(i)], glm::vec3(0, 0, 1));
     EXPECT_EQ(mesh.positions[3], glm::vec3(0, 0, 0));  // second triangle starts at old vertex 0
     EXPECT_EQ(mesh.positions[5], glm::vec3(1, 0, 0));
     EXPECT_EQ(mesh.bounds.min, glm::vec3(0, 0, -2));
@@ -60,8 +56,7 @@ TEST(MeshUtils, FlatNormalsGiveEachTriangleItsOwnVertices) {
 
 TEST(MeshUtils, FlatNormalsOfTinyTriangleAreUnit) {
     MeshData mesh;
-    mesh.positions = {
-        {0, 0, 0}, {1e-20f, 0, 0}, {0, 1e-20f, 0}};  // cross product underflows in float
+    mesh.positions = {{0, 0, 0}, {1e-20f, 0, 0}, {0, 1e-20f, 0}};  // cross product underflows in float
     mesh.indices = {0, 1, 2};
     makeFlatNormals(mesh);
     EXPECT_NEAR(mesh.normals[0].z, 1.0f, 1e-6f);

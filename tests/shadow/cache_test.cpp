@@ -44,12 +44,9 @@ ThreeAreas makeThreeAreas() {
     spot.range = 10.0f;
     Light bulb = test::pointSizedLight(LightType::Point);
     bulb.range = 3.0f;  // the bobbing box, 7 m away, is outside every face's frustum
-    addLight(scene, "spot with mover", spot, test::shadowWith(ShadowTechnique::Pcf, 512),
-             {-4, 4, 0}, {0, -1, 0});
-    addLight(scene, "static spot", spot, test::shadowWith(ShadowTechnique::Pcss, 512), {4, 4, 0},
-             {0, -1, 0});
-    addLight(scene, "static bulb", bulb, test::shadowWith(ShadowTechnique::Hard, 256), {0, 2, -5},
-             {0, -1, 0});
+    addLight(scene, "spot with mover", spot, test::shadowWith(ShadowTechnique::Pcf, 512), {-4, 4, 0}, {0, -1, 0});
+    addLight(scene, "static spot", spot, test::shadowWith(ShadowTechnique::Pcss, 512), {4, 4, 0}, {0, -1, 0});
+    addLight(scene, "static bulb", bulb, test::shadowWith(ShadowTechnique::Hard, 256), {0, 2, -5}, {0, -1, 0});
     test::addBox(scene, "box A", {-4, 0.5, -1}, glm::dvec3(0.4));
     test::addBox(scene, "box B", {4, 0.5, 0}, glm::dvec3(0.4));
     test::addBox(scene, "box C", {0, 0.5, -4}, glm::dvec3(0.4));
@@ -83,22 +80,19 @@ int expectCachedEqualsUncached(const char* what, MakeScene makeScene) {
         const test::RenderedFrame b = test::renderFrame(uncached, uncachedScene, 192, 108, t);
         test::expectSaneAovs(a.images);
         if (f > 0) reused += a.stats.shadowLayersReused;
-        EXPECT_EQ(b.stats.shadowLayersReused, 0)
-            << what << " frame " << f << ": caching off still reused layers";
-        EXPECT_EQ(bitDifferences(a.images.color, b.images.color), 0)
-            << what << " frame " << f << ": colour differs";
+        EXPECT_EQ(b.stats.shadowLayersReused, 0) << what << " frame " << f << ": caching off still reused layers";
+        EXPECT_EQ(bitDifferences(a.images.color, b.images.color), 0) << what << " frame " << f << ": colour differs";
         EXPECT_EQ(a.images.visibility.size(), cachedScene.lights.size());
         EXPECT_EQ(a.images.visibility.size(), b.images.visibility.size());
-        for (std::size_t i = 0;
-             i < std::min(a.images.visibility.size(), b.images.visibility.size()); ++i) {
+        for (std::size_t i = 0; i < std::min(a.images.visibility.size(), b.images.visibility.size()); ++i) {
             EXPECT_EQ(bitDifferences(a.images.visibility[i], b.images.visibility[i]), 0)
                 << what << " frame " << f << ": visibility of light " << i << " differs";
         }
         std::printf(
             "[ measured ] %s frame %d: cached drew %d reused %d cleared %d; uncached drew %d "
             "cleared %d\n",
-            what, f, a.stats.shadowLayersDrawn, a.stats.shadowLayersReused,
-            a.stats.shadowLayersCleared, b.stats.shadowLayersDrawn, b.stats.shadowLayersCleared);
+            what, f, a.stats.shadowLayersDrawn, a.stats.shadowLayersReused, a.stats.shadowLayersCleared,
+            b.stats.shadowLayersDrawn, b.stats.shadowLayersCleared);
     }
     return reused;
 }
@@ -111,8 +105,7 @@ TEST(Cache, CachedFramesAreBitIdenticalToUncached) {
     });
     // The default scene's movers reach into nearly every layer, so few layers are reused
     // there; this scene reuses most of its layers, so the comparison is not vacuous.
-    const int reused =
-        expectCachedEqualsUncached("three areas", [] { return makeThreeAreas().scene; });
+    const int reused = expectCachedEqualsUncached("three areas", [] { return makeThreeAreas().scene; });
     EXPECT_GT(reused, 0) << "the cached run never reused a layer";
 }
 
@@ -129,12 +122,10 @@ TEST(Cache, OnlyTheLightSeeingTheMovingCasterRedraws) {
             std::printf("  %s %d/%d", l.name.c_str(), l.layersDrawn, l.layersReused);
         std::printf("\n");
         if (f == 0) continue;
-        EXPECT_EQ(lights[0].layersDrawn, 1)
-            << "frame " << f << ": the spot seeing the mover did not redraw";
+        EXPECT_EQ(lights[0].layersDrawn, 1) << "frame " << f << ": the spot seeing the mover did not redraw";
         for (std::size_t i = 1; i < 3; ++i) {
             const LightShadowStats& l = lights[i];
-            EXPECT_EQ(l.layersDrawn, 0)
-                << "frame " << f << ": static light " << l.name << " redrew";
+            EXPECT_EQ(l.layersDrawn, 0) << "frame " << f << ": static light " << l.name << " redrew";
             EXPECT_EQ(l.layersReused, l.layers) << "frame " << f << ": static light " << l.name;
         }
     }
@@ -163,20 +154,18 @@ TEST(Cache, LayerWhoseCastersDidNotMoveIsReused) {
                 const ShadowLayerPlan& layer = light.layers[k];
                 casters.back().push_back(layer.casters);
                 if (f == 0) continue;
-                const bool sameSet = i < lastCasters.size() && k < lastCasters[i].size() &&
-                                     lastCasters[i][k] == layer.casters;
-                const bool anyMoved =
-                    std::any_of(layer.casters.begin(), layer.casters.end(), [&](Entity e) {
-                        const WorldTransform* wt = scene.world.tryGet<WorldTransform>(e);
-                        return wt == nullptr || wt->movedThisFrame;
-                    });
+                const bool sameSet =
+                    i < lastCasters.size() && k < lastCasters[i].size() && lastCasters[i][k] == layer.casters;
+                const bool anyMoved = std::any_of(layer.casters.begin(), layer.casters.end(), [&](Entity e) {
+                    const WorldTransform* wt = scene.world.tryGet<WorldTransform>(e);
+                    return wt == nullptr || wt->movedThisFrame;
+                });
                 if (!sameSet || anyMoved) continue;
                 ++unchanged;
                 if (layer.dirty) {
                     ++unchangedRedrawn;
                     ADD_FAILURE() << "frame " << f << ": " << light.name << " layer " << k << " ("
-                                  << layer.casters.size()
-                                  << " casters, none moved) was redrawn; near plane "
+                                  << layer.casters.size() << " casters, none moved) was redrawn; near plane "
                                   << layer.depthNear << " m";
                 }
             }
@@ -186,8 +175,8 @@ TEST(Cache, LayerWhoseCastersDidNotMoveIsReused) {
                 "[ measured ] default frame %d: %d layers unchanged, %d of them redrawn (layers "
                 "drawn %d, "
                 "cleared %d, reused %d)\n",
-                f, unchanged, unchangedRedrawn, frame.stats.shadowLayersDrawn,
-                frame.stats.shadowLayersCleared, frame.stats.shadowLayersReused);
+                f, unchanged, unchangedRedrawn, frame.stats.shadowLayersDrawn, frame.stats.shadowLayersCleared,
+                frame.stats.shadowLayersReused);
         }
         lastCasters = std::move(casters);
     }
@@ -197,14 +186,13 @@ TEST(Cache, LayerWhoseCastersDidNotMoveIsReused) {
 /// box in its +X face and a small box bobbing along `moverAxis` about `moverCentre`, inside face
 /// `moverFace` only (shadow_sampling.glsl's cubeFace order +X, -X, +Y, -Y, +Z, -Z), and expects
 /// from frame 2 on that face alone to be redrawn.
-void expectOnlyTheMoversFaceRedrawn(float range, const glm::dvec3& moverCentre,
-                                    const glm::dvec3& moverAxis, std::size_t moverFace) {
+void expectOnlyTheMoversFaceRedrawn(float range, const glm::dvec3& moverCentre, const glm::dvec3& moverAxis,
+                                    std::size_t moverFace) {
     Scene scene;
     test::addGround(scene, 5.0f);
     Light bulb = test::pointSizedLight(LightType::Point);
     bulb.range = range;
-    addLight(scene, "bulb", bulb, test::shadowWith(ShadowTechnique::Hard, 256), {0, 2.5, 0},
-             {0, -1, 0});
+    addLight(scene, "bulb", bulb, test::shadowWith(ShadowTechnique::Hard, 256), {0, 2.5, 0}, {0, -1, 0});
     test::addBox(scene, "static box", {2.5, 0.5, 0.3}, glm::dvec3(0.4));
     const Entity mover = test::addBox(scene, "mover", moverCentre, glm::dvec3(0.15));
     ProceduralMotion bob;
@@ -227,21 +215,19 @@ void expectOnlyTheMoversFaceRedrawn(float range, const glm::dvec3& moverCentre,
         std::printf(
             "[ measured ] bulb (range %.0f) frame %d: drawn %d cleared %d reused %d; +X face near "
             "%.4f m, depth scale %.4f m\n",
-            range, f, l.layersDrawn, l.layersCleared, l.layersReused, staticFace.depthNear,
-            staticFace.depthScale);
+            range, f, l.layersDrawn, l.layersCleared, l.layersReused, staticFace.depthNear, staticFace.depthScale);
         if (f == 0) continue;
         std::vector<std::size_t> redrawnWithoutMover;
         for (std::size_t k = 0; k < plan.layers.size(); ++k) {
             const auto& casters = plan.layers[k].casters;
-            const bool holdsMover =
-                std::find(casters.begin(), casters.end(), mover) != casters.end();
+            const bool holdsMover = std::find(casters.begin(), casters.end(), mover) != casters.end();
             EXPECT_EQ(holdsMover, k == moverFace) << "face " << k;
             if (plan.layers[k].dirty && !holdsMover) redrawnWithoutMover.push_back(k);
         }
         EXPECT_TRUE(redrawnWithoutMover.empty())
-            << "frame " << f << ": faces without the mover were redrawn: "
-            << testing::PrintToString(redrawnWithoutMover) << " (+X face near plane "
-            << staticFace.depthNear << " m, depth scale " << staticFace.depthScale << " m)";
+            << "frame " << f
+            << ": faces without the mover were redrawn: " << testing::PrintToString(redrawnWithoutMover)
+            << " (+X face near plane " << staticFace.depthNear << " m, depth scale " << staticFace.depthScale << " m)";
         EXPECT_EQ(l.layersDrawn, 1) << "frame " << f;
         EXPECT_EQ(l.layersReused, 5) << "frame " << f;
     }

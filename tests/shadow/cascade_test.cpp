@@ -40,16 +40,14 @@ CascadeScene makeCascadeScene(float shadowDistance = kShadowDistance) {
     for (int i = 0; i < 5; ++i) {
         for (int j = 0; j < 3; ++j) {
             const double height = 0.4 + 0.3 * ((i + j) % 3);
-            test::addBox(s.scene, "box", {-6.0 + 6.0 * j, height, 6.0 - 7.0 * i},
-                         {0.6, height, 0.5});
+            test::addBox(s.scene, "box", {-6.0 + 6.0 * j, height, 6.0 - 7.0 * i}, {0.6, height, 0.5});
         }
     }
     Light sun = test::pointSizedLight(LightType::Directional);
     Shadow shadow = test::shadowWith(ShadowTechnique::Pcf, kMapSize);
     shadow.cascades = kCascades;
     shadow.shadowDistance = shadowDistance;
-    s.sun = addLight(s.scene, "sun", sun, shadow, {0, 20, 0},
-                     glm::normalize(glm::dvec3(0.3, -1.0, 0.45)));
+    s.sun = addLight(s.scene, "sun", sun, shadow, {0, 20, 0}, glm::normalize(glm::dvec3(0.3, -1.0, 0.45)));
     Camera lens;
     lens.zfar = 200.0f;
     s.camera = addCamera(s.scene, "camera", lens, {0.0, 5.0, 12.0}, {0.0, 0.0, -10.0});
@@ -71,31 +69,22 @@ CascadeState renderCascades(FrameRunner& runner, CascadeScene& s) {
         return state;
     }
     state.layers = frame.lights[0].layers;
-    for (int k = 0; k < kCascades; ++k)
-        state.depth.push_back(runner.shadows().readLayerDepth(0, k));
+    for (int k = 0; k < kCascades; ++k) state.depth.push_back(runner.shadows().readLayerDepth(0, k));
     return state;
 }
 
-void moveCamera(CascadeScene& s, const glm::dvec3& by) {
-    s.scene.world.get<Transform>(s.camera).translation += by;
-}
+void moveCamera(CascadeScene& s, const glm::dvec3& by) { s.scene.world.get<Transform>(s.camera).translation += by; }
 
-double extentOf(const ShadowLayerPlan& layer) {
-    return 2.0 / layer.clipFromLight[0][0];
-}
-double texelOf(const ShadowLayerPlan& layer) {
-    return extentOf(layer) / kMapSize;
-}
+double extentOf(const ShadowLayerPlan& layer) { return 2.0 / layer.clipFromLight[0][0]; }
+double texelOf(const ShadowLayerPlan& layer) { return extentOf(layer) / kMapSize; }
 
 /// The light-space x, y of the layer's centre: lightFromWorld = translate(-(centre, top)) * R.
-glm::dvec2 centreOf(const ShadowLayerPlan& layer) {
-    return -glm::dvec2(layer.lightFromWorld[3]);
-}
+glm::dvec2 centreOf(const ShadowLayerPlan& layer) { return -glm::dvec2(layer.lightFromWorld[3]); }
 
 /// The light's x axis in world space (a horizontal vector for a light that is not vertical).
 glm::dvec3 lightXAxis(const ShadowLayerPlan& layer) {
-    return glm::normalize(glm::dvec3(layer.lightFromWorld[0][0], layer.lightFromWorld[1][0],
-                                     layer.lightFromWorld[2][0]));
+    return glm::normalize(
+        glm::dvec3(layer.lightFromWorld[0][0], layer.lightFromWorld[1][0], layer.lightFromWorld[2][0]));
 }
 
 /// Whole-texel shift of the layer's centre from `before` to `after`; fails when it is not whole.
@@ -109,8 +98,7 @@ glm::ivec2 texelShift(const ShadowLayerPlan& before, const ShadowLayerPlan& afte
 
 /// Fraction of the texels away from the border where `after` differs from `before` moved by
 /// `shift` texels (after[x, y] shows what before[x + shift.x, y + shift.y] showed).
-double differingFraction(const std::vector<float>& before, const std::vector<float>& after,
-                         glm::ivec2 shift) {
+double differingFraction(const std::vector<float>& before, const std::vector<float>& after, glm::ivec2 shift) {
     int compared = 0;
     int differing = 0;
     for (int y = kBorderTexels; y < kMapSize - kBorderTexels; ++y) {
@@ -141,10 +129,9 @@ TEST(Cascade, SubTexelCameraMoveKeepsMapContents) {
     ASSERT_EQ(start.layers.size(), static_cast<std::size_t>(kCascades));
     const double texel0 = texelOf(start.layers[0]);
     for (int k = 0; k < kCascades; ++k) {
-        std::printf(
-            "[ measured ] cascade %d: extent %.4f m, texel %.5f m, splitFar %.3f m, %zu casters\n",
-            k, extentOf(start.layers[k]), texelOf(start.layers[k]), start.layers[k].splitFar,
-            start.layers[k].casters.size());
+        std::printf("[ measured ] cascade %d: extent %.4f m, texel %.5f m, splitFar %.3f m, %zu casters\n", k,
+                    extentOf(start.layers[k]), texelOf(start.layers[k]), start.layers[k].splitFar,
+                    start.layers[k].casters.size());
     }
 
     // A sub-texel move keeps each layer's matrices unless it carries the centre across a snap
@@ -163,8 +150,7 @@ TEST(Cascade, SubTexelCameraMoveKeepsMapContents) {
             for (int k = 0; k < kCascades; ++k) {
                 const ShadowLayerPlan& a = start.layers[k];
                 const ShadowLayerPlan& b = moved.layers[k];
-                EXPECT_EQ(b.clipFromLight, a.clipFromLight)
-                    << "cascade " << k << ": extent or depth range changed";
+                EXPECT_EQ(b.clipFromLight, a.clipFromLight) << "cascade " << k << ": extent or depth range changed";
                 const glm::ivec2 shift = texelShift(a, b, k);
                 EXPECT_LE(std::abs(shift.x) + std::abs(shift.y), 2) << "cascade " << k;
                 const bool kept = b.lightFromWorld == a.lightFromWorld;
@@ -177,14 +163,12 @@ TEST(Cascade, SubTexelCameraMoveKeepsMapContents) {
                     sign * fraction, k, kept ? "kept" : "changed", shift.x, shift.y, differing);
                 EXPECT_LT(differing, kMaxDifferingFraction) << "cascade " << k;
                 if (kept) {
-                    EXPECT_EQ(differing, 0.0)
-                        << "cascade " << k << ": same matrices, different contents";
+                    EXPECT_EQ(differing, 0.0) << "cascade " << k << ": same matrices, different contents";
                 }
             }
         }
     }
-    for (int k = 0; k < kCascades; ++k)
-        EXPECT_TRUE(keptBySome[k]) << "cascade " << k << " followed a sub-texel move";
+    for (int k = 0; k < kCascades; ++k) EXPECT_TRUE(keptBySome[k]) << "cascade " << k << " followed a sub-texel move";
 
     // A move of exactly three texels of cascade 0 along the light's x axis: cascade 0 moves by
     // exactly three texels, the coarser cascades by a whole number near 3 * texel0 / texelK,
@@ -196,8 +180,7 @@ TEST(Cascade, SubTexelCameraMoveKeepsMapContents) {
     for (int k = 0; k < kCascades; ++k) {
         const ShadowLayerPlan& a = start.layers[k];
         const ShadowLayerPlan& b = moved.layers[k];
-        EXPECT_EQ(b.clipFromLight, a.clipFromLight)
-            << "cascade " << k << ": extent or depth range changed";
+        EXPECT_EQ(b.clipFromLight, a.clipFromLight) << "cascade " << k << ": extent or depth range changed";
         const glm::ivec2 shift = texelShift(a, b, k);
         const double expected = 3.0 * texel0 / texelOf(a);
         if (k == 0) {
@@ -211,16 +194,14 @@ TEST(Cascade, SubTexelCameraMoveKeepsMapContents) {
         // Control: compared one texel off along the light's y axis, the maps differ (the
         // ground's depth grows along y; along x, the light's horizontal axis, it is constant),
         // so the comparison above can tell a shifted map from a moved one.
-        const double control =
-            differingFraction(start.depth[k], moved.depth[k], shift + glm::ivec2(0, 1));
+        const double control = differingFraction(start.depth[k], moved.depth[k], shift + glm::ivec2(0, 1));
         std::printf(
             "[ measured ] 3-texel move, cascade %d: shift (%d, %d) (%.2f texels of it), %.5f of "
             "texels "
             "differ (one texel off: %.3f)\n",
             k, shift.x, shift.y, expected, differing, control);
         EXPECT_LT(differing, kMaxDifferingFraction) << "cascade " << k;
-        EXPECT_GT(control, 0.5) << "cascade " << k
-                                << ": the depth comparison cannot see a one-texel shift";
+        EXPECT_GT(control, 0.5) << "cascade " << k << ": the depth comparison cannot see a one-texel shift";
     }
 }
 
@@ -264,23 +245,19 @@ TEST(Cascade, SplitsIncreaseToTheShadowDistance) {
         // Without a shadow distance, the bound is the farthest corner of the receivers' box
         // (the 60 m ground and the boxes on it), nearer than the far plane (200 m).
         DAabb receivers = test::boxBounds({0, 0, 0}, {30, 0, 30});
-        s.scene.world.view<WorldBounds>().each(
-            [&](Entity, WorldBounds& b) { receivers.extend(b.box); });
+        s.scene.world.view<WorldBounds>().each([&](Entity, WorldBounds& b) { receivers.extend(b.box); });
         const glm::dvec3 eye = s.scene.world.get<Transform>(s.camera).translation;
         double farthest = 0.0;
-        for (int i = 0; i < 8; ++i)
-            farthest = std::max(farthest, glm::distance(eye, receivers.corner(i)));
+        for (int i = 0; i < 8; ++i) farthest = std::max(farthest, glm::distance(eye, receivers.corner(i)));
         const double bound = shadowDistance > 0.0f ? shadowDistance : std::min(farthest, 200.0);
         double previous = 0.0;
         for (int k = 0; k < kCascades; ++k) {
             const double splitFar = state.layers[k].splitFar;
-            std::printf("[ measured ] shadowDistance %.0f: cascade %d ends at %.4f m\n",
-                        shadowDistance, k, splitFar);
+            std::printf("[ measured ] shadowDistance %.0f: cascade %d ends at %.4f m\n", shadowDistance, k, splitFar);
             EXPECT_GT(splitFar, previous) << "cascade " << k;
             previous = splitFar;
         }
-        EXPECT_NEAR(previous, bound, 1e-4 * bound)
-            << "the last cascade does not end at the shadow distance bound";
+        EXPECT_NEAR(previous, bound, 1e-4 * bound) << "the last cascade does not end at the shadow distance bound";
     }
 }
 

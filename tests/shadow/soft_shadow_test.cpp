@@ -70,8 +70,8 @@ double geometricPenumbra(double blockerHeight) {
 
 /// Mean visibility profile across x = 0 of the ground pixels with z in [zLo, zHi] seen through
 /// `camera`, over x in [-halfRange, halfRange].
-EdgeMeasurement measureEdge(FrameRunner& runner, Scene& scene, Entity camera, double blockerHeight,
-                            double zLo, double zHi, double halfRange) {
+EdgeMeasurement measureEdge(FrameRunner& runner, Scene& scene, Entity camera, double blockerHeight, double zLo,
+                            double zHi, double halfRange) {
     EdgeMeasurement m;
     m.fullWidth = geometricPenumbra(blockerHeight);
     m.expected = test::diskEdgeBandWidth(m.fullWidth, 0.05, 0.95);
@@ -118,21 +118,17 @@ TEST(SoftShadow, PcssContactHardeningMatchesGeometry) {
     // the penumbra that lies under it, and zooms so that the band spans ~50-80 pixels.
     Camera farLens;
     farLens.yfov = 0.35f;
-    const Entity farCamera =
-        addCamera(scene, "far edge", farLens, {1.6, 4.0, 1.2}, {0.0, 0.0, 1.2});
+    const Entity farCamera = addCamera(scene, "far edge", farLens, {1.6, 4.0, 1.2}, {0.0, 0.0, 1.2});
     Camera nearLens;
     nearLens.yfov = 0.12f;
-    const Entity nearCamera =
-        addCamera(scene, "near edge", nearLens, {0.5, 1.2, -0.85}, {0.0, 0.0, -0.85});
+    const Entity nearCamera = addCamera(scene, "near edge", nearLens, {0.5, 1.2, -0.85}, {0.0, 0.0, -0.85});
 
     test::glContext();
     FrameRunner runner;
     // Rows of z at least one far-penumbra half-width (0.3 m) inside each shadow's z extent, so
     // the plates' other edges do not enter the profile.
-    const EdgeMeasurement nearEdge =
-        measureEdge(runner, scene, nearCamera, kNearPlateHeight, -1.1, -0.6, 0.08);
-    const EdgeMeasurement farEdge =
-        measureEdge(runner, scene, farCamera, kFarPlateHeight, 0.8, 1.6, 0.6);
+    const EdgeMeasurement nearEdge = measureEdge(runner, scene, nearCamera, kNearPlateHeight, -1.1, -0.6, 0.08);
+    const EdgeMeasurement farEdge = measureEdge(runner, scene, farCamera, kFarPlateHeight, 0.8, 1.6, 0.6);
 
     for (const auto& [name, height, e] :
          {std::tuple{"near", kNearPlateHeight, nearEdge}, std::tuple{"far ", kFarPlateHeight, farEdge}}) {
@@ -162,7 +158,6 @@ TEST(SoftShadow, PcssContactHardeningMatchesGeometry) {
 constexpr double kMaxAcneFraction = 0.001;
 constexpr std::array<ShadowTechnique, 3> kTechniques{ShadowTechnique::Hard, ShadowTechnique::Pcf,
                                                      ShadowTechnique::Pcss};
-
 
 /// Unit direction of light travelling downwards at `elevation` (rad) above the horizon, turned
 /// by `azimuth` (rad) about +Y so that no grid axis lines up with it.
@@ -195,17 +190,15 @@ TEST(SoftShadow, NoAcneOnLitPlaneAtAnyElevation) {
         Light light = test::pointSizedLight(type, kSpotHalfAngle);
         light.angularRadius = 0.02f;  // PCSS needs an emitter; hard and PCF ignore it
         light.radius = 0.1f;
-        const Entity e = addLight(scene, "light", light, test::shadowWith(ShadowTechnique::Hard),
-                                  {0, 8, 0}, {0, -1, 0});
+        const Entity e =
+            addLight(scene, "light", light, test::shadowWith(ShadowTechnique::Hard), {0, 8, 0}, {0, -1, 0});
         addCamera(scene, "camera", Camera{}, {0.0, 9.0, 13.0}, {0.0, 0.0, 0.0});
         FrameRunner runner;
-        const auto& elevations =
-            type == LightType::Directional
-                ? std::vector<double>(sunElevationsDeg.begin(), sunElevationsDeg.end())
-                : std::vector<double>(spotElevationsDeg.begin(), spotElevationsDeg.end());
+        const auto& elevations = type == LightType::Directional
+                                     ? std::vector<double>(sunElevationsDeg.begin(), sunElevationsDeg.end())
+                                     : std::vector<double>(spotElevationsDeg.begin(), spotElevationsDeg.end());
         for (double deg : elevations) {
-            const glm::dvec3 dir =
-                deg == 90.0 ? glm::dvec3(0, -1, 0) : downAt(deg * test::kPi / 180.0, kAzimuth);
+            const glm::dvec3 dir = deg == 90.0 ? glm::dvec3(0, -1, 0) : downAt(deg * test::kPi / 180.0, kAzimuth);
             // Spot: 8 m from the plane's centre, aimed at it.
             const glm::dvec3 position = type == LightType::Spot ? -8.0 * dir : glm::dvec3(0, 8, 0);
             for (std::size_t k = 0; k < kTechniques.size(); ++k) {
@@ -214,15 +207,14 @@ TEST(SoftShadow, NoAcneOnLitPlaneAtAnyElevation) {
                 test::expectSaneAovs(frame.images);
                 // A spot lights only its cone (a hair inside, where its map ends).
                 const GroundCounts c = countGround(frame.images, 0, [&](const glm::dvec3& p) {
-                    return type != LightType::Spot ||
-                           test::insideCone(p, position, dir, kSpotHalfAngle - 0.02);
+                    return type != LightType::Spot || test::insideCone(p, position, dir, kSpotHalfAngle - 0.02);
                 });
-                const std::string name = std::string(type == LightType::Spot ? "spot" : "sun") +
-                                         " at " + std::to_string(static_cast<int>(deg)) + " deg";
+                const std::string name = std::string(type == LightType::Spot ? "spot" : "sun") + " at " +
+                                         std::to_string(static_cast<int>(deg)) + " deg";
                 ASSERT_GT(c.ground, 2000) << name << ": too few lit plane pixels to judge";
                 EXPECT_LT(c.darkFraction(), kMaxAcneFraction)
-                    << techniqueName(kTechniques[k]) << ", " << name << ": " << c.dark << " of "
-                    << c.ground << " lit plane pixels read visibility < 0.5";
+                    << techniqueName(kTechniques[k]) << ", " << name << ": " << c.dark << " of " << c.ground
+                    << " lit plane pixels read visibility < 0.5";
                 if (c.darkFraction() > worst[k]) {
                     worst[k] = c.darkFraction();
                     worstCase[k] = name;
@@ -231,8 +223,8 @@ TEST(SoftShadow, NoAcneOnLitPlaneAtAnyElevation) {
         }
     }
     for (std::size_t k = 0; k < kTechniques.size(); ++k) {
-        std::printf("[ measured ] acne, %s: worst dark fraction %.5f (%s)\n",
-                    techniqueName(kTechniques[k]), worst[k], worstCase[k].c_str());
+        std::printf("[ measured ] acne, %s: worst dark fraction %.5f (%s)\n", techniqueName(kTechniques[k]), worst[k],
+                    worstCase[k].c_str());
     }
 }
 
@@ -265,8 +257,8 @@ struct BaseGap {
 /// at `elevationDeg` with `technique`, and measures the lit gap at the foot of that face over
 /// the ground strip |z| < 0.3, kBaseX < x < kBaseX + 0.5 (inside the shadow, which is at least
 /// 1 / tan(elevation) >= 1 m long, and 0.2 m from its sides).
-BaseGap measureBaseGap(const glm::dvec3& casterCentre, const glm::dvec3& casterHalf,
-                       double elevationDeg, ShadowTechnique technique) {
+BaseGap measureBaseGap(const glm::dvec3& casterCentre, const glm::dvec3& casterHalf, double elevationDeg,
+                       ShadowTechnique technique) {
     Scene scene;
     test::addGround(scene, 3.0f);
     test::addBox(scene, "caster", casterCentre, casterHalf);
@@ -318,19 +310,15 @@ TEST(SoftShadow, BoxShadowTouchesBox) {
     const glm::dvec3 boxHalf{0.5, 0.5, 0.5};
     for (double elevationDeg : {45.0, 25.0}) {
         for (ShadowTechnique technique : kTechniques) {
-            const BaseGap g = measureBaseGap({kBaseX - boxHalf.x, boxHalf.y, 0.0}, boxHalf,
-                                             elevationDeg, technique);
+            const BaseGap g = measureBaseGap({kBaseX - boxHalf.x, boxHalf.y, 0.0}, boxHalf, elevationDeg, technique);
             std::printf(
                 "[ measured ] box, %s, sun at %.0f deg: lit gap at the base %.4f m = %.2f texels "
                 "(mean-profile gap %.4f m; texel %.4f m)\n",
-                techniqueName(technique), elevationDeg, g.pixelGap, g.pixelGap / g.texel, g.meanGap,
-                g.texel);
+                techniqueName(technique), elevationDeg, g.pixelGap, g.pixelGap / g.texel, g.meanGap, g.texel);
             ASSERT_GT(g.considered, 5000) << "the camera does not see the foot of the box";
-            EXPECT_GT(g.dark, g.considered / 2)
-                << techniqueName(technique) << ": the box casts no shadow";
-            EXPECT_LE(g.pixelGap / g.texel, kMaxGapTexels)
-                << techniqueName(technique) << ", sun at " << elevationDeg
-                << " deg: shadow detached by " << g.pixelGap << " m";
+            EXPECT_GT(g.dark, g.considered / 2) << techniqueName(technique) << ": the box casts no shadow";
+            EXPECT_LE(g.pixelGap / g.texel, kMaxGapTexels) << techniqueName(technique) << ", sun at " << elevationDeg
+                                                           << " deg: shadow detached by " << g.pixelGap << " m";
         }
     }
 }
@@ -346,20 +334,16 @@ TEST(SoftShadow, ThinWallShadowGapStaysWithinTheDepthBias) {
     const glm::dvec3 wallHalf{0.0005, 0.5, 0.5};
     for (double elevationDeg : {45.0, 25.0}) {
         for (ShadowTechnique technique : kTechniques) {
-            const BaseGap g = measureBaseGap({kBaseX - wallHalf.x, wallHalf.y, 0.0}, wallHalf,
-                                             elevationDeg, technique);
+            const BaseGap g = measureBaseGap({kBaseX - wallHalf.x, wallHalf.y, 0.0}, wallHalf, elevationDeg, technique);
             const double allowed = g.bias * std::cos(elevationDeg * test::kPi / 180.0) + g.texel;
             std::printf(
                 "[ measured ] thin wall, %s, sun at %.0f deg: mean-profile gap %.4f m = %.2f "
                 "texels "
                 "(largest lit pixel %.4f m); bias allows %.4f m\n",
-                techniqueName(technique), elevationDeg, g.meanGap, g.meanGap / g.texel, g.pixelGap,
-                allowed);
+                techniqueName(technique), elevationDeg, g.meanGap, g.meanGap / g.texel, g.pixelGap, allowed);
             ASSERT_GT(g.considered, 5000) << "the camera does not see the foot of the wall";
-            EXPECT_GT(g.dark, g.considered / 2)
-                << techniqueName(technique) << ": the wall casts no shadow";
-            EXPECT_LE(g.meanGap, allowed)
-                << techniqueName(technique) << ", sun at " << elevationDeg << " deg";
+            EXPECT_GT(g.dark, g.considered / 2) << techniqueName(technique) << ": the wall casts no shadow";
+            EXPECT_LE(g.meanGap, allowed) << techniqueName(technique) << ", sun at " << elevationDeg << " deg";
         }
     }
 }

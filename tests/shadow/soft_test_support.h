@@ -108,12 +108,8 @@ struct GroundCounts {
     int ground = 0;    ///< ground pixels considered
     int dark = 0;      ///< visibility < 0.5
     int penumbra = 0;  ///< 0.05 < visibility < 0.95
-    [[nodiscard]] double darkFraction() const {
-        return ground > 0 ? static_cast<double>(dark) / ground : 0.0;
-    }
-    [[nodiscard]] double penumbraFraction() const {
-        return ground > 0 ? static_cast<double>(penumbra) / ground : 0.0;
-    }
+    [[nodiscard]] double darkFraction() const { return ground > 0 ? static_cast<double>(dark) / ground : 0.0; }
+    [[nodiscard]] double penumbraFraction() const { return ground > 0 ? static_cast<double>(penumbra) / ground : 0.0; }
 };
 
 inline GroundCounts countGround(const FrameImages& images, std::size_t light,
@@ -135,8 +131,7 @@ inline GroundCounts countGround(const FrameImages& images, std::size_t light,
 
 /// Whether ground point `p` lies inside the cone of half-angle `halfAngle` of a spot light at
 /// `position` shining along unit `direction`.
-inline bool insideCone(const glm::dvec3& p, const glm::dvec3& position, const glm::dvec3& direction,
-                       double halfAngle) {
+inline bool insideCone(const glm::dvec3& p, const glm::dvec3& position, const glm::dvec3& direction, double halfAngle) {
     return glm::dot(glm::normalize(p - position), direction) > std::cos(halfAngle);
 }
 

@@ -29,8 +29,7 @@ Scene animatedScene() {
     AnimationChannel rotation;
     rotation.path = AnimationChannel::Path::Rotation;
     rotation.times = {0.0f, 2.0f};
-    rotation.values = {glm::vec4(0.0f, 0.0f, 0.0f, 5.0f),
-                       glm::vec4(0.0f, 3.0f, 0.0f, 4.0f)};  // |q| = 5
+    rotation.values = {glm::vec4(0.0f, 0.0f, 0.0f, 5.0f), glm::vec4(0.0f, 3.0f, 0.0f, 4.0f)};  // |q| = 5
     AnimationChannel translation;
     translation.path = AnimationChannel::Path::Translation;
     translation.interpolation = AnimationChannel::Interpolation::CubicSpline;
@@ -52,23 +51,21 @@ Scene animatedScene() {
 
     Light spot = test::pointSizedLight(LightType::Spot, 0.6f);
     spot.radius = 0.1f;
-    const Entity lamp = addLight(scene, "lamp", spot, test::shadowWith(ShadowTechnique::Pcss, 512),
-                                 {0.5, 4.0, 0.5}, {0, -1, 0});
+    const Entity lamp =
+        addLight(scene, "lamp", spot, test::shadowWith(ShadowTechnique::Pcss, 512), {0.5, 4.0, 0.5}, {0, -1, 0});
     ProceduralMotion spin;
     spin.kind = ProceduralMotion::Kind::Spin;
     spin.axis = {0.0, 0.0, 0.0};  // no axis: the rotation is left as it was
     scene.world.emplace<ProceduralMotion>(lamp, spin);
     Light sun = test::pointSizedLight(LightType::Directional);
     sun.angularRadius = 0.01f;
-    addLight(scene, "sun", sun, test::shadowWith(ShadowTechnique::Pcf, 512), {0, 8, 0},
-             {0.3, -1, 0.2});
+    addLight(scene, "sun", sun, test::shadowWith(ShadowTechnique::Pcf, 512), {0, 8, 0}, {0.3, -1, 0.2});
     addCamera(scene, "camera", Camera{}, {0.0, 5.0, 6.0}, {0.0, 0.0, 0.0});
     return scene;
 }
 
 /// Every entity's world matrix is finite and usable, or it is one of `poisoned` and flagged.
-void expectFiniteTransforms(World& world, const std::vector<Entity>& poisoned,
-                            const std::string& when) {
+void expectFiniteTransforms(World& world, const std::vector<Entity>& poisoned, const std::string& when) {
     world.view<WorldTransform>().each([&](Entity e, WorldTransform& wt) {
         const bool expectedBad = std::find(poisoned.begin(), poisoned.end(), e) != poisoned.end();
         EXPECT_EQ(wt.finite, !expectedBad) << when << ": " << world.get<Name>(e).value;
@@ -120,18 +117,15 @@ void addPoison(Scene& scene, std::vector<Entity>& poisoned) {
     w.get<Transform>(nanParent).translation.x = std::numeric_limits<double>::quiet_NaN();
     Transform childTransform = test::placed({0.0, 1.0, 0.0});
     childTransform.parent = nanParent;
-    const Entity nanChild =
-        addMeshInstance(w, "child of the nan box", makeBoxMesh(glm::vec3(0.3f)), childTransform);
-    const Entity farLight =
-        addLight(scene, "lamp at infinity", test::pointSizedLight(LightType::Point),
-                 test::shadowWith(ShadowTechnique::Hard, 256),
-                 {std::numeric_limits<double>::infinity(), 3.0, 0.0}, {0, -1, 0});
+    const Entity nanChild = addMeshInstance(w, "child of the nan box", makeBoxMesh(glm::vec3(0.3f)), childTransform);
+    const Entity farLight = addLight(scene, "lamp at infinity", test::pointSizedLight(LightType::Point),
+                                     test::shadowWith(ShadowTechnique::Hard, 256),
+                                     {std::numeric_limits<double>::infinity(), 3.0, 0.0}, {0, -1, 0});
     const Entity huge = test::addBox(scene, "huge", {0.0, 0.0, 0.0}, {0.1, 0.1, 0.1});
     w.get<Transform>(huge).scale = glm::dvec3(1e200);
     Transform overflowTransform = test::placed({0.0, 0.0, 0.0}, glm::dvec3(1e200));
     overflowTransform.parent = huge;
-    const Entity overflow =
-        addMeshInstance(w, "overflowing child", makeBoxMesh(glm::vec3(0.1f)), overflowTransform);
+    const Entity overflow = addMeshInstance(w, "overflowing child", makeBoxMesh(glm::vec3(0.1f)), overflowTransform);
     const Entity farVertices =
         addMeshInstance(w, "vertices at 1e38 m", makeBoxMesh(glm::vec3(1e38f)), test::placed({}));
     poisoned = {nanParent, nanChild, farLight, huge, overflow, farVertices};
@@ -153,8 +147,8 @@ TEST(Stability, NonFiniteTransformIsSkippedReportedAndPoisonsNothingElse) {
         test::expectSaneFrame(b.images, dirtyRunner.shadows(), when);
         expectFiniteTransforms(dirty.world, poisoned, when);
         EXPECT_EQ(b.stats.entitiesSkippedNonFinite, 6) << when;
-        for (const char* name : {"nan box", "child of the nan box", "lamp at infinity", "huge",
-                                 "overflowing child", "vertices at 1e38 m"}) {
+        for (const char* name : {"nan box", "child of the nan box", "lamp at infinity", "huge", "overflowing child",
+                                 "vertices at 1e38 m"}) {
             EXPECT_EQ(test::countWarnings(b.stats.warnings, WarningCode::NonFiniteTransform, name), 1)
                 << when << ": " << name << " is not reported once\n"
                 << test::describe(b.stats.warnings);
@@ -164,12 +158,11 @@ TEST(Stability, NonFiniteTransformIsSkippedReportedAndPoisonsNothingElse) {
         EXPECT_EQ(a.images.color.pixels, b.images.color.pixels) << when;
         ASSERT_EQ(b.images.visibility.size(), a.images.visibility.size() + 1);
         for (std::size_t i = 0; i < a.images.visibility.size(); ++i) {
-            EXPECT_EQ(a.images.visibility[i].pixels, b.images.visibility[i].pixels)
-                << when << ", light " << i;
+            EXPECT_EQ(a.images.visibility[i].pixels, b.images.visibility[i].pixels) << when << ", light " << i;
         }
         const ImageF& skippedLight = b.images.visibility.back();
-        EXPECT_TRUE(std::all_of(skippedLight.pixels.begin(), skippedLight.pixels.end(),
-                                [](float v) { return v == 1.0f; }));
+        EXPECT_TRUE(
+            std::all_of(skippedLight.pixels.begin(), skippedLight.pixels.end(), [](float v) { return v == 1.0f; }));
     }
 }
 

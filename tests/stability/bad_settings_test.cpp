@@ -29,12 +29,10 @@ Scene goodScene() {
     addCamera(scene, "camera", Camera{}, {0.5, 5.0, 4.5}, {0.0, 0.0, 0.0});
     Light spot = test::pointSizedLight(LightType::Spot, 0.7f);
     spot.radius = 0.1f;
-    addLight(scene, "good spot", spot, test::shadowWith(ShadowTechnique::Hard, 512),
-             {0.3, 4.0, 0.2}, {0, -1, 0});
+    addLight(scene, "good spot", spot, test::shadowWith(ShadowTechnique::Hard, 512), {0.3, 4.0, 0.2}, {0, -1, 0});
     Light sun = test::pointSizedLight(LightType::Directional);
     sun.angularRadius = 0.02f;
-    addLight(scene, "good sun", sun, test::shadowWith(ShadowTechnique::Hard, 512), {0, 8, 0},
-             {0.2, -1, 0.1});
+    addLight(scene, "good sun", sun, test::shadowWith(ShadowTechnique::Hard, 512), {0, 8, 0}, {0.2, -1, 0.1});
     return scene;
 }
 
@@ -80,8 +78,7 @@ TEST(Stability, BadLightSettingsNeverStopTheOtherLights) {
             if (technique != ShadowTechnique::Hard) return;
             // The good lights' shadows are those of the clean scene.
             for (std::size_t i = 0; i < reference.images.visibility.size(); ++i) {
-                EXPECT_EQ(reference.images.visibility[i].pixels, frame.images.visibility[i].pixels)
-                    << "light " << i;
+                EXPECT_EQ(reference.images.visibility[i].pixels, frame.images.visibility[i].pixels) << "light " << i;
             }
         });
 }
@@ -129,9 +126,8 @@ TEST(Stability, BogusShadowExtrasFailStrictlyOrFallBackToDefaultsLeniently) {
         // Strict (the CLIs): one message naming the element.
         const Result<Scene> strict = gltf::loadGltfFromMemory(json, "bogus.gltf");
         ASSERT_FALSE(strict.ok()) << b;
-        EXPECT_NE(
-            strict.error().message.find("bogus.gltf: KHR_lights_punctual.lights[1].extras.shadow"),
-            std::string::npos)
+        EXPECT_NE(strict.error().message.find("bogus.gltf: KHR_lights_punctual.lights[1].extras.shadow"),
+                  std::string::npos)
             << strict.error().message;
         // Lenient: every light is there, the bad one with the defaults, the others as written.
         Result<Scene> loaded = gltf::loadGltfFromMemory(json, "bogus.gltf", lenient);
@@ -160,8 +156,7 @@ TEST(Stability, BogusMeshShadowFlagsFailStrictlyOrFallBackToDefaultsLeniently) {
     const std::string json = doc.dump();
     const Result<Scene> strict = gltf::loadGltfFromMemory(json, "mesh.gltf");
     ASSERT_FALSE(strict.ok());
-    EXPECT_EQ(strict.error().message,
-              "mesh.gltf: nodes[0].extras.shadow.cast: must be true or false");
+    EXPECT_EQ(strict.error().message, "mesh.gltf: nodes[0].extras.shadow.cast: must be true or false");
     GltfLoadOptions lenient;
     lenient.strictShadowSettings = false;
     Result<Scene> loaded = gltf::loadGltfFromMemory(json, "mesh.gltf", lenient);
@@ -185,8 +180,8 @@ TEST(Stability, BogusMeshShadowFlagsFailStrictlyOrFallBackToDefaultsLeniently) {
 TEST(Stability, LenientlyLoadedSceneRendersEveryLight) {
     GltfLoadOptions lenient;
     lenient.strictShadowSettings = false;
-    Result<Scene> loaded = gltf::loadGltfFromMemory(
-        threeLights(R"({"technique": "vsm", "mapSize": "big"})"), "bogus.gltf", lenient);
+    Result<Scene> loaded =
+        gltf::loadGltfFromMemory(threeLights(R"({"technique": "vsm", "mapSize": "big"})"), "bogus.gltf", lenient);
     ASSERT_TRUE(loaded.ok()) << loaded.error().message;
     Scene& scene = *loaded;
     test::addGround(scene, 3.0f);
@@ -198,8 +193,7 @@ TEST(Stability, LenientlyLoadedSceneRendersEveryLight) {
     test::expectSaneFrame(frame.images, runner.shadows(), "lenient scene");
     ASSERT_EQ(runner.shadows().frame().lights.size(), 3u);
     for (std::size_t i = 0; i < 3; ++i) {
-        EXPECT_GT(test::countGround(frame.images, i).dark, 100)
-            << "light " << i << " casts no shadow";
+        EXPECT_GT(test::countGround(frame.images, i).dark, 100) << "light " << i << " casts no shadow";
     }
 }
 

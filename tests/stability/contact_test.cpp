@@ -19,9 +19,7 @@ constexpr double kMinDarkUnderPlate = 0.99;
 struct PlateShadow {
     int under = 0;  ///< ground pixels under the plate's inner part
     int dark = 0;   ///< of those, visibility < 0.5
-    [[nodiscard]] double darkFraction() const {
-        return under > 0 ? static_cast<double>(dark) / under : 0.0;
-    }
+    [[nodiscard]] double darkFraction() const { return under > 0 ? static_cast<double>(dark) / under : 0.0; }
 };
 
 /// Renders the plate with a light of `type` looking along `direction` and counts, for every
@@ -47,8 +45,7 @@ void expectPlateShadow(LightType type, const glm::dvec3& direction, const std::s
     // at it from below.
     addCamera(scene, "camera", Camera{}, {0.0, -2.0, 0.3}, {0.0, 0.0, 0.0});
     test::forEveryTechnique(
-        scene, 192, 192, name,
-        [&](ShadowTechnique technique, const test::RenderedFrame& frame, FrameRunner&) {
+        scene, 192, 192, name, [&](ShadowTechnique technique, const test::RenderedFrame& frame, FrameRunner&) {
             PlateShadow s;
             const FrameImages& im = frame.images;
             for (int y = 0; y < im.position.height; ++y) {
@@ -56,17 +53,14 @@ void expectPlateShadow(LightType type, const glm::dvec3& direction, const std::s
                     if (!test::isGroundPixel(im, x, y)) continue;
                     const glm::dvec3 p = test::positionAt(im, x, y);
                     // Where the ray from p towards the light crosses the plate's mid-plane.
-                    const glm::dvec3 q =
-                        p - dir * ((kPlateBottom + 0.5 * kPlateThickness) / -dir.y);
-                    if (std::abs(q.x) > kPlateHalf - 0.05 || std::abs(q.z) > kPlateHalf - 0.05)
-                        continue;
+                    const glm::dvec3 q = p - dir * ((kPlateBottom + 0.5 * kPlateThickness) / -dir.y);
+                    if (std::abs(q.x) > kPlateHalf - 0.05 || std::abs(q.z) > kPlateHalf - 0.05) continue;
                     ++s.under;
                     if (im.visibility[0].at(x, y, 0) < 0.5f) ++s.dark;
                 }
             }
-            test::reportFigure(
-                name + ", " + techniqueName(technique) + ": dark fraction under the plate",
-                s.darkFraction());
+            test::reportFigure(name + ", " + techniqueName(technique) + ": dark fraction under the plate",
+                               s.darkFraction());
             ASSERT_GT(s.under, 1000) << name;
             EXPECT_GE(s.darkFraction(), kMinDarkUnderPlate)
                 << name << ", " << techniqueName(technique) << ": light leak";

@@ -14,16 +14,14 @@ namespace {
 const glm::dvec3 kBoxCenter{0.0, 1.2, 0.0};
 const glm::dvec3 kBoxHalf{0.5, 0.3, 0.4};
 
-std::shared_ptr<MeshData> meshOf(std::vector<glm::vec3> positions,
-                                 std::vector<std::uint32_t> indices,
+std::shared_ptr<MeshData> meshOf(std::vector<glm::vec3> positions, std::vector<std::uint32_t> indices,
                                  std::vector<glm::vec3> normals = {}) {
     auto mesh = std::make_shared<MeshData>();
     mesh->name = "degenerate";
     mesh->positions = std::move(positions);
     mesh->indices = std::move(indices);
-    mesh->normals = normals.empty()
-                        ? std::vector<glm::vec3>(mesh->positions.size(), glm::vec3(0, 1, 0))
-                        : std::move(normals);
+    mesh->normals =
+        normals.empty() ? std::vector<glm::vec3>(mesh->positions.size(), glm::vec3(0, 1, 0)) : std::move(normals);
     computeBounds(*mesh);
     return mesh;
 }
@@ -36,16 +34,13 @@ Scene baseScene() {
     addCamera(scene, "camera", Camera{}, {0.5, 5.0, 4.5}, {0.0, 0.0, 0.0});
     Light sun = test::pointSizedLight(LightType::Directional);
     sun.angularRadius = 0.02f;
-    addLight(scene, "sun", sun, test::shadowWith(ShadowTechnique::Hard, 512), {0, 8, 0},
-             {0.2, -1, 0.1});
+    addLight(scene, "sun", sun, test::shadowWith(ShadowTechnique::Hard, 512), {0, 8, 0}, {0.2, -1, 0.1});
     Light spot = test::pointSizedLight(LightType::Spot, 0.7f);
     spot.radius = 0.1f;
-    addLight(scene, "spot", spot, test::shadowWith(ShadowTechnique::Hard, 512), {0.3, 4.0, 0.2},
-             {0, -1, 0});
+    addLight(scene, "spot", spot, test::shadowWith(ShadowTechnique::Hard, 512), {0.3, 4.0, 0.2}, {0, -1, 0});
     Light bulb = test::pointSizedLight(LightType::Point);
     bulb.radius = 0.05f;
-    addLight(scene, "bulb", bulb, test::shadowWith(ShadowTechnique::Hard, 512), {-0.5, 3.5, 0.4},
-             {0, -1, 0});
+    addLight(scene, "bulb", bulb, test::shadowWith(ShadowTechnique::Hard, 512), {-0.5, 3.5, 0.4}, {0, -1, 0});
     return scene;
 }
 
@@ -57,12 +52,10 @@ TEST(Stability, DegenerateMeshesNeitherCastNorCorruptTheFrame) {
     // bounds of the real meshes, so the layers' fits stay as they are.
     const Transform above = test::placed({0.1, 1.0, 0.1});
     addMeshInstance(w, "zero-area triangles",
-                    meshOf({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}},
-                           {0, 1, 2, 3, 4, 5}),
+                    meshOf({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, {0, 1, 2, 3, 4, 5}),
                     above);
     addMeshInstance(w, "coincident vertices",
-                    meshOf(std::vector<glm::vec3>(9, glm::vec3(0.3f)), {0, 1, 2, 3, 4, 5, 6, 7, 8}),
-                    above);
+                    meshOf(std::vector<glm::vec3>(9, glm::vec3(0.3f)), {0, 1, 2, 3, 4, 5, 6, 7, 8}), above);
     addMeshInstance(w, "no indices", meshOf({{0, 0, 0}, {1, 0, 0}, {0, 0, 1}}, {}), above);
     addMeshInstance(w, "nothing at all", meshOf({}, {}), above);
     addMeshInstance(w, "null mesh data", nullptr, above);
@@ -73,45 +66,43 @@ TEST(Stability, DegenerateMeshesNeitherCastNorCorruptTheFrame) {
     // A visible square whose normals are zero (a file may carry them): shaded with its own
     // face normal, not NaN.
     addMeshInstance(w, "zero normals",
-                    meshOf({{-0.3f, 0, -0.3f}, {0.3f, 0, -0.3f}, {0.3f, 0, 0.3f}, {-0.3f, 0, 0.3f}},
-                           {0, 1, 2, 0, 2, 3}, std::vector<glm::vec3>(4, glm::vec3(0.0f))),
+                    meshOf({{-0.3f, 0, -0.3f}, {0.3f, 0, -0.3f}, {0.3f, 0, 0.3f}, {-0.3f, 0, 0.3f}}, {0, 1, 2, 0, 2, 3},
+                           std::vector<glm::vec3>(4, glm::vec3(0.0f))),
                     test::placed({2.0, 0.01, 2.0}));
 
     test::glContext();
     FrameRunner plainRunner;
     const test::RenderedFrame reference = test::renderFrame(plainRunner, plain, 128, 96);
-    test::forEveryTechnique(
-        scene, 128, 96, "degenerate meshes",
-        [&](ShadowTechnique technique, const test::RenderedFrame& frame, FrameRunner&) {
-            if (technique != ShadowTechnique::Hard) return;
-            // The shadows are those of the scene without the degenerate meshes; the zero-normal
-            // square covers some ground pixels, which are left out.
-            for (std::size_t i = 0; i < reference.images.visibility.size(); ++i) {
-                int differing = 0;
-                for (int y = 0; y < 96; ++y) {
-                    for (int x = 0; x < 128; ++x) {
-                        const glm::dvec3 p = test::positionAt(frame.images, x, y);
-                        if (std::abs(p.x - 2.0) < 0.35 && std::abs(p.z - 2.0) < 0.35) continue;
-                        differing += reference.images.visibility[i].at(x, y, 0) !=
-                                     frame.images.visibility[i].at(x, y, 0);
-                    }
-                }
-                EXPECT_EQ(differing, 0) << "light " << i;
-            }
-        });
+    test::forEveryTechnique(scene, 128, 96, "degenerate meshes",
+                            [&](ShadowTechnique technique, const test::RenderedFrame& frame, FrameRunner&) {
+                                if (technique != ShadowTechnique::Hard) return;
+                                // The shadows are those of the scene without the degenerate meshes; the zero-normal
+                                // square covers some ground pixels, which are left out.
+                                for (std::size_t i = 0; i < reference.images.visibility.size(); ++i) {
+                                    int differing = 0;
+                                    for (int y = 0; y < 96; ++y) {
+                                        for (int x = 0; x < 128; ++x) {
+                                            const glm::dvec3 p = test::positionAt(frame.images, x, y);
+                                            if (std::abs(p.x - 2.0) < 0.35 && std::abs(p.z - 2.0) < 0.35) continue;
+                                            differing += reference.images.visibility[i].at(x, y, 0) !=
+                                                         frame.images.visibility[i].at(x, y, 0);
+                                        }
+                                    }
+                                    EXPECT_EQ(differing, 0) << "light " << i;
+                                }
+                            });
 }
 
 TEST(Stability, SceneWithoutCastersClearsEveryLayer) {
     Scene scene = baseScene();
     scene.world.view<Mesh>().each([](Entity, Mesh& m) { m.castShadows = false; });
-    test::forEveryTechnique(scene, 96, 72, "no casters",
-                            [&](ShadowTechnique, const test::RenderedFrame& frame, FrameRunner&) {
-                                EXPECT_EQ(frame.stats.shadowDrawCalls, 0);
-                                for (const ImageF& v : frame.images.visibility) {
-                                    EXPECT_TRUE(std::all_of(v.pixels.begin(), v.pixels.end(),
-                                                            [](float x) { return x == 1.0f; }));
-                                }
-                            });
+    test::forEveryTechnique(
+        scene, 96, 72, "no casters", [&](ShadowTechnique, const test::RenderedFrame& frame, FrameRunner&) {
+            EXPECT_EQ(frame.stats.shadowDrawCalls, 0);
+            for (const ImageF& v : frame.images.visibility) {
+                EXPECT_TRUE(std::all_of(v.pixels.begin(), v.pixels.end(), [](float x) { return x == 1.0f; }));
+            }
+        });
 }
 
 TEST(Stability, SceneWithoutMeshesOrWithoutLightsRendersFinite) {
@@ -120,12 +111,11 @@ TEST(Stability, SceneWithoutMeshesOrWithoutLightsRendersFinite) {
         std::vector<Entity> meshes;
         scene.world.view<Mesh>().each([&](Entity e, Mesh&) { meshes.push_back(e); });
         for (Entity e : meshes) scene.world.destroy(e);
-        test::forEveryTechnique(
-            scene, 96, 72, "no meshes",
-            [&](ShadowTechnique, const test::RenderedFrame& frame, FrameRunner&) {
-                EXPECT_EQ(frame.stats.mainDrawCalls, 0);
-                EXPECT_EQ(test::countNonFinite(frame.images.color), 0);
-            });
+        test::forEveryTechnique(scene, 96, 72, "no meshes",
+                                [&](ShadowTechnique, const test::RenderedFrame& frame, FrameRunner&) {
+                                    EXPECT_EQ(frame.stats.mainDrawCalls, 0);
+                                    EXPECT_EQ(test::countNonFinite(frame.images.color), 0);
+                                });
     }
     {
         Scene scene;

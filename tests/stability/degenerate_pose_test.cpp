@@ -55,14 +55,12 @@ TEST(Stability, LightsAlongTheUpAxisHaveFiniteMatrices) {
     };
     for (const Case& c : cases) {
         Scene scene = groundAndBox();
-        addLight(scene, c.name, softLight(c.type), test::shadowWith(ShadowTechnique::Hard, 512),
-                 c.position, c.direction);
+        addLight(scene, c.name, softLight(c.type), test::shadowWith(ShadowTechnique::Hard, 512), c.position,
+                 c.direction);
         test::forEveryTechnique(
-            scene, 128, 96, c.name,
-            [&](ShadowTechnique technique, const test::RenderedFrame& frame, FrameRunner&) {
+            scene, 128, 96, c.name, [&](ShadowTechnique technique, const test::RenderedFrame& frame, FrameRunner&) {
                 const double dark = darkGroundFraction(frame.images);
-                test::reportFigure(std::string(c.name) + ", " + techniqueName(technique) +
-                                       ": dark ground fraction",
+                test::reportFigure(std::string(c.name) + ", " + techniqueName(technique) + ": dark ground fraction",
                                    dark);
                 if (c.castsOnGround) {
                     EXPECT_GT(dark, 0.01) << c.name << ": the box casts no shadow";
@@ -78,8 +76,8 @@ TEST(Stability, CameraLookingStraightDownRendersFinite) {
     test::addGround(scene, 3.0f);
     test::addBox(scene, "box", kBoxCenter, kBoxHalf);
     addCamera(scene, "camera", Camera{}, {0.0, 6.0, 0.0}, {0.0, 0.0, 0.0});
-    addLight(scene, "sun", softLight(LightType::Directional),
-             test::shadowWith(ShadowTechnique::Hard, 512), {0, 8, 0}, {0.3, -1, 0.2});
+    addLight(scene, "sun", softLight(LightType::Directional), test::shadowWith(ShadowTechnique::Hard, 512), {0, 8, 0},
+             {0.3, -1, 0.2});
     test::forEveryTechnique(scene, 96, 96, "camera straight down",
                             [&](ShadowTechnique, const test::RenderedFrame& frame, FrameRunner&) {
                                 EXPECT_GT(darkGroundFraction(frame.images), 0.01);
@@ -102,13 +100,12 @@ TEST(Stability, LightStandingOnAReceiverPointStaysFinite) {
     };
     for (const Case& c : cases) {
         Scene scene = groundAndBox();
-        addLight(scene, c.name, softLight(c.type), test::shadowWith(ShadowTechnique::Hard, 512),
-                 {0.0, 0.0, 0.0}, c.direction);
-        test::forEveryTechnique(
-            scene, 128, 96, c.name,
-            [&](ShadowTechnique, const test::RenderedFrame&, FrameRunner& runner) {
-                ASSERT_EQ(runner.shadows().frame().lights.size(), 1u);
-            });
+        addLight(scene, c.name, softLight(c.type), test::shadowWith(ShadowTechnique::Hard, 512), {0.0, 0.0, 0.0},
+                 c.direction);
+        test::forEveryTechnique(scene, 128, 96, c.name,
+                                [&](ShadowTechnique, const test::RenderedFrame&, FrameRunner& runner) {
+                                    ASSERT_EQ(runner.shadows().frame().lights.size(), 1u);
+                                });
     }
 }
 
@@ -133,13 +130,11 @@ TEST(Stability, BlockerAtTheLightAndReceiverOnTheBlocker) {
     };
     for (const Case& c : cases) {
         Scene scene = groundAndBox();
-        addLight(scene, c.name, softLight(c.type), test::shadowWith(ShadowTechnique::Hard, 512),
-                 c.position, c.direction);
+        addLight(scene, c.name, softLight(c.type), test::shadowWith(ShadowTechnique::Hard, 512), c.position,
+                 c.direction);
         test::forEveryTechnique(
-            scene, 128, 96, c.name,
-            [&](ShadowTechnique technique, const test::RenderedFrame& frame, FrameRunner&) {
-                test::reportFigure(std::string(c.name) + ", " + techniqueName(technique) +
-                                       ": dark ground fraction",
+            scene, 128, 96, c.name, [&](ShadowTechnique technique, const test::RenderedFrame& frame, FrameRunner&) {
+                test::reportFigure(std::string(c.name) + ", " + techniqueName(technique) + ": dark ground fraction",
                                    darkGroundFraction(frame.images));
             });
     }
@@ -147,27 +142,25 @@ TEST(Stability, BlockerAtTheLightAndReceiverOnTheBlocker) {
     {
         Scene scene = groundAndBox();
         const glm::dvec3 dir(0, -1, 0);
-        addLight(scene, "into the box", softLight(LightType::Spot),
-                 test::shadowWith(ShadowTechnique::Hard, 512), topCentre, dir);
-        test::forEveryTechnique(
-            scene, 128, 96, "into the box",
-            [&](ShadowTechnique technique, const test::RenderedFrame& frame, FrameRunner&) {
-                const test::GroundCounts g = test::countGround(
-                    frame.images, 0,
-                    [&](const glm::dvec3& p) { return test::insideCone(p, topCentre, dir, 0.3); });
-                ASSERT_GT(g.ground, 100);
-                EXPECT_GT(g.darkFraction(), 0.999) << techniqueName(technique);
-            });
+        addLight(scene, "into the box", softLight(LightType::Spot), test::shadowWith(ShadowTechnique::Hard, 512),
+                 topCentre, dir);
+        test::forEveryTechnique(scene, 128, 96, "into the box",
+                                [&](ShadowTechnique technique, const test::RenderedFrame& frame, FrameRunner&) {
+                                    const test::GroundCounts g = test::countGround(
+                                        frame.images, 0,
+                                        [&](const glm::dvec3& p) { return test::insideCone(p, topCentre, dir, 0.3); });
+                                    ASSERT_GT(g.ground, 100);
+                                    EXPECT_GT(g.darkFraction(), 0.999) << techniqueName(technique);
+                                });
     }
 
     // Receiver on the blocker: the table top around a step, lit by a soft sun from above.
     Scene table;
-    addMeshInstance(table.world, "table", makeBoxMesh({1.0f, 0.4f, 1.0f}),
-                    test::placed({0.0, 0.4, 0.0}));
+    addMeshInstance(table.world, "table", makeBoxMesh({1.0f, 0.4f, 1.0f}), test::placed({0.0, 0.4, 0.0}));
     test::addBox(table, "step", {0.0, 0.9, 0.0}, {0.2, 0.1, 0.2});
     addCamera(table, "camera", Camera{}, {0.0, 3.0, 2.5}, {0.0, 0.8, 0.0});
-    addLight(table, "sun", softLight(LightType::Directional),
-             test::shadowWith(ShadowTechnique::Hard, 1024), {0, 8, 0}, {0.15, -1, 0.1});
+    addLight(table, "sun", softLight(LightType::Directional), test::shadowWith(ShadowTechnique::Hard, 1024), {0, 8, 0},
+             {0.15, -1, 0.1});
     test::forEveryTechnique(
         table, 160, 120, "step on a table",
         [&](ShadowTechnique technique, const test::RenderedFrame& frame, FrameRunner&) {
@@ -180,15 +173,13 @@ TEST(Stability, BlockerAtTheLightAndReceiverOnTheBlocker) {
                     if (im.position.at(x, y, 3) < 0.5f) continue;
                     const glm::dvec3 p = test::positionAt(im, x, y);
                     if (std::abs(p.y - 0.8) > 1e-3) continue;
-                    if (std::abs(p.x) < 0.35 + 0.3 && std::abs(p.z) < 0.35 + 0.3)
-                        continue;  // the step's shadow side
+                    if (std::abs(p.x) < 0.35 + 0.3 && std::abs(p.z) < 0.35 + 0.3) continue;  // the step's shadow side
                     ++top;
                     if (im.visibility[0].at(x, y, 0) < 0.5f) ++dark;
                 }
             }
             ASSERT_GT(top, 1000);
-            test::reportFigure(std::string("table top around the step, ") +
-                                   techniqueName(technique) + ": false shadow",
+            test::reportFigure(std::string("table top around the step, ") + techniqueName(technique) + ": false shadow",
                                static_cast<double>(dark) / top);
             EXPECT_LT(dark, top / 1000 + 1) << techniqueName(technique);
         });

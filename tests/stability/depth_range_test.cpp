@@ -47,10 +47,9 @@ TEST(Stability, NearFarRatiosUpToAMillionKeepHardShadowsExact) {
         Shadow shadow = test::shadowWith(ShadowTechnique::Hard, 512);
         shadow.nearPlane = static_cast<float>(c.nearPlane);
         addLight(scene, "light", light, shadow, position, {0, -1, 0});
-        const std::string name = std::string(c.type == LightType::Spot ? "spot" : "point") +
-                                 " near " + std::to_string(c.nearPlane).substr(0, 5) +
-                                 " m, range " + std::to_string(static_cast<long long>(c.range)) +
-                                 " m";
+        const std::string name = std::string(c.type == LightType::Spot ? "spot" : "point") + " near " +
+                                 std::to_string(c.nearPlane).substr(0, 5) + " m, range " +
+                                 std::to_string(static_cast<long long>(c.range)) + " m";
         const std::array<DAabb, 1> boxes{test::boxBounds(kBoxCenter, kBoxHalf)};
         test::forEveryTechnique(
             scene, 192, 144, name,
@@ -59,19 +58,14 @@ TEST(Stability, NearFarRatiosUpToAMillionKeepHardShadowsExact) {
                 EXPECT_NEAR(plan.layers.at(0).depthNear, c.nearPlane, 1e-6 * c.nearPlane) << name;
                 if (technique != ShadowTechnique::Hard) return;
                 const test::AnalyticLight analytic{c.type, position, {0, -1, 0}};
-                const test::GeometryAgreement m =
-                    test::compareWithGeometry(frame.images, frame.images.visibility[0], plan,
-                                              analytic, boxes, kBandTexels, 1.0);
-                const test::StoredDepthError depth = test::storedGroundDepthError(
-                    runner.shadows(), 0, glm::dvec3(0.0), kGroundHalf, boxes);
-                const double ofShadow =
-                    static_cast<double>(m.outsideBand) / std::max(m.shadowedPixels, 1);
-                test::reportFigure(name + ": hard mismatch beyond the edge band / shadowed area",
-                                   ofShadow);
-                test::reportFigure(name + ": stored ground depth, largest error", depth.maxAbs,
-                                   " m");
-                test::reportFigure(name + ": stored ground depth, largest relative error",
-                                   depth.maxRelative);
+                const test::GeometryAgreement m = test::compareWithGeometry(frame.images, frame.images.visibility[0],
+                                                                            plan, analytic, boxes, kBandTexels, 1.0);
+                const test::StoredDepthError depth =
+                    test::storedGroundDepthError(runner.shadows(), 0, glm::dvec3(0.0), kGroundHalf, boxes);
+                const double ofShadow = static_cast<double>(m.outsideBand) / std::max(m.shadowedPixels, 1);
+                test::reportFigure(name + ": hard mismatch beyond the edge band / shadowed area", ofShadow);
+                test::reportFigure(name + ": stored ground depth, largest error", depth.maxAbs, " m");
+                test::reportFigure(name + ": stored ground depth, largest relative error", depth.maxRelative);
                 EXPECT_GT(m.shadowedPixels, m.groundPixels / 50) << name << ": shadow out of view";
                 EXPECT_LT(ofShadow, kMaxMismatchOfShadow) << name;
                 EXPECT_GT(depth.texels, 100000) << name;
@@ -85,12 +79,10 @@ TEST(Stability, NearFarRatiosUpToAMillionKeepHardShadowsExact) {
 /// spans kilometres while the casters are a metre tall.
 TEST(Stability, SunOverTenKilometresKeepsMetreCastersExact) {
     constexpr double kHalf = 5000.0;
-    const std::vector<glm::dvec3> centres{
-        {0.0, 0.5, 0.0}, {3.0, 0.5, -2.0}, {-2.5, 0.5, -5.0}, {1.5, 0.5, 3.0}};
+    const std::vector<glm::dvec3> centres{{0.0, 0.5, 0.0}, {3.0, 0.5, -2.0}, {-2.5, 0.5, -5.0}, {1.5, 0.5, 3.0}};
     const glm::dvec3 half{0.5, 0.5, 0.5};
     Scene scene;
-    addMeshInstance(scene.world, "ground", makePlaneMesh(static_cast<float>(kHalf), 4),
-                    test::placed(glm::dvec3(0.0)));
+    addMeshInstance(scene.world, "ground", makePlaneMesh(static_cast<float>(kHalf), 4), test::placed(glm::dvec3(0.0)));
     std::vector<DAabb> boxes;
     for (std::size_t i = 0; i < centres.size(); ++i) {
         test::addBox(scene, "box" + std::to_string(i), centres[i], half);
@@ -118,28 +110,20 @@ TEST(Stability, SunOverTenKilometresKeepsMetreCastersExact) {
             // Only receivers that use the first cascade alone (before its blend band): the edge
             // band is measured in its texels.
             const double firstOnly = first.splitFar * (1.0 - shadow.cascadeBlend);
-            const test::AnalyticLight analytic{LightType::Directional, glm::dvec3(0.0),
-                                               sunDirection};
+            const test::AnalyticLight analytic{LightType::Directional, glm::dvec3(0.0), sunDirection};
             const test::GeometryAgreement m = test::compareWithGeometry(
                 frame.images, frame.images.visibility[0], plan, analytic, boxes, kBandTexels, 0.0,
-                [&](const glm::dvec3& p) {
-                    return glm::dot(p - view.wsPosition, forward) < firstOnly;
-                });
-            const double ofShadow =
-                static_cast<double>(m.outsideBand) / std::max(m.shadowedPixels, 1);
+                [&](const glm::dvec3& p) { return glm::dot(p - view.wsPosition, forward) < firstOnly; });
+            const double ofShadow = static_cast<double>(m.outsideBand) / std::max(m.shadowedPixels, 1);
             const test::StoredDepthError depth =
                 test::storedGroundDepthError(runner.shadows(), 0, glm::dvec3(0.0), kHalf, boxes);
-            test::reportFigure("10 km sun: depth scale of the first cascade", first.depthScale,
-                               " m");
+            test::reportFigure("10 km sun: depth scale of the first cascade", first.depthScale, " m");
             test::reportFigure("10 km sun: texel of the first cascade",
                                2.0 / (first.clipFromLight[0][0] * plan.mapSize), " m");
-            test::reportFigure("10 km sun: hard mismatch beyond the edge band / shadowed area",
-                               ofShadow);
+            test::reportFigure("10 km sun: hard mismatch beyond the edge band / shadowed area", ofShadow);
             test::reportFigure("10 km sun: stored ground depth, largest error", depth.maxAbs, " m");
-            test::reportFigure("10 km sun: stored ground depth, largest relative error",
-                               depth.maxRelative);
-            EXPECT_GT(m.shadowedPixels, 1000)
-                << "the boxes' shadows are not in the first cascade's view";
+            test::reportFigure("10 km sun: stored ground depth, largest relative error", depth.maxRelative);
+            EXPECT_GT(m.shadowedPixels, 1000) << "the boxes' shadows are not in the first cascade's view";
             EXPECT_LT(ofShadow, kMaxMismatchOfShadow);
             EXPECT_GT(depth.texels, 100000);
             EXPECT_LT(depth.maxRelative, 1e-5);

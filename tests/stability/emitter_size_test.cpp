@@ -53,8 +53,7 @@ test::RenderedFrame render(Scene& scene) {
 /// Pixels whose hard/soft answers (visibility > 0.5) differ.
 int binaryMismatches(const ImageF& a, const ImageF& b) {
     int n = 0;
-    for (std::size_t p = 0; p < a.pixels.size(); ++p)
-        n += (a.pixels[p] > 0.5f) != (b.pixels[p] > 0.5f) ? 1 : 0;
+    for (std::size_t p = 0; p < a.pixels.size(); ++p) n += (a.pixels[p] > 0.5f) != (b.pixels[p] > 0.5f) ? 1 : 0;
     return n;
 }
 
@@ -67,10 +66,8 @@ TEST(Stability, PcssWithAZeroEmitterIsTheHardShadow) {
         const ImageF& a = reference.images.visibility[0];
         const ImageF& b = frame.images.visibility[0];
         float worst = 0.0f;
-        for (std::size_t p = 0; p < a.pixels.size(); ++p)
-            worst = std::max(worst, std::abs(a.pixels[p] - b.pixels[p]));
-        test::reportFigure(
-            std::string(techniqueName(technique)) + ", radius 0: largest |V - V_hard|", worst);
+        for (std::size_t p = 0; p < a.pixels.size(); ++p) worst = std::max(worst, std::abs(a.pixels[p] - b.pixels[p]));
+        test::reportFigure(std::string(techniqueName(technique)) + ", radius 0: largest |V - V_hard|", worst);
         if (technique == ShadowTechnique::Pcss) {
             EXPECT_EQ(worst, 0.0f) << "PCSS with no emitter is not the hard shadow";
         }
@@ -80,12 +77,10 @@ TEST(Stability, PcssWithAZeroEmitterIsTheHardShadow) {
         const test::RenderedFrame small = render(tiny);
         const int mismatches = binaryMismatches(a, small.images.visibility[0]);
         const test::GroundCounts shadowed = test::countGround(reference.images, 0);
-        test::reportFigure(
-            std::string(techniqueName(technique)) + ", radius 1e-6 m: pixels differing from hard",
-            mismatches);
+        test::reportFigure(std::string(techniqueName(technique)) + ", radius 1e-6 m: pixels differing from hard",
+                           mismatches);
         EXPECT_GT(shadowed.dark, 500);
-        EXPECT_LT(mismatches, shadowed.dark / 20)
-            << techniqueName(technique) << ": a 1 um emitter is not hard";
+        EXPECT_LT(mismatches, shadowed.dark / 20) << techniqueName(technique) << ": a 1 um emitter is not hard";
     }
 }
 
@@ -116,11 +111,10 @@ TEST(Stability, HugeEmitterKeepsTheFilterRadiusClamped) {
                     ++receivers;
                 }
             }
-            const std::string name = std::string(techniqueName(technique)) + ", radius " +
-                                     std::to_string(static_cast<int>(radius)) + " m";
+            const std::string name =
+                std::string(techniqueName(technique)) + ", radius " + std::to_string(static_cast<int>(radius)) + " m";
             test::reportFigure(name + ": largest penumbra / clamp", worstRatio);
-            test::reportFigure(name + ": dark ground fraction",
-                               test::countGround(vis.images, 0).darkFraction());
+            test::reportFigure(name + ": dark ground fraction", test::countGround(vis.images, 0).darkFraction());
             EXPECT_GT(receivers, 1000);
             // The normal offset moves the receiver a texel or so, changing its axial distance
             // by far less than 1 %.
@@ -134,8 +128,7 @@ TEST(Stability, EmitterSizesBeyondTheirRangeAreClampedWithAWarning) {
     Scene scene = spotOverBox(1e9f, ShadowTechnique::Pcss);
     Light sun = test::pointSizedLight(LightType::Directional);
     sun.angularRadius = 10.0f;
-    addLight(scene, "sun", sun, test::shadowWith(ShadowTechnique::Pcss, 256), {0, 8, 0},
-             {0.2, -1, 0.1});
+    addLight(scene, "sun", sun, test::shadowWith(ShadowTechnique::Pcss, 256), {0, 8, 0}, {0.2, -1, 0.1});
     const test::RenderedFrame frame = render(scene);
     const std::vector<Warning>& w = frame.stats.warnings;
     // One field out of range each: the spot's radius, the sun's angular radius.

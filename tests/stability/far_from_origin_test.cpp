@@ -38,20 +38,17 @@ Errors measure(const LightCase& c, const glm::dvec3& origin) {
     test::addBox(scene, "box", origin + kBoxCenter, kBoxHalf);
     Light light = test::pointSizedLight(c.type, 0.6f);
     const glm::dvec3 direction = glm::normalize(c.direction);
-    addLight(scene, c.name, light, test::shadowWith(ShadowTechnique::Hard, 1024),
-             origin + c.position, direction);
-    addCamera(scene, "camera", Camera{}, origin + glm::dvec3(0.3, 4.0, 4.8),
-              origin + glm::dvec3(0.3, 0.0, 0.3));
+    addLight(scene, c.name, light, test::shadowWith(ShadowTechnique::Hard, 1024), origin + c.position, direction);
+    addCamera(scene, "camera", Camera{}, origin + glm::dvec3(0.3, 4.0, 4.8), origin + glm::dvec3(0.3, 0.0, 0.3));
     const std::array<DAabb, 1> boxes{test::boxBounds(origin + kBoxCenter, kBoxHalf)};
     const test::AnalyticLight analytic{c.type, origin + c.position, direction};
     Errors e;
     std::size_t k = 0;
     test::forEveryTechnique(
-        scene, 192, 144, c.name,
-        [&](ShadowTechnique, const test::RenderedFrame& frame, FrameRunner& runner) {
-            const test::GeometryAgreement m = test::compareWithGeometry(
-                frame.images, frame.images.visibility[0], runner.shadows().frame().lights.at(0),
-                analytic, boxes, kBandTexels, 0.6);
+        scene, 192, 144, c.name, [&](ShadowTechnique, const test::RenderedFrame& frame, FrameRunner& runner) {
+            const test::GeometryAgreement m =
+                test::compareWithGeometry(frame.images, frame.images.visibility[0],
+                                          runner.shadows().frame().lights.at(0), analytic, boxes, kBandTexels, 0.6);
             EXPECT_GT(m.shadowedPixels, m.groundPixels / 50) << c.name << ": shadow out of view";
             e.mismatch[k] = static_cast<double>(m.mismatches) / std::max(m.groundPixels, 1);
             e.beyondBand[k] = static_cast<double>(m.outsideBand) / std::max(m.groundPixels, 1);
@@ -73,21 +70,17 @@ TEST(Stability, TranslatedSceneMatchesTheOriginScene) {
             // Along both horizontal axes; the ground stays at y = 0, where the checks find it.
             const Errors far = measure(c, glm::dvec3(offset, 0.0, -0.73 * offset));
             for (std::size_t k = 0; k < test::kShadowTechniques.size(); ++k) {
-                const std::string name = std::string(c.name) + " at " +
-                                         std::to_string(static_cast<long>(offset)) + " m, " +
-                                         techniqueName(test::kShadowTechniques[k]);
+                const std::string name = std::string(c.name) + " at " + std::to_string(static_cast<long>(offset)) +
+                                         " m, " + techniqueName(test::kShadowTechniques[k]);
                 int flipped = 0;
                 for (std::size_t p = 0; p < far.visibility[k].size(); ++p) {
-                    flipped +=
-                        (far.visibility[k][p] > 0.5f) != (atOrigin.visibility[k][p] > 0.5f) ? 1 : 0;
+                    flipped += (far.visibility[k][p] > 0.5f) != (atOrigin.visibility[k][p] > 0.5f) ? 1 : 0;
                 }
-                const double flippedFraction =
-                    static_cast<double>(flipped) / far.visibility[k].size();
-                test::reportFigure(name + ": mismatch vs geometry (origin " +
-                                       std::to_string(atOrigin.mismatch[k]).substr(0, 7) + ")",
-                                   far.mismatch[k]);
-                test::reportFigure(name + ": pixels flipped against the origin image",
-                                   flippedFraction);
+                const double flippedFraction = static_cast<double>(flipped) / far.visibility[k].size();
+                test::reportFigure(
+                    name + ": mismatch vs geometry (origin " + std::to_string(atOrigin.mismatch[k]).substr(0, 7) + ")",
+                    far.mismatch[k]);
+                test::reportFigure(name + ": pixels flipped against the origin image", flippedFraction);
                 // Within the origin's own error: the same error, give or take the edge pixels a
                 // shifted texel grid moves (0.1 % of the ground), and nothing beyond the band.
                 EXPECT_LE(far.mismatch[k], atOrigin.mismatch[k] + 0.001) << name;

@@ -29,8 +29,7 @@ constexpr double kAzimuth = 0.4;  // no texel axis lines up with the light
 
 glm::dvec3 downAt(double elevationDeg) {
     const double e = elevationDeg * test::kPi / 180.0;
-    return glm::normalize(glm::dvec3(std::cos(e) * std::cos(kAzimuth), -std::sin(e),
-                                     std::cos(e) * std::sin(kAzimuth)));
+    return glm::normalize(glm::dvec3(std::cos(e) * std::cos(kAzimuth), -std::sin(e), std::cos(e) * std::sin(kAzimuth)));
 }
 
 struct Acne {
@@ -38,12 +37,8 @@ struct Acne {
     int dark = 0;      ///< visibility < 0.5
     int darkened = 0;  ///< visibility < 0.99
     float lowest = 1.0f;
-    [[nodiscard]] double darkFraction() const {
-        return plane > 0 ? static_cast<double>(dark) / plane : 0.0;
-    }
-    [[nodiscard]] double darkenedFraction() const {
-        return plane > 0 ? static_cast<double>(darkened) / plane : 0.0;
-    }
+    [[nodiscard]] double darkFraction() const { return plane > 0 ? static_cast<double>(dark) / plane : 0.0; }
+    [[nodiscard]] double darkenedFraction() const { return plane > 0 ? static_cast<double>(darkened) / plane : 0.0; }
 };
 
 /// Renders the plane lit by `type` at every elevation with every technique, checks the bound,
@@ -55,8 +50,7 @@ void expectNoAcne(LightType type) {
     Light light = test::pointSizedLight(type, kSpotHalfAngle);
     light.angularRadius = 0.02f;  // PCSS needs an emitter; hard and PCF ignore it
     light.radius = 0.1f;
-    const Entity e = addLight(scene, "light", light, test::shadowWith(ShadowTechnique::Hard),
-                              {0, 8, 0}, {0, -1, 0});
+    const Entity e = addLight(scene, "light", light, test::shadowWith(ShadowTechnique::Hard), {0, 8, 0}, {0, -1, 0});
     addCamera(scene, "camera", Camera{}, {0.0, 9.0, 13.0}, {0.0, 0.0, 0.0});
     for (double deg : kElevationsDeg) {
         const glm::dvec3 dir = downAt(deg);
@@ -66,11 +60,9 @@ void expectNoAcne(LightType type) {
         t.translation = position;
         t.rotation = rotationLookingAlong(dir);
         char name[64];
-        std::snprintf(name, sizeof(name), "%s at %.1f deg",
-                      type == LightType::Spot ? "spot" : "sun", deg);
+        std::snprintf(name, sizeof(name), "%s at %.1f deg", type == LightType::Spot ? "spot" : "sun", deg);
         test::forEveryTechnique(
-            scene, 256, 192, name,
-            [&](ShadowTechnique technique, const test::RenderedFrame& frame, FrameRunner&) {
+            scene, 256, 192, name, [&](ShadowTechnique technique, const test::RenderedFrame& frame, FrameRunner&) {
                 Acne a;
                 const ImageF& v = frame.images.visibility[0];
                 for (int y = 0; y < v.height; ++y) {
@@ -78,8 +70,7 @@ void expectNoAcne(LightType type) {
                         if (!test::isGroundPixel(frame.images, x, y)) continue;
                         // A spot lights only its cone (a hair inside, where its map ends).
                         const glm::dvec3 p = test::positionAt(frame.images, x, y);
-                        if (type == LightType::Spot &&
-                            !test::insideCone(p, position, dir, kSpotHalfAngle - 0.02))
+                        if (type == LightType::Spot && !test::insideCone(p, position, dir, kSpotHalfAngle - 0.02))
                             continue;
                         const float value = v.at(x, y, 0);
                         ++a.plane;
@@ -91,8 +82,7 @@ void expectNoAcne(LightType type) {
                 std::printf(
                     "[ measured ] acne, %s, %s: false shadow %.5f, darkened %.5f, lowest "
                     "visibility %.3f\n",
-                    techniqueName(technique), name, a.darkFraction(), a.darkenedFraction(),
-                    a.lowest);
+                    techniqueName(technique), name, a.darkFraction(), a.darkenedFraction(), a.lowest);
                 ASSERT_GT(a.plane, 500) << name << ": too few lit plane pixels to judge";
                 if (technique == ShadowTechnique::PcssTextbook) {
                     if (deg >= kTextbookLowestDeg) {
@@ -100,21 +90,15 @@ void expectNoAcne(LightType type) {
                     }
                     return;
                 }
-                EXPECT_LT(a.darkFraction(), kMaxAcneFraction)
-                    << techniqueName(technique) << ", " << name;
-                EXPECT_LT(a.darkenedFraction(), kMaxAcneFraction)
-                    << techniqueName(technique) << ", " << name;
+                EXPECT_LT(a.darkFraction(), kMaxAcneFraction) << techniqueName(technique) << ", " << name;
+                EXPECT_LT(a.darkenedFraction(), kMaxAcneFraction) << techniqueName(technique) << ", " << name;
             });
     }
 }
 
-TEST(Stability, GrazingSunCausesNoAcne) {
-    expectNoAcne(LightType::Directional);
-}
+TEST(Stability, GrazingSunCausesNoAcne) { expectNoAcne(LightType::Directional); }
 
-TEST(Stability, GrazingSpotCausesNoAcne) {
-    expectNoAcne(LightType::Spot);
-}
+TEST(Stability, GrazingSpotCausesNoAcne) { expectNoAcne(LightType::Spot); }
 
 }  // namespace
 }  // namespace shadow

@@ -16,17 +16,14 @@ namespace {
 
 const glm::dvec3 kBoxHalf{0.4, 0.6, 0.4};
 
-glm::dvec3 boxCentre(int i) {
-    return {-4.0 + 2.0 * i, 0.6, 0.0};
-}
+glm::dvec3 boxCentre(int i) { return {-4.0 + 2.0 * i, 0.6, 0.0}; }
 
 /// A ground with a row of boxes, and `count` spot and point lights (alternating) in a grid
 /// above it, every one shadowed, the techniques taking turns (one program holds them all).
 Scene manyLights(int count, int mapSize) {
     Scene scene;
     test::addGround(scene, 8.0f);
-    for (int i = 0; i < 5; ++i)
-        test::addBox(scene, "box" + std::to_string(i), boxCentre(i), kBoxHalf);
+    for (int i = 0; i < 5; ++i) test::addBox(scene, "box" + std::to_string(i), boxCentre(i), kBoxHalf);
     addCamera(scene, "camera", Camera{}, {0.0, 9.0, 9.0}, {0.0, 0.0, 0.0});
     const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count))));
     for (int i = 0; i < count; ++i) {
@@ -36,10 +33,9 @@ Scene manyLights(int count, int mapSize) {
         Light light = test::pointSizedLight(type, 0.9f);  // PCSS of a point-sized light is hard
         light.intensity = 40.0f / static_cast<float>(count);
         light.range = 12.0f;
-        const ShadowTechnique technique =
-            test::kShadowTechniques[static_cast<std::size_t>(i / 2) % 4];
-        addLight(scene, "light" + std::to_string(i), light, test::shadowWith(technique, mapSize),
-                 {x, 3.0, z}, {0, -1, 0});
+        const ShadowTechnique technique = test::kShadowTechniques[static_cast<std::size_t>(i / 2) % 4];
+        addLight(scene, "light" + std::to_string(i), light, test::shadowWith(technique, mapSize), {x, 3.0, z},
+                 {0, -1, 0});
     }
     return scene;
 }
@@ -51,20 +47,18 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 /// Ground pixels beyond the edge band whose shadow disagrees with ray casting, as a fraction of
 /// the ground pixels lit by each light, summed over the lights (each light's own shadow in its
 /// own visibility AOV).
-double mismatchesBeyondBand(const test::RenderedFrame& frame, const Scene& scene,
-                            const ShadowFrame& plans) {
+double mismatchesBeyondBand(const test::RenderedFrame& frame, const Scene& scene, const ShadowFrame& plans) {
     std::vector<DAabb> boxes;
     for (int i = 0; i < 5; ++i) boxes.push_back(test::boxBounds(boxCentre(i), kBoxHalf));
     int beyond = 0;
     int ground = 0;
     for (const ShadowLightPlan& plan : plans.lights) {
         const WorldTransform& wt = scene.world.get<WorldTransform>(plan.entity);
-        const test::AnalyticLight light{
-            plan.light.type, glm::dvec3(wt.worldFromLocal[3]), {0, -1, 0}};
+        const test::AnalyticLight light{plan.light.type, glm::dvec3(wt.worldFromLocal[3]), {0, -1, 0}};
         // Four texels: two for the map's placement of an edge, two for PCF's 5 cm radius.
         const test::GeometryAgreement m = test::compareWithGeometry(
-            frame.images, frame.images.visibility.at(static_cast<std::size_t>(plan.sceneIndex)),
-            plan, light, boxes, 4.0, plan.light.outerConeAngle);
+            frame.images, frame.images.visibility.at(static_cast<std::size_t>(plan.sceneIndex)), plan, light, boxes,
+            4.0, plan.light.outerConeAngle);
         beyond += m.outsideBand;
         ground += m.groundPixels;
     }
@@ -93,12 +87,9 @@ TEST(Stability, ManyShadowedLightsRenderEachItsOwnShadow) {
         const double beyond = mismatchesBeyondBand(steady, scene, runner.shadows().frame());
         test::reportFigure(name + " (256^2 maps, 96x72): first frame", firstMs, " ms");
         test::reportFigure(name + ": steady frame (every layer reused)", steadyMs, " ms");
-        test::reportFigure(name + ": main passes of the steady frame", steady.stats.passMs("Main/"),
-                           " ms");
-        test::reportFigure(name + ": shadow passes of the first frame",
-                           first.stats.passMs("Shadow/"), " ms");
-        test::reportFigure(name + ": ground beyond the edge band disagreeing with geometry",
-                           beyond);
+        test::reportFigure(name + ": main passes of the steady frame", steady.stats.passMs("Main/"), " ms");
+        test::reportFigure(name + ": shadow passes of the first frame", first.stats.passMs("Shadow/"), " ms");
+        test::reportFigure(name + ": ground beyond the edge band disagreeing with geometry", beyond);
         // The bound of the hard-shadow acceptance tests (tests/render/hard_shadow_test.cpp).
         EXPECT_LT(beyond, 0.001) << name;
     }
@@ -115,8 +106,7 @@ TEST(Stability, TexelBudgetHalvesFarLightsFirstAndKeepsEveryShadow) {
     FrameRunner runner;
     const auto t0 = std::chrono::steady_clock::now();
     const test::RenderedFrame frame = test::renderFrame(runner, scene, 96, 72);
-    test::reportFigure("64 lights at 2048^2 under the default budget: first frame", msSince(t0),
-                       " ms");
+    test::reportFigure("64 lights at 2048^2 under the default budget: first frame", msSince(t0), " ms");
     test::expectSaneFrame(frame.images, runner.shadows(), "64 lights at 2048");
     const ShadowFrame& plans = runner.shadows().frame();
     ASSERT_EQ(plans.lights.size(), static_cast<std::size_t>(kLights));
@@ -124,18 +114,15 @@ TEST(Stability, TexelBudgetHalvesFarLightsFirstAndKeepsEveryShadow) {
     std::int64_t total = 0;
     int reduced = 0;
     for (const ShadowLightPlan& p : plans.lights) {
-        total += static_cast<std::int64_t>(p.mapSize) * p.mapSize *
-                 static_cast<std::int64_t>(p.layers.size());
+        total += static_cast<std::int64_t>(p.mapSize) * p.mapSize * static_cast<std::int64_t>(p.layers.size());
         reduced += p.mapSize < kAsked ? 1 : 0;
     }
-    test::reportFigure(
-        "64 lights at 2048^2: texels allocated / budget",
-        static_cast<double>(total) / static_cast<double>(ShadowLimits{}.maxShadowTexels));
+    test::reportFigure("64 lights at 2048^2: texels allocated / budget",
+                       static_cast<double>(total) / static_cast<double>(ShadowLimits{}.maxShadowTexels));
     test::reportFigure("64 lights at 2048^2: lights with a reduced map", reduced);
     EXPECT_LE(total, ShadowLimits{}.maxShadowTexels);
     EXPECT_GT(reduced, 0);
-    EXPECT_EQ(static_cast<int>(frame.stats.warnings.size()), reduced)
-        << "one warning per reduced light";
+    EXPECT_EQ(static_cast<int>(frame.stats.warnings.size()), reduced) << "one warning per reduced light";
     for (const ShadowLightPlan& p : plans.lights) {
         EXPECT_EQ(test::countWarnings(frame.stats.warnings, WarningCode::MapSizeReduced, p.name),
                   p.mapSize < kAsked ? 1 : 0)

@@ -28,8 +28,8 @@ Scene boxScene(LightType type, int mapSize) {
     Light light = test::pointSizedLight(type, 0.7f);
     light.radius = 0.1f;
     light.angularRadius = 0.02f;
-    addLight(scene, "light", light, test::shadowWith(ShadowTechnique::Hard, mapSize),
-             {0.3, 4.0, 0.2}, glm::normalize(glm::dvec3(0.1, -1.0, 0.05)));
+    addLight(scene, "light", light, test::shadowWith(ShadowTechnique::Hard, mapSize), {0.3, 4.0, 0.2},
+             glm::normalize(glm::dvec3(0.1, -1.0, 0.05)));
     return scene;
 }
 
@@ -54,8 +54,7 @@ TEST(Stability, TinyMapsOfOneAndThreeTexelsStayFinite) {
                                                                                 : "point") +
                                      " with a " + std::to_string(size) + "^2 map";
             test::forEveryTechnique(
-                scene, 96, 72, name,
-                [&](ShadowTechnique, const test::RenderedFrame& frame, FrameRunner& runner) {
+                scene, 96, 72, name, [&](ShadowTechnique, const test::RenderedFrame& frame, FrameRunner& runner) {
                     EXPECT_EQ(runner.shadows().frame().lights.at(0).mapSize, size);
                     EXPECT_TRUE(frame.stats.warnings.empty()) << name << ":\n" << test::describe(frame.stats.warnings);
                 });
@@ -87,23 +86,18 @@ TEST(Stability, MapSizeBeyondTheGlLimitIsClampedWithAWarning) {
 TEST(Stability, MapAtTheGlLimitRendersWhenMemoryAllows) {
     test::glContext();
     const GlInfo info = queryGlInfo();
-    const double layerGiB =
-        static_cast<double>(info.maxTextureSize) * info.maxTextureSize * 4.0 / (1u << 30);
+    const double layerGiB = static_cast<double>(info.maxTextureSize) * info.maxTextureSize * 4.0 / (1u << 30);
     // The layer, its readback, and llvmpipe's staging copy.
     if (availableGiB() < 4.0 * layerGiB + 1.0) {
-        GTEST_SKIP() << "needs " << 4.0 * layerGiB + 1.0 << " GiB free for a "
-                     << info.maxTextureSize << "^2 layer";
+        GTEST_SKIP() << "needs " << 4.0 * layerGiB + 1.0 << " GiB free for a " << info.maxTextureSize << "^2 layer";
     }
     {
         Scene scene = boxScene(LightType::Spot, INT_MAX);
         FrameRunner runner;
         const auto t0 = std::chrono::steady_clock::now();
         const test::RenderedFrame frame = test::renderFrame(runner, scene, 96, 72);
-        const double ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                .count();
-        test::reportFigure("spot at " + std::to_string(info.maxTextureSize) + "^2 (" +
-                               info.renderer + "): first frame",
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        test::reportFigure("spot at " + std::to_string(info.maxTextureSize) + "^2 (" + info.renderer + "): first frame",
                            ms, " ms");
         test::expectSaneAovs(frame.images);
         const ShadowLightPlan& plan = runner.shadows().frame().lights.at(0);
@@ -123,8 +117,7 @@ TEST(Stability, MapAtTheGlLimitRendersWhenMemoryAllows) {
         test::expectSaneAovs(frame.images);
         const ShadowLightPlan& plan = runner.shadows().frame().lights.at(0);
         test::reportFigure("point asking for INT_MAX: map edge after the budget", plan.mapSize);
-        EXPECT_LE(static_cast<std::int64_t>(plan.mapSize) * plan.mapSize * 6,
-                  ShadowLimits{}.maxShadowTexels);
+        EXPECT_LE(static_cast<std::int64_t>(plan.mapSize) * plan.mapSize * 6, ShadowLimits{}.maxShadowTexels);
         EXPECT_TRUE(test::hasWarning(frame.stats.warnings, WarningCode::MapSizeReduced, "light"))
             << test::describe(frame.stats.warnings);
     }
@@ -145,8 +138,7 @@ struct BudgetScene {
         const double distances[] = {6.0, 2.0, 12.0, 9.0};  // from the camera, along -z
         for (int i = 0; i < 4; ++i) {
             addLight(scene, "spot" + std::to_string(i), test::pointSizedLight(LightType::Spot),
-                     test::shadowWith(ShadowTechnique::Hard, 1024), {0.0, 5.0, 8.0 - distances[i]},
-                     {0, -1, 0});
+                     test::shadowWith(ShadowTechnique::Hard, 1024), {0.0, 5.0, 8.0 - distances[i]}, {0, -1, 0});
         }
     }
     const ShadowFrame& prepare(ShadowPlanner& planner) {
@@ -188,16 +180,15 @@ TEST(Stability, TexelBudgetDropsTheFarthestShadowsWhenHalvingIsNotEnough) {
     // A sun (distance 0: the nearest) with two cascades.
     Shadow sunShadow = test::shadowWith(ShadowTechnique::Hard, 1024);
     sunShadow.cascades = 2;
-    addLight(b.scene, "sun", test::pointSizedLight(LightType::Directional), sunShadow, {0, 10, 0},
-             {0.2, -1, 0.1});
+    addLight(b.scene, "sun", test::pointSizedLight(LightType::Directional), sunShadow, {0, 10, 0}, {0.2, -1, 0.1});
     ShadowPlanner planner;
     // Two layers of the floor size (256^2) fit, and nothing more: every map is halved to 256,
     // then the farthest lose their shadow until only the two nearest layers are left (the sun's
     // two cascades); every decision is one warning.
     planner.setLimits({16384, 2048, 2 * 256 * 256});
     const ShadowFrame& frame = b.prepare(planner);
-    const auto withMap = std::count_if(frame.lights.begin(), frame.lights.end(),
-                                       [](const ShadowLightPlan& p) { return p.hasMap(); });
+    const auto withMap =
+        std::count_if(frame.lights.begin(), frame.lights.end(), [](const ShadowLightPlan& p) { return p.hasMap(); });
     ASSERT_EQ(withMap, 1);
     const ShadowLightPlan& sun = frame.lights.back();
     EXPECT_EQ(sun.name, "sun");
@@ -215,8 +206,7 @@ TEST(Stability, TexelBudgetRanksLightsThatCannotReachTheViewAsFarthest) {
     // Near the camera but behind it, with a range that ends before the view begins.
     Light unseen = test::pointSizedLight(LightType::Spot);
     unseen.range = 1.0f;
-    addLight(b.scene, "behind", unseen, test::shadowWith(ShadowTechnique::Hard, 1024),
-             {0.0, 5.0, 12.0}, {0, 0, 1});
+    addLight(b.scene, "behind", unseen, test::shadowWith(ShadowTechnique::Hard, 1024), {0.0, 5.0, 12.0}, {0, 0, 1});
     ShadowPlanner planner;
     planner.setLimits({16384, 2048, 4 * 1024 * 1024 + 512 * 512});
     const ShadowFrame& frame = b.prepare(planner);

@@ -19,9 +19,8 @@
 namespace shadow::test {
 
 /// Every technique that draws a shadow, the seeds' textbook PCSS included.
-inline constexpr std::array<ShadowTechnique, 4> kShadowTechniques{
-    ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss,
-    ShadowTechnique::PcssTextbook};
+inline constexpr std::array<ShadowTechnique, 4> kShadowTechniques{ShadowTechnique::Hard, ShadowTechnique::Pcf,
+                                                                  ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook};
 
 /// Non-finite texels over every layer of every light of the last frame, and texels outside
 /// [0, depthScale] (a stored depth is a distance inside the layer's range).
@@ -54,23 +53,19 @@ inline ShadowMapCheck checkShadowMaps(const ShadowSystem& shadows) {
 /// The frame invariants of design.md over the AOVs (`expectSaneAovs`) and the shadow maps:
 /// nothing NaN/Inf, visibility in [0, 1], stored depths inside their layer's range, and every
 /// plan's numbers finite.
-inline void expectSaneFrame(const FrameImages& images, const ShadowSystem& shadows,
-                            const std::string& what) {
+inline void expectSaneFrame(const FrameImages& images, const ShadowSystem& shadows, const std::string& what) {
     SCOPED_TRACE(what);
     expectSaneAovs(images);
     const ShadowMapCheck maps = checkShadowMaps(shadows);
-    EXPECT_EQ(maps.nonFinite, 0) << maps.nonFinite << " of " << maps.texels
-                                 << " shadow-map texels are NaN/Inf";
+    EXPECT_EQ(maps.nonFinite, 0) << maps.nonFinite << " of " << maps.texels << " shadow-map texels are NaN/Inf";
     EXPECT_EQ(maps.outOfRange, 0) << maps.outOfRange << " of " << maps.texels
                                   << " shadow-map texels lie outside [0, depthScale]";
     for (const ShadowLightPlan& plan : shadows.frame().lights) {
         for (const ShadowLayerPlan& layer : plan.layers) {
             EXPECT_TRUE(isFinite(layer.lightFromWorld)) << plan.name << ": lightFromWorld";
             EXPECT_TRUE(isFinite(layer.clipFromLight)) << plan.name << ": clipFromLight";
-            EXPECT_TRUE(std::isfinite(layer.depthScale) && layer.depthScale > 0.0f)
-                << plan.name << ": depthScale";
-            EXPECT_TRUE(std::isfinite(layer.depthNear) && layer.depthNear >= 0.0f)
-                << plan.name << ": depthNear";
+            EXPECT_TRUE(std::isfinite(layer.depthScale) && layer.depthScale > 0.0f) << plan.name << ": depthScale";
+            EXPECT_TRUE(std::isfinite(layer.depthNear) && layer.depthNear >= 0.0f) << plan.name << ": depthNear";
         }
     }
 }
@@ -86,9 +81,8 @@ struct StoredDepthError {
 };
 
 template <typename Boxes>
-StoredDepthError storedGroundDepthError(const ShadowSystem& shadows, std::size_t light,
-                                        const glm::dvec3& centre, double halfSize,
-                                        const Boxes& boxes) {
+StoredDepthError storedGroundDepthError(const ShadowSystem& shadows, std::size_t light, const glm::dvec3& centre,
+                                        double halfSize, const Boxes& boxes) {
     StoredDepthError e;
     const ShadowLightPlan& plan = shadows.frame().lights.at(light);
     const int n = plan.mapSize;
@@ -112,20 +106,16 @@ StoredDepthError storedGroundDepthError(const ShadowSystem& shadows, std::size_t
                 // Texels whose footprint reaches past the ground's edge may or may not be covered.
                 const glm::dvec3 ray = glm::normalize(b - a);
                 double texel = 2.0 / (layer.clipFromLight[0][0] * n);
-                if (!layer.orthographic)
-                    texel *= std::max(-(layer.lightFromWorld * glm::dvec4(p, 1.0)).z, 0.0);
+                if (!layer.orthographic) texel *= std::max(-(layer.lightFromWorld * glm::dvec4(p, 1.0)).z, 0.0);
                 const double margin = 2.0 * texel / std::max(std::abs(ray.y), 0.1);
-                if (std::abs(p.x - centre.x) > halfSize - margin ||
-                    std::abs(p.z - centre.z) > halfSize - margin)
+                if (std::abs(p.x - centre.x) > halfSize - margin || std::abs(p.z - centre.z) > halfSize - margin)
                     continue;
-                const AnalyticLight from{
-                    layer.orthographic ? LightType::Directional : LightType::Point, lightPosition,
-                    ray};
+                const AnalyticLight from{layer.orthographic ? LightType::Directional : LightType::Point, lightPosition,
+                                         ray};
                 if (!analyticallyLit(from, p, boxes)) continue;
                 const glm::dvec3 ls(layer.lightFromWorld * glm::dvec4(p, 1.0));
                 const double exact = layer.orthographic ? -ls.z : glm::length(ls);
-                const double error = std::abs(
-                    static_cast<double>(stored[static_cast<std::size_t>(y) * n + x]) - exact);
+                const double error = std::abs(static_cast<double>(stored[static_cast<std::size_t>(y) * n + x]) - exact);
                 ++e.texels;
                 if (error > e.maxAbs) {
                     e.maxAbs = error;
@@ -146,8 +136,7 @@ inline void setTechnique(Scene& scene, ShadowTechnique technique) {
 /// Renders one frame per technique of `kShadowTechniques` (one runner: the maps do not depend
 /// on the technique), checks the frame invariants, and hands each frame to `inspect`.
 template <typename Inspect>
-void forEveryTechnique(Scene& scene, int width, int height, const std::string& what,
-                       Inspect inspect) {
+void forEveryTechnique(Scene& scene, int width, int height, const std::string& what, Inspect inspect) {
     glContext();
     FrameRunner runner;
     for (ShadowTechnique technique : kShadowTechniques) {

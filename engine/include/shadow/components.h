@@ -50,9 +50,9 @@ struct WorldTransform {
 struct MeshData {
     std::string name;
     std::vector<glm::vec3> positions;
-    std::vector<glm::vec3> normals;  // one per position
+    std::vector<glm::vec3> normals;      // one per position
     std::vector<std::uint32_t> indices;  // triangle list
-    Aabb bounds;  // of `positions`
+    Aabb bounds;                         // of `positions`
 };
 
 /// Computes `bounds` from `positions`.
@@ -95,7 +95,7 @@ struct Light {
     float intensity = 1.0f;
     /// Distance where the light's influence ends (m); 0 = infinite. Point and spot only. [0, 1e7].
     float range = 0.0f;
-    float innerConeAngle = 0.0f;           ///< spot: full-intensity half-angle (rad), [0, outer)
+    float innerConeAngle = 0.0f;  ///< spot: full-intensity half-angle (rad), [0, outer)
     /// Spot: cut-off half-angle (rad), (0, pi/2]; shadow maps cover up to 85 degrees of it.
     float outerConeAngle = 0.7853981634f;
     /// Spot: radius (m) of the emitting disk perpendicular to the axis. Point: radius (m) of
@@ -186,7 +186,7 @@ struct Shadow {
 
 /// A perspective camera looking along its node's -Z.
 struct Camera {
-    float yfov = 0.8f;   ///< vertical field of view (rad), (0, pi)
+    float yfov = 0.8f;    ///< vertical field of view (rad), (0, pi)
     float znear = 0.05f;  ///< near plane (m), > 0
     float zfar = 500.0f;  ///< far plane (m), > znear
     /// Width / height; 0 = take it from the output image.

@@ -140,9 +140,7 @@ public:
     [[nodiscard]] std::size_t size() const override { return owners_.size(); }
 
     T* find(Entity e) { return contains(e) ? &components_[sparse_[e.index()]] : nullptr; }
-    const T* find(Entity e) const {
-        return contains(e) ? &components_[sparse_[e.index()]] : nullptr;
-    }
+    const T* find(Entity e) const { return contains(e) ? &components_[sparse_[e.index()]] : nullptr; }
 
     [[nodiscard]] Entity ownerAt(std::size_t dense) const { return owners_[dense]; }
     T& atDense(std::size_t dense) { return components_[dense]; }
@@ -255,13 +253,11 @@ public:
 
     /// True while `e` has not been destroyed.
     [[nodiscard]] bool alive(Entity e) const {
-        return !e.isNull() && e.index() < generations_.size() &&
-               generations_[e.index()] == e.generation();
+        return !e.isNull() && e.index() < generations_.size() && generations_[e.index()] == e.generation();
     }
 
     /// Number of live entities.
-    [[nodiscard]] std::size_t size() const { return generations_.size() - freeSlots_.size() - retiredCount_;
-    }
+    [[nodiscard]] std::size_t size() const { return generations_.size() - freeSlots_.size() - retiredCount_; }
 
     /// Adds a `T` to a live entity that has none; returns it.
     template <typename T, typename... Args>

@@ -40,8 +40,7 @@ enum class ExrPixelType { Half, Float };
 
 /// Writes an EXR with channel names `names` (one per image channel, e.g. {"R","G","B","A"} or
 /// {"Y"}).
-[[nodiscard]] Status writeExr(const std::string& path, const ImageF& image,
-                              const std::vector<std::string>& names,
+[[nodiscard]] Status writeExr(const std::string& path, const ImageF& image, const std::vector<std::string>& names,
                               ExrPixelType type = ExrPixelType::Float);
 
 /// Reads every channel of an EXR, in the order of `names` (each must exist). Rows top first.

@@ -79,8 +79,7 @@ struct VisibilityErrors {
 /// last channel is > 0.5 (a non-finite mask value is not a receiver), or over every pixel when
 /// `mask` is null. Errors: a size mismatch (naming both sizes) or a channel count other than 1
 /// (mask: any count ≥ 1).
-[[nodiscard]] Result<VisibilityErrors> compareVisibility(const ImageF& estimate,
-                                                         const ImageF& truth,
+[[nodiscard]] Result<VisibilityErrors> compareVisibility(const ImageF& estimate, const ImageF& truth,
                                                          const ImageF* mask = nullptr);
 
 /// The errors of several lights pooled, as one population of (light, pixel) pairs:
@@ -109,8 +108,7 @@ inline constexpr std::array<float, 3> kHeatMapBadColor{0.0f, 0.0f, 0.0f};
 
 /// Signed-error heat map (3 channels, errorColor of every receiver, kHeatMapBackground
 /// elsewhere), same size as the inputs. Same inputs and errors as compareVisibility.
-[[nodiscard]] Result<ImageF> errorHeatMap(const ImageF& estimate, const ImageF& truth,
-                                          const ImageF* mask = nullptr);
+[[nodiscard]] Result<ImageF> errorHeatMap(const ImageF& estimate, const ImageF& truth, const ImageF* mask = nullptr);
 
 /// Writes a heat map (3 channels in [0, 1]) as an 8-bit RGB PNG, values as they are (they are
 /// already display colours; no transfer curve).
@@ -143,8 +141,7 @@ struct FolderComparison {
 /// truth's position.exr A, else the estimate's position.exr A, else every pixel. Errors name
 /// the file at fault: a missing or non-folder directory, a truth folder without visibility
 /// files, a truth light missing from the estimate, an unreadable EXR, a size mismatch.
-[[nodiscard]] Result<FolderComparison> compareFolders(const std::string& estimateDir,
-                                                      const std::string& truthDir,
+[[nodiscard]] Result<FolderComparison> compareFolders(const std::string& estimateDir, const std::string& truthDir,
                                                       const std::string& maskPath = "");
 
 }  // namespace shadow

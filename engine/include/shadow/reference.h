@@ -103,8 +103,7 @@ struct CameraRay {
     double tnear = 0.0;
     double tfar = 0.0;
 };
-[[nodiscard]] CameraRay cameraRay(const CameraView& camera, int width, int height, double px,
-                                  double py);
+[[nodiscard]] CameraRay cameraRay(const CameraView& camera, int width, int height, double px, double py);
 
 /// Traces the reference for the world as it stands (animate and updateTransforms first). The
 /// scene is read, not changed (`World` only has mutable views). Bad options or positions are

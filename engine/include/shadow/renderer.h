@@ -36,7 +36,7 @@ struct RenderOptions {
     /// Write position, depth and per-light visibility outputs as well as colour.
     bool aovs = false;
     DebugView debugView = DebugView::None;
-    int debugLight = 0;  ///< scene light index the debug view shows
+    int debugLight = 0;        ///< scene light index the debug view shows
     glm::vec3 ambient{0.03f};  ///< constant ambient radiance times albedo (unshadowed)
     /// Fill the depth buffer first, so that the lit passes shade each visible pixel once. Off by
     /// default: on a CPU rasteriser the second pass over the triangles costs more than the

@@ -50,8 +50,8 @@ void animate(World& world, double t);
 
 /// Counters of the transform system for one frame.
 struct TransformStats {
-    int updated = 0;     ///< entities with a world matrix
-    int moved = 0;       ///< of those, moved this frame
+    int updated = 0;  ///< entities with a world matrix
+    int moved = 0;    ///< of those, moved this frame
     /// Skipped because their matrix is not finite or reaches beyond `kMaxWorldCoordinate`.
     int nonFinite = 0;
     /// The `nonFinite` entities (their own matrix or an ancestor's has a NaN or Inf, or they

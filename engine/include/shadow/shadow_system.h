@@ -57,9 +57,9 @@ struct ShadowLightPlan {
     /// False when the entity has no `Light` or `WorldTransform`, or its transform is not finite:
     /// it shades nothing and its visibility is 1.
     bool shaded = false;
-    Light light;          ///< clamped to the documented ranges, once, here
-    glm::dvec3 wsPosition{0.0};                 ///< light position (point, spot)
-    glm::dvec3 wsDirection{0.0, 0.0, -1.0};     ///< unit direction the light travels (node -Z)
+    Light light;                             ///< clamped to the documented ranges, once, here
+    glm::dvec3 wsPosition{0.0};              ///< light position (point, spot)
+    glm::dvec3 wsDirection{0.0, 0.0, -1.0};  ///< unit direction the light travels (node -Z)
     /// Clamped to the documented ranges; `mapSize` is the one asked for. `technique` is the
     /// light's own, None when it has no `Shadow`.
     Shadow settings;

@@ -16,23 +16,23 @@ struct PassTiming {
 
 /// What the shadow system did for one light this frame.
 struct LightShadowStats {
-    int sceneIndex = -1;        ///< `<i>` of visibility_<i>.exr
+    int sceneIndex = -1;  ///< `<i>` of visibility_<i>.exr
     std::string name;
-    std::string type;           ///< "directional" | "spot" | "point"
-    std::string technique;      ///< the technique its pixels use: "none" | "hard" | "pcf" | "pcss" | …
-    int mapSize = 0;            ///< texels per layer edge actually allocated (0 = no map)
-    int requestedMapSize = 0;   ///< the light's mapSize setting (clamped to the GL limit); 0 without a shadow
+    std::string type;          ///< "directional" | "spot" | "point"
+    std::string technique;     ///< the technique its pixels use: "none" | "hard" | "pcf" | "pcss" | …
+    int mapSize = 0;           ///< texels per layer edge actually allocated (0 = no map)
+    int requestedMapSize = 0;  ///< the light's mapSize setting (clamped to the GL limit); 0 without a shadow
     int layers = 0;
-    int layersDrawn = 0;        ///< redrawn this frame
-    int layersReused = 0;       ///< unchanged since the last frame, not redrawn
-    int layersCleared = 0;      ///< no caster in the layer's frustum: cleared, not drawn
-    int castersDrawn = 0;       ///< draw calls into this light's layers
-    bool affectsView = true;    ///< false when the light cannot reach anything the camera sees
+    int layersDrawn = 0;      ///< redrawn this frame
+    int layersReused = 0;     ///< unchanged since the last frame, not redrawn
+    int layersCleared = 0;    ///< no caster in the layer's frustum: cleared, not drawn
+    int castersDrawn = 0;     ///< draw calls into this light's layers
+    bool affectsView = true;  ///< false when the light cannot reach anything the camera sees
 };
 
 /// Everything measured in one frame. Timings are milliseconds.
 struct FrameStats {
-    std::string renderer;        ///< GL_RENDERER
+    std::string renderer;  ///< GL_RENDERER
     /// "wall-clock-fence" on CPU rasterisers (timer queries miss rasterisation there),
     /// "timer-query" on GPUs.
     std::string timingMethod;
@@ -49,7 +49,7 @@ struct FrameStats {
     int shadowDrawCalls = 0;
     int mainDrawCalls = 0;
     int mainPasses = 0;
-    int programsCompiled = 0;    ///< shader programs built this frame (0 in steady state)
+    int programsCompiled = 0;  ///< shader programs built this frame (0 in steady state)
     /// Entities whose world matrix (or an ancestor's) is not finite, skipped by every pass
     /// (`TransformStats::nonFinite`); each is also a `NonFiniteTransform` warning.
     int entitiesSkippedNonFinite = 0;

@@ -20,13 +20,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string sizeText(const ImageF& image) {
-    return std::to_string(image.width) + "x" + std::to_string(image.height);
-}
+std::string sizeText(const ImageF& image) { return std::to_string(image.width) + "x" + std::to_string(image.height); }
 
-bool sameSize(const ImageF& a, const ImageF& b) {
-    return a.width == b.width && a.height == b.height;
-}
+bool sameSize(const ImageF& a, const ImageF& b) { return a.width == b.width && a.height == b.height; }
 
 std::size_t pixelCount(const ImageF& image) {
     return static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
@@ -40,14 +36,12 @@ Status checkInputs(const ImageF& estimate, const ImageF& truth, const ImageF* ma
         return Error{"truth has " + std::to_string(truth.channels) + " channels, expected 1"};
     }
     if (!sameSize(estimate, truth)) {
-        return Error{"size mismatch: estimate is " + sizeText(estimate) + ", truth is " +
-                     sizeText(truth)};
+        return Error{"size mismatch: estimate is " + sizeText(estimate) + ", truth is " + sizeText(truth)};
     }
     if (mask != nullptr) {
         if (mask->channels < 1) return Error{"mask has no channels"};
         if (!sameSize(*mask, truth)) {
-            return Error{"size mismatch: mask is " + sizeText(*mask) + ", truth is " +
-                         sizeText(truth)};
+            return Error{"size mismatch: mask is " + sizeText(*mask) + ", truth is " + sizeText(truth)};
         }
     }
     // Buffers that disagree with their own header are a programming error, not input.
@@ -64,9 +58,7 @@ bool isReceiver(const ImageF* mask, std::size_t i) {
     return mask->pixels[i * channels + channels - 1] > 0.5f;  // NaN: false
 }
 
-bool bothFinite(float estimate, float truth) {
-    return std::isfinite(estimate) && std::isfinite(truth);
-}
+bool bothFinite(float estimate, float truth) { return std::isfinite(estimate) && std::isfinite(truth); }
 
 /// Sums and counts of the errors of a set of pixels; `finish` turns them into statistics.
 class ErrorAccumulator {
@@ -143,9 +135,7 @@ public:
 
 private:
     /// `sum / count`, 0 for an empty population.
-    static double ratio(double sum, std::int64_t count) {
-        return count > 0 ? sum / static_cast<double>(count) : 0.0;
-    }
+    static double ratio(double sum, std::int64_t count) { return count > 0 ? sum / static_cast<double>(count) : 0.0; }
 
     /// The ⌈p·N/100⌉-th smallest |e| (1-based), in integers so that no rounding of p/100
     /// can move the rank.
@@ -189,8 +179,7 @@ ImageF heatMapOf(const ImageF& estimate, const ImageF& truth, const ImageF* mask
         if (isReceiver(mask, i)) {
             const float est = estimate.pixels[i];
             const float tru = truth.pixels[i];
-            rgb = bothFinite(est, tru) ? errorColor(static_cast<double>(est) - tru)
-                                       : kHeatMapBadColor;
+            rgb = bothFinite(est, tru) ? errorColor(static_cast<double>(est) - tru) : kHeatMapBadColor;
         }
         std::copy(rgb.begin(), rgb.end(), map.pixels.begin() + static_cast<std::ptrdiff_t>(3 * i));
     }
@@ -204,13 +193,9 @@ std::uint8_t toByte(float v) {
 
 // ---- Folders --------------------------------------------------------------------------------
 
-std::string joinPath(const std::string& dir, const std::string& name) {
-    return (fs::path(dir) / name).string();
-}
+std::string joinPath(const std::string& dir, const std::string& name) { return (fs::path(dir) / name).string(); }
 
-std::string visibilityName(int index) {
-    return "visibility_" + std::to_string(index) + ".exr";
-}
+std::string visibilityName(int index) { return "visibility_" + std::to_string(index) + ".exr"; }
 
 Status checkFolder(const std::string& dir, const std::string& role) {
     std::error_code ec;
@@ -256,8 +241,7 @@ Result<Mask> readMaskFile(const std::string& path) {
 }
 
 /// The mask of a folder comparison, in the order compareFolders documents.
-Result<Mask> findMask(const std::string& maskPath, const std::string& truthDir,
-                      const std::string& estimateDir) {
+Result<Mask> findMask(const std::string& maskPath, const std::string& truthDir, const std::string& estimateDir) {
     if (!maskPath.empty()) return readMaskFile(maskPath);
     for (const std::string& dir : {truthDir, estimateDir}) {
         const std::string position = joinPath(dir, "position.exr");
@@ -270,8 +254,7 @@ Result<Mask> findMask(const std::string& maskPath, const std::string& truthDir,
 }
 
 /// Warnings for estimate lights the truth does not have.
-std::vector<std::string> extraLightWarnings(const std::string& estimateDir,
-                                            const std::vector<int>& estimateIndices,
+std::vector<std::string> extraLightWarnings(const std::string& estimateDir, const std::vector<int>& estimateIndices,
                                             const std::vector<int>& truthIndices) {
     std::vector<std::string> warnings;
     for (int i : estimateIndices) {
@@ -285,18 +268,16 @@ std::vector<std::string> extraLightWarnings(const std::string& estimateDir,
 
 }  // namespace
 
-Result<VisibilityErrors> compareVisibility(const ImageF& estimate, const ImageF& truth,
-                                           const ImageF* mask) {
+Result<VisibilityErrors> compareVisibility(const ImageF& estimate, const ImageF& truth, const ImageF* mask) {
     if (Status s = checkInputs(estimate, truth, mask); !s.ok()) return s.error();
     return accumulate(estimate, truth, mask).finish();
 }
 
 Result<VisibilityErrors> compareVisibilityPooled(const std::vector<ImageF>& estimates,
-                                                 const std::vector<ImageF>& truths,
-                                                 const ImageF* mask) {
+                                                 const std::vector<ImageF>& truths, const ImageF* mask) {
     if (estimates.size() != truths.size()) {
-        return Error{std::to_string(estimates.size()) + " estimate images for " +
-                     std::to_string(truths.size()) + " truth images"};
+        return Error{std::to_string(estimates.size()) + " estimate images for " + std::to_string(truths.size()) +
+                     " truth images"};
     }
     ErrorAccumulator pooled;
     for (std::size_t i = 0; i < truths.size(); ++i) {
@@ -309,8 +290,7 @@ Result<VisibilityErrors> compareVisibilityPooled(const std::vector<ImageF>& esti
 }
 
 Result<VisibilityErrors> compareVisibilityPooled(const std::vector<ImageF>& estimates,
-                                                 const std::vector<ImageF>& truths,
-                                                 const std::vector<ImageF>& masks) {
+                                                 const std::vector<ImageF>& truths, const std::vector<ImageF>& masks) {
     if (estimates.size() != truths.size() || masks.size() != truths.size()) {
         return Error{std::to_string(estimates.size()) + " estimate images, " + std::to_string(truths.size()) +
                      " truth images and " + std::to_string(masks.size()) + " masks"};
@@ -339,8 +319,7 @@ Result<ImageF> errorHeatMap(const ImageF& estimate, const ImageF& truth, const I
 
 Status writeHeatMapPng(const std::string& path, const ImageF& heatMap) {
     if (heatMap.channels != 3) {
-        return Error{path + ": heat map has " + std::to_string(heatMap.channels) +
-                     " channels, expected 3"};
+        return Error{path + ": heat map has " + std::to_string(heatMap.channels) + " channels, expected 3"};
     }
     std::vector<std::uint8_t> bytes(heatMap.pixels.size());
     std::transform(heatMap.pixels.begin(), heatMap.pixels.end(), bytes.begin(), toByte);
@@ -368,24 +347,22 @@ Result<FolderComparison> compareFolders(const std::string& estimateDir, const st
         const std::string truthPath = joinPath(truthDir, visibilityName(index));
         const std::string estimatePath = joinPath(estimateDir, visibilityName(index));
         if (!isFile(estimatePath)) {
-            return Error{estimatePath + ": missing (the truth folder " + truthDir + " has " +
-                         visibilityName(index) + ")"};
+            return Error{estimatePath + ": missing (the truth folder " + truthDir + " has " + visibilityName(index) +
+                         ")"};
         }
         Result<ImageF> truth = readExr(truthPath, {"Y"});
         if (!truth.ok()) return truth.error();
         Result<ImageF> estimate = readExr(estimatePath, {"Y"});
         if (!estimate.ok()) return estimate.error();
         if (Status s = checkInputs(*estimate, *truth, maskImage); !s.ok()) {
-            return Error{estimatePath + " vs " + truthPath + " (mask " + mask->source +
-                         "): " + s.error().message};
+            return Error{estimatePath + " vs " + truthPath + " (mask " + mask->source + "): " + s.error().message};
         }
         if (result.lights.empty()) {
             result.width = truth->width;
             result.height = truth->height;
         } else if (truth->width != result.width || truth->height != result.height) {
-            return Error{truthPath + ": size " + sizeText(*truth) +
-                         " differs from the first light's " + std::to_string(result.width) + "x" +
-                         std::to_string(result.height)};
+            return Error{truthPath + ": size " + sizeText(*truth) + " differs from the first light's " +
+                         std::to_string(result.width) + "x" + std::to_string(result.height)};
         }
         ErrorAccumulator light = accumulate(*estimate, *truth, maskImage);
         pooled.merge(light);

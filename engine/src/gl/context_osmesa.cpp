@@ -32,11 +32,16 @@ private:
 }  // namespace
 
 Result<std::unique_ptr<GlContext>> createOsMesaContext() {
-    const int attribs[] = {OSMESA_FORMAT,                OSMESA_RGBA,
-                           OSMESA_DEPTH_BITS,            24,
-                           OSMESA_PROFILE,               OSMESA_CORE_PROFILE,
-                           OSMESA_CONTEXT_MAJOR_VERSION, 4,
-                           OSMESA_CONTEXT_MINOR_VERSION, 5,
+    const int attribs[] = {OSMESA_FORMAT,
+                           OSMESA_RGBA,
+                           OSMESA_DEPTH_BITS,
+                           24,
+                           OSMESA_PROFILE,
+                           OSMESA_CORE_PROFILE,
+                           OSMESA_CONTEXT_MAJOR_VERSION,
+                           4,
+                           OSMESA_CONTEXT_MINOR_VERSION,
+                           5,
                            0};
     OSMesaContext raw = OSMesaCreateContextAttribs(attribs, nullptr);
     if (raw == nullptr) return Error{"OSMesa: could not create an OpenGL 4.5 core context"};

@@ -11,8 +11,8 @@ Status loadGl(const GlProcLoader& loader) {
     if (!loader) return Error{"loadGl: no getProcAddress given"};
     gpu::Api api;
     const char* missing = nullptr;
-#define SHADOW_GL_LOAD(type, name)                                              \
-    api.name = reinterpret_cast<type>(loader("gl" #name));                      \
+#define SHADOW_GL_LOAD(type, name)                         \
+    api.name = reinterpret_cast<type>(loader("gl" #name)); \
     if (api.name == nullptr && missing == nullptr) missing = "gl" #name;
     SHADOW_GL_FUNCTIONS(SHADOW_GL_LOAD)
 #undef SHADOW_GL_LOAD

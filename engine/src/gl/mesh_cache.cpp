@@ -48,12 +48,11 @@ int MeshCache::bind(const std::shared_ptr<const MeshData>& meshPtr) {
         GpuMesh g;
         g.source = meshPtr;
         const std::string label = "Mesh/" + mesh.name;
-        g.vertices = gpu::makeBuffer(label + "/vertices",
-                                     static_cast<GLsizeiptr>(vertices.size() * sizeof(GpuVertex)),
+        g.vertices = gpu::makeBuffer(label + "/vertices", static_cast<GLsizeiptr>(vertices.size() * sizeof(GpuVertex)),
                                      vertices.data(), 0);
-        g.indices = gpu::makeBuffer(label + "/indices",
-                                    static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
-                                    mesh.indices.data(), 0);
+        g.indices =
+            gpu::makeBuffer(label + "/indices", static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
+                            mesh.indices.data(), 0);
         GLuint vao = 0;
         gl.CreateVertexArrays(1, &vao);
         g.vao = gpu::VertexArray(vao);

@@ -52,8 +52,7 @@ void checkGlError(std::string_view where) {
     if (e == GL_NO_ERROR) return;
     std::string message = std::string(where) + ": " + errorName(e);
     // Drain the remaining flags so the next check reports only new errors.
-    while (gl.GetError() != GL_NO_ERROR) {
-    }
+    while (gl.GetError() != GL_NO_ERROR) {}
     throw GlError(message);
 }
 

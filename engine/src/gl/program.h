@@ -14,9 +14,9 @@ namespace shadow::gpu {
 
 /// What to build: a vertex and a fragment shader file of shaders/ and the defines of the variant.
 struct ProgramDesc {
-    std::string label;           ///< object label, e.g. "Main/Lit[PCF,PCSS]"
-    std::string vertexFile;      ///< e.g. "lit.vert.glsl"
-    std::string fragmentFile;    ///< e.g. "lit.frag.glsl"
+    std::string label;                 ///< object label, e.g. "Main/Lit[PCF,PCSS]"
+    std::string vertexFile;            ///< e.g. "lit.vert.glsl"
+    std::string fragmentFile;          ///< e.g. "lit.frag.glsl"
     std::vector<std::string> defines;  ///< "NAME" or "NAME VALUE"
 };
 

@@ -44,14 +44,10 @@ constexpr std::int64_t kMaxExrSamples = std::int64_t{1} << 30;
 /// Half-float limit: larger finite values are clamped so a bright pixel never becomes Inf.
 constexpr float kHalfMax = 65504.0f;
 
-Error pathError(const std::string& path, const std::string& cause) {
-    return Error{path + ": " + cause};
-}
+Error pathError(const std::string& path, const std::string& cause) { return Error{path + ": " + cause}; }
 
 /// Thread-safe errno text (std::strerror is not).
-std::string errnoText(int err) {
-    return std::generic_category().message(err);
-}
+std::string errnoText(int err) { return std::generic_category().message(err); }
 
 /// The temporary beside `path`: same directory, so the final rename never crosses devices.
 std::string tempPathFor(const std::string& path) {
@@ -120,8 +116,7 @@ Status validatePngArgs(int width, int height, int channels, std::size_t bytes) {
     if (static_cast<std::int64_t>(width) * channels > INT_MAX) return Error{"row too wide"};
     const std::size_t expected = static_cast<std::size_t>(width) * height * channels;
     if (bytes != expected) {
-        return Error{"pixel buffer holds " + std::to_string(bytes) + " bytes, expected " +
-                     std::to_string(expected)};
+        return Error{"pixel buffer holds " + std::to_string(bytes) + " bytes, expected " + std::to_string(expected)};
     }
     return Ok{};
 }
@@ -133,11 +128,10 @@ void appendToVector(void* context, void* data, int size) {
 }
 
 /// PNG file bytes for validated arguments; empty if stb fails (it can only run out of memory).
-std::vector<std::uint8_t> encodePng(int width, int height, int channels,
-                                    const std::vector<std::uint8_t>& pixels) {
+std::vector<std::uint8_t> encodePng(int width, int height, int channels, const std::vector<std::uint8_t>& pixels) {
     std::vector<std::uint8_t> png;
-    const int ok = stbi_write_png_to_func(appendToVector, &png, width, height, channels,
-                                          pixels.data(), width * channels);
+    const int ok =
+        stbi_write_png_to_func(appendToVector, &png, width, height, channels, pixels.data(), width * channels);
     if (ok == 0) png.clear();
     return png;
 }
@@ -146,18 +140,17 @@ std::vector<std::uint8_t> encodePng(int width, int height, int channels,
 
 Status validateExrArgs(const ImageF& image, const std::vector<std::string>& names) {
     if (image.width <= 0 || image.height <= 0 || image.channels <= 0) {
-        return Error{"bad image size " + std::to_string(image.width) + "x" +
-                     std::to_string(image.height) + "x" + std::to_string(image.channels)};
+        return Error{"bad image size " + std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
+                     std::to_string(image.channels)};
     }
-    const std::size_t expected =
-        static_cast<std::size_t>(image.width) * image.height * image.channels;
+    const std::size_t expected = static_cast<std::size_t>(image.width) * image.height * image.channels;
     if (image.pixels.size() != expected) {
-        return Error{"pixel buffer holds " + std::to_string(image.pixels.size()) +
-                     " floats, expected " + std::to_string(expected)};
+        return Error{"pixel buffer holds " + std::to_string(image.pixels.size()) + " floats, expected " +
+                     std::to_string(expected)};
     }
     if (names.size() != static_cast<std::size_t>(image.channels)) {
-        return Error{std::to_string(names.size()) + " channel names for " +
-                     std::to_string(image.channels) + " channels"};
+        return Error{std::to_string(names.size()) + " channel names for " + std::to_string(image.channels) +
+                     " channels"};
     }
     std::set<std::string> seen;
     for (const std::string& name : names) {
@@ -170,30 +163,28 @@ Status validateExrArgs(const ImageF& image, const std::vector<std::string>& name
 /// `pixels` as half floats; finite values beyond the half range clamp to ±65504.
 std::vector<half> toHalf(const std::vector<float>& pixels) {
     std::vector<half> out(pixels.size());
-    std::transform(pixels.begin(), pixels.end(), out.begin(), [](float v) {
-        return half(std::isfinite(v) ? std::clamp(v, -kHalfMax, kHalfMax) : v);
-    });
+    std::transform(pixels.begin(), pixels.end(), out.begin(),
+                   [](float v) { return half(std::isfinite(v) ? std::clamp(v, -kHalfMax, kHalfMax) : v); });
     return out;
 }
 
 /// A frame buffer over an interleaved buffer of `image.channels` samples per pixel, one slice
 /// per name. `base` is the first sample of the buffer (float or half, as `type` says).
-Imf::FrameBuffer interleavedFrameBuffer(const char* base, std::size_t sampleSize,
-                                        Imf::PixelType type, const Imath::Box2i& window,
-                                        int channels, const std::vector<std::string>& names) {
+Imf::FrameBuffer interleavedFrameBuffer(const char* base, std::size_t sampleSize, Imf::PixelType type,
+                                        const Imath::Box2i& window, int channels,
+                                        const std::vector<std::string>& names) {
     const std::size_t xStride = sampleSize * static_cast<std::size_t>(channels);
     const std::size_t yStride = xStride * static_cast<std::size_t>(window.size().x + 1);
     Imf::FrameBuffer fb;
     for (std::size_t c = 0; c < names.size(); ++c) {
-        fb.insert(names[c],
-                  Imf::Slice::Make(type, base + c * sampleSize, window, xStride, yStride));
+        fb.insert(names[c], Imf::Slice::Make(type, base + c * sampleSize, window, xStride, yStride));
     }
     return fb;
 }
 
 /// Writes a scanline, ZIP-compressed EXR of `image` (validated) to `file`.
-Status writeExrFile(const std::string& file, const ImageF& image,
-                    const std::vector<std::string>& names, ExrPixelType type) {
+Status writeExrFile(const std::string& file, const ImageF& image, const std::vector<std::string>& names,
+                    ExrPixelType type) {
     const Imf::PixelType exrType = type == ExrPixelType::Half ? Imf::HALF : Imf::FLOAT;
     Imf::Header header(image.width, image.height);
     header.compression() = Imf::ZIP_COMPRESSION;  // lossless; good on smooth float data
@@ -210,8 +201,7 @@ Status writeExrFile(const std::string& file, const ImageF& image,
     const Imath::Box2i window = header.dataWindow();
     // The OutputFile is closed (destroyed) before the caller renames the file.
     Imf::OutputFile out(file.c_str(), header);
-    out.setFrameBuffer(
-        interleavedFrameBuffer(base, sampleSize, exrType, window, image.channels, names));
+    out.setFrameBuffer(interleavedFrameBuffer(base, sampleSize, exrType, window, image.channels, names));
     out.writePixels(image.height);
     return Ok{};
 }
@@ -227,8 +217,7 @@ std::string channelList(const Imf::ChannelList& channels) {
 
 /// Checks that every requested name is present once in `channels`; the error names the first
 /// missing or repeated one.
-Status checkRequestedChannels(const Imf::ChannelList& channels,
-                              const std::vector<std::string>& names) {
+Status checkRequestedChannels(const Imf::ChannelList& channels, const std::vector<std::string>& names) {
     if (names.empty()) return Error{"no channels requested"};
     std::set<std::string> seen;
     for (const std::string& name : names) {
@@ -246,8 +235,7 @@ Result<ImageF> allocateFor(const Imath::Box2i& window, std::size_t channels) {
     const std::int64_t height = std::int64_t{window.max.y} - window.min.y + 1;
     if (width <= 0 || height <= 0) return Error{"empty data window"};
     if (width > kMaxExrSamples / height / static_cast<std::int64_t>(channels)) {
-        return Error{"data window " + std::to_string(width) + "x" + std::to_string(height) +
-                     " is too large"};
+        return Error{"data window " + std::to_string(width) + "x" + std::to_string(height) + " is too large"};
     }
     return makeImage(static_cast<int>(width), static_cast<int>(height), static_cast<int>(channels));
 }
@@ -260,9 +248,8 @@ Result<ImageF> readExrFile(const std::string& path, const std::vector<std::strin
     Result<ImageF> image = allocateFor(window, names.size());
     if (!image.ok()) return image;
     // The data window's top row (min.y) lands in row 0: EXR's y grows downwards, as ours does.
-    in.setFrameBuffer(interleavedFrameBuffer(reinterpret_cast<const char*>(image->pixels.data()),
-                                             sizeof(float), Imf::FLOAT, window, image->channels,
-                                             names));
+    in.setFrameBuffer(interleavedFrameBuffer(reinterpret_cast<const char*>(image->pixels.data()), sizeof(float),
+                                             Imf::FLOAT, window, image->channels, names));
     in.readPixels(window.min.y, window.max.y);
     return image;
 }
@@ -272,24 +259,16 @@ Result<ImageF> readExrFile(const std::string& path, const std::vector<std::strin
 /// Reinhard, x / (1 + x): maps [0, inf) onto [0, 1) strictly monotonically and never clips,
 /// as the header promises; its inverse y / (1 - y) lets tests check it in closed form. Chosen
 /// over the ACES fit (Narkowicz 2015), which reaches 1 at a finite value and so clips.
-float filmicCurve(float x) {
-    return std::isinf(x) ? 1.0f : x / (1.0f + x);
-}
+float filmicCurve(float x) { return std::isinf(x) ? 1.0f : x / (1.0f + x); }
 
 /// The exact sRGB opto-electronic transfer function (IEC 61966-2-1), linear [0,1] to encoded.
-float srgbOetf(float v) {
-    return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-}
+float srgbOetf(float v) { return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f; }
 
 /// [0,1] to 0..255, rounding to nearest; out-of-range values clamp.
-std::uint8_t toUnorm8(float v) {
-    return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
-}
+std::uint8_t toUnorm8(float v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
 
 /// Rec. 709 luminance of linear RGB.
-float luminance(const float* rgb) {
-    return 0.2126f * rgb[0] + 0.7152f * rgb[1] + 0.0722f * rgb[2];
-}
+float luminance(const float* rgb) { return 0.2126f * rgb[0] + 0.7152f * rgb[1] + 0.0722f * rgb[2]; }
 
 /// Tone maps one linear RGB pixel into `out`: the curve acts on luminance and the colour is
 /// scaled with it, so the ratios between channels (the hue) survive; a colour whose brightest
@@ -314,9 +293,7 @@ void toneMapPixel(const float* rgb, float exposure, std::uint8_t* out) {
 }
 
 /// Alpha is coverage, not light: stored linearly, clamped, no exposure or curve.
-std::uint8_t alphaTo8(float a) {
-    return std::isfinite(a) ? toUnorm8(a) : 0;
-}
+std::uint8_t alphaTo8(float a) { return std::isfinite(a) ? toUnorm8(a) : 0; }
 
 }  // namespace
 
@@ -330,14 +307,12 @@ ImageF makeImage(int width, int height, int channels) {
     return image;
 }
 
-Status writePng(const std::string& path, int width, int height, int channels,
-                const std::vector<std::uint8_t>& pixels) {
+Status writePng(const std::string& path, int width, int height, int channels, const std::vector<std::uint8_t>& pixels) {
     const Status valid = validatePngArgs(width, height, channels, pixels.size());
     if (!valid.ok()) return pathError(path, valid.error().message);
     const std::vector<std::uint8_t> png = encodePng(width, height, channels, pixels);
     if (png.empty()) return pathError(path, "PNG encoding failed");
-    return writeViaTemp(
-        path, [&png](const std::string& temp) { return writeBytes(temp, png.data(), png.size()); });
+    return writeViaTemp(path, [&png](const std::string& temp) { return writeBytes(temp, png.data(), png.size()); });
 }
 
 Status writeExr(const std::string& path, const ImageF& image, const std::vector<std::string>& names,
@@ -384,9 +359,7 @@ float autoExposure(const ImageF& rgb, float key) {
 }
 
 Status writeTextFileAtomic(const std::string& path, const std::string& text) {
-    return writeViaTemp(path, [&text](const std::string& temp) {
-        return writeBytes(temp, text.data(), text.size());
-    });
+    return writeViaTemp(path, [&text](const std::string& temp) { return writeBytes(temp, text.data(), text.size()); });
 }
 
 }  // namespace shadow

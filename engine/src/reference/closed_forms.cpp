@@ -23,9 +23,7 @@ double integratePiece(bool isCircle, double sign, double c, double a, double b, 
 
 }  // namespace
 
-Rect intersect(const Rect& a, const Rect& b) {
-    return Rect{glm::max(a.min, b.min), glm::min(a.max, b.max)};
-}
+Rect intersect(const Rect& a, const Rect& b) { return Rect{glm::max(a.min, b.min), glm::min(a.max, b.max)}; }
 
 double diskRectArea(const glm::dvec2& center, double radius, const Rect& rect) {
     if (!(radius > 0.0) || rect.empty()) return 0.0;
@@ -61,8 +59,8 @@ double diskRectArea(const glm::dvec2& center, double radius, const Rect& rect) {
         const double top = topIsCircle ? s : y1;
         const double bottom = bottomIsCircle ? -s : y0;
         if (top <= bottom) continue;  // the chord misses [y0, y1] on this whole piece
-        area += integratePiece(topIsCircle, 1.0, y1, a, b, radius) -
-                integratePiece(bottomIsCircle, -1.0, y0, a, b, radius);
+        area +=
+            integratePiece(topIsCircle, 1.0, y1, a, b, radius) - integratePiece(bottomIsCircle, -1.0, y0, a, b, radius);
     }
     return std::max(area, 0.0);
 }

@@ -27,8 +27,7 @@ struct Rect {
 
 /// Area of the disk intersected with the union of `rects`, by inclusion–exclusion over every
 /// subset (the intersection of rectangles is a rectangle). At most 16 rectangles.
-[[nodiscard]] double diskRectUnionArea(const glm::dvec2& center, double radius,
-                                       const std::vector<Rect>& rects);
+[[nodiscard]] double diskRectUnionArea(const glm::dvec2& center, double radius, const std::vector<Rect>& rects);
 
 /// Fraction of a unit disk on the far side of a chord at signed distance `u` from the centre:
 /// (acos u − u sqrt(1 − u²)) / π, with u clamped to [−1, 1]. The visible fraction of a disk

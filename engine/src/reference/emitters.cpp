@@ -67,8 +67,7 @@ std::uint64_t splitMix64(std::uint64_t x) {
 }
 
 /// A point of the disk of `radius` centred on `center` with unit normal `normal`.
-glm::dvec3 onDisk(const glm::dvec3& center, const glm::dvec3& normal, double radius,
-                  const glm::dvec2& disk) {
+glm::dvec3 onDisk(const glm::dvec3& center, const glm::dvec3& normal, double radius, const glm::dvec2& disk) {
     if (radius <= 0.0) return center;
     const glm::dvec3 t1 = anyPerpendicular(normal);
     const glm::dvec3 t2 = glm::cross(normal, t1);
@@ -100,9 +99,7 @@ glm::dvec3 inCone(const glm::dvec3& axis, double alpha, const glm::dvec2& disk) 
 
 }  // namespace
 
-bool Emitter::isPointLike() const {
-    return type == LightType::Directional ? angularRadius <= 0.0 : radius <= 0.0;
-}
+bool Emitter::isPointLike() const { return type == LightType::Directional ? angularRadius <= 0.0 : radius <= 0.0; }
 
 std::optional<Emitter> emitterOf(const World& world, Entity light) {
     const Light* l = world.tryGet<Light>(light);
@@ -125,15 +122,13 @@ std::optional<Emitter> emitterOf(const World& world, Entity light) {
     return e;
 }
 
-ShadowRayAim aimAtEmitter(const Emitter& emitter, const glm::dvec3& wsPoint,
-                          const glm::dvec2& disk) {
+ShadowRayAim aimAtEmitter(const Emitter& emitter, const glm::dvec3& wsPoint, const glm::dvec2& disk) {
     switch (emitter.type) {
         case LightType::Directional:
             return {inCone(emitter.wsTowardLight, emitter.angularRadius, disk),
                     std::numeric_limits<double>::infinity()};
         case LightType::Spot:
-            return aimAtPoint(
-                wsPoint, onDisk(emitter.wsPosition, emitter.wsTowardLight, emitter.radius, disk));
+            return aimAtPoint(wsPoint, onDisk(emitter.wsPosition, emitter.wsTowardLight, emitter.radius, disk));
         case LightType::Point: {
             const glm::dvec3 toCenter = emitter.wsPosition - wsPoint;
             const double d = glm::length(toCenter);
@@ -143,8 +138,7 @@ ShadowRayAim aimAtEmitter(const Emitter& emitter, const glm::dvec3& wsPoint,
             const glm::dvec3 w = toCenter / d;
             const double k = r / d;
             const glm::dvec3 silhouetteCenter = wsPoint + w * (d * (1.0 - k * k));
-            return aimAtPoint(wsPoint,
-                              onDisk(silhouetteCenter, w, r * std::sqrt(1.0 - k * k), disk));
+            return aimAtPoint(wsPoint, onDisk(silhouetteCenter, w, r * std::sqrt(1.0 - k * k), disk));
         }
     }
     return {};

@@ -57,12 +57,10 @@ struct ShadowRayAim {
 /// rim is the circle where the tangent cone touches the sphere, so the set of directions is
 /// exactly the sphere's; samples are uniform over that disk's area (design.md: "seen from any
 /// point as a disk facing it"), which differs from uniform solid angle by O((r/d)²).
-[[nodiscard]] ShadowRayAim aimAtEmitter(const Emitter& emitter, const glm::dvec3& wsPoint,
-                                        const glm::dvec2& disk);
+[[nodiscard]] ShadowRayAim aimAtEmitter(const Emitter& emitter, const glm::dvec3& wsPoint, const glm::dvec2& disk);
 
 /// Sample `index` of `count` of the correlated multi-jittered pattern `pattern`, in [0,1)².
-[[nodiscard]] glm::dvec2 multiJitteredSample(std::uint32_t index, std::uint32_t count,
-                                             std::uint32_t pattern);
+[[nodiscard]] glm::dvec2 multiJitteredSample(std::uint32_t index, std::uint32_t count, std::uint32_t pattern);
 
 /// Shirley–Chiu concentric map of [0,1)² onto the unit disk (area preserving).
 [[nodiscard]] glm::dvec2 concentricDisk(const glm::dvec2& square);

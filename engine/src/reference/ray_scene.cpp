@@ -43,13 +43,13 @@ std::string meshName(const World& world, Entity e, const MeshData& data) {
 Status validate(const Instance& instance) {
     const MeshData& d = *instance.data;
     if (d.indices.size() % 3 != 0) {
-        return Error{"mesh '" + instance.name + "': index count " +
-                     std::to_string(d.indices.size()) + " is not a multiple of 3"};
+        return Error{"mesh '" + instance.name + "': index count " + std::to_string(d.indices.size()) +
+                     " is not a multiple of 3"};
     }
     for (const std::uint32_t i : d.indices) {
         if (i >= d.positions.size()) {
-            return Error{"mesh '" + instance.name + "': index " + std::to_string(i) +
-                         " out of range (" + std::to_string(d.positions.size()) + " vertices)"};
+            return Error{"mesh '" + instance.name + "': index " + std::to_string(i) + " out of range (" +
+                         std::to_string(d.positions.size()) + " vertices)"};
         }
     }
     for (const glm::vec3& p : d.positions) {
@@ -93,12 +93,10 @@ struct RayScene::Impl {
 
     void attach(RTCScene scene, const FlatMesh& mesh, unsigned id) const {
         RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                   mesh.vertices.data(), 0, 3 * sizeof(float),
-                                   (mesh.vertices.size() - 4) / 3);
-        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                   mesh.indices.data(), 0, 3 * sizeof(std::uint32_t),
-                                   mesh.indices.size() / 3);
+        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, mesh.vertices.data(), 0,
+                                   3 * sizeof(float), (mesh.vertices.size() - 4) / 3);
+        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(), 0,
+                                   3 * sizeof(std::uint32_t), mesh.indices.size() / 3);
         rtcCommitGeometry(g);
         rtcAttachGeometryByID(scene, g, id);
         rtcReleaseGeometry(g);
@@ -120,8 +118,8 @@ Result<RayScene> RayScene::build(World& world) {
     std::vector<Instance> instances;
     world.view<Mesh, WorldTransform>().each([&](Entity e, Mesh& mesh, WorldTransform& wt) {
         if (!wt.finite || mesh.data == nullptr || mesh.data->indices.empty()) return;
-        instances.push_back({meshName(world, e, *mesh.data), wt.worldFromLocal, mesh.data,
-                             mesh.castShadows, mesh.receiveShadows});
+        instances.push_back(
+            {meshName(world, e, *mesh.data), wt.worldFromLocal, mesh.data, mesh.castShadows, mesh.receiveShadows});
     });
     // The view walks its pool back to front; keep a stable, readable order (creation order).
     std::reverse(instances.begin(), instances.end());
@@ -181,8 +179,7 @@ Result<RayScene> RayScene::build(World& world) {
     return RayScene(std::move(impl));
 }
 
-std::optional<SurfaceHit> RayScene::intersect(const glm::dvec3& wsOrigin,
-                                              const glm::dvec3& direction, double tnear,
+std::optional<SurfaceHit> RayScene::intersect(const glm::dvec3& wsOrigin, const glm::dvec3& direction, double tnear,
                                               double tfar) const {
     const Impl& m = *impl_;
     const glm::vec3 o = m.local(wsOrigin);
@@ -215,8 +212,7 @@ std::optional<SurfaceHit> RayScene::intersect(const glm::dvec3& wsOrigin,
     return hit;
 }
 
-bool RayScene::occluded(const glm::dvec3& wsOrigin, const glm::dvec3& unitDirection, double tnear,
-                        double tfar) const {
+bool RayScene::occluded(const glm::dvec3& wsOrigin, const glm::dvec3& unitDirection, double tnear, double tfar) const {
     const Impl& m = *impl_;
     const glm::vec3 o = m.local(wsOrigin);
     const glm::vec3 d(unitDirection);
@@ -237,14 +233,8 @@ bool RayScene::occluded(const glm::dvec3& wsOrigin, const glm::dvec3& unitDirect
     return ray.tfar < 0.0f;
 }
 
-double RayScene::epsilon() const {
-    return impl_->epsilon;
-}
-std::size_t RayScene::triangleCount() const {
-    return impl_->triangles;
-}
-std::size_t RayScene::casterTriangleCount() const {
-    return impl_->casterTriangles;
-}
+double RayScene::epsilon() const { return impl_->epsilon; }
+std::size_t RayScene::triangleCount() const { return impl_->triangles; }
+std::size_t RayScene::casterTriangleCount() const { return impl_->casterTriangles; }
 
 }  // namespace shadow::reference

@@ -44,14 +44,13 @@ public:
     ~RayScene();
 
     /// The nearest surface of any mesh on origin + t·direction, t in [tnear, tfar].
-    [[nodiscard]] std::optional<SurfaceHit> intersect(const glm::dvec3& wsOrigin,
-                                                      const glm::dvec3& direction, double tnear,
-                                                      double tfar) const;
+    [[nodiscard]] std::optional<SurfaceHit> intersect(const glm::dvec3& wsOrigin, const glm::dvec3& direction,
+                                                      double tnear, double tfar) const;
 
     /// True when a caster lies on origin + t·direction, t in [tnear, tfar] (unit direction:
     /// t in metres).
-    [[nodiscard]] bool occluded(const glm::dvec3& wsOrigin, const glm::dvec3& unitDirection,
-                                double tnear, double tfar) const;
+    [[nodiscard]] bool occluded(const glm::dvec3& wsOrigin, const glm::dvec3& unitDirection, double tnear,
+                                double tfar) const;
 
     /// Offset of shadow-ray origins from the surface (m); see the file comment.
     [[nodiscard]] double epsilon() const;

@@ -36,16 +36,15 @@ struct Estimate {
 };
 
 /// The fraction of `rays` shadow rays from `point` to the emitter that no caster blocks.
-Estimate estimateVisibility(const RayScene& scene, const Emitter& emitter,
-                            const ShadingPoint& point, int rays, std::uint32_t pattern) {
+Estimate estimateVisibility(const RayScene& scene, const Emitter& emitter, const ShadingPoint& point, int rays,
+                            std::uint32_t pattern) {
     const double eps = scene.epsilon();
     int unoccluded = 0;
     for (int k = 0; k < rays; ++k) {
-        const glm::dvec2 disk =
-            rays == 1
-                ? glm::dvec2(0.0)
-                : concentricDisk(multiJitteredSample(static_cast<std::uint32_t>(k),
-                                                     static_cast<std::uint32_t>(rays), pattern));
+        const glm::dvec2 disk = rays == 1
+                                    ? glm::dvec2(0.0)
+                                    : concentricDisk(multiJitteredSample(static_cast<std::uint32_t>(k),
+                                                                         static_cast<std::uint32_t>(rays), pattern));
         const ShadowRayAim aim = aimAtEmitter(emitter, point.wsPosition, disk);
         if (!(aim.distance > 0.0)) {  // on or inside the emitter: nothing in between
             ++unoccluded;
@@ -90,17 +89,15 @@ Status validate(const ReferenceOptions& o) {
     if (const ImageF* p = o.wsPositions; p != nullptr) {
         if (p->channels != 4) return Error{"positions: expected 4 channels (R, G, B, A)"};
         if (p->width != o.width || p->height != o.height) {
-            return Error{"positions: image is " + std::to_string(p->width) + "x" +
-                         std::to_string(p->height) + ", expected " + std::to_string(o.width) + "x" +
-                         std::to_string(o.height)};
+            return Error{"positions: image is " + std::to_string(p->width) + "x" + std::to_string(p->height) +
+                         ", expected " + std::to_string(o.width) + "x" + std::to_string(o.height)};
         }
         for (int y = 0; y < p->height; ++y) {
             for (int x = 0; x < p->width; ++x) {
                 if (!(p->at(x, y, 3) >= 0.5f)) continue;
                 for (int c = 0; c < 3; ++c) {
                     if (!std::isfinite(p->at(x, y, c))) {
-                        return Error{"positions: pixel (" + std::to_string(x) + ", " +
-                                     std::to_string(y) +
+                        return Error{"positions: pixel (" + std::to_string(x) + ", " + std::to_string(y) +
                                      ") is covered but its position is not finite"};
                     }
                 }
@@ -139,8 +136,7 @@ private:
     ShadingPoint fromCamera(int x, int y) const {
         const CameraRay ray = cameraRay(camera_, options_.width, options_.height, x + 0.5, y + 0.5);
         ShadingPoint p;
-        const std::optional<SurfaceHit> hit =
-            scene_.intersect(ray.wsOrigin, ray.direction, ray.tnear, ray.tfar);
+        const std::optional<SurfaceHit> hit = scene_.intersect(ray.wsOrigin, ray.direction, ray.tnear, ray.tfar);
         if (!hit) return p;
         p.covered = true;
         p.receives = hit->receivesShadows;
@@ -161,8 +157,7 @@ private:
         const glm::dvec3 toPoint = p.wsPosition - camera_.wsPosition;
         if (glm::length(toPoint) > 0.0) {
             const std::optional<SurfaceHit> hit =
-                scene_.intersect(camera_.wsPosition, toPoint, 1.0 - kSurfaceSearchWindow,
-                                 1.0 + kSurfaceSearchWindow);
+                scene_.intersect(camera_.wsPosition, toPoint, 1.0 - kSurfaceSearchWindow, 1.0 + kSurfaceSearchWindow);
             if (hit) {
                 p.receives = hit->receivesShadows;
                 p.hasNormal = true;
@@ -200,11 +195,9 @@ private:
     }
 
     void tracePixel(int x, int y) {
-        const ShadingPoint p =
-            options_.wsPositions != nullptr ? fromPositions(x, y) : fromCamera(x, y);
+        const ShadingPoint p = options_.wsPositions != nullptr ? fromPositions(x, y) : fromCamera(x, y);
         if (p.covered) {
-            for (int c = 0; c < 3; ++c)
-                out_.wsPosition.at(x, y, c) = static_cast<float>(p.wsPosition[c]);
+            for (int c = 0; c < 3; ++c) out_.wsPosition.at(x, y, c) = static_cast<float>(p.wsPosition[c]);
             out_.wsPosition.at(x, y, 3) = 1.0f;
         }
         if (!p.covered || !p.receives) return;  // images are initialised to V = 1, SE = 0
@@ -214,8 +207,8 @@ private:
             if (!emitters_[i]) continue;
             const Emitter& e = *emitters_[i];
             const int rays = e.isPointLike() ? 1 : options_.samples;
-            const Estimate v = estimateVisibility(
-                scene_, e, p, rays, patternId(options_.seed, pixel, static_cast<std::uint32_t>(i)));
+            const Estimate v =
+                estimateVisibility(scene_, e, p, rays, patternId(options_.seed, pixel, static_cast<std::uint32_t>(i)));
             out_.visibility[i].at(x, y, 0) = static_cast<float>(v.visibility);
             out_.standardError[i].at(x, y, 0) = static_cast<float>(v.standardError);
             out_.lit[i].at(x, y, 0) = lightReaches(i, p) ? 1.0f : 0.0f;
@@ -285,8 +278,7 @@ CameraRay cameraRay(const CameraView& camera, int width, int height, double px, 
     return ray;
 }
 
-Result<ReferenceResult> traceVisibility(Scene& scene, const CameraView& camera,
-                                        const ReferenceOptions& options) {
+Result<ReferenceResult> traceVisibility(Scene& scene, const CameraView& camera, const ReferenceOptions& options) {
     if (Status s = validate(options); !s) return s.error();
 
     const auto buildStart = std::chrono::steady_clock::now();
@@ -304,9 +296,7 @@ Result<ReferenceResult> traceVisibility(Scene& scene, const CameraView& camera,
         LightReference& report = out.lights.emplace_back();
         report.missing = !emitters.back();
         report.sizeClamped = emitters.back() && emitters.back()->clamped;
-        report.raysPerPixel = !emitters.back()                 ? 0
-                              : emitters.back()->isPointLike() ? 1
-                                                               : options.samples;
+        report.raysPerPixel = !emitters.back() ? 0 : emitters.back()->isPointLike() ? 1 : options.samples;
     }
     out.wsPosition = makeImage(options.width, options.height, 4);
     for (std::size_t i = 0; i < emitters.size(); ++i) {
@@ -317,8 +307,7 @@ Result<ReferenceResult> traceVisibility(Scene& scene, const CameraView& camera,
         out.lit.push_back(makeImage(options.width, options.height, 1));  // 0 off receivers
     }
 
-    int threads = options.threads > 0 ? options.threads
-                                      : static_cast<int>(std::thread::hardware_concurrency());
+    int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
     threads = std::clamp(threads, 1, options.height);
     out.threads = threads;
 

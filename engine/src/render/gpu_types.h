@@ -11,7 +11,9 @@
 namespace shadow::gpu {
 
 #define SG_STRUCT(name) struct name {
-#define SG_END_STRUCT };
+#define SG_END_STRUCT \
+    }                 \
+    ;
 #define SG_VEC3 alignas(16) glm::vec3
 #define SG_MAT4 alignas(16) glm::mat4
 #define SG_FLOAT float

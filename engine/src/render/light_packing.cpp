@@ -151,7 +151,8 @@ void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const Scre
         gpu::GpuLight& g = pass->lights[static_cast<std::size_t>(slot)];
         g = packLight(plan, wsCamera);
         const int firstLayer = slot * SG_MAX_LAYERS_PER_LIGHT;
-        if (plan.hasMap()) packShadow(plan, wsCamera, firstLayer, g, &pass->layers[static_cast<std::size_t>(firstLayer)]);
+        if (plan.hasMap())
+            packShadow(plan, wsCamera, firstLayer, g, &pass->layers[static_cast<std::size_t>(firstLayer)]);
         pass->sceneLight[static_cast<std::size_t>(slot)] = plan.sceneIndex;
         pass->variant.type[static_cast<std::size_t>(slot)] = static_cast<std::uint8_t>(g.type);
         pass->variant.technique[static_cast<std::size_t>(slot)] = static_cast<std::uint8_t>(g.technique);

@@ -16,7 +16,7 @@ namespace shadow::render {
 /// The light configuration a lit program is specialised for: per slot the light type and the
 /// technique its pixels use and its filter kernel (compile-time constants in the shader), plus what it writes.
 struct LitVariant {
-    int lights = 0;  ///< slots in use
+    int lights = 0;                                                ///< slots in use
     std::array<std::uint8_t, SG_MAX_LIGHTS_PER_PASS> type{};       ///< SG_LIGHT_*
     std::array<std::uint8_t, SG_MAX_LIGHTS_PER_PASS> technique{};  ///< SG_TECH_*
     std::array<std::uint8_t, SG_MAX_LIGHTS_PER_PASS> kernel{};     ///< SG_KERNEL_*

@@ -42,9 +42,7 @@ std::vector<glm::vec2> poissonDisk(int count) {
     return points;
 }
 
-const char* typeLabel(int type) {
-    return lightTypeName(static_cast<LightType>(type));
-}
+const char* typeLabel(int type) { return lightTypeName(static_cast<LightType>(type)); }
 
 MeshUniforms meshUniforms(GLuint program) {
     MeshUniforms m;

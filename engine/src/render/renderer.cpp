@@ -157,14 +157,16 @@ void Renderer::Impl::bindShadowMaps(const PassLights& pass, const ShadowSystem& 
         gl.BindSampler(SG_UNIT_SHADOW_COMPARE + slot, compareSampler.get());
         gl.BindTextureUnit(SG_UNIT_SHADOW_DEPTH + slot, texture);
         gl.BindSampler(SG_UNIT_SHADOW_DEPTH + slot, depthSampler.get());
-        gl.BindTextureUnit(SG_UNIT_SHADOW_MINMAX + slot, light >= 0 ? shadows.minMaxOf(static_cast<std::size_t>(light)) : 0u);
+        gl.BindTextureUnit(SG_UNIT_SHADOW_MINMAX + slot,
+                           light >= 0 ? shadows.minMaxOf(static_cast<std::size_t>(light)) : 0u);
         gl.BindSampler(SG_UNIT_SHADOW_MINMAX + slot, 0);  // nearest, per level: the texture's own
     }
 }
 
 template <typename PerMesh>
-void Renderer::Impl::drawMeshes(World& world, const CameraView& cam, GLuint program, const render::MeshUniforms& uniforms,
-                                const DAabb* reach, PerMesh&& perMesh, int& draws) {
+void Renderer::Impl::drawMeshes(World& world, const CameraView& cam, GLuint program,
+                                const render::MeshUniforms& uniforms, const DAabb* reach, PerMesh&& perMesh,
+                                int& draws) {
     bool culling = false;
     gl.Disable(GL_CULL_FACE);
     world.view<Mesh, WorldTransform, Material>().each([&](Entity e, Mesh& mesh, WorldTransform& wt, Material& m) {
@@ -210,7 +212,8 @@ void Renderer::Impl::depthPrepass(World& world, const CameraView& cam, FrameStat
     gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl.DepthMask(GL_TRUE);
     gl.DepthFunc(GL_LESS);
-    drawMeshes(world, cam, id, prepass->mesh, nullptr, [](const Mesh&, const Material&) {}, stats.mainDrawCalls);
+    drawMeshes(
+        world, cam, id, prepass->mesh, nullptr, [](const Mesh&, const Material&) {}, stats.mainDrawCalls);
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
@@ -265,8 +268,8 @@ Renderer::~Renderer() = default;
 
 MeshCache& Renderer::meshes() { return impl_->meshes; }
 
-void Renderer::render(World& world, const CameraView& camera, const ShadowSystem& shadows,
-                      const RenderOptions& options, FrameStats& stats) {
+void Renderer::render(World& world, const CameraView& camera, const ShadowSystem& shadows, const RenderOptions& options,
+                      FrameStats& stats) {
     Impl& r = *impl_;
     r.lightCount = shadows.frame().lights.size();
     const render::ScreenView view{cameraClipFromWorld(camera), options.width, options.height};
@@ -293,7 +296,8 @@ void Renderer::render(World& world, const CameraView& camera, const ShadowSystem
     if (r.passes.size() > 1) {
         // Timed as one: a fence per small pass would cost more than many of them.
         gpu::ScopedPass timed(timer, "Main/LitMore");
-        for (std::size_t pass = 1; pass < r.passes.size(); ++pass) r.litPass(world, camera, pass, shadows, options, stats);
+        for (std::size_t pass = 1; pass < r.passes.size(); ++pass)
+            r.litPass(world, camera, pass, shadows, options, stats);
     }
     stats.mainPasses += static_cast<int>(r.passes.size());
     gl.DepthMask(GL_TRUE);

@@ -41,15 +41,15 @@ glm::dquat slerpShortest(glm::dquat a, glm::dquat b, double u) {
         cosAngle = -cosAngle;
     }
     if (cosAngle > 0.9995) {
-        return glm::normalize(glm::dquat(glm::mix(a.w, b.w, u), glm::mix(a.x, b.x, u),
-                                         glm::mix(a.y, b.y, u), glm::mix(a.z, b.z, u)));
+        return glm::normalize(
+            glm::dquat(glm::mix(a.w, b.w, u), glm::mix(a.x, b.x, u), glm::mix(a.y, b.y, u), glm::mix(a.z, b.z, u)));
     }
     const double angle = std::acos(cosAngle);
     const double s = std::sin(angle);
     const double wa = std::sin((1.0 - u) * angle) / s;
     const double wb = std::sin(u * angle) / s;
-    return glm::normalize(glm::dquat(wa * a.w + wb * b.w, wa * a.x + wb * b.x, wa * a.y + wb * b.y,
-                                     wa * a.z + wb * b.z));
+    return glm::normalize(
+        glm::dquat(wa * a.w + wb * b.w, wa * a.x + wb * b.x, wa * a.y + wb * b.y, wa * a.z + wb * b.z));
 }
 
 /// Where the clip time falls: key `k` and the fraction `u` in [0, 1] towards key `k + 1`.
@@ -65,8 +65,8 @@ KeySpan locate(const std::vector<float>& times, double t) {
     if (!(t > static_cast<double>(times.front()))) return {0, 0.0, 0.0};
     if (t >= static_cast<double>(times.back())) return {n - 1, 0.0, 0.0};
     // First key strictly after t; it exists and is not the first, by the two tests above.
-    const auto next = std::upper_bound(times.begin(), times.end(), t,
-                                       [](double value, float key) { return value < key; });
+    const auto next =
+        std::upper_bound(times.begin(), times.end(), t, [](double value, float key) { return value < key; });
     const std::size_t k = static_cast<std::size_t>(next - times.begin()) - 1;
     if (k + 1 >= n) return {n - 1, 0.0, 0.0};  // unsorted keys built in code
     const double t0 = times[k];
@@ -84,8 +84,7 @@ glm::dvec4 hermite(const std::vector<glm::vec4>& v, const KeySpan& s) {
     const glm::dvec4 p1(v[3 * (s.k + 1) + 1]);
     const glm::dvec4 m1 = glm::dvec4(v[3 * (s.k + 1)]) * s.dt;
     const double u = s.u, u2 = u * u, u3 = u2 * u;
-    return (2.0 * u3 - 3.0 * u2 + 1.0) * p0 + (u3 - 2.0 * u2 + u) * m0 +
-           (-2.0 * u3 + 3.0 * u2) * p1 + (u3 - u2) * m1;
+    return (2.0 * u3 - 3.0 * u2 + 1.0) * p0 + (u3 - 2.0 * u2 + u) * m0 + (-2.0 * u3 + 3.0 * u2) * p1 + (u3 - u2) * m1;
 }
 
 /// Whether `values` has the count the interpolation needs for `times`.
@@ -99,12 +98,9 @@ bool wellFormed(const AnimationChannel& c) {
 glm::dvec4 sample(const AnimationChannel& c, double t) {
     const KeySpan s = locate(c.times, t);
     switch (c.interpolation) {
-        case Interpolation::Step:
-            return glm::dvec4(c.values[s.k]);
-        case Interpolation::CubicSpline:
-            return hermite(c.values, s);
-        case Interpolation::Linear:
-            break;
+        case Interpolation::Step: return glm::dvec4(c.values[s.k]);
+        case Interpolation::CubicSpline: return hermite(c.values, s);
+        case Interpolation::Linear: break;
     }
     const glm::dvec4 a(c.values[s.k]);
     if (s.dt == 0.0) return a;
@@ -119,15 +115,9 @@ void applyChannel(const AnimationChannel& c, double t, Transform& transform) {
     const glm::dvec4 v = sample(c, t);
     if (!isFinite(v)) return;
     switch (c.path) {
-        case Path::Translation:
-            transform.translation = glm::dvec3(v);
-            break;
-        case Path::Rotation:
-            transform.rotation = toUnitQuat(v);
-            break;
-        case Path::Scale:
-            transform.scale = glm::dvec3(v);
-            break;
+        case Path::Translation: transform.translation = glm::dvec3(v); break;
+        case Path::Rotation: transform.rotation = toUnitQuat(v); break;
+        case Path::Scale: transform.scale = glm::dvec3(v); break;
     }
 }
 
@@ -138,17 +128,14 @@ double clipTime(double t, double duration) {
     return std::fmod(t, duration);
 }
 
-bool isFinite(const glm::dvec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
+bool isFinite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 void applyMotion(const ProceduralMotion& m, double t, Transform& transform) {
     using Kind = ProceduralMotion::Kind;
     const double angle = m.speed * t + m.phase;
     switch (m.kind) {
         case Kind::Orbit: {
-            const glm::dvec3 p =
-                m.center + m.radius * glm::dvec3(std::cos(angle), 0.0, std::sin(angle));
+            const glm::dvec3 p = m.center + m.radius * glm::dvec3(std::cos(angle), 0.0, std::sin(angle));
             if (isFinite(p)) transform.translation = p;
             break;
         }
@@ -175,13 +162,10 @@ void animate(World& world, double t) {
     if (!std::isfinite(t) || t < 0.0) t = 0.0;
     world.view<Transform, Animation>().each([t](Entity, Transform& transform, Animation& anim) {
         const double local = clipTime(t, anim.duration);
-        for (const AnimationChannel& channel : anim.channels)
-            applyChannel(channel, local, transform);
+        for (const AnimationChannel& channel : anim.channels) applyChannel(channel, local, transform);
     });
     world.view<Transform, ProceduralMotion>().each(
-        [t](Entity, Transform& transform, ProceduralMotion& motion) {
-            applyMotion(motion, t, transform);
-        });
+        [t](Entity, Transform& transform, ProceduralMotion& motion) { applyMotion(motion, t, transform); });
 }
 
 }  // namespace shadow

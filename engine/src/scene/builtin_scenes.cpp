@@ -55,8 +55,8 @@ Scene makeDefault() {
     addMeshInstance(w, "table top", unitBox, plate, solid(0.35f, 0.55f, 0.8f));
 
     // Moving casters.
-    const Entity orbiter = addMeshInstance(w, "orbiting box", makeBoxMesh(glm::vec3(0.4f)), at(0, 0.4, 0),
-                                           solid(0.85f, 0.25f, 0.25f));
+    const Entity orbiter =
+        addMeshInstance(w, "orbiting box", makeBoxMesh(glm::vec3(0.4f)), at(0, 0.4, 0), solid(0.85f, 0.25f, 0.25f));
     ProceduralMotion orbit;
     orbit.kind = ProceduralMotion::Kind::Orbit;
     orbit.center = {0.0, 0.4, 0.0};

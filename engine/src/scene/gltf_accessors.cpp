@@ -29,14 +29,11 @@ struct CheckedSpan {
     std::string name;  ///< `<where>: accessors[i]`, for messages about elements
 };
 
-std::string indexed(const char* array, std::size_t i) {
-    return std::string(array) + "[" + std::to_string(i) + "]";
-}
+std::string indexed(const char* array, std::size_t i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
 
 /// Whether `count` elements of `elementSize` bytes, `stride` apart, starting `offset` bytes in,
 /// fit in `length` bytes. Written to be free of overflow for any input.
-bool fits(std::size_t offset, std::size_t stride, std::size_t count, std::size_t elementSize,
-          std::size_t length) {
+bool fits(std::size_t offset, std::size_t stride, std::size_t count, std::size_t elementSize, std::size_t length) {
     if (count == 0) return offset <= length;
     if (offset > length || elementSize > length - offset) return false;
     return count - 1 <= (length - offset - elementSize) / stride;
@@ -44,8 +41,8 @@ bool fits(std::size_t offset, std::size_t stride, std::size_t count, std::size_t
 
 Status checkFormat(const tinygltf::Accessor& a, const Format& format, const std::string& name) {
     const bool typeOk = a.type == format.type;
-    const bool componentOk = std::find(format.componentTypes.begin(), format.componentTypes.end(),
-                                       a.componentType) != format.componentTypes.end();
+    const bool componentOk = std::find(format.componentTypes.begin(), format.componentTypes.end(), a.componentType) !=
+                             format.componentTypes.end();
     if (!typeOk || !componentOk) {
         return elementError(name, std::string("must be ") + format.description);
     }
@@ -80,13 +77,13 @@ Result<CheckedSpan> checkedSpan(const tinygltf::Model& model, int index, const F
     }
     CheckedSpan span;
     span.components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
-    const auto elementSize = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(
-                                 static_cast<std::uint32_t>(a.componentType))) *
-                             static_cast<std::size_t>(span.components);
+    const auto elementSize =
+        static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType))) *
+        static_cast<std::size_t>(span.components);
     span.stride = view.byteStride != 0 ? view.byteStride : elementSize;
     if (span.stride < elementSize) {
-        return elementError(name, "byteStride of " + indexed("bufferViews", viewIndex) +
-                                      " is smaller than one element");
+        return elementError(name,
+                            "byteStride of " + indexed("bufferViews", viewIndex) + " is smaller than one element");
     }
     if (!fits(a.byteOffset, span.stride, a.count, elementSize, view.byteLength)) {
         return elementError(name, "exceeds " + indexed("bufferViews", viewIndex));
@@ -110,32 +107,26 @@ T load(const unsigned char* p) {
 /// defines for normalized accessors.
 float decodeComponent(const unsigned char* p, int componentType) {
     switch (componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT:
-            return load<float>(p);
-        case TINYGLTF_COMPONENT_TYPE_BYTE:
-            return std::max(static_cast<float>(load<std::int8_t>(p)) / 127.0f, -1.0f);
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-            return static_cast<float>(load<std::uint8_t>(p)) / 255.0f;
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(p);
+        case TINYGLTF_COMPONENT_TYPE_BYTE: return std::max(static_cast<float>(load<std::int8_t>(p)) / 127.0f, -1.0f);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return static_cast<float>(load<std::uint8_t>(p)) / 255.0f;
         case TINYGLTF_COMPONENT_TYPE_SHORT:
             return std::max(static_cast<float>(load<std::int16_t>(p)) / 32767.0f, -1.0f);
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-            return static_cast<float>(load<std::uint16_t>(p)) / 65535.0f;
-        default:
-            return 0.0f;  // excluded by the format check
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return static_cast<float>(load<std::uint16_t>(p)) / 65535.0f;
+        default: return 0.0f;  // excluded by the format check
     }
 }
 
 /// Decodes every element of `span` into `N`-component vectors and checks they are finite.
 template <typename Vec, int N>
 Result<std::vector<Vec>> decodeFinite(const CheckedSpan& span) {
-    const std::size_t componentSize = static_cast<std::size_t>(
-        tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(span.componentType)));
+    const std::size_t componentSize =
+        static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(span.componentType)));
     std::vector<Vec> out(span.count);
     for (std::size_t i = 0; i < span.count; ++i) {
         const unsigned char* element = span.data + i * span.stride;
         for (int c = 0; c < N; ++c) {
-            const float v = decodeComponent(element + static_cast<std::size_t>(c) * componentSize,
-                                            span.componentType);
+            const float v = decodeComponent(element + static_cast<std::size_t>(c) * componentSize, span.componentType);
             if (!std::isfinite(v)) {
                 return elementError(span.name, "element " + std::to_string(i) + " not finite");
             }
@@ -147,16 +138,14 @@ Result<std::vector<Vec>> decodeFinite(const CheckedSpan& span) {
 
 }  // namespace
 
-Result<std::vector<glm::vec3>> readVec3(const tinygltf::Model& model, int accessor,
-                                        const std::string& where) {
+Result<std::vector<glm::vec3>> readVec3(const tinygltf::Model& model, int accessor, const std::string& where) {
     const Format format{{TINYGLTF_COMPONENT_TYPE_FLOAT}, TINYGLTF_TYPE_VEC3, "FLOAT VEC3"};
     auto span = checkedSpan(model, accessor, format, where);
     if (!span) return span.error();
     return decodeFinite<glm::vec3, 3>(*span);
 }
 
-Result<std::vector<float>> readScalars(const tinygltf::Model& model, int accessor,
-                                       const std::string& where) {
+Result<std::vector<float>> readScalars(const tinygltf::Model& model, int accessor, const std::string& where) {
     const Format format{{TINYGLTF_COMPONENT_TYPE_FLOAT}, TINYGLTF_TYPE_SCALAR, "FLOAT SCALAR"};
     auto span = checkedSpan(model, accessor, format, where);
     if (!span) return span.error();
@@ -167,13 +156,12 @@ Result<std::vector<float>> readScalars(const tinygltf::Model& model, int accesso
     return out;
 }
 
-Result<std::vector<glm::vec4>> readRotations(const tinygltf::Model& model, int accessor,
-                                             const std::string& where) {
-    const Format format{{TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
-                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
-                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
-                        TINYGLTF_TYPE_VEC4,
-                        "FLOAT VEC4 or a normalized 8/16-bit integer VEC4"};
+Result<std::vector<glm::vec4>> readRotations(const tinygltf::Model& model, int accessor, const std::string& where) {
+    const Format format{
+        {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+         TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+        TINYGLTF_TYPE_VEC4,
+        "FLOAT VEC4 or a normalized 8/16-bit integer VEC4"};
     auto span = checkedSpan(model, accessor, format, where);
     if (!span) return span.error();
     if (span->componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !span->normalized) {
@@ -182,27 +170,24 @@ Result<std::vector<glm::vec4>> readRotations(const tinygltf::Model& model, int a
     return decodeFinite<glm::vec4, 4>(*span);
 }
 
-Result<std::vector<std::uint32_t>> readIndices(const tinygltf::Model& model, int accessor,
-                                               std::size_t vertexCount, const std::string& where) {
-    const Format format{
-        {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-         TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
-        TINYGLTF_TYPE_SCALAR,
-        "UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT SCALAR"};
+Result<std::vector<std::uint32_t>> readIndices(const tinygltf::Model& model, int accessor, std::size_t vertexCount,
+                                               const std::string& where) {
+    const Format format{{TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
+                        TINYGLTF_TYPE_SCALAR,
+                        "UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT SCALAR"};
     auto span = checkedSpan(model, accessor, format, where);
     if (!span) return span.error();
     std::vector<std::uint32_t> out(span->count);
     for (std::size_t i = 0; i < span->count; ++i) {
         const unsigned char* p = span->data + i * span->stride;
-        const std::uint32_t index = span->componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE
-                                        ? load<std::uint8_t>(p)
+        const std::uint32_t index = span->componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ? load<std::uint8_t>(p)
                                     : span->componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
                                         ? load<std::uint16_t>(p)
                                         : load<std::uint32_t>(p);
         if (index >= vertexCount) {
-            return elementError(span->name, "index " + std::to_string(index) + " at position " +
-                                                std::to_string(i) + " out of range (" +
-                                                std::to_string(vertexCount) + " vertices)");
+            return elementError(span->name, "index " + std::to_string(index) + " at position " + std::to_string(i) +
+                                                " out of range (" + std::to_string(vertexCount) + " vertices)");
         }
         out[i] = index;
     }

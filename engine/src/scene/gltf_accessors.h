@@ -27,12 +27,11 @@ namespace shadow::gltf {
 
 /// VEC4 rotation keys: float, or normalized (u)int8/(u)int16 as the glTF spec allows for
 /// rotation outputs. All finite; not normalised (the animation system does that).
-[[nodiscard]] Result<std::vector<glm::vec4>> readRotations(const tinygltf::Model& model,
-                                                           int accessor, const std::string& where);
+[[nodiscard]] Result<std::vector<glm::vec4>> readRotations(const tinygltf::Model& model, int accessor,
+                                                           const std::string& where);
 
 /// Triangle indices: UNSIGNED_BYTE/SHORT/INT SCALAR, every value < `vertexCount`.
-[[nodiscard]] Result<std::vector<std::uint32_t>> readIndices(const tinygltf::Model& model,
-                                                             int accessor, std::size_t vertexCount,
-                                                             const std::string& where);
+[[nodiscard]] Result<std::vector<std::uint32_t>> readIndices(const tinygltf::Model& model, int accessor,
+                                                             std::size_t vertexCount, const std::string& where);
 
 }  // namespace shadow::gltf

@@ -12,9 +12,7 @@ namespace {
 using Interpolation = AnimationChannel::Interpolation;
 using Path = AnimationChannel::Path;
 
-std::string indexed(const std::string& array, std::size_t i) {
-    return array + "[" + std::to_string(i) + "]";
-}
+std::string indexed(const std::string& array, std::size_t i) { return array + "[" + std::to_string(i) + "]"; }
 
 std::optional<Path> parsePath(const std::string& path) {
     if (path == "translation") return Path::Translation;
@@ -30,15 +28,13 @@ Result<Interpolation> parseInterpolation(const std::string& name, const std::str
     return elementError(where + ".interpolation", "unknown interpolation \"" + name + "\"");
 }
 
-Result<std::vector<float>> readKeyTimes(const tinygltf::Model& model, int accessor,
-                                        const std::string& where) {
+Result<std::vector<float>> readKeyTimes(const tinygltf::Model& model, int accessor, const std::string& where) {
     auto times = readScalars(model, accessor, where);
     if (!times) return times.error();
     if (times->empty()) return elementError(where, "has no keys");
     for (std::size_t k = 1; k < times->size(); ++k) {
         if (!((*times)[k] > (*times)[k - 1])) {
-            return elementError(where,
-                                "key times not strictly increasing at key " + std::to_string(k));
+            return elementError(where, "key times not strictly increasing at key " + std::to_string(k));
         }
     }
     return times;
@@ -55,9 +51,8 @@ Result<std::vector<glm::vec4>> readKeyValues(const tinygltf::Model& model, int a
     return out;
 }
 
-Result<AnimationChannel> importSampler(const tinygltf::Model& model,
-                                       const tinygltf::AnimationSampler& sampler, Path path,
-                                       const std::string& where) {
+Result<AnimationChannel> importSampler(const tinygltf::Model& model, const tinygltf::AnimationSampler& sampler,
+                                       Path path, const std::string& where) {
     AnimationChannel channel;
     channel.path = path;
     auto interpolation = parseInterpolation(sampler.interpolation, where);
@@ -71,10 +66,9 @@ Result<AnimationChannel> importSampler(const tinygltf::Model& model,
     channel.values = std::move(*values);
     const std::size_t perKey = channel.interpolation == Interpolation::CubicSpline ? 3 : 1;
     if (channel.values.size() != perKey * channel.times.size()) {
-        return elementError(where + ".output",
-                            "has " + std::to_string(channel.values.size()) + " values for " +
-                                std::to_string(channel.times.size()) + " keys (expected " +
-                                std::to_string(perKey * channel.times.size()) + ")");
+        return elementError(where + ".output", "has " + std::to_string(channel.values.size()) + " values for " +
+                                                   std::to_string(channel.times.size()) + " keys (expected " +
+                                                   std::to_string(perKey * channel.times.size()) + ")");
     }
     return channel;
 }
@@ -85,8 +79,8 @@ struct TargetedChannel {
 };
 
 /// The usable channels of `animations[index]`; `duration` receives its last key time.
-Result<std::vector<TargetedChannel>> importAnimation(const tinygltf::Model& model,
-                                                     std::size_t index, double& duration) {
+Result<std::vector<TargetedChannel>> importAnimation(const tinygltf::Model& model, std::size_t index,
+                                                     double& duration) {
     const tinygltf::Animation& animation = model.animations[index];
     const std::string where = indexed("animations", index);
     std::vector<TargetedChannel> out;
@@ -95,13 +89,11 @@ Result<std::vector<TargetedChannel>> importAnimation(const tinygltf::Model& mode
         const std::string channelWhere = where + "." + indexed("channels", c);
         const std::optional<Path> path = parsePath(channel.target_path);
         if (!path) continue;
-        if (channel.sampler < 0 ||
-            static_cast<std::size_t>(channel.sampler) >= animation.samplers.size()) {
+        if (channel.sampler < 0 || static_cast<std::size_t>(channel.sampler) >= animation.samplers.size()) {
             return elementError(channelWhere + ".sampler",
                                 "sampler " + std::to_string(channel.sampler) + " does not exist");
         }
-        if (channel.target_node < 0 ||
-            static_cast<std::size_t>(channel.target_node) >= model.nodes.size()) {
+        if (channel.target_node < 0 || static_cast<std::size_t>(channel.target_node) >= model.nodes.size()) {
             return elementError(channelWhere + ".target.node",
                                 "node " + std::to_string(channel.target_node) + " does not exist");
         }

@@ -46,23 +46,18 @@ namespace {
 
 using gltf::elementError;
 
-std::string indexed(const std::string& array, std::size_t i) {
-    return array + "[" + std::to_string(i) + "]";
-}
+std::string indexed(const std::string& array, std::size_t i) { return array + "[" + std::to_string(i) + "]"; }
 
 // ---- reading the file -------------------------------------------------------------------
 
 /// The engine uses no textures: accept every image without decoding it.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-               const unsigned char*, int, void*) {
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
     return true;
 }
 
 /// tinygltf's default expands URIs with wordexp(3), a shell-like expansion; URIs are file
 /// names, not shell words, so take them literally.
-std::string literalPath(const std::string& path, void*) {
-    return path;
-}
+std::string literalPath(const std::string& path, void*) { return path; }
 
 /// tinygltf messages end in newlines and may hold several lines; make them one line.
 std::string oneLine(std::string text) {
@@ -84,12 +79,9 @@ std::string lowerExtension(const std::string& path) {
 }
 
 /// In-memory input reads no file: an external buffer URI is an error, not a disk access.
-bool noFileExists(const std::string&, void*) {
-    return false;
-}
+bool noFileExists(const std::string&, void*) { return false; }
 bool noFileRead(std::vector<unsigned char>*, std::string* err, const std::string& path, void*) {
-    if (err != nullptr)
-        *err += "external file \"" + path + "\" is not read when loading from memory\n";
+    if (err != nullptr) *err += "external file \"" + path + "\" is not read when loading from memory\n";
     return false;
 }
 
@@ -101,11 +93,10 @@ Result<tinygltf::Model> parseModel(const std::string& name, bool filesAllowed, L
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&skipImage, nullptr);
     if (filesAllowed) {
-        loader.SetFsCallbacks({&tinygltf::FileExists, &literalPath, &tinygltf::ReadWholeFile,
-                               &tinygltf::WriteWholeFile, nullptr});
-    } else {
         loader.SetFsCallbacks(
-            {&noFileExists, &literalPath, &noFileRead, &tinygltf::WriteWholeFile, nullptr});
+            {&tinygltf::FileExists, &literalPath, &tinygltf::ReadWholeFile, &tinygltf::WriteWholeFile, nullptr});
+    } else {
+        loader.SetFsCallbacks({&noFileExists, &literalPath, &noFileRead, &tinygltf::WriteWholeFile, nullptr});
     }
     tinygltf::Model model;
     std::string err;
@@ -132,8 +123,7 @@ Result<tinygltf::Model> readModel(const std::string& path) {
         return Error{path + ": not a binary glTF file (the header magic is not \"glTF\")"};
     }
     return parseModel(path, true,
-                      [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& err,
-                          std::string& warn) {
+                      [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& err, std::string& warn) {
                           return binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
                                         : loader.LoadASCIIFromFile(&model, &err, &warn, path);
                       });
@@ -182,8 +172,8 @@ Result<Transform> decomposeMatrix(const std::vector<double>& values, const std::
     glm::dvec4 perspective;
     const bool ok = glm::decompose(m, t.scale, t.rotation, t.translation, skew, perspective);
     const glm::dvec4 q(t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w);
-    const bool finite = allFinite({t.scale.x, t.scale.y, t.scale.z, q.x, q.y, q.z, q.w,
-                                   t.translation.x, t.translation.y, t.translation.z});
+    const bool finite = allFinite(
+        {t.scale.x, t.scale.y, t.scale.z, q.x, q.y, q.z, q.w, t.translation.x, t.translation.y, t.translation.z});
     if (!ok || !finite) {
         return elementError(where, "cannot be decomposed into translation, rotation and scale");
     }
@@ -195,9 +185,7 @@ Result<Transform> nodeTransform(const tinygltf::Node& node, const std::string& w
     if (!node.matrix.empty()) return decomposeMatrix(node.matrix, where + ".matrix");
     Transform t;
     double rotation[4] = {0.0, 0.0, 0.0, 1.0};
-    if (auto st = readNodeArray<3>(node.translation, where + ".translation",
-                                   glm::value_ptr(t.translation));
-        !st) {
+    if (auto st = readNodeArray<3>(node.translation, where + ".translation", glm::value_ptr(t.translation)); !st) {
         return st.error();
     }
     if (auto st = readNodeArray<4>(node.rotation, where + ".rotation", rotation); !st) {
@@ -213,8 +201,7 @@ Result<Transform> nodeTransform(const tinygltf::Node& node, const std::string& w
 /// Checks an optional index of a node into one of the model's arrays.
 Status checkReference(int index, std::size_t size, const std::string& where, const char* what) {
     if (index < -1 || (index >= 0 && static_cast<std::size_t>(index) >= size)) {
-        return elementError(where,
-                            std::string(what) + " " + std::to_string(index) + " does not exist");
+        return elementError(where, std::string(what) + " " + std::to_string(index) + " does not exist");
     }
     return Ok{};
 }
@@ -231,8 +218,7 @@ Result<NodeInfo> checkNode(const tinygltf::Model& model, std::size_t i, std::siz
     if (auto st = checkReference(node.mesh, model.meshes.size(), where + ".mesh", "mesh"); !st) {
         return st.error();
     }
-    if (auto st = checkReference(node.camera, model.cameras.size(), where + ".camera", "camera");
-        !st) {
+    if (auto st = checkReference(node.camera, model.cameras.size(), where + ".camera", "camera"); !st) {
         return st.error();
     }
     NodeInfo info;
@@ -258,9 +244,9 @@ Result<std::vector<int>> nodeParents(const tinygltf::Model& model) {
             }
             int& parent = parents[static_cast<std::size_t>(child)];
             if (parent != -1) {
-                return elementError(indexed("nodes", static_cast<std::size_t>(child)),
-                                    "has two parents, nodes[" + std::to_string(parent) +
-                                        "] and nodes[" + std::to_string(i) + "]");
+                return elementError(
+                    indexed("nodes", static_cast<std::size_t>(child)),
+                    "has two parents, nodes[" + std::to_string(parent) + "] and nodes[" + std::to_string(i) + "]");
             }
             parent = static_cast<int>(i);
         }
@@ -279,8 +265,7 @@ Result<std::vector<int>> nodeParents(const tinygltf::Model& model) {
             j = parents[static_cast<std::size_t>(j)];
         }
         if (j != -1 && state[static_cast<std::size_t>(j)] == kOnChain) {
-            return elementError(indexed("nodes", static_cast<std::size_t>(j)),
-                                "is part of a cycle in the node graph");
+            return elementError(indexed("nodes", static_cast<std::size_t>(j)), "is part of a cycle in the node graph");
         }
         for (const std::size_t k : chain) state[k] = kDone;
     }
@@ -341,8 +326,8 @@ Result<Camera> importCamera(const tinygltf::Model& model, std::size_t index) {
     }
     const double zfar = p.zfar == 0.0 ? kInfiniteFar : p.zfar;
     if (!(zfar > p.znear && std::isfinite(zfar))) {
-        return elementError(pw + ".zfar", p.zfar == 0.0 ? "absent, and znear is beyond 1e4 m"
-                                                        : "must be greater than znear");
+        return elementError(pw + ".zfar",
+                            p.zfar == 0.0 ? "absent, and znear is beyond 1e4 m" : "must be greater than znear");
     }
     if (!(p.aspectRatio >= 0.0 && std::isfinite(p.aspectRatio))) {
         return elementError(pw + ".aspectRatio", "must be a positive number");
@@ -366,8 +351,8 @@ struct Importer {
     Result<Entity> createEntity(const std::string& name, const Transform& transform) {
         // World::create asserts when out of slots; a file must not be able to trigger that.
         if (scene.world.size() + 1 >= Entity::kMaxEntities) {
-            return Error{"too many nodes: the engine holds at most " +
-                         std::to_string(Entity::kMaxEntities - 1) + " entities"};
+            return Error{"too many nodes: the engine holds at most " + std::to_string(Entity::kMaxEntities - 1) +
+                         " entities"};
         }
         const Entity e = scene.world.create();
         scene.world.emplace<Name>(e, Name{name});
@@ -466,8 +451,7 @@ struct Importer {
 };
 
 /// Everything after parsing; errors and warnings carry the element but not yet the file name.
-Result<Scene> buildScene(const tinygltf::Model& model, const std::string& name,
-                         const GltfLoadOptions& options) {
+Result<Scene> buildScene(const tinygltf::Model& model, const std::string& name, const GltfLoadOptions& options) {
     Importer importer{model, options, {}, {}, {}, {}, {}};
     auto lights = gltf::importLights(model, options.strictShadowSettings, importer.scene.warnings);
     if (!lights) return lights.error();
@@ -492,8 +476,8 @@ Result<Scene> buildScene(const tinygltf::Model& model, const std::string& name,
 
 /// The scene of a parsed model; `source` (the file, or the in-memory name) prefixes every
 /// error and warning message (a warning's element stays the glTF element alone).
-Result<Scene> sceneOf(const tinygltf::Model& model, const std::string& source,
-                      const std::string& name, const GltfLoadOptions& options) {
+Result<Scene> sceneOf(const tinygltf::Model& model, const std::string& source, const std::string& name,
+                      const GltfLoadOptions& options) {
     auto scene = buildScene(model, name, options);
     if (!scene) return Error{source + ": " + scene.error().message};
     for (Warning& w : scene->warnings) w.message = source + ": " + w.message;
@@ -510,19 +494,17 @@ Result<Scene> loadGltf(const std::string& path, const GltfLoadOptions& options) 
 
 namespace gltf {
 
-Result<Scene> loadGltfFromMemory(std::string_view bytes, const std::string& name,
-                                 const GltfLoadOptions& options) {
+Result<Scene> loadGltfFromMemory(std::string_view bytes, const std::string& name, const GltfLoadOptions& options) {
     const bool binary = bytes.size() >= 4 && bytes.substr(0, 4) == "glTF";
     // tinygltf takes the length as unsigned int.
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) return Error{name + ": too large"};
     const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
     const auto size = static_cast<unsigned int>(bytes.size());
-    auto model = parseModel(
-        name, false,
-        [&](tinygltf::TinyGLTF& loader, tinygltf::Model& m, std::string& err, std::string& warn) {
-            return binary ? loader.LoadBinaryFromMemory(&m, &err, &warn, data, size, "")
-                          : loader.LoadASCIIFromString(&m, &err, &warn, bytes.data(), size, "");
-        });
+    auto model = parseModel(name, false,
+                            [&](tinygltf::TinyGLTF& loader, tinygltf::Model& m, std::string& err, std::string& warn) {
+                                return binary ? loader.LoadBinaryFromMemory(&m, &err, &warn, data, size, "")
+                                              : loader.LoadASCIIFromString(&m, &err, &warn, bytes.data(), size, "");
+                            });
     if (!model) return model.error();
     return sceneOf(*model, name, name, options);
 }

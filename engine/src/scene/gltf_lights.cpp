@@ -35,8 +35,7 @@ Result<glm::vec3> parseColor(const tinygltf::Value& color, const std::string& wh
 }
 
 /// Reads `key` of `object` into `out` when present; absent keys keep the default.
-Status readOptionalFloat(const tinygltf::Value& object, const char* key, const std::string& where,
-                         float& out) {
+Status readOptionalFloat(const tinygltf::Value& object, const char* key, const std::string& where, float& out) {
     const tinygltf::Value* v = member(object, key);
     if (v == nullptr) return Ok{};
     auto parsed = readNonNegativeFloat(*v, where + "." + key);
@@ -112,9 +111,8 @@ Result<std::vector<LightDefinition>> importLights(const tinygltf::Model& model, 
     const std::string where = std::string(kExtension) + ".lights";
     if (!lights->IsArray()) return elementError(where, "must be an array");
     for (std::size_t i = 0; i < lights->ArrayLen(); ++i) {
-        auto light =
-            parseLight(lights->Get(static_cast<int>(i)), where + "[" + std::to_string(i) + "]",
-                       strictShadowSettings, warnings);
+        auto light = parseLight(lights->Get(static_cast<int>(i)), where + "[" + std::to_string(i) + "]",
+                                strictShadowSettings, warnings);
         if (!light) return light.error();
         out.push_back(std::move(*light));
     }
@@ -125,8 +123,7 @@ Result<std::optional<std::size_t>> nodeLight(const tinygltf::Node& node, std::si
                                              std::size_t lightCount) {
     const auto extension = node.extensions.find(kExtension);
     if (extension == node.extensions.end()) return std::optional<std::size_t>{};
-    const std::string where =
-        "nodes[" + std::to_string(nodeIndex) + "].extensions." + kExtension + ".light";
+    const std::string where = "nodes[" + std::to_string(nodeIndex) + "].extensions." + kExtension + ".light";
     const tinygltf::Value* light = member(extension->second, "light");
     if (light == nullptr) return elementError(where, "missing");
     auto index = readIndex(*light, where);

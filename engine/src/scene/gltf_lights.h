@@ -33,8 +33,7 @@ struct LightDefinition {
 
 /// The light `nodes[nodeIndex]` references through its KHR_lights_punctual extension, or
 /// nullopt for none. The index is checked against `lightCount`.
-[[nodiscard]] Result<std::optional<std::size_t>> nodeLight(const tinygltf::Node& node,
-                                                           std::size_t nodeIndex,
+[[nodiscard]] Result<std::optional<std::size_t>> nodeLight(const tinygltf::Node& node, std::size_t nodeIndex,
                                                            std::size_t lightCount);
 
 }  // namespace shadow::gltf

@@ -13,9 +13,7 @@
 namespace shadow::gltf {
 namespace {
 
-std::string indexed(const std::string& array, std::size_t i) {
-    return array + "[" + std::to_string(i) + "]";
-}
+std::string indexed(const std::string& array, std::size_t i) { return array + "[" + std::to_string(i) + "]"; }
 
 /// Unit normals where the file's are usable; zero-length ones stay zero (they light nothing,
 /// and renormalising them would invent a direction).
@@ -26,16 +24,15 @@ void normalizeNormals(std::vector<glm::vec3>& normals) {
     }
 }
 
-Status readNormals(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
-                   const std::string& where, MeshData& mesh) {
+Status readNormals(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const std::string& where,
+                   MeshData& mesh) {
     const auto it = primitive.attributes.find("NORMAL");
     if (it == primitive.attributes.end()) return Ok{};
     const std::string normalWhere = where + ".attributes.NORMAL";
     auto normals = readVec3(model, it->second, normalWhere);
     if (!normals) return normals.error();
     if (normals->size() != mesh.positions.size()) {
-        return elementError(normalWhere, "has " + std::to_string(normals->size()) +
-                                             " elements, POSITION has " +
+        return elementError(normalWhere, "has " + std::to_string(normals->size()) + " elements, POSITION has " +
                                              std::to_string(mesh.positions.size()));
     }
     mesh.normals = std::move(*normals);
@@ -43,8 +40,8 @@ Status readNormals(const tinygltf::Model& model, const tinygltf::Primitive& prim
     return Ok{};
 }
 
-Status readTriangleIndices(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
-                           const std::string& where, MeshData& mesh) {
+Status readTriangleIndices(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const std::string& where,
+                           MeshData& mesh) {
     const std::size_t vertexCount = mesh.positions.size();
     if (primitive.indices >= 0) {
         auto indices = readIndices(model, primitive.indices, vertexCount, where + ".indices");
@@ -56,15 +53,13 @@ Status readTriangleIndices(const tinygltf::Model& model, const tinygltf::Primiti
         std::iota(mesh.indices.begin(), mesh.indices.end(), std::uint32_t{0});
     }
     if (mesh.indices.size() % 3 != 0) {
-        return elementError(
-            where, std::to_string(mesh.indices.size()) + " vertices do not make whole triangles");
+        return elementError(where, std::to_string(mesh.indices.size()) + " vertices do not make whole triangles");
     }
     return Ok{};
 }
 
 /// The mesh of one primitive; nullopt when it draws nothing (another mode, or empty).
-Result<std::optional<MeshPart>> importPrimitive(const tinygltf::Model& model,
-                                                const tinygltf::Primitive& primitive,
+Result<std::optional<MeshPart>> importPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
                                                 const std::string& where, std::string name) {
     // -1 is what tinygltf leaves in a Model built in code; the file default is TRIANGLES.
     if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
@@ -96,14 +91,12 @@ Result<std::optional<MeshPart>> importPrimitive(const tinygltf::Model& model,
     return std::optional<MeshPart>{MeshPart{std::move(mesh), *material}};
 }
 
-Result<glm::vec3> readBaseColor(const tinygltf::PbrMetallicRoughness& pbr,
-                                const std::string& where) {
+Result<glm::vec3> readBaseColor(const tinygltf::PbrMetallicRoughness& pbr, const std::string& where) {
     const std::vector<double>& f = pbr.baseColorFactor;
     if (f.size() != 4) return elementError(where, "must have 4 numbers");
     glm::vec3 rgb;
     for (int c = 0; c < 3; ++c) {
-        if (!std::isfinite(f[static_cast<std::size_t>(c)]))
-            return elementError(where, "not finite");
+        if (!std::isfinite(f[static_cast<std::size_t>(c)])) return elementError(where, "not finite");
         rgb[c] = static_cast<float>(std::clamp(f[static_cast<std::size_t>(c)], 0.0, 1.0));
     }
     return rgb;
@@ -122,10 +115,9 @@ Result<std::vector<MeshPart>> importMesh(const tinygltf::Model& model, std::size
     const std::string baseName = mesh.name.empty() ? "mesh" + std::to_string(meshIndex) : mesh.name;
     std::vector<MeshPart> parts;
     for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
-        std::string name =
-            mesh.primitives.size() == 1 ? baseName : baseName + "/primitive" + std::to_string(p);
-        auto part = importPrimitive(model, mesh.primitives[p],
-                                    meshWhere + "." + indexed("primitives", p), std::move(name));
+        std::string name = mesh.primitives.size() == 1 ? baseName : baseName + "/primitive" + std::to_string(p);
+        auto part =
+            importPrimitive(model, mesh.primitives[p], meshWhere + "." + indexed("primitives", p), std::move(name));
         if (!part) return part.error();
         if (part->has_value()) parts.push_back(std::move(**part));
     }
@@ -137,10 +129,8 @@ Result<Material> importMaterial(const tinygltf::Model& model, int index, const s
     if (static_cast<std::size_t>(index) >= model.materials.size()) {
         return elementError(where, "material " + std::to_string(index) + " does not exist");
     }
-    const std::string pbrWhere =
-        indexed("materials", static_cast<std::size_t>(index)) + ".pbrMetallicRoughness";
-    const tinygltf::PbrMetallicRoughness& pbr =
-        model.materials[static_cast<std::size_t>(index)].pbrMetallicRoughness;
+    const std::string pbrWhere = indexed("materials", static_cast<std::size_t>(index)) + ".pbrMetallicRoughness";
+    const tinygltf::PbrMetallicRoughness& pbr = model.materials[static_cast<std::size_t>(index)].pbrMetallicRoughness;
     auto base = readBaseColor(pbr, pbrWhere + ".baseColorFactor");
     if (!base) return base.error();
     auto metallic = readUnitFactor(pbr.metallicFactor, pbrWhere + ".metallicFactor");

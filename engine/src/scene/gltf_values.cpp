@@ -6,9 +6,7 @@
 
 namespace shadow::gltf {
 
-Error elementError(const std::string& where, const std::string& what) {
-    return Error{where + ": " + what};
-}
+Error elementError(const std::string& where, const std::string& what) { return Error{where + ": " + what}; }
 
 const tinygltf::Value* member(const tinygltf::Value& object, const std::string& key) {
     if (!object.IsObject()) return nullptr;
@@ -38,8 +36,7 @@ namespace {
 
 /// Integral numbers in [lowest, INT_MAX]. Checked on the double so that `1e30` or `2.5` is
 /// reported rather than converted with undefined behaviour.
-Result<int> readIntegral(const tinygltf::Value& v, const std::string& where, int lowest,
-                         const char* what) {
+Result<int> readIntegral(const tinygltf::Value& v, const std::string& where, int lowest, const char* what) {
     if (v.IsInt()) {
         const int i = v.GetNumberAsInt();
         if (i < lowest) return elementError(where, what);

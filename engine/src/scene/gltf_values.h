@@ -21,8 +21,7 @@ namespace shadow::gltf {
 /// A finite JSON number.
 [[nodiscard]] Result<double> readFiniteNumber(const tinygltf::Value& v, const std::string& where);
 /// A finite number >= 0 that is also finite as a float.
-[[nodiscard]] Result<float> readNonNegativeFloat(const tinygltf::Value& v,
-                                                 const std::string& where);
+[[nodiscard]] Result<float> readNonNegativeFloat(const tinygltf::Value& v, const std::string& where);
 /// An integral number in [1, INT_MAX] (JSON `2.0` counts as the integer 2).
 [[nodiscard]] Result<int> readPositiveInt(const tinygltf::Value& v, const std::string& where);
 /// An integral number in [0, INT_MAX], used for indices into glTF arrays.

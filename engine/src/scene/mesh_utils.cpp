@@ -41,8 +41,7 @@ void makeFlatNormals(MeshData& mesh) {
     for (std::size_t t = 0; t < triangleCount; ++t) {
         const std::uint32_t* tri = &mesh.indices[3 * t];
         if (tri[0] >= vertexCount || tri[1] >= vertexCount || tri[2] >= vertexCount) continue;
-        const glm::vec3 n =
-            faceNormal(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
+        const glm::vec3 n = faceNormal(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
         for (int k = 0; k < 3; ++k) {
             positions.push_back(mesh.positions[tri[k]]);
             normals.push_back(n);

@@ -26,8 +26,7 @@ Result<ShadowTechnique> parseTechnique(const tinygltf::Value& v, const std::stri
     auto name = readString(v, where);
     if (!name) return name.error();
     if (const auto t = techniqueFromName(*name)) return *t;
-    return elementError(where,
-                        "unknown technique \"" + *name + "\" (expected none, hard, pcf, pcss or pcss-textbook)");
+    return elementError(where, "unknown technique \"" + *name + "\" (expected none, hard, pcf, pcss or pcss-textbook)");
 }
 
 Result<FilterKernel> parseKernel(const tinygltf::Value& v, const std::string& where) {
@@ -58,8 +57,7 @@ Status readKnobs(const ShadowObject& object, const std::array<Knob<Field>, N>& k
 
 }  // namespace
 
-Result<LightShadowExtras> parseShadowExtras(const tinygltf::Value& extras,
-                                            const std::string& where) {
+Result<LightShadowExtras> parseShadowExtras(const tinygltf::Value& extras, const std::string& where) {
     auto object = findShadowObject(extras, where);
     if (!object) return object.error();
     LightShadowExtras out;
@@ -96,8 +94,7 @@ Result<LightShadowExtras> parseShadowExtras(const tinygltf::Value& extras,
     return out;
 }
 
-Result<MeshShadowFlags> parseMeshShadowExtras(const tinygltf::Value& extras,
-                                              const std::string& where) {
+Result<MeshShadowFlags> parseMeshShadowExtras(const tinygltf::Value& extras, const std::string& where) {
     auto object = findShadowObject(extras, where);
     if (!object) return object.error();
     MeshShadowFlags out;

@@ -37,8 +37,7 @@ struct LightShadowExtras {
 /// value (null, or not an object, means "no settings": the defaults, technique Hard);
 /// `where` names the light (`KHR_lights_punctual.lights[1]`) and errors read
 /// `<where>.extras.shadow.<key>: <problem>`.
-[[nodiscard]] Result<LightShadowExtras> parseShadowExtras(const tinygltf::Value& extras,
-                                                          const std::string& where);
+[[nodiscard]] Result<LightShadowExtras> parseShadowExtras(const tinygltf::Value& extras, const std::string& where);
 
 /// What a mesh node's `extras.shadow` says.
 struct MeshShadowFlags {
@@ -47,8 +46,7 @@ struct MeshShadowFlags {
 };
 
 /// Parses the `shadow` member of a mesh node's `extras`, as `parseShadowExtras` does.
-[[nodiscard]] Result<MeshShadowFlags> parseMeshShadowExtras(const tinygltf::Value& extras,
-                                                            const std::string& where);
+[[nodiscard]] Result<MeshShadowFlags> parseMeshShadowExtras(const tinygltf::Value& extras, const std::string& where);
 
 /// `parsed` itself when it holds a value or `strict` is set; otherwise the defaults `T{}`, with
 /// the error appended to `warnings` as `ShadowSettingsIgnored` (the lenient `GltfLoadOptions`).

@@ -93,8 +93,8 @@ TransformStats updateTransforms(World& world) {
     world.view<Transform, WorldTransform>().each([&](Entity e, Transform&, WorldTransform&) { resolver.resolve(e); });
 
     TransformStats& stats = resolver.stats;
-    world.view<Mesh, WorldTransform, WorldBounds>().each([&](Entity e, Mesh& mesh,
-                                                             WorldTransform& wt, WorldBounds& wb) {
+    world.view<Mesh, WorldTransform, WorldBounds>().each([&](Entity e, Mesh& mesh, WorldTransform& wt,
+                                                             WorldBounds& wb) {
         wb.box = (wt.finite && mesh.data != nullptr) ? transformBounds(wt.worldFromLocal, mesh.data->bounds) : DAabb{};
         // A mesh whose vertices reach beyond the world is skipped like a non-finite one.
         if (wt.finite && !wb.box.empty() && !(insideWorld(wb.box.min) && insideWorld(wb.box.max))) {

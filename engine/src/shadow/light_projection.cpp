@@ -61,8 +61,8 @@ std::array<glm::dvec3, 8> sliceCorners(const CameraView& cam, double a, double b
 }
 
 /// Casters' light-space boxes overlapping the light-space column [lo, hi] in x and y.
-void zRangeOfColumn(const glm::dmat4& rotation, const SceneGeometry& g, const glm::dvec2& lo,
-                    const glm::dvec2& hi, double& zTop, double& zBottom) {
+void zRangeOfColumn(const glm::dmat4& rotation, const SceneGeometry& g, const glm::dvec2& lo, const glm::dvec2& hi,
+                    double& zTop, double& zBottom) {
     for (const BoundedEntity& c : g.casters) {
         const DAabb ls = toLightSpace(rotation, c.bounds);
         if (ls.max.x < lo.x || ls.min.x > hi.x || ls.max.y < lo.y || ls.min.y > hi.y) continue;
@@ -71,20 +71,19 @@ void zRangeOfColumn(const glm::dmat4& rotation, const SceneGeometry& g, const gl
     }
 }
 
-std::vector<ShadowLayerPlan> planDirectional(const ShadowLightPlan& plan, const LightPose& pose,
-                                             const CameraView& cam, const SceneGeometry& g) {
+std::vector<ShadowLayerPlan> planDirectional(const ShadowLightPlan& plan, const LightPose& pose, const CameraView& cam,
+                                             const SceneGeometry& g) {
     const Shadow& s = plan.settings;
     const glm::dmat4 rotation = lookAlong(glm::dvec3(0.0), pose.wsDirection);
     const double reach =
-        std::min(s.shadowDistance > 0.0f ? std::min<double>(s.shadowDistance, cam.zfar) : cam.zfar,
-                 kMaxShadowReach);
+        std::min(s.shadowDistance > 0.0f ? std::min<double>(s.shadowDistance, cam.zfar) : cam.zfar, kMaxShadowReach);
     const double znear = cam.znear;
     // No receiver lies beyond the farthest corner of their bounds: do not spread texels there.
     const double toFarthestReceiver = farthestCorner(cam.wsPosition, g.receivers);
     const double distance = std::clamp(toFarthestReceiver, std::min(2.0 * znear, reach), reach);
     // Nor nearer than the nearest receiver: cascades start where shadows can first be seen.
-    const double nearest = std::clamp(distanceToBox(cam.wsPosition, g.receivers),
-                                      std::min(znear, 0.5 * distance), 0.5 * distance);
+    const double nearest =
+        std::clamp(distanceToBox(cam.wsPosition, g.receivers), std::min(znear, 0.5 * distance), 0.5 * distance);
     const glm::dvec3 lsCamera(rotation * glm::dvec4(cam.wsPosition, 1.0));
     const std::vector<double> splits = cascadeSplits(nearest, distance, s.cascades, s.cascadeSplitLambda);
     const DAabb lsReceivers = toLightSpace(rotation, g.receivers);
@@ -110,8 +109,7 @@ std::vector<ShadowLayerPlan> planDirectional(const ShadowLightPlan& plan, const 
         }
         // Within reach of the camera (kMaxShadowReach), whatever the receivers' spread.
         extent = std::min(extent, 2.0 * kMaxShadowReach);
-        lsCenter = glm::clamp(lsCenter, glm::dvec2(lsCamera) - kMaxShadowReach,
-                              glm::dvec2(lsCamera) + kMaxShadowReach);
+        lsCenter = glm::clamp(lsCenter, glm::dvec2(lsCamera) - kMaxShadowReach, glm::dvec2(lsCamera) + kMaxShadowReach);
         // Snap to whole texels so a moving camera moves the map by whole texels only.
         const double texel = extent / plan.mapSize;
         lsCenter = glm::floor(lsCenter / texel) * texel;
@@ -146,8 +144,7 @@ std::vector<ShadowLayerPlan> planDirectional(const ShadowLightPlan& plan, const 
 /// every layer's projection (and force a redraw of layers whose casters did not move).
 double perspectiveFar(const ShadowLightPlan& plan, const glm::dvec3& position, const SceneGeometry& g) {
     if (plan.light.range > 0.0f) return std::clamp<double>(plan.light.range, 1e-3, kMaxShadowReach);
-    const double fitted =
-        std::exp2(std::ceil(std::log2(std::max(farthestCorner(position, g.everything), 1e-3))));
+    const double fitted = std::exp2(std::ceil(std::log2(std::max(farthestCorner(position, g.everything), 1e-3))));
     return std::min(fitted, kMaxShadowReach);
 }
 
@@ -193,8 +190,7 @@ SceneGeometry gatherGeometry(World& world) {
     world.view<Mesh, WorldTransform, WorldBounds>().each(
         [&](Entity e, Mesh& mesh, WorldTransform& wt, WorldBounds& wb) {
             // A mesh with no triangles draws nothing: it must not widen any layer's fit either.
-            if (!wt.finite || wb.box.empty() || mesh.data == nullptr || mesh.data->indices.empty())
-                return;
+            if (!wt.finite || wb.box.empty() || mesh.data == nullptr || mesh.data->indices.empty()) return;
             g.everything.extend(wb.box);
             if (mesh.castShadows) g.casters.push_back({e, wb.box});
             if (mesh.receiveShadows) g.receivers.extend(wb.box);
@@ -240,14 +236,13 @@ std::vector<double> cascadeSplits(double near, double far, int count, double lam
     return splits;
 }
 
-std::vector<ShadowLayerPlan> planLayers(const ShadowLightPlan& plan, const LightPose& pose,
-                                        const CameraView& camera, const SceneGeometry& geometry) {
+std::vector<ShadowLayerPlan> planLayers(const ShadowLightPlan& plan, const LightPose& pose, const CameraView& camera,
+                                        const SceneGeometry& geometry) {
     if (plan.light.type == LightType::Directional) return planDirectional(plan, pose, camera, geometry);
     // Two texels of margin on each side keep bilinear taps at the edge inside the map.
     const double margin = 1.0 + 4.0 / plan.mapSize;
-    const double tanHalf = plan.light.type == LightType::Spot
-                               ? std::tan(static_cast<double>(plan.light.outerConeAngle)) * margin
-                               : margin;
+    const double tanHalf =
+        plan.light.type == LightType::Spot ? std::tan(static_cast<double>(plan.light.outerConeAngle)) * margin : margin;
     const double far = perspectiveFar(plan, pose.wsPosition, geometry);
     const double near = plan.settings.nearPlane;  // 0: fitted per layer
     std::vector<ShadowLayerPlan> layers;

@@ -51,8 +51,8 @@ bool lightAffectsView(const Light& light, const LightPose& pose, const Frustum& 
 
 /// Fits the layers of a light: cascades (directional), one frustum (spot), six faces (point),
 /// each with the casters that fall in it.
-std::vector<ShadowLayerPlan> planLayers(const ShadowLightPlan& plan, const LightPose& pose,
-                                        const CameraView& camera, const SceneGeometry& geometry);
+std::vector<ShadowLayerPlan> planLayers(const ShadowLightPlan& plan, const LightPose& pose, const CameraView& camera,
+                                        const SceneGeometry& geometry);
 
 /// Cascade split distances (m from the camera) for `count` cascades over [near, far]:
 /// lambda * logarithmic + (1 - lambda) * uniform (the "practical" scheme). Returns count + 1

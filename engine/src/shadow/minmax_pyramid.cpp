@@ -52,7 +52,8 @@ void MinMaxBuilder::build(GLuint depthArray, const MinMaxPyramid& pyramid, int m
         Programs p;
         p.fromDepth = gpu::buildProgram(
             {"Shadow/MinMax/fromDepth", "fullscreen.vert.glsl", "shadow_minmax.frag.glsl", {"SG_MINMAX_FROM_DEPTH"}});
-        p.fromBelow = gpu::buildProgram({"Shadow/MinMax/fromBelow", "fullscreen.vert.glsl", "shadow_minmax.frag.glsl", {}});
+        p.fromBelow =
+            gpu::buildProgram({"Shadow/MinMax/fromBelow", "fullscreen.vert.glsl", "shadow_minmax.frag.glsl", {}});
         p.fromDepthLayer = gl.GetUniformLocation(p.fromDepth.get(), "uLayer");
         p.fromBelowLayer = gl.GetUniformLocation(p.fromBelow.get(), "uLayer");
         GLuint vao = 0;

@@ -68,12 +68,9 @@ struct Candidate {
 /// Layers of a light's array: its cascades, one spot layer, or six cube faces.
 std::int64_t layerCount(const ShadowLightPlan& plan) {
     switch (plan.light.type) {
-        case LightType::Directional:
-            return plan.settings.cascades;
-        case LightType::Spot:
-            return 1;
-        case LightType::Point:
-            return 6;
+        case LightType::Directional: return plan.settings.cascades;
+        case LightType::Spot: return 1;
+        case LightType::Point: return 6;
     }
     return 6;
 }
@@ -84,8 +81,7 @@ std::int64_t texelsOf(const ShadowLightPlan& plan) {
 
 /// Candidates from least to most important: lights that cannot reach the view, then by
 /// distance from the camera (directional lights at 0), farthest first, then later in the scene.
-std::vector<std::size_t> budgetOrder(const std::vector<Candidate>& lights,
-                                     const glm::dvec3& camera) {
+std::vector<std::size_t> budgetOrder(const std::vector<Candidate>& lights, const glm::dvec3& camera) {
     std::vector<std::size_t> order(lights.size());
     std::vector<double> distance(lights.size(), 0.0);
     for (std::size_t i = 0; i < lights.size(); ++i) {
@@ -128,8 +124,7 @@ void fitTexelBudget(std::vector<Candidate>& lights, const glm::dvec3& camera, st
         total -= texelsOf(lights[i].plan);
         lights[i].dropped = true;
     }
-    const std::string why =
-        " to fit the shadow texel budget (" + std::to_string(budget) + " texels)";
+    const std::string why = " to fit the shadow texel budget (" + std::to_string(budget) + " texels)";
     for (const Candidate& c : lights) {
         if (c.dropped) {
             warnings.push_back({WarningCode::ShadowDropped, c.plan.name, c.plan.name + ": shadow dropped" + why});
@@ -175,8 +170,7 @@ void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, co
     clampField(light.innerConeAngle, 0.0f, light.outerConeAngle, who, "innerConeAngle", warnings);
 }
 
-const ShadowFrame& ShadowPlanner::prepare(World& world, const CameraView& camera,
-                                          const std::vector<Entity>& lights) {
+const ShadowFrame& ShadowPlanner::prepare(World& world, const CameraView& camera, const std::vector<Entity>& lights) {
     frame_.warnings.clear();
     frame_.techniquesInUse = 0;
     frame_.lights.resize(lights.size());
@@ -227,8 +221,7 @@ const ShadowFrame& ShadowPlanner::prepare(World& world, const CameraView& camera
 }
 
 void ShadowPlanner::markDirty(World& world, ShadowLightPlan& plan) {
-    auto it = std::find_if(memory_.begin(), memory_.end(),
-                           [&](const auto& m) { return m.first == plan.entity; });
+    auto it = std::find_if(memory_.begin(), memory_.end(), [&](const auto& m) { return m.first == plan.entity; });
     if (it == memory_.end()) {
         memory_.emplace_back(plan.entity, LightMemory{});
         it = std::prev(memory_.end());

@@ -30,9 +30,7 @@ struct ShadowMapGpu {
 };
 
 /// Techniques that read the min/max pyramid to skip taps outside penumbrae.
-bool readsPyramid(ShadowTechnique t) {
-    return t == ShadowTechnique::Pcf || t == ShadowTechnique::Pcss;
-}
+bool readsPyramid(ShadowTechnique t) { return t == ShadowTechnique::Pcf || t == ShadowTechnique::Pcss; }
 
 /// The depth-only program shared by every light type.
 struct DepthProgram {
@@ -125,7 +123,8 @@ void ShadowGpu::syncMaps(const ShadowFrame& frame) {
         const ShadowLightPlan& plan = frame.lights[i];
         next[i].first = plan.entity;
         if (!plan.hasMap()) continue;
-        auto it = std::find_if(maps.begin(), maps.end(), [&](const auto& m) { return m.second && m.first == plan.entity; });
+        auto it =
+            std::find_if(maps.begin(), maps.end(), [&](const auto& m) { return m.second && m.first == plan.entity; });
         std::unique_ptr<ShadowMapGpu> map = it != maps.end() ? std::move(it->second) : nullptr;
         if (!map || map->mapSize != plan.mapSize || map->layers != static_cast<int>(plan.layers.size())) {
             map = allocate(plan);
@@ -175,7 +174,8 @@ void ShadowGpu::drawLayer(World& world, MeshCache& meshes, const ShadowLightPlan
     gl.Viewport(0, 0, map.mapSize, map.mapSize);
     gl.ClearNamedFramebufferfv(map.framebuffer.get(), GL_DEPTH, 0, &far);
     gl.UseProgram(program);
-    gl.ProgramUniformMatrix4fv(program, depth.clipFromLight, 1, GL_FALSE, glm::value_ptr(glm::mat4(layer.clipFromLight)));
+    gl.ProgramUniformMatrix4fv(program, depth.clipFromLight, 1, GL_FALSE,
+                               glm::value_ptr(glm::mat4(layer.clipFromLight)));
     gl.ProgramUniform1f(program, depth.depthScale, layer.depthScale);
     gl.ProgramUniform1i(program, depth.orthographic, layer.orthographic ? 1 : 0);
     for (Entity caster : layer.casters) {
@@ -200,8 +200,7 @@ ShadowSystem::ShadowSystem() : gpu_(std::make_unique<ShadowGpu>()) {
 
 ShadowSystem::~ShadowSystem() = default;
 
-const ShadowFrame& ShadowSystem::prepare(World& world, const CameraView& camera,
-                                         const std::vector<Entity>& lights) {
+const ShadowFrame& ShadowSystem::prepare(World& world, const CameraView& camera, const std::vector<Entity>& lights) {
     return planner_.prepare(world, camera, lights);
 }
 
