@@ -16,16 +16,28 @@ int tapsFor(float radiusTexels, int samples) {
     return clamp(int(ceil(radiusTexels * radiusTexels)), 1, max(samples, 1));
 }
 
-// The mean of `taps` comparison taps over a disk of `radius` metres; a single tap sits at the
-// receiver. A loop, not a branch: with taps = 0 in a whole SIMD group it costs one empty trip.
-float pcfTaps(int slot, GpuLight L, Receiver r, float radius, int taps) {
-    DiskWalk disk = beginDisk(pixelRotation(), taps);
-    float scale = taps > 1 ? radius : 0.0;
+// The four comparisons of the 2x2 texels around the tap (textureGather with a reference): four
+// samples of the filter for one fetch.
+float gatherTap(int slot, GpuLight L, Receiver r, Tap t) {
+    float depthScale = t.layer == r.layer ? r.depthScale : uLayers[L.firstLayer + t.layer].depthScale;
+    float reference = min((t.depth - r.depthBias) / depthScale, 1.0);
+    return dot(textureGather(uShadowCompare[slot], vec3(t.uv, float(t.layer)), reference), vec4(0.25));
+}
+
+// The mean of `taps` samples over a disk of `radius` metres; a single sample is one bilinear tap
+// at the receiver. With `gathers`, 3 taps / 4 fetches of 2x2 comparisons each (three times the
+// samples for three quarters of the fetches; on the bunny scene the same error as bilinear taps
+// within 1.2 %, half as many gathers measured up to 2.8 % more). A loop, not a branch: with
+// taps = 0 in a whole SIMD group it costs one empty trip.
+float pcfTaps(int slot, GpuLight L, Receiver r, float radius, int taps, const bool gathers) {
+    int fetches = gathers && taps > 1 ? (taps * 3 + 3) / 4 : taps;
+    DiskWalk disk = beginDisk(pixelRotation(), fetches);
     float sum = 0.0;
-    for (int i = 0; i < taps; ++i) {
-        sum += compareTap(slot, L, r, lateralTap(L, r, nextDiskSample(L.kernel, disk, i) * scale));
+    for (int i = 0; i < fetches; ++i) {
+        Tap t = lateralTap(L, r, nextDiskSample(L.kernel, disk, i) * (taps > 1 ? radius : 0.0));
+        sum += gathers && taps > 1 ? gatherTap(slot, L, r, t) : compareTap(slot, L, r, t);
     }
-    return sum / float(max(taps, 1));
+    return sum / float(max(fetches, 1));
 }
 
 // PCF of the light's own radius (`pcfRadius`, at most `maxFilterTexels` texels).
@@ -34,7 +46,7 @@ float pcfVisibility(int slot, GpuLight L, Receiver r) {
     Tap center = lateralTap(L, r, vec2(0.0));
     float known = regionVisibility(slot, L, r, center, radius);
     int taps = known >= 0.0 ? 0 : tapsFor(radius / r.texelMetres, L.pcfSamples);
-    float filtered = pcfTaps(slot, L, r, radius, taps);
+    float filtered = pcfTaps(slot, L, r, radius, taps, true);
     return known >= 0.0 ? known : filtered;
 }
 

@@ -50,7 +50,7 @@ float pcssVisibility(int slot, GpuLight L, Receiver r) {
                                                     : (dReceiver - dBlocker) * size / max(dBlocker, 1e-6);
     penumbra = blockers > 0.0 ? min(penumbra, maxRadius) : 0.0;
     int taps = pointEmitter ? 1 : (blockers > 0.0 ? tapsFor(penumbra / r.texelMetres, L.pcfSamples) : 0);
-    float filtered = pcfTaps(slot, L, r, penumbra, taps);
+    float filtered = pcfTaps(slot, L, r, penumbra, taps, false);
     SG_DEBUG_STORE(gDebugBlockerDepth, blockers > 0.0 ? dBlocker : 0.0);
     SG_DEBUG_STORE(gDebugPenumbra, penumbra);
     if (known >= 0.0) return known;
