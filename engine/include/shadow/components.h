@@ -164,7 +164,8 @@ struct Shadow {
     FilterKernel kernel = FilterKernel::Vogel;
     /// Most taps of the PCF filter, [1, 64]. Default 16. A pixel takes about one tap per texel of
     /// its filter disk's area, up to this many, and none where the layer's min/max pyramid
-    /// shows the whole disk lit or in umbra.
+    /// shows the whole disk lit or in umbra; the PCF technique reads 4 taps as 3 gathers of 2x2
+    /// comparisons.
     int pcfSamples = 16;
     /// Points of the PCSS blocker search disk, [1, 64]; it reads them in pairs, each pair as one
     /// gather of 2x2 depth texels (half the fetches, twice the depths). Default 16.
