@@ -76,9 +76,16 @@ PixelRect screenBounds(const ShadowLightPlan& plan, const ScreenView& view) {
     if (plan.light.type == LightType::Directional || !(plan.light.range > 0.0f)) return whole;
     // The eight corners of the sphere's box, projected; any at or behind the eye plane: whole.
     glm::dvec2 lo(1e300), hi(-1e300);
-    const double r = plan.light.range;
+    DAabb reach;
+    reach.extend(plan.wsPosition - glm::dvec3(plan.light.range));
+    reach.extend(plan.wsPosition + glm::dvec3(plan.light.range));
+    if (!view.wsGeometry.empty()) {
+        reach.min = glm::max(reach.min, view.wsGeometry.min);
+        reach.max = glm::min(reach.max, view.wsGeometry.max);
+        if (reach.empty()) return {};  // nothing drawn within its range
+    }
     for (int c = 0; c < 8; ++c) {
-        const glm::dvec3 corner = plan.wsPosition + glm::dvec3(c & 1 ? r : -r, c & 2 ? r : -r, c & 4 ? r : -r);
+        const glm::dvec3 corner = reach.corner(c);
         const glm::dvec4 clip = view.clipFromWorld * glm::dvec4(corner, 1.0);
         if (!(clip.w > 1e-9)) return whole;
         const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;

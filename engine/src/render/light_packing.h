@@ -40,11 +40,14 @@ struct PixelRect {
 struct ScreenView {
     glm::dmat4 clipFromWorld{1.0};
     int width = 1, height = 1;
+    /// World bounds of everything drawn (empty: unknown). A light reaches only the part of its
+    /// range inside them, which keeps the screen bounds of a light above a floor to the floor.
+    DAabb wsGeometry;
 };
 
-/// The pixels light `plan` can reach: the screen rectangle of its range sphere; the whole screen
-/// for a light without a range (directional, or range 0) or whose sphere reaches behind the
-/// camera's near plane.
+/// The pixels light `plan` can reach: the screen rectangle of its range sphere's box (within
+/// `view.wsGeometry` when known); the whole screen for a light without a range (directional, or
+/// range 0) or whose box reaches behind the camera's eye plane.
 PixelRect screenBounds(const ShadowLightPlan& plan, const ScreenView& view);
 
 /// A light on its way into a pass: 0 for a wide light (a quarter of the screen or more), 1 for

@@ -272,7 +272,10 @@ void Renderer::render(World& world, const CameraView& camera, const ShadowSystem
                       FrameStats& stats) {
     Impl& r = *impl_;
     r.lightCount = shadows.frame().lights.size();
-    const render::ScreenView view{cameraClipFromWorld(camera), options.width, options.height};
+    render::ScreenView view{cameraClipFromWorld(camera), options.width, options.height, {}};
+    world.view<Mesh, WorldTransform, WorldBounds>().each([&view](Entity, Mesh&, WorldTransform& wt, WorldBounds& b) {
+        if (wt.finite) view.wsGeometry.extend(b.box);
+    });
     render::packLights(shadows.frame(), camera.wsPosition, view, r.passes, r.packingOrder);
     r.choosePrograms(options, stats);
     r.uploadPasses();
