@@ -24,12 +24,14 @@ mkdir -p "$results"
 cat "$results/fragment_costs.md"
 mkdir -p "$results/tmp"
 {
-  echo "Where the lit pass's time goes on a CPU rasteriser: each piece of the fragment path alone, at"
-  echo "1280x720 (\\`bash benchmarks/run_fragment_costs.sh\\`, about a minute; compare rows of one run)."
-  echo "The renderer's design follows from it: light records in uniform blocks read at"
-  echo "compile-time slots, no per-pixel sampler index, early-outs as loop trip counts (an \\`if\\`"
-  echo "runs both sides), no depth pre-pass (overdraw is 1.01 here), AOV targets only when asked."
-  echo
+  cat <<'MD'
+Where the lit pass's time goes on a CPU rasteriser: each piece of the fragment path alone, at
+1280x720 (`bash benchmarks/run_fragment_costs.sh`, about a minute; compare rows of one run). The
+renderer's design follows from it: light records in uniform blocks read at compile-time slots, no
+per-pixel sampler index, early-outs as loop trip counts (an `if` runs both sides), no depth
+pre-pass (overdraw is 1.01 on the bunny scene), AOV targets only when asked.
+
+MD
   sed '1{/^#/d}' "$results/fragment_costs.md"
 } > "$results/tmp/fragment_costs_section.md"
 python3 benchmarks/benchmarks_section.py fragment-costs "Fragment costs of the lit pass" "$results/tmp/fragment_costs_section.md"

@@ -48,8 +48,10 @@ void expectPyramidMatchesMap(FrameRunner& runner, int mapSize, const std::string
     for (float& d : depth) d /= scale;                        // back to stored units
     int size = 1;  // level 0: the power of two of at least mapSize / SG_MINMAX_TILE texels
     while (size * SG_MINMAX_TILE < mapSize) size *= 2;
-    int levels = 0;
-    for (int s = size; s > 0; s /= 2) ++levels;
+    // Levels up to the first whose tiles span the widest region the lookup asks for.
+    const float maxFilterTexels = shadows.frame().lights[0].settings.maxFilterTexels;
+    int levels = 1;
+    for (int tile = SG_MINMAX_TILE; tile < 2.0f * (maxFilterTexels + 1.5f) && (size >> levels) > 0; tile *= 2) ++levels;
     int checked = 0;
     for (int level = 0; level < levels; ++level, size = std::max(1, size / 2)) {
         const std::vector<float> got = readLevel(pyramid, level, 0, size);

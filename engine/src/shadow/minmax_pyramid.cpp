@@ -17,10 +17,19 @@ int MinMaxPyramid::baseSize(int mapSize) {
     return size;
 }
 
-MinMaxPyramid MinMaxPyramid::allocate(const std::string& label, int mapSize, int layers) {
+int MinMaxPyramid::levelsFor(int mapSize, float maxFilterTexels) {
+    int all = 0;
+    for (int size = baseSize(mapSize); size > 0; size /= 2) ++all;
+    const double widest = 2.0 * (static_cast<double>(maxFilterTexels) + 1.5);
+    int needed = 1;
+    for (double tile = SG_MINMAX_TILE; tile < widest; tile *= 2.0) ++needed;
+    return std::clamp(needed, 1, all);
+}
+
+MinMaxPyramid MinMaxPyramid::allocate(const std::string& label, int mapSize, int layers, int levels) {
     MinMaxPyramid p;
     const int base = baseSize(mapSize);
-    for (int size = base; size > 0; size /= 2) ++p.levels;
+    p.levels = levels;
     p.texture = gpu::makeTexture(label + "/minmax", GL_TEXTURE_2D_ARRAY);
     gl.TextureStorage3D(p.texture.get(), p.levels, GL_RG32F, base, base, layers);
     gl.TextureParameteri(p.texture.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);

@@ -39,8 +39,11 @@ struct MinMaxPyramid {
     /// Edge of level 0 for a map of `mapSize` texels: the power of two of at least
     /// mapSize / SG_MINMAX_TILE texels.
     [[nodiscard]] static int baseSize(int mapSize);
-    /// Allocates the pyramid of a `mapSize`^2 array of `layers` layers.
-    static MinMaxPyramid allocate(const std::string& label, int mapSize, int layers);
+    /// Levels a lookup of at most `maxFilterTexels` texels of radius can use: the first whose
+    /// tiles are as wide as the widest region (2 * (maxFilterTexels + 1.5) texels), and those below.
+    [[nodiscard]] static int levelsFor(int mapSize, float maxFilterTexels);
+    /// Allocates the pyramid of a `mapSize`^2 array of `layers` layers with `levels` levels.
+    static MinMaxPyramid allocate(const std::string& label, int mapSize, int layers, int levels);
     /// Sets every level of `layer` to (1, 1): a cleared layer, nothing in front of the far plane.
     void clearLayer(int mapSize, int layer) const;
 };

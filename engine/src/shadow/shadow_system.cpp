@@ -129,8 +129,9 @@ void ShadowGpu::syncMaps(const ShadowFrame& frame) {
         if (!map || map->mapSize != plan.mapSize || map->layers != static_cast<int>(plan.layers.size())) {
             map = allocate(plan);
         }
-        if (readsPyramid(plan.technique()) && !map->pyramid) {
-            map->pyramid = MinMaxPyramid::allocate("Shadow/" + plan.name, map->mapSize, map->layers);
+        const int levels = MinMaxPyramid::levelsFor(map->mapSize, plan.settings.maxFilterTexels);
+        if (readsPyramid(plan.technique()) && (!map->pyramid || map->pyramid->levels != levels)) {
+            map->pyramid = MinMaxPyramid::allocate("Shadow/" + plan.name, map->mapSize, map->layers, levels);
             map->pyramidCurrent.assign(static_cast<std::size_t>(map->layers), false);
         } else if (!readsPyramid(plan.technique())) {
             map->pyramid.reset();  // no technique of the light reads it: no memory for it
