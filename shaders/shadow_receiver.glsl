@@ -22,8 +22,8 @@ const float kMaxSlope = 16.0;
 // Steepest slope the tangent-plane taps follow exactly: tan(89.9 deg), so the filters see the
 // receiver's own plane down to 0.1 degree of elevation. A tap at lateral offset o moves o * slope
 // along the ray, and a plane flattened to a lesser slope puts the taps towards the light behind
-// the receiver (measured: at 0.5 degrees with the old clamp of 16, PCF read as low as 0.76 under
-// a sun and 0.53 under a spot on an open plane). The clamp only keeps the stretch finite where cos(theta) loses its precision: n.L
+// the receiver (tests/stability/grazing_light_test.cpp holds the open plane lit down to 0.5
+// degrees). The clamp only keeps the stretch finite where cos(theta) loses its precision: n.L
 // carries ~1e-6 of float error, so a slope of 573 errs by 573^2 * 1e-6 * 32 = 10 texels of depth
 // at the widest filter (32 texels), inside the 24 texels the slope bias gives.
 const float kMaxPlaneSlope = 573.0;
