@@ -236,23 +236,6 @@ void main() {}
 
 // ---- GL helpers --------------------------------------------------------------------------------
 
-GLuint compileStage(GLenum stage, const std::string& text, const std::vector<std::string>& files,
-                    const std::string& label) {
-    const GLuint shader = gl.CreateShader(stage);
-    const char* source = text.c_str();
-    gl.ShaderSource(shader, 1, &source, nullptr);
-    gl.CompileShader(shader);
-    GLint ok = GL_FALSE;
-    gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (ok == GL_TRUE) return shader;
-    GLint length = 0;
-    gl.GetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-    std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-    gl.GetShaderInfoLog(shader, length, nullptr, log.data());
-    gl.DeleteShader(shader);
-    throw GlError("probe '" + label + "' does not compile:\n" + gpu::mapShaderLog(log.c_str(), files));
-}
-
 /// Links `vertex` with the fragment `parts` below the engine's glsl_types.glsl and `defines`.
 gpu::Program buildProbe(const std::string& label, const char* vertex, const std::vector<const char*>& parts,
                         const std::vector<std::string>& defines) {
@@ -262,19 +245,7 @@ gpu::Program buildProbe(const std::string& label, const char* vertex, const std:
     fragment.files.push_back(label);
     for (const char* part : parts) fragment.text += part;
 
-    const GLuint v = compileStage(GL_VERTEX_SHADER, vertex, {label + " (vertex)"}, label);
-    const GLuint f = compileStage(GL_FRAGMENT_SHADER, fragment.text, fragment.files, label);
-    gpu::Program program(gl.CreateProgram());
-    gl.AttachShader(program.get(), v);
-    gl.AttachShader(program.get(), f);
-    gl.LinkProgram(program.get());
-    gl.DeleteShader(v);
-    gl.DeleteShader(f);
-    GLint ok = GL_FALSE;
-    gl.GetProgramiv(program.get(), GL_LINK_STATUS, &ok);
-    if (ok != GL_TRUE) throw GlError("probe '" + label + "' does not link");
-    program.label("FragmentCosts/" + label);
-    return program;
+    return gpu::linkProgram("FragmentCosts/" + label, gpu::ExpandedSource{vertex, {label + " (vertex)"}}, fragment);
 }
 
 /// Colour attachments of `colorFormats` (and a depth buffer unless GL_NONE), all draw buffers on.

@@ -10,7 +10,7 @@ namespace shadow::render {
 namespace {
 
 /// A view that sees every test light whole: no light has a range, so each covers the screen.
-const ScreenView kView{glm::dmat4(1.0), 64, 48};
+const ScreenView kView{glm::dmat4(1.0), 64, 48, {}};
 std::vector<PackingEntry> scratch;
 
 void pack(const ShadowFrame& frame, const glm::dvec3& camera, std::vector<PassLights>& passes) {

@@ -98,13 +98,11 @@ std::string mapShaderLog(const std::string& log, const std::vector<std::string>&
     return out;
 }
 
-Program buildProgram(const ProgramDesc& desc) {
-    const ExpandedSource vs = expandShader(desc.vertexFile, desc.defines);
-    const ExpandedSource fs = expandShader(desc.fragmentFile, desc.defines);
-    const GLuint v = compileStage(GL_VERTEX_SHADER, vs, desc.label + " (" + desc.vertexFile + ")");
+Program linkProgram(const std::string& label, const ExpandedSource& vertex, const ExpandedSource& fragment) {
+    const GLuint v = compileStage(GL_VERTEX_SHADER, vertex, label + " (" + vertex.files.front() + ")");
     GLuint f = 0;
     try {
-        f = compileStage(GL_FRAGMENT_SHADER, fs, desc.label + " (" + desc.fragmentFile + ")");
+        f = compileStage(GL_FRAGMENT_SHADER, fragment, label + " (" + fragment.files.front() + ")");
     } catch (...) {
         gl.DeleteShader(v);
         throw;
@@ -122,10 +120,15 @@ Program buildProgram(const ProgramDesc& desc) {
         gl.GetProgramiv(program.get(), GL_INFO_LOG_LENGTH, &length);
         std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
         gl.GetProgramInfoLog(program.get(), length, nullptr, log.data());
-        throw GlError("shader link failed for " + desc.label + ":\n" + mapShaderLog(log.c_str(), fs.files));
+        throw GlError("shader link failed for " + label + ":\n" + mapShaderLog(log.c_str(), fragment.files));
     }
-    program.label(desc.label);
+    program.label(label);
     return program;
+}
+
+Program buildProgram(const ProgramDesc& desc) {
+    return linkProgram(desc.label, expandShader(desc.vertexFile, desc.defines),
+                       expandShader(desc.fragmentFile, desc.defines));
 }
 
 }  // namespace shadow::gpu

@@ -29,6 +29,10 @@ struct ExpandedSource {
     std::vector<std::string> files;  ///< index = the file number of `#line`
 };
 
+/// Compiles and links two expanded stages (the first file of each names it in messages), labels
+/// the program `label`; throws `GlError` naming the file and line of the first error.
+Program linkProgram(const std::string& label, const ExpandedSource& vertex, const ExpandedSource& fragment);
+
 /// Expands `#include`s of `file` below a `#version` line and the defines. Throws `GlError` for a
 /// missing file or an include cycle.
 ExpandedSource expandShader(const std::string& file, const std::vector<std::string>& defines);

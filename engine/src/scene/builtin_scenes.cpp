@@ -168,6 +168,15 @@ Scene makePlatesScene() {
 
 namespace {
 
+/// Places `bunny` (the Stanford bunny's mesh) on the ground at the origin, 1.2 m tall.
+void addBunny(World& w, std::shared_ptr<const MeshData> bunny) {
+    const Aabb b = bunny->bounds;
+    const double scale = 1.2 / std::max(1e-6f, b.max.y - b.min.y);
+    Transform t = at(-scale * b.center().x, -scale * b.min.y, -scale * b.center().z);
+    t.scale = glm::dvec3(scale);
+    addMeshInstance(w, "bunny", std::move(bunny), t, solid(0.85f, 0.8f, 0.7f));
+}
+
 Result<Scene> makeBunny() {
     auto bunny = loadObjMesh(kBunnyObjPath);
     if (!bunny) return Error{"builtin:bunny: " + bunny.error().message + " (install glmark2-data)"};
@@ -175,12 +184,7 @@ Result<Scene> makeBunny() {
     scene.name = "bunny";
     World& w = scene.world;
     addMeshInstance(w, "ground", makePlaneMesh(4.0f, 4), at(0, 0, 0), matte(0.75f, 0.75f, 0.72f));
-    // The bunny's bounds: stand it on the ground, about 1.2 m tall.
-    const Aabb b = (*bunny)->bounds;
-    const double scale = 1.2 / std::max(1e-6f, b.max.y - b.min.y);
-    Transform t = at(-scale * b.center().x, -scale * b.min.y, -scale * b.center().z);
-    t.scale = glm::dvec3(scale);
-    addMeshInstance(w, "bunny", std::move(bunny).value(), t, solid(0.85f, 0.8f, 0.7f));
+    addBunny(w, std::move(bunny).value());
 
     Light sun;
     sun.type = LightType::Directional;
@@ -225,11 +229,7 @@ Result<Scene> makeBunnySpot() {
     // The ground only receives: it hides nothing from the light (the peer is set up the same way).
     const Entity ground = addMeshInstance(w, "ground", makePlaneMesh(4.0f, 16), at(0, 0, 0), matte(0.85f, 0.8f, 0.75f));
     w.get<Mesh>(ground).castShadows = false;
-    const Aabb b = (*bunny)->bounds;
-    const double scale = 1.2 / std::max(1e-6f, b.max.y - b.min.y);
-    Transform t = at(-scale * b.center().x, -scale * b.min.y, -scale * b.center().z);
-    t.scale = glm::dvec3(scale);
-    addMeshInstance(w, "bunny", std::move(bunny).value(), t, solid(0.85f, 0.8f, 0.7f));
+    addBunny(w, std::move(bunny).value());
 
     Light spot;
     spot.type = LightType::Spot;
