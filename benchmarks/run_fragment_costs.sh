@@ -32,6 +32,6 @@ per-pixel sampler index, early-outs as loop trip counts (an `if` runs both sides
 pre-pass (overdraw is 1.01 on the bunny scene), AOV targets only when asked.
 
 MD
-  sed '1{/^#/d}' "$results/fragment_costs.md"
+  sed -e '1{/^#/d}' -e 's/^## /### /' "$results/fragment_costs.md"
 } > "$results/tmp/fragment_costs_section.md"
 python3 benchmarks/benchmarks_section.py fragment-costs "Fragment costs of the lit pass" "$results/tmp/fragment_costs_section.md"
