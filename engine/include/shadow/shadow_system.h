@@ -5,11 +5,13 @@
 //   prepare  (CPU only, testable without GL) decides what this frame needs: which lights are
 //            shadowed and can affect the view, each light's layers and matrices, which casters
 //            fall in each layer's frustum, which layers are dirty, and the array sizes. The
-//            result is a `ShadowFrame`, the hand-off to the GPU phase.
+//            result is a `ShadowFrame`, the hand-off to the GPU phase and to the renderer: one
+//            entry per scene light, in scene order (the one index space up to the AOVs).
 //   render   draws only the dirty layers, depth only; clears the layers with no caster; leaves
-//            every other layer as last frame left it.
-// A light with no `Shadow` component or technique None gets no map. Settings out of their
-// documented range are clamped and reported in `ShadowFrame::warnings`.
+//            every other layer as last frame left it; for PCF and PCSS lights, brings the min/max
+//            depth pyramid of every redrawn layer up to date.
+// A light with no `Shadow` component or technique None gets no map. Every light's settings out
+// of their documented range are clamped once, here, and reported in `ShadowFrame::warnings`.
 //
 // What this does not do (yet): no atlas packing across lights, no GPU-driven culling.
 #pragma once
