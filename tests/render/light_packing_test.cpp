@@ -128,6 +128,18 @@ TEST(LightPacking, ManyLocalLightsGetPassesBoundedByTheirReach) {
                                     glm::dvec4(0, 0, 0.5, 1));
     const PixelRect one = screenBounds(frame.lights[1], view);
     EXPECT_NEAR(one.x1 - one.x0, 20, 1) << "a sphere of 1 m radius is 20 pixels wide at 10 pixels per metre";
+    // Within the drawn geometry only: a floor 0.5 m thick that holds the sphere's centre row
+    // keeps the width and cuts the height (screen y is world z here), one box beside it none.
+    ScreenView floorView = view;
+    floorView.wsGeometry.extend(glm::dvec3(-20.0, -0.25, -20.0));
+    floorView.wsGeometry.extend(glm::dvec3(20.0, 0.25, frame.lights[1].wsPosition.z));
+    const PixelRect clipped = screenBounds(frame.lights[1], floorView);
+    EXPECT_EQ(clipped.x1 - clipped.x0, one.x1 - one.x0);
+    EXPECT_NEAR(clipped.y1 - clipped.y0, 10, 1) << "half the sphere's depth lies beyond the geometry";
+    ScreenView elsewhere = view;
+    elsewhere.wsGeometry.extend(glm::dvec3(100.0));
+    elsewhere.wsGeometry.extend(glm::dvec3(101.0));
+    EXPECT_TRUE(screenBounds(frame.lights[1], elsewhere).empty()) << "no geometry within its range";
     std::vector<PassLights> passes;
     packLights(frame, glm::dvec3(0.0), view, passes, scratch);
     ASSERT_EQ(passes.size(), 13u) << "the sun's whole-screen pass, then one pass per local light";

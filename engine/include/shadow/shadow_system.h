@@ -85,6 +85,8 @@ struct ShadowFrame {
     std::vector<ShadowLightPlan> lights;
     /// Bit `1 << t` for every technique t (`ShadowTechnique`) some light's pixels use.
     unsigned techniquesInUse = 0;
+    /// World bounds of every finite mesh this frame (empty without one): what any light can reach.
+    DAabb wsGeometry;
     /// Clamped settings and the texel budget's decisions, one each (codes in warnings.h).
     std::vector<Warning> warnings;
 };

@@ -113,7 +113,6 @@ PixelRect unite(const PixelRect& a, const PixelRect& b) {
 void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const ScreenView& view,
                 std::vector<PassLights>& passes, std::vector<PackingEntry>& order) {
     const PixelRect whole{0, 0, view.width, view.height};
-    // Sort key: whole-screen lights first (key 0, scene order), then by Morton code of the centre.
     order.clear();
     for (const ShadowLightPlan& plan : frame.lights) {
         if (!plan.shaded || !plan.affectsView) continue;  // contributes nothing; visibility 1
@@ -123,11 +122,11 @@ void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const Scre
         // while it has room: another pass over the scene's triangles would cost more than the
         // pixels they leave out.
         const bool wide = 4 * b.area() >= whole.area();
-        order.push_back({wide ? 0u : 1u, plan.sceneIndex, b});
+        order.push_back({wide, plan.sceneIndex, b});
     }
     // Wide lights first, in scene order; the local ones after them.
     std::stable_sort(order.begin(), order.end(),
-                     [](const PackingEntry& a, const PackingEntry& b) { return a.key < b.key; });
+                     [](const PackingEntry& a, const PackingEntry& b) { return a.wide && !b.wide; });
 
     std::size_t used = 0;
     auto openPass = [&]() -> PassLights& {
@@ -150,7 +149,7 @@ void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const Scre
     PassLights* pass = &openPass();
     for (const PackingEntry& entry : order) {
         const ShadowLightPlan& plan = frame.lights[static_cast<std::size_t>(entry.sceneLight)];
-        const bool local = !onePass && entry.key != 0u;
+        const bool local = !onePass && !entry.wide;
         if (pass->variant.lights == SG_MAX_LIGHTS_PER_PASS || (local && (used == 1 || pass->variant.lights > 0))) {
             pass = &openPass();
         }
@@ -165,7 +164,7 @@ void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const Scre
         pass->variant.technique[static_cast<std::size_t>(slot)] = static_cast<std::uint8_t>(g.technique);
         pass->variant.kernel[static_cast<std::size_t>(slot)] = static_cast<std::uint8_t>(g.kernel);
         pass->bounds = unite(pass->bounds, entry.bounds);
-        if (entry.key == 0u || plan.light.type == LightType::Directional || !(plan.light.range > 0.0f)) {
+        if (entry.wide || plan.light.type == LightType::Directional || !(plan.light.range > 0.0f)) {
             pass->unbounded = true;
         } else {
             pass->wsReach.extend(plan.wsPosition - glm::dvec3(plan.light.range));

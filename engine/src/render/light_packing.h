@@ -50,10 +50,10 @@ struct ScreenView {
 /// range 0) or whose box reaches behind the camera's eye plane.
 PixelRect screenBounds(const ShadowLightPlan& plan, const ScreenView& view);
 
-/// A light on its way into a pass: 0 for a wide light (a quarter of the screen or more), 1 for
-/// a local one; its scene index and screen bounds.
+/// A light on its way into a pass: wide (it reaches a quarter of the screen or more) or local,
+/// its scene index and screen bounds.
 struct PackingEntry {
-    std::uint32_t key = 0;
+    bool wide = false;
     int sceneLight = -1;
     PixelRect bounds;
 };

@@ -91,7 +91,8 @@ struct Renderer::Impl {
     bool softwareRenderer = false;
 
     Impl();
-    void choosePrograms(const RenderOptions& options, FrameStats& stats);
+    /// Adds what the options ask of every pass's program (AOVs, debug view) to its variant.
+    void completeVariants(const RenderOptions& options);
     void uploadPasses();
     void bindShadowMaps(const PassLights& pass, const ShadowSystem& shadows) const;
     /// Draws every visible mesh with `uniforms`; `perMesh` sets the material uniforms.
@@ -100,9 +101,9 @@ struct Renderer::Impl {
     template <typename PerMesh>
     void drawMeshes(World& world, const CameraView& cam, GLuint program, const render::MeshUniforms& uniforms,
                     const DAabb* reach, PerMesh&& perMesh, int& draws);
-    void depthPrepass(World& world, const CameraView& cam, FrameStats& stats);
-    void litPass(World& world, const CameraView& cam, std::size_t pass, const ShadowSystem& shadows,
-                 const RenderOptions& options, FrameStats& stats);
+    void depthPrepass(World& world, const CameraView& cam, const MainCamera& mc, FrameStats& stats);
+    void litPass(World& world, const CameraView& cam, const MainCamera& mc, std::size_t pass,
+                 const ShadowSystem& shadows, const RenderOptions& options, FrameStats& stats);
 };
 
 Renderer::Impl::Impl() {
@@ -129,7 +130,7 @@ Renderer::Impl::Impl() {
     depthSampler.label("Shadow/depthSampler");
 }
 
-void Renderer::Impl::choosePrograms(const RenderOptions& options, FrameStats& stats) {
+void Renderer::Impl::completeVariants(const RenderOptions& options) {
     for (PassLights& pass : passes) {
         render::LitVariant& v = pass.variant;
         v.aovs = options.aovs;
@@ -138,7 +139,6 @@ void Renderer::Impl::choosePrograms(const RenderOptions& options, FrameStats& st
         v.debugSlot = slot != pass.sceneLight.end() && v.debugView != SG_DEBUG_NONE
                           ? static_cast<int>(slot - pass.sceneLight.begin())
                           : -1;
-        (void)programs.get(v, stats.programsCompiled);
     }
 }
 
@@ -201,14 +201,14 @@ void Renderer::Impl::drawMeshes(World& world, const CameraView& cam, GLuint prog
     gl.Disable(GL_CULL_FACE);
 }
 
-void Renderer::Impl::depthPrepass(World& world, const CameraView& cam, FrameStats& stats) {
+void Renderer::Impl::depthPrepass(World& world, const CameraView& cam, const MainCamera& mc, FrameStats& stats) {
     if (!prepass) {
         prepass = render::buildDepthPrepass();
         ++stats.programsCompiled;
     }
     const GLuint id = prepass->program.get();
     gl.UseProgram(id);
-    gl.ProgramUniformMatrix4fv(id, prepass->mesh.clipFromCs, 1, GL_FALSE, glm::value_ptr(mainCamera(cam).clipFromCs));
+    gl.ProgramUniformMatrix4fv(id, prepass->mesh.clipFromCs, 1, GL_FALSE, glm::value_ptr(mc.clipFromCs));
     gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl.DepthMask(GL_TRUE);
     gl.DepthFunc(GL_LESS);
@@ -217,8 +217,8 @@ void Renderer::Impl::depthPrepass(World& world, const CameraView& cam, FrameStat
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
-void Renderer::Impl::litPass(World& world, const CameraView& cam, std::size_t index, const ShadowSystem& shadows,
-                             const RenderOptions& options, FrameStats& stats) {
+void Renderer::Impl::litPass(World& world, const CameraView& cam, const MainCamera& mc, std::size_t index,
+                             const ShadowSystem& shadows, const RenderOptions& options, FrameStats& stats) {
     const PassLights& pass = passes[index];
     const render::LitProgram& p = programs.get(pass.variant, stats.programsCompiled);
     // Without AOVs every pass writes colour alone: the draw buffers set by the first stay (a
@@ -245,7 +245,6 @@ void Renderer::Impl::litPass(World& world, const CameraView& cam, std::size_t in
         gl.Scissor(pass.bounds.x0, pass.bounds.y0, pass.bounds.x1 - pass.bounds.x0, pass.bounds.y1 - pass.bounds.y0);
     }
     gl.UseProgram(id);
-    const MainCamera mc = mainCamera(cam);
     gl.ProgramUniformMatrix4fv(id, p.mesh.clipFromCs, 1, GL_FALSE, glm::value_ptr(mc.clipFromCs));
     gl.ProgramUniform3fv(id, p.cameraForward, 1, glm::value_ptr(mc.forward));
     const glm::vec3 ambient = index == 0 ? options.ambient : glm::vec3(0.0f);
@@ -272,15 +271,14 @@ void Renderer::render(World& world, const CameraView& camera, const ShadowSystem
                       FrameStats& stats) {
     Impl& r = *impl_;
     r.lightCount = shadows.frame().lights.size();
-    render::ScreenView view{cameraClipFromWorld(camera), options.width, options.height, {}};
-    world.view<Mesh, WorldTransform, WorldBounds>().each([&view](Entity, Mesh&, WorldTransform& wt, WorldBounds& b) {
-        if (wt.finite) view.wsGeometry.extend(b.box);
-    });
+    const render::ScreenView view{cameraClipFromWorld(camera), options.width, options.height,
+                                  shadows.frame().wsGeometry};
     render::packLights(shadows.frame(), camera.wsPosition, view, r.passes, r.packingOrder);
-    r.choosePrograms(options, stats);
+    r.completeVariants(options);
     r.uploadPasses();
     r.targets.ensure(options.width, options.height, options.aovs, static_cast<int>(r.passes.size()));
 
+    const MainCamera mc = mainCamera(camera);
     gpu::PassTimer timer(r.softwareRenderer);
     gl.BindFramebuffer(GL_FRAMEBUFFER, r.targets.framebuffer());
     gl.Viewport(0, 0, options.width, options.height);
@@ -290,17 +288,17 @@ void Renderer::render(World& world, const CameraView& camera, const ShadowSystem
     r.targets.clear();
     if (options.depthPrepass) {
         gpu::ScopedPass timed(timer, "Main/DepthPrepass");
-        r.depthPrepass(world, camera, stats);
+        r.depthPrepass(world, camera, mc, stats);
     }
     {
         gpu::ScopedPass timed(timer, "Main/Lit");
-        r.litPass(world, camera, 0, shadows, options, stats);
+        r.litPass(world, camera, mc, 0, shadows, options, stats);
     }
     if (r.passes.size() > 1) {
         // Timed as one: a fence per small pass would cost more than many of them.
         gpu::ScopedPass timed(timer, "Main/LitMore");
         for (std::size_t pass = 1; pass < r.passes.size(); ++pass)
-            r.litPass(world, camera, pass, shadows, options, stats);
+            r.litPass(world, camera, mc, pass, shadows, options, stats);
     }
     stats.mainPasses += static_cast<int>(r.passes.size());
     gl.DepthMask(GL_TRUE);

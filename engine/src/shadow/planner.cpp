@@ -175,6 +175,7 @@ const ShadowFrame& ShadowPlanner::prepare(World& world, const CameraView& camera
     frame_.techniquesInUse = 0;
     frame_.lights.resize(lights.size());
     const SceneGeometry geometry = gatherGeometry(world);
+    frame_.wsGeometry = geometry.everything;
     const Frustum cameraFrustum = Frustum::fromMatrix(cameraClipFromWorld(camera));
 
     // Every light is clamped once, here; the shadowed ones become candidates for a map.

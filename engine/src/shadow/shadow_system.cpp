@@ -94,7 +94,7 @@ LightShadowStats statsOf(const ShadowLightPlan& plan) {
     ls.type = lightTypeName(plan.light.type);
     ls.technique = techniqueName(plan.technique());
     ls.mapSize = plan.mapSize;
-    ls.requestedMapSize = plan.hasMap() || plan.settings.technique != ShadowTechnique::None ? plan.settings.mapSize : 0;
+    ls.requestedMapSize = plan.settings.technique != ShadowTechnique::None ? plan.settings.mapSize : 0;
     ls.layers = static_cast<int>(plan.layers.size());
     ls.affectsView = plan.affectsView;
     return ls;
