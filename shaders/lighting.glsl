@@ -6,6 +6,8 @@
 struct Surface {
     vec3 csPosition;
     vec3 normal;    // unit, facing the viewer
+    vec3 geoNormal; // unit normal of the triangle itself (either side)
+    float curvature; // 1/m: how fast the shading normal turns across the surface
     vec3 toViewer;  // unit
     vec3 albedo;
     vec3 specular;

@@ -58,7 +58,7 @@ vec3 shadeSlot(const int slot, const int type, const int technique, const int ke
     bool wanted = max(shading.r, max(shading.g, shading.b)) > 0.0;
 #endif
     if (technique != SG_TECH_NONE && uReceiveShadows != 0 && wanted) {
-        visibility = shadowVisibility(slot, L, s.csPosition, s.normal, viewDistance);
+        visibility = shadowVisibility(slot, L, s.csPosition, s.normal, s.geoNormal, s.curvature, viewDistance);
     }
     return visibility * shading;
 }
@@ -90,7 +90,12 @@ void main() {
     s.csPosition = vCsPosition;
     s.toViewer = normalize(-vCsPosition);  // never zero: the near plane clips the camera's point
     // A zero normal (a file's, or opposite normals interpolated) takes the triangle's own.
-    vec3 n = safeNormalize(vWsNormal, safeNormalize(cross(dFdx(vCsPosition), dFdy(vCsPosition)), s.toViewer));
+    s.geoNormal = safeNormalize(cross(dFdx(vCsPosition), dFdy(vCsPosition)), s.toViewer);
+    vec3 n = safeNormalize(vWsNormal, s.geoNormal);
+    // How fast the interpolated normal turns per metre of surface (0 on a flat mesh).
+    vec3 dpx = dFdx(vCsPosition), dpy = dFdy(vCsPosition);
+    vec3 dnx = dFdx(n), dny = dFdy(n);
+    s.curvature = max(length(dnx) / max(length(dpx), 1e-20), length(dny) / max(length(dpy), 1e-20));
     // Two-sided: shade the side facing the camera.
     s.normal = dot(n, s.toViewer) < 0.0 ? -n : n;
     s.albedo = uAlbedo;

@@ -19,9 +19,7 @@ int tapsFor(float radiusTexels, int samples) {
 // The four comparisons of the 2x2 texels around the tap (textureGather with a reference): four
 // samples of the filter for one fetch.
 float gatherTap(int slot, GpuLight L, Receiver r, Tap t) {
-    float depthScale = t.layer == r.layer ? r.depthScale : uLayers[L.firstLayer + t.layer].depthScale;
-    float reference = min((t.depth - r.depthBias) / depthScale, 1.0);
-    return dot(textureGather(uShadowCompare[slot], vec3(t.uv, float(t.layer)), reference), vec4(0.25));
+    return dot(compareQuad(slot, L, r, t).lit, vec4(0.25));
 }
 
 // The mean of `taps` samples over a disk of `radius` metres; a single sample is one bilinear tap

@@ -37,8 +37,10 @@ float pcssVisibility(int slot, GpuLight L, Receiver r) {
     for (int i = 0; i < searchGathers; ++i) {
         Tap t = lateralTap(L, r, nextDiskSample(L.kernel, disk, i) * searchRadius);
         float scale = t.layer == r.layer ? r.depthScale : uLayers[L.firstLayer + t.layer].depthScale;
-        vec4 stored = textureGather(uShadowDepth[slot], vec3(t.uv, float(t.layer))) * scale;
-        vec4 blocks = vec4(lessThan(stored, vec4(t.depth - r.depthBias)));
+        vec2 f, quadUv;
+        vec4 references = quadReferences(L, r, t, f, quadUv) * scale;
+        vec4 stored = textureGather(uShadowDepth[slot], vec3(quadUv, float(t.layer))) * scale;
+        vec4 blocks = vec4(lessThan(stored, references));
         // Blocker depth expressed at the center's lateral position: the tap's own shift along
         // the tangent plane is removed so a sloped receiver does not bias it.
         blockerSum += dot(blocks, stored + (dReceiver - t.depth));

@@ -39,9 +39,9 @@ float techniqueVisibility(int slot, GpuLight L, Receiver r) {
 // Visibility in [0, 1] of light `L` (bound to pass slot `slot`) at a receiver point. Near the
 // far end of a cascade the next cascade is blended in over the last `cascadeBlend` fraction
 // of its range, so cascade borders do not show as seams.
-float shadowVisibility(int slot, GpuLight L, vec3 csPosition, vec3 wsNormal, float viewDistance) {
+float shadowVisibility(int slot, GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 geoNormal, float curvature, float viewDistance) {
     if (L.technique == SG_TECH_NONE) return 1.0;
-    Receiver r = makeReceiver(L, csPosition, wsNormal, viewDistance, -1);
+    Receiver r = makeReceiver(L, csPosition, wsNormal, geoNormal, curvature, viewDistance, -1);
     SG_DEBUG_STORE(gDebugCascade, r.layer);
     float v = techniqueVisibility(slot, L, r);
     if (L.type == SG_LIGHT_DIRECTIONAL && r.layer + 1 < L.layerCount && L.cascadeBlend > 0.0) {
@@ -50,7 +50,7 @@ float shadowVisibility(int slot, GpuLight L, vec3 csPosition, vec3 wsNormal, flo
         float band = L.cascadeBlend * (end - begin);
         float w = clamp((viewDistance - (end - band)) / max(band, 1e-6), 0.0, 1.0);
         if (w > 0.0) {
-            Receiver next = makeReceiver(L, csPosition, wsNormal, viewDistance, r.layer + 1);
+            Receiver next = makeReceiver(L, csPosition, wsNormal, geoNormal, curvature, viewDistance, r.layer + 1);
             v = mix(v, techniqueVisibility(slot, L, next), w);
         }
     }
