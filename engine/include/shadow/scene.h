@@ -104,8 +104,8 @@ struct CameraView {
 /// onto the emitter plane) / area(disk).
 struct PlatesGeometry {
     struct Plate {
-        glm::dvec3 center;  ///< the plate lies in the plane y = center.y
-        double halfSize;    ///< half the edge of the square (axis aligned)
+        glm::dvec3 center{0.0};  ///< the plate lies in the plane y = center.y
+        double halfSize = 0.0;   ///< half the edge of the square (axis aligned)
     };
     double lightHeight = 4.0;
     double lightRadius = 0.4;
