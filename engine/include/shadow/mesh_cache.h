@@ -14,6 +14,7 @@ namespace shadow {
 /// upload fails.
 class MeshCache {
 public:
+    /// Throws `GlError` when `loadGl` has not run.
     MeshCache();
     ~MeshCache();
     MeshCache(const MeshCache&) = delete;

@@ -153,6 +153,7 @@ struct ShadowGpu;
 /// The shadow subsystem: the planner plus each light's depth texture array.
 class ShadowSystem {
 public:
+    /// Throws `GlError` when `loadGl` has not run (there is no GL to talk to).
     ShadowSystem();
     ~ShadowSystem();
     ShadowSystem(const ShadowSystem&) = delete;
@@ -162,6 +163,11 @@ public:
     /// read at construction.
     const ShadowFrame& prepare(World& world, const CameraView& camera, const std::vector<Entity>& lights);
     /// GPU phase: draws the dirty layers of the last prepared frame. Adds timings and counters.
+    /// A guest in the host's context: the GL state it changes (framebuffer bindings, program,
+    /// vertex array, viewport, scissor, depth test/function/mask, culling, blending, colour mask,
+    /// texture unit 0's texture and sampler, the active unit) is put back before it returns,
+    /// also when it throws. An error the host left pending is read, cleared and reported as a
+    /// `HostGlError` warning, never thrown; `GlError` is thrown only for the engine's own.
     void render(World& world, MeshCache& meshes, FrameStats& stats);
 
     [[nodiscard]] const ShadowFrame& frame() const { return planner_.frame(); }

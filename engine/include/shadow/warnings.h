@@ -36,6 +36,10 @@ enum class WarningCode {
     /// place. Element: the object, e.g. `KHR_lights_punctual.lights[1].extras.shadow` or
     /// `nodes[0].extras.shadow` (the message names the file and the member at fault).
     ShadowSettingsIgnored,
+    /// The host's GL context held an error before a call into the engine (`ShadowSystem::render`,
+    /// `Renderer::render`): it was read and cleared so that it is not blamed on the engine, and
+    /// reported here. Element: the engine call. The message lists the codes.
+    HostGlError,
 };
 
 /// One decision the engine reports.
@@ -57,6 +61,7 @@ struct Warning {
         case WarningCode::ShadowDropped: return "ShadowDropped";
         case WarningCode::NonFiniteTransform: return "NonFiniteTransform";
         case WarningCode::ShadowSettingsIgnored: return "ShadowSettingsIgnored";
+        case WarningCode::HostGlError: return "HostGlError";
     }
     return "Unknown";
 }

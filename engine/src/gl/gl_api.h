@@ -18,6 +18,15 @@ namespace shadow::gpu {
     X(PFNGLGETERRORPROC, GetError)                                         \
     X(PFNGLGETINTEGERVPROC, GetIntegerv)                                   \
     X(PFNGLGETFLOATVPROC, GetFloatv)                                       \
+    X(PFNGLGETBOOLEANVPROC, GetBooleanv)                                   \
+    X(PFNGLGETINTEGERI_VPROC, GetIntegeri_v)                               \
+    X(PFNGLGETINTEGER64I_VPROC, GetInteger64i_v)                           \
+    X(PFNGLISENABLEDPROC, IsEnabled)                                       \
+    X(PFNGLISENABLEDIPROC, IsEnabledi)                                     \
+    X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                               \
+    X(PFNGLBINDTEXTUREPROC, BindTexture)                                   \
+    X(PFNGLBINDBUFFERPROC, BindBuffer)                                     \
+    X(PFNGLBLENDFUNCSEPARATEPROC, BlendFuncSeparate)                       \
     X(PFNGLGETSTRINGPROC, GetString)                                       \
     X(PFNGLENABLEPROC, Enable)                                             \
     X(PFNGLDISABLEPROC, Disable)                                           \

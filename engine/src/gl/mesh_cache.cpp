@@ -1,5 +1,6 @@
 #include <shadow/mesh_cache.h>
 
+#include "gl/gl_state.h"
 #include "gl/objects.h"
 
 #include <unordered_map>
@@ -27,7 +28,7 @@ struct MeshCache::Impl {
     std::unordered_map<const MeshData*, GpuMesh> meshes;
 };
 
-MeshCache::MeshCache() : impl_(std::make_unique<Impl>()) {}
+MeshCache::MeshCache() : impl_((gpu::requireLoaded("MeshCache"), std::make_unique<Impl>())) {}
 MeshCache::~MeshCache() = default;
 
 std::size_t MeshCache::size() const { return impl_->meshes.size(); }

@@ -3,6 +3,7 @@
 #include <shadow/context.h>
 #include <shadow/renderer.h>
 
+#include "gl/gl_state.h"
 #include "gl/objects.h"
 #include "gl/pass_timer.h"
 #include "render/gpu_types.h"
@@ -268,13 +269,28 @@ void Renderer::Impl::litPass(World& world, const CameraView& cam, const MainCame
     gl.Disable(GL_SCISSOR_TEST);
 }
 
-Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
+namespace {
+
+/// The texture units and uniform-buffer binding points the lit passes bind.
+std::vector<GLint> litTextureUnits() {
+    std::vector<GLint> units;
+    for (GLint i = 0; i < SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS; ++i) units.push_back(i);
+    return units;
+}
+const std::vector<GLint> kLitUniformBindings{SG_BINDING_LIGHTS, SG_BINDING_LAYERS};
+
+}  // namespace
+
+Renderer::Renderer() : impl_((gpu::requireLoaded("Renderer"), std::make_unique<Impl>())) {}
 Renderer::~Renderer() = default;
 
 MeshCache& Renderer::meshes() { return impl_->meshes; }
 
 void Renderer::render(World& world, const CameraView& camera, const ShadowSystem& shadows, const RenderOptions& options,
                       FrameStats& stats) {
+    gpu::reportHostGlErrors("Renderer::render", stats);
+    static const std::vector<GLint> units = litTextureUnits();
+    const gpu::GlStateGuard hostState(units, kLitUniformBindings);
     Impl& r = *impl_;
     r.lightCount = shadows.frame().lights.size();
     const render::ScreenView view{cameraClipFromWorld(camera), options.width, options.height,
@@ -324,6 +340,8 @@ void Renderer::present(int width, int height) const {
 }
 
 FrameImages Renderer::readback(const CameraView& camera, FrameStats& stats) const {
+    gpu::reportHostGlErrors("Renderer::readback", stats);
+    const gpu::GlStateGuard hostState({}, {});
     const Impl& r = *impl_;
     const render::RenderTargets& t = r.targets;
     FrameImages out;

@@ -4,10 +4,12 @@
 #include <shadow/mesh_cache.h>
 #include <shadow/shadow_system.h>
 
+#include "gl/gl_state.h"
 #include "gl/objects.h"
 #include "gl/pass_timer.h"
 #include "gl/program.h"
 #include "shadow/minmax_pyramid.h"
+#include "shared_constants.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -193,7 +195,7 @@ void ShadowGpu::drawLayer(World& world, MeshCache& meshes, const ShadowLightPlan
     ++ls.layersDrawn;
 }
 
-ShadowSystem::ShadowSystem() : gpu_(std::make_unique<ShadowGpu>()) {
+ShadowSystem::ShadowSystem() : gpu_((gpu::requireLoaded("ShadowSystem"), std::make_unique<ShadowGpu>())) {
     const GlInfo info = queryGlInfo();
     planner_.setLimits({info.maxTextureSize, info.maxArrayLayers});
     gpu_->softwareRenderer = info.softwareRenderer;
@@ -206,6 +208,8 @@ const ShadowFrame& ShadowSystem::prepare(World& world, const CameraView& camera,
 }
 
 void ShadowSystem::render(World& world, MeshCache& meshes, FrameStats& stats) {
+    gpu::reportHostGlErrors("ShadowSystem::render", stats);
+    const gpu::GlStateGuard hostState({SG_UNIT_MINMAX_SOURCE}, {});
     const ShadowFrame& frame = planner_.frame();
     gpu_->syncMaps(frame);
     stats.warnings.insert(stats.warnings.end(), frame.warnings.begin(), frame.warnings.end());
@@ -234,8 +238,6 @@ void ShadowSystem::render(World& world, MeshCache& meshes, FrameStats& stats) {
     for (const ShadowLightPlan& plan : frame.lights) {
         if (plan.hasMap()) gpu_->updatePyramids(plan, timer);
     }
-    gl.Enable(GL_DEPTH_TEST);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gpu::checkGlError("shadow pass");
     timer.collect(stats);
 }

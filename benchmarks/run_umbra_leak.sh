@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Light in the true umbra and false shadow in lit pixels, per light and technique, on
+# builtin:bunny (a PCSS sun, a PCF spot and a hard point light over the Stanford bunny) against
+# the ray-traced truth of shadow_reference. Every shadowed light is set to each technique in
+# turn; the mask of light i is the reference's lit_<i>.exr (the surface faces the light, inside
+# the cone and range). Writes benchmarks/results/umbra_leak.md and its section of BENCHMARKS.md.
+#   bash benchmarks/run_umbra_leak.sh        (SAMPLES=256 SIZE=480x360 to override)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash .ci/setup >/dev/null
+samples=${SAMPLES:-256}
+size=${SIZE:-480x360}
+results=benchmarks/results
+work=$results/tmp/umbra_leak
+mkdir -p "$work"
+./build/bin/shadow_reference builtin:bunny --out "$work/reference" --size "$size" --samples "$samples" >/dev/null
+for technique in hard pcf pcss; do
+  ./build/bin/shadow_render builtin:bunny --technique "$technique" --aov visibility,position --size "$size" \
+    --out "$work/$technique" >/dev/null
+  for light in 0 1 2; do
+    ./build/bin/shadow_compare "$work/$technique" "$work/reference" --mask "$work/reference/lit_$light.exr" \
+      > "$work/$technique-$light.json"
+  done
+done
+python3 - "$work" "$samples" "$size" > "$results/umbra_leak.md" <<'PY'
+import json, sys
+work, samples, size = sys.argv[1], sys.argv[2], sys.argv[3]
+names = ["sun (directional)", "spot", "bulb (point)"]
+print(f"`builtin:bunny` at {size}, reference {samples} rays per pixel and light. Leak: pixels of the "
+      "true umbra (truth 0) whose visibility is above 0.5, as a fraction of the umbra; false shadow "
+      "(acne): pixels lit in truth (truth 1) that read below 0.5, as a fraction of the lit pixels "
+      "(`kWrongSideVisibility` in engine/include/shadow/metrics.h); both over the light's own mask "
+      "(`shadow_compare --mask lit_<i>.exr`).")
+print()
+print("| technique | light | umbra pixels | leak | false shadow | RMSE |")
+print("|---|---|---|---|---|---|")
+for technique in ["hard", "pcf", "pcss"]:
+    for i, name in enumerate(names):
+        l = json.load(open(f"{work}/{technique}-{i}.json"))["lights"][i]
+        print(f"| {technique} | {name} | {l['counts']['umbra']} | {100 * l['leakFraction']:.2f} % | "
+              f"{100 * l['acneFraction']:.3f} % | {l['rmse']:.4f} |")
+PY
+{
+  cat <<'MD'
+Reproduce (about a minute here after the build; rewrites this section and
+`benchmarks/results/umbra_leak.md`):
+
+```sh
+bash benchmarks/run_umbra_leak.sh
+```
+
+MD
+  cat "$results/umbra_leak.md"
+} > "$work/section.md"
+python3 benchmarks/benchmarks_section.py umbra-leak "Light in the umbra (bunny)" "$work/section.md"
+echo "wrote BENCHMARKS.md and $results/umbra_leak.md"

@@ -1,0 +1,89 @@
+// Good manners towards a host that owns the GL context: the state the engine's passes change,
+// captured before a public call and put back after it; errors the host left pending, told
+// apart from the engine's own; and a clear error for a call made before `loadGl`.
+#pragma once
+
+#include "gl/gl_api.h"
+
+#include <shadow/stats.h>
+
+#include <array>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace shadow::gpu {
+
+/// Throws `GlError` naming `who` when `loadGl` has not run (every entry point would be null).
+void requireLoaded(std::string_view who);
+
+/// Reads and clears every error pending in the context; "" when there is none, else the codes
+/// (e.g. "GL_INVALID_ENUM"), comma-separated. Call before the engine's own GL calls, so that
+/// an error the host left behind is reported as the host's and not thrown as the engine's.
+[[nodiscard]] std::string takePendingErrors();
+
+/// `takePendingErrors`, and a `HostGlError` warning in `stats` naming the engine call `call`
+/// when there was one.
+void reportHostGlErrors(std::string_view call, FrameStats& stats);
+
+/// The pieces of GL state the shadow system and the renderer change. Texture units and
+/// uniform-buffer binding points are captured only for the ones named.
+struct GlState {
+    GLint drawFramebuffer = 0;
+    GLint readFramebuffer = 0;
+    GLint program = 0;
+    GLint vertexArray = 0;
+    std::array<GLint, 4> viewport{};
+    std::array<GLint, 4> scissorBox{};
+    GLboolean scissorTest = GL_FALSE;
+    GLboolean depthTest = GL_FALSE;
+    GLint depthFunc = GL_LESS;
+    GLboolean depthMask = GL_TRUE;
+    GLboolean cullFace = GL_FALSE;
+    GLint cullFaceMode = GL_BACK;
+    std::array<GLboolean, 8> blend{};  ///< per draw buffer
+    std::array<GLint, 4> blendFunc{};  ///< src rgb, dst rgb, src alpha, dst alpha
+    std::array<GLboolean, 4> colorMask{};
+    GLint packAlignment = 4;
+    GLint activeTexture = GL_TEXTURE0;
+    GLint uniformBuffer = 0;  ///< the generic GL_UNIFORM_BUFFER binding
+    struct Unit {
+        GLint unit = 0;
+        GLint texture2D = 0;
+        GLint texture2DArray = 0;
+        GLint sampler = 0;
+        bool operator==(const Unit&) const = default;
+    };
+    std::vector<Unit> units;
+    struct UniformBinding {
+        GLint index = 0;
+        GLint buffer = 0;
+        GLint64 start = 0;
+        GLint64 size = 0;
+        bool operator==(const UniformBinding&) const = default;
+    };
+    std::vector<UniformBinding> uniformBindings;
+
+    bool operator==(const GlState&) const = default;
+};
+
+/// Reads the state, with the texture units `units` and the uniform-buffer binding points
+/// `uniformBindings`.
+[[nodiscard]] GlState captureGlState(const std::vector<GLint>& units, const std::vector<GLint>& uniformBindings);
+/// Puts `state` back.
+void restoreGlState(const GlState& state);
+
+/// Captures on construction, restores on destruction (also when the scope is left by a throw).
+class GlStateGuard {
+public:
+    GlStateGuard(const std::vector<GLint>& units, const std::vector<GLint>& uniformBindings)
+        : saved_(captureGlState(units, uniformBindings)) {}
+    ~GlStateGuard() { restoreGlState(saved_); }
+    GlStateGuard(const GlStateGuard&) = delete;
+    GlStateGuard& operator=(const GlStateGuard&) = delete;
+
+private:
+    GlState saved_;
+};
+
+}  // namespace shadow::gpu

@@ -1,0 +1,175 @@
+// The engine as a guest in a host's GL context (engine/src/gl/gl_state.h): every public call
+// that draws leaves the state it changes as it found it, and an error the host left pending is
+// reported as the host's (a HostGlError warning), not thrown as the engine's.
+#include "gl/gl_state.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "render/render_test_support.h"
+#include "test_support.h"
+
+namespace shadow {
+namespace {
+
+/// A ground, a box and three lights (PCSS spot, PCF point, hard sun): every pass the engine has,
+/// the min/max pyramids included.
+Scene threeLightScene() {
+    Scene scene;
+    test::addGround(scene, 3.0f);
+    test::addBox(scene, "box", {0.0, 0.6, 0.0}, {0.4, 0.4, 0.4});
+    Light spot = test::pointSizedLight(LightType::Spot, 0.7f);
+    spot.radius = 0.1f;
+    Shadow pcss = test::hardShadow(256);
+    pcss.technique = ShadowTechnique::Pcss;
+    addLight(scene, "spot", spot, pcss, {0.5, 4.0, 0.3}, {0, -1, 0});
+    Shadow pcf = test::hardShadow(128);
+    pcf.technique = ShadowTechnique::Pcf;
+    addLight(scene, "bulb", test::pointSizedLight(LightType::Point), pcf, {-1.0, 2.0, 1.0}, {0, -1, 0});
+    addLight(scene, "sun", test::pointSizedLight(LightType::Directional), test::hardShadow(256), {0, 10, 0},
+             glm::normalize(glm::dvec3(0.3, -1.0, 0.2)));
+    addCamera(scene, "camera", Camera{}, {0.0, 3.0, 5.0}, {0.0, 0.0, 0.0});
+    return scene;
+}
+
+/// Texture units and uniform-buffer binding points checked: every one the engine binds, and one
+/// beyond.
+std::vector<GLint> unitsChecked() {
+    std::vector<GLint> units;
+    for (GLint i = 0; i <= 24; ++i) units.push_back(i);
+    return units;
+}
+const std::vector<GLint> kBindingsChecked{0, 1, 2};
+
+/// Host state unlike anything the engine sets: its own framebuffer, VAO, program 0, an odd
+/// viewport and scissor, depth test off with GREATER and no writes, front-face culling, blending
+/// with its own function, a partial colour mask, pack alignment 1, texture unit 5 active, a
+/// texture and a sampler on unit 0 and a uniform buffer on binding 1.
+struct HostObjects {
+    GLuint framebuffer = 0, colour = 0, vertexArray = 0, texture = 0, sampler = 0, buffer = 0;
+
+    HostObjects() {
+        gl.CreateTextures(GL_TEXTURE_2D, 1, &colour);
+        gl.TextureStorage2D(colour, 1, GL_RGBA8, 32, 32);
+        gl.CreateFramebuffers(1, &framebuffer);
+        gl.NamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, colour, 0);
+        gl.CreateVertexArrays(1, &vertexArray);
+        gl.CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture);
+        gl.TextureStorage3D(texture, 1, GL_R8, 4, 4, 2);
+        gl.CreateSamplers(1, &sampler);
+        gl.CreateBuffers(1, &buffer);
+        gl.NamedBufferStorage(buffer, 1024, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    ~HostObjects() {
+        gl.DeleteFramebuffers(1, &framebuffer);
+        gl.DeleteTextures(1, &colour);
+        gl.DeleteTextures(1, &texture);
+        gl.DeleteVertexArrays(1, &vertexArray);
+        gl.DeleteSamplers(1, &sampler);
+        gl.DeleteBuffers(1, &buffer);
+    }
+    HostObjects(const HostObjects&) = delete;
+    HostObjects& operator=(const HostObjects&) = delete;
+
+    void bindHostState() const {
+        gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        gl.BindVertexArray(vertexArray);
+        gl.UseProgram(0);
+        gl.Viewport(3, 5, 17, 19);
+        gl.Scissor(1, 2, 7, 9);
+        gl.Enable(GL_SCISSOR_TEST);
+        gl.Disable(GL_DEPTH_TEST);
+        gl.DepthFunc(GL_GREATER);
+        gl.DepthMask(GL_FALSE);
+        gl.Enable(GL_CULL_FACE);
+        gl.CullFace(GL_FRONT);
+        gl.Enablei(GL_BLEND, 0);
+        gl.BlendFuncSeparate(GL_ONE, GL_ZERO, GL_SRC_ALPHA, GL_ONE);
+        gl.ColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
+        gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+        gl.BindTextureUnit(0, texture);
+        gl.BindSampler(0, sampler);
+        gl.BindBufferRange(GL_UNIFORM_BUFFER, 1, buffer, 256, 512);
+        gl.ActiveTexture(GL_TEXTURE5);
+    }
+};
+
+long hostErrors(const FrameStats& stats) {
+    return std::count_if(stats.warnings.begin(), stats.warnings.end(),
+                         [](const Warning& w) { return w.code == WarningCode::HostGlError; });
+}
+
+void expectSameState(const gpu::GlState& before, const gpu::GlState& after, const char* call) {
+    EXPECT_EQ(after.drawFramebuffer, before.drawFramebuffer) << call;
+    EXPECT_EQ(after.readFramebuffer, before.readFramebuffer) << call;
+    EXPECT_EQ(after.program, before.program) << call;
+    EXPECT_EQ(after.vertexArray, before.vertexArray) << call;
+    EXPECT_EQ(after.viewport, before.viewport) << call;
+    EXPECT_EQ(after.scissorBox, before.scissorBox) << call;
+    EXPECT_EQ(after.depthFunc, before.depthFunc) << call;
+    EXPECT_EQ(after.blendFunc, before.blendFunc) << call;
+    EXPECT_EQ(after.units, before.units) << call;
+    EXPECT_EQ(after.uniformBindings, before.uniformBindings) << call;
+    EXPECT_TRUE(after == before) << call << ": some other piece of state changed";
+}
+
+TEST(GlManners, EveryPublicCallLeavesTheHostStateAsItFoundIt) {
+    test::glContext();
+    Scene scene = threeLightScene();
+    FrameRunner runner;
+    test::renderFrame(runner, scene, 64, 48);  // first frame: programs built, maps allocated
+    HostObjects host;
+    host.bindHostState();
+    const gpu::GlState before = gpu::captureGlState(unitsChecked(), kBindingsChecked);
+    ASSERT_EQ(before.drawFramebuffer, static_cast<GLint>(host.framebuffer));  // the set-up took
+
+    RenderOptions options;
+    options.width = 64;
+    options.height = 48;
+    options.aovs = true;
+    FrameStats stats = runner.runFrame(scene, 0.5, scene.cameras.at(0), options);
+    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked), "FrameRunner::runFrame");
+
+    runner.shadows().planner().setCaching(false);  // every layer and pyramid drawn again
+    runner.shadows().prepare(scene.world, runner.lastCamera(), scene.lights);
+    runner.shadows().render(scene.world, runner.renderer().meshes(), stats);
+    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked), "ShadowSystem::render");
+
+    runner.renderer().render(scene.world, runner.lastCamera(), runner.shadows(), options, stats);
+    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked), "Renderer::render");
+
+    const FrameImages images = runner.renderer().readback(runner.lastCamera(), stats);
+    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked), "Renderer::readback");
+    EXPECT_EQ(images.visibility.size(), 3u);
+    EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
+    EXPECT_EQ(hostErrors(stats), 0) << test::describe(stats.warnings);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+TEST(GlManners, AnErrorTheHostLeftPendingIsReportedNotThrown) {
+    test::glContext();
+    Scene scene = threeLightScene();
+    FrameRunner runner;
+    test::renderFrame(runner, scene, 64, 48);
+    gl.Enable(0x7fff);  // not a capability: GL_INVALID_ENUM, left pending by the "host"
+    RenderOptions options;
+    options.width = 64;
+    options.height = 48;
+    FrameStats stats;
+    EXPECT_NO_THROW(stats = runner.runFrame(scene, 0.5, scene.cameras.at(0), options));
+    ASSERT_TRUE(test::hasWarning(stats.warnings, WarningCode::HostGlError, "ShadowSystem::render"))
+        << test::describe(stats.warnings);
+    EXPECT_EQ(hostErrors(stats), 1)
+        << "reported once, by the first call that found it";
+    for (const Warning& w : stats.warnings) {
+        if (w.code == WarningCode::HostGlError) {
+            EXPECT_NE(w.message.find("GL_INVALID_ENUM"), std::string::npos) << w.message;
+        }
+    }
+    EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+}  // namespace
+}  // namespace shadow
