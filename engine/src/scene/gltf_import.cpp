@@ -45,8 +45,7 @@ namespace shadow {
 namespace {
 
 using gltf::elementError;
-
-std::string indexed(const std::string& array, std::size_t i) { return array + "[" + std::to_string(i) + "]"; }
+using gltf::indexed;
 
 // ---- reading the file -------------------------------------------------------------------
 
