@@ -90,7 +90,7 @@ Result<std::vector<std::vector<glm::dvec3>>> worldPositions(const std::vector<In
         std::vector<glm::dvec3>& ws = wsPositions.emplace_back();
         ws.reserve(instance.data->positions.size());
         for (const glm::vec3& p : instance.data->positions) {
-            ws.push_back(glm::dvec3(instance.worldFromLocal * glm::dvec4(glm::dvec3(p), 1.0)));
+            ws.emplace_back(instance.worldFromLocal * glm::dvec4(glm::dvec3(p), 1.0));
             bounds.extend(ws.back());
         }
     }

@@ -270,7 +270,8 @@ Scene makeManyLights(int lights) {
     addMeshInstance(w, "floor", makePlaneMesh(20.0f, 16), at(0, 0, 0), matte(0.75f, 0.75f, 0.72f));
     const auto box = makeBoxMesh(glm::vec3(0.4f));
     for (int i = 0; i < 64; ++i) {
-        const double x = -17.5 + 5.0 * (i % 8), z = -17.5 + 5.0 * (i / 8);
+        const int column = i % 8, row = i / 8;
+        const double x = -17.5 + 5.0 * column, z = -17.5 + 5.0 * row;
         addMeshInstance(w, "box " + std::to_string(i), box, at(x + 0.6, 0.4, z + 0.3), solid(0.8f, 0.55f, 0.35f));
         if (i >= lights) continue;
         Light light;
