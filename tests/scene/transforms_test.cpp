@@ -58,5 +58,46 @@ TEST(Transforms, NothingSkippedReportsNothing) {
     EXPECT_TRUE(warnings.empty());
 }
 
+// A glTF file can chain nodes deeper than the stack holds frames; resolving the chain must not
+// recurse (a chain of 100000 overflowed the 8 MB stack when it did).
+TEST(Transforms, ResolvesAParentChainDeeperThanTheStack) {
+    constexpr int kDepth = 300000;
+    World world;
+    Entity parent = Entity::null();
+    for (int i = 0; i < kDepth; ++i) {
+        const Entity e = world.create();
+        Transform t;
+        t.translation = {0.0, 0.001, 0.0};
+        t.parent = parent;
+        world.emplace<Transform>(e, t);
+        parent = e;
+    }
+    const TransformStats stats = updateTransforms(world);
+    EXPECT_EQ(stats.updated, kDepth);
+    EXPECT_EQ(stats.nonFinite, 0);
+    EXPECT_NEAR(world.get<WorldTransform>(parent).worldFromLocal[3].y, 0.001 * kDepth, 1e-6);
+}
+
+// A parent cycle has no finite answer: every entity on it is skipped, the rest are not.
+TEST(Transforms, ParentCycleIsSkipped) {
+    World world;
+    const Entity root = world.create();
+    world.emplace<Transform>(root, Transform{});
+    const Entity a = world.create();
+    const Entity b = world.create();
+    Transform ta;
+    ta.parent = b;
+    Transform tb;
+    tb.parent = a;
+    world.emplace<Transform>(a, ta);
+    world.emplace<Transform>(b, tb);
+    const TransformStats stats = updateTransforms(world);
+    EXPECT_EQ(stats.updated, 3);
+    EXPECT_EQ(stats.nonFinite, 2);
+    EXPECT_TRUE(world.get<WorldTransform>(root).finite);
+    EXPECT_FALSE(world.get<WorldTransform>(a).finite);
+    EXPECT_FALSE(world.get<WorldTransform>(b).finite);
+}
+
 }  // namespace
 }  // namespace shadow

@@ -20,6 +20,7 @@ namespace {
 constexpr const char* kVersion = "#version 450 core\n";
 
 /// Appends `file` to `out`, replacing each `#include "x"` line by x's expansion.
+// NOLINTNEXTLINE(misc-no-recursion): as deep as the engine's own shader includes; a cycle throws.
 void expandInto(const std::string& file, ExpandedSource& out, std::vector<std::string>& stack) {
     const char* text = findShaderSource(file);
     if (text == nullptr) {
@@ -63,9 +64,11 @@ GLuint compileStage(GLenum stage, const ExpandedSource& src, const std::string& 
     GLint length = 0;
     gl.GetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
     std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-    gl.GetShaderInfoLog(shader, length, nullptr, log.data());
+    GLsizei written = 0;
+    gl.GetShaderInfoLog(shader, length, &written, log.data());
+    log.resize(static_cast<std::size_t>(std::max(written, 0)));  // without the terminating NUL
     gl.DeleteShader(shader);
-    throw GlError("shader compile failed for " + label + ":\n" + mapShaderLog(log.c_str(), src.files));
+    throw GlError("shader compile failed for " + label + ":\n" + mapShaderLog(log, src.files));
 }
 
 }  // namespace
@@ -119,8 +122,10 @@ Program linkProgram(const std::string& label, const ExpandedSource& vertex, cons
         GLint length = 0;
         gl.GetProgramiv(program.get(), GL_INFO_LOG_LENGTH, &length);
         std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-        gl.GetProgramInfoLog(program.get(), length, nullptr, log.data());
-        throw GlError("shader link failed for " + label + ":\n" + mapShaderLog(log.c_str(), fragment.files));
+        GLsizei written = 0;
+        gl.GetProgramInfoLog(program.get(), length, &written, log.data());
+        log.resize(static_cast<std::size_t>(std::max(written, 0)));  // without the terminating NUL
+        throw GlError("shader link failed for " + label + ":\n" + mapShaderLog(log, fragment.files));
     }
     program.label(label);
     return program;

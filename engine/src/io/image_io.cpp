@@ -282,7 +282,7 @@ void toneMapPixel(const float* rgb, float exposure, std::uint8_t* out) {
     const float lum = luminance(c);
     float scale = 0.0f;
     if (std::isinf(lum) || std::isinf(c[0]) || std::isinf(c[1]) || std::isinf(c[2])) {
-        for (int k = 0; k < 3; ++k) c[k] = std::isinf(c[k]) ? 1.0f : 0.0f;  // "very bright"
+        for (float& channel : c) channel = std::isinf(channel) ? 1.0f : 0.0f;  // "very bright"
         scale = 1.0f;
     } else if (lum > 0.0f) {
         scale = filmicCurve(lum) / lum;

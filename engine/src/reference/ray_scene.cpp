@@ -5,6 +5,7 @@
 #include <shadow/math.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -67,6 +68,35 @@ void recordEmbreeError(void* user, RTCError code, const char* message) {
     if (sink->second.empty()) sink->second = message != nullptr ? message : "unknown error";
 }
 
+/// Every mesh instance with triangles and a finite world transform, in creation order.
+std::vector<Instance> gatherInstances(World& world) {
+    std::vector<Instance> instances;
+    world.view<Mesh, WorldTransform>().each([&](Entity e, Mesh& mesh, WorldTransform& wt) {
+        if (!wt.finite || mesh.data == nullptr || mesh.data->indices.empty()) return;
+        instances.push_back(
+            {meshName(world, e, *mesh.data), wt.worldFromLocal, mesh.data, mesh.castShadows, mesh.receiveShadows});
+    });
+    // The view walks its pool back to front; keep a stable, readable order (creation order).
+    std::reverse(instances.begin(), instances.end());
+    return instances;
+}
+
+/// Each instance's vertices in world space, in double, after checking its mesh data;
+/// `bounds` grows to hold them all.
+Result<std::vector<std::vector<glm::dvec3>>> worldPositions(const std::vector<Instance>& instances, DAabb& bounds) {
+    std::vector<std::vector<glm::dvec3>> wsPositions;
+    for (const Instance& instance : instances) {
+        if (Status s = validate(instance); !s) return s.error();
+        std::vector<glm::dvec3>& ws = wsPositions.emplace_back();
+        ws.reserve(instance.data->positions.size());
+        for (const glm::vec3& p : instance.data->positions) {
+            ws.emplace_back(instance.worldFromLocal * glm::dvec4(glm::dvec3(p), 1.0));
+            bounds.extend(ws.back());
+        }
+    }
+    return wsPositions;
+}
+
 }  // namespace
 
 struct RayScene::Impl {
@@ -102,6 +132,45 @@ struct RayScene::Impl {
         rtcReleaseGeometry(g);
     }
 
+    /// The device, its error sink, and the two empty scenes.
+    [[nodiscard]] Status createDevice() {
+        device = rtcNewDevice(nullptr);
+        if (device == nullptr) return Error{"Embree: cannot create a device"};
+        rtcSetDeviceErrorFunction(device, recordEmbreeError, &error);
+        all = rtcNewScene(device);
+        casters = rtcNewScene(device);
+        for (RTCScene scene : {all, casters}) {
+            // Robust traversal: no ray slips between two triangles sharing an edge.
+            rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+            rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+        }
+        return Ok{};
+    }
+
+    /// Flattens `instance` (world-space vertices `ws`) into `meshes` and attaches it as
+    /// geometry `id` to the camera BVH, and to the caster BVH when it casts. `meshes` must
+    /// have room for it: Embree keeps pointers into the earlier meshes' buffers.
+    void addMesh(const Instance& instance, const std::vector<glm::dvec3>& ws, unsigned id) {
+        assert(meshes.size() < meshes.capacity());
+        FlatMesh& mesh = meshes.emplace_back();
+        mesh.casts = instance.casts;
+        mesh.receives = instance.receives;
+        // Embree reads vertices with 16-byte loads: pad the last one.
+        mesh.vertices.reserve(ws.size() * 3 + 4);
+        for (const glm::dvec3& p : ws) {
+            const glm::vec3 v = local(p);
+            mesh.vertices.insert(mesh.vertices.end(), {v.x, v.y, v.z});
+        }
+        mesh.vertices.insert(mesh.vertices.end(), 4, 0.0f);
+        mesh.indices = instance.data->indices;
+        attach(all, mesh, id);
+        triangles += mesh.indices.size() / 3;
+        if (mesh.casts) {
+            attach(casters, mesh, id);
+            casterTriangles += mesh.indices.size() / 3;
+        }
+    }
+
     [[nodiscard]] Status embreeStatus(const std::string& what) {
         const std::lock_guard<std::mutex> lock(error.first);
         if (error.second.empty()) return Ok{};
@@ -115,63 +184,20 @@ RayScene& RayScene::operator=(RayScene&&) noexcept = default;
 RayScene::~RayScene() = default;
 
 Result<RayScene> RayScene::build(World& world) {
-    std::vector<Instance> instances;
-    world.view<Mesh, WorldTransform>().each([&](Entity e, Mesh& mesh, WorldTransform& wt) {
-        if (!wt.finite || mesh.data == nullptr || mesh.data->indices.empty()) return;
-        instances.push_back(
-            {meshName(world, e, *mesh.data), wt.worldFromLocal, mesh.data, mesh.castShadows, mesh.receiveShadows});
-    });
-    // The view walks its pool back to front; keep a stable, readable order (creation order).
-    std::reverse(instances.begin(), instances.end());
+    const std::vector<Instance> instances = gatherInstances(world);
+    DAabb bounds;
+    auto wsPositions = worldPositions(instances, bounds);
+    if (!wsPositions) return wsPositions.error();
 
     auto impl = std::make_unique<Impl>();
-    DAabb bounds;
-    std::vector<std::vector<glm::dvec3>> wsPositions;
-    for (const Instance& instance : instances) {
-        if (Status s = validate(instance); !s) return s.error();
-        std::vector<glm::dvec3>& ws = wsPositions.emplace_back();
-        ws.reserve(instance.data->positions.size());
-        for (const glm::vec3& p : instance.data->positions) {
-            ws.push_back(glm::dvec3(instance.worldFromLocal * glm::dvec4(glm::dvec3(p), 1.0)));
-            bounds.extend(ws.back());
-        }
-    }
     if (!bounds.empty()) {
         impl->origin = bounds.center();
         impl->epsilon = std::max(kRelativeEpsilon * glm::length(bounds.extent()), kMinEpsilon);
     }
-
-    impl->device = rtcNewDevice(nullptr);
-    if (impl->device == nullptr) return Error{"Embree: cannot create a device"};
-    rtcSetDeviceErrorFunction(impl->device, recordEmbreeError, &impl->error);
-    impl->all = rtcNewScene(impl->device);
-    impl->casters = rtcNewScene(impl->device);
-    for (RTCScene scene : {impl->all, impl->casters}) {
-        // Robust traversal: no ray slips between two triangles sharing an edge.
-        rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
-        rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
-    }
-
+    if (Status s = impl->createDevice(); !s) return s.error();
     impl->meshes.reserve(instances.size());
     for (std::size_t k = 0; k < instances.size(); ++k) {
-        FlatMesh& mesh = impl->meshes.emplace_back();
-        mesh.casts = instances[k].casts;
-        mesh.receives = instances[k].receives;
-        // Embree reads vertices with 16-byte loads: pad the last one.
-        mesh.vertices.reserve(wsPositions[k].size() * 3 + 4);
-        for (const glm::dvec3& p : wsPositions[k]) {
-            const glm::vec3 v = impl->local(p);
-            mesh.vertices.insert(mesh.vertices.end(), {v.x, v.y, v.z});
-        }
-        mesh.vertices.insert(mesh.vertices.end(), 4, 0.0f);
-        mesh.indices = instances[k].data->indices;
-        const auto id = static_cast<unsigned>(k);
-        impl->attach(impl->all, mesh, id);
-        impl->triangles += mesh.indices.size() / 3;
-        if (mesh.casts) {
-            impl->attach(impl->casters, mesh, id);
-            impl->casterTriangles += mesh.indices.size() / 3;
-        }
+        impl->addMesh(instances[k], (*wsPositions)[k], static_cast<unsigned>(k));
     }
     rtcCommitScene(impl->all);
     rtcCommitScene(impl->casters);

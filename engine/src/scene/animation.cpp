@@ -34,7 +34,7 @@ glm::dquat toUnitQuat(const glm::dvec4& xyzw) {
 
 /// Slerp along the shorter arc; falls back to normalised lerp when the two are so close that
 /// sin(angle) loses precision.
-glm::dquat slerpShortest(glm::dquat a, glm::dquat b, double u) {
+glm::dquat slerpShortest(const glm::dquat& a, glm::dquat b, double u) {
     double cosAngle = glm::dot(a, b);
     if (cosAngle < 0.0) {
         b = -b;

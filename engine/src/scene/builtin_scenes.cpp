@@ -30,15 +30,8 @@ Transform at(double x, double y, double z) {
     return t;
 }
 
-/// The animated default scene: a ground, casters of several heights, three moving objects,
-/// and a PCSS sun, a PCF spot light and a hard point light.
-Scene makeDefault() {
-    Scene scene;
-    scene.name = "default";
-    World& w = scene.world;
-    addMeshInstance(w, "ground", makePlaneMesh(12.0f, 8), at(0, 0, 0), matte(0.75f, 0.75f, 0.72f));
-
-    const auto unitBox = makeBoxMesh(glm::vec3(0.5f));
+/// The default scene's static casters of several heights: three pillars and a plate on legs.
+void addDefaultStaticCasters(World& w, const std::shared_ptr<const MeshData>& unitBox) {
     struct Pillar {
         const char* name;
         double x, z, height;
@@ -53,8 +46,11 @@ Scene makeDefault() {
     Transform plate = at(3.0, 1.4, 2.0);
     plate.scale = {1.6, 0.08, 1.2};
     addMeshInstance(w, "table top", unitBox, plate, solid(0.35f, 0.55f, 0.8f));
+}
 
-    // Moving casters.
+/// The default scene's three moving casters (orbiting, bobbing, spinning). Returns the orbit's
+/// period, the length of one loop of the animation.
+double addDefaultMovingCasters(World& w, const std::shared_ptr<const MeshData>& unitBox) {
     const Entity orbiter =
         addMeshInstance(w, "orbiting box", makeBoxMesh(glm::vec3(0.4f)), at(0, 0.4, 0), solid(0.85f, 0.25f, 0.25f));
     ProceduralMotion orbit;
@@ -82,8 +78,12 @@ Scene makeDefault() {
     spin.axis = {0.0, 1.0, 0.0};
     spin.speed = 0.8;
     w.emplace<ProceduralMotion>(spinner, spin);
+    return 2.0 * kPi / orbit.speed;
+}
 
-    // Lights of all three types, each with its own technique.
+/// The default scene's lights, one of each type, each with its own technique: a PCSS sun, a
+/// PCF spot light and a hard point light.
+void addDefaultLights(Scene& scene) {
     Light sun;
     sun.type = LightType::Directional;
     sun.color = {1.0f, 0.96f, 0.9f};
@@ -119,14 +119,24 @@ Scene makeDefault() {
     bulbShadow.technique = ShadowTechnique::Hard;
     bulbShadow.mapSize = 512;
     addLight(scene, "bulb", bulb, bulbShadow, {-1.5, 2.6, -1.0}, {0, -1, 0});
+}
 
+/// The animated default scene: a ground, casters of several heights, three moving objects,
+/// and a PCSS sun, a PCF spot light and a hard point light.
+Scene makeDefault() {
+    Scene scene;
+    scene.name = "default";
+    World& w = scene.world;
+    addMeshInstance(w, "ground", makePlaneMesh(12.0f, 8), at(0, 0, 0), matte(0.75f, 0.75f, 0.72f));
+    const std::shared_ptr<const MeshData> unitBox = makeBoxMesh(glm::vec3(0.5f));
+    addDefaultStaticCasters(w, unitBox);
+    scene.animationDuration = addDefaultMovingCasters(w, unitBox);
+    addDefaultLights(scene);
     Camera camera;
     camera.yfov = 0.75f;
     camera.znear = 0.1f;
     camera.zfar = 100.0f;
     addCamera(scene, "camera", camera, {9.0, 7.5, 11.0}, {0.0, 0.5, 0.0});
-    // The orbit's period: one loop of the animation.
-    scene.animationDuration = 2.0 * kPi / orbit.speed;
     return scene;
 }
 
@@ -260,7 +270,8 @@ Scene makeManyLights(int lights) {
     addMeshInstance(w, "floor", makePlaneMesh(20.0f, 16), at(0, 0, 0), matte(0.75f, 0.75f, 0.72f));
     const auto box = makeBoxMesh(glm::vec3(0.4f));
     for (int i = 0; i < 64; ++i) {
-        const double x = -17.5 + 5.0 * (i % 8), z = -17.5 + 5.0 * (i / 8);
+        const int column = i % 8, row = i / 8;
+        const double x = -17.5 + 5.0 * column, z = -17.5 + 5.0 * row;
         addMeshInstance(w, "box " + std::to_string(i), box, at(x + 0.6, 0.4, z + 0.3), solid(0.8f, 0.55f, 0.35f));
         if (i >= lights) continue;
         Light light;

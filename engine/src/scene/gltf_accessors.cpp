@@ -29,8 +29,6 @@ struct CheckedSpan {
     std::string name;  ///< `<where>: accessors[i]`, for messages about elements
 };
 
-std::string indexed(const char* array, std::size_t i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
-
 /// Whether `count` elements of `elementSize` bytes, `stride` apart, starting `offset` bytes in,
 /// fit in `length` bytes. Written to be free of overflow for any input.
 bool fits(std::size_t offset, std::size_t stride, std::size_t count, std::size_t elementSize, std::size_t length) {

@@ -12,8 +12,6 @@ namespace {
 using Interpolation = AnimationChannel::Interpolation;
 using Path = AnimationChannel::Path;
 
-std::string indexed(const std::string& array, std::size_t i) { return array + "[" + std::to_string(i) + "]"; }
-
 std::optional<Path> parsePath(const std::string& path) {
     if (path == "translation") return Path::Translation;
     if (path == "rotation") return Path::Rotation;

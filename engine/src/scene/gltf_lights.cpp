@@ -27,7 +27,7 @@ Result<glm::vec3> parseColor(const tinygltf::Value& color, const std::string& wh
     }
     glm::vec3 rgb;
     for (int c = 0; c < 3; ++c) {
-        auto v = readNonNegativeFloat(color.Get(c), where + "[" + std::to_string(c) + "]");
+        auto v = readNonNegativeFloat(color.Get(c), indexed(where, static_cast<std::size_t>(c)));
         if (!v) return v.error();
         rgb[c] = *v;
     }
@@ -111,8 +111,7 @@ Result<std::vector<LightDefinition>> importLights(const tinygltf::Model& model, 
     const std::string where = std::string(kExtension) + ".lights";
     if (!lights->IsArray()) return elementError(where, "must be an array");
     for (std::size_t i = 0; i < lights->ArrayLen(); ++i) {
-        auto light = parseLight(lights->Get(static_cast<int>(i)), where + "[" + std::to_string(i) + "]",
-                                strictShadowSettings, warnings);
+        auto light = parseLight(lights->Get(static_cast<int>(i)), indexed(where, i), strictShadowSettings, warnings);
         if (!light) return light.error();
         out.push_back(std::move(*light));
     }

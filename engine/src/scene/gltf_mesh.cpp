@@ -13,8 +13,6 @@
 namespace shadow::gltf {
 namespace {
 
-std::string indexed(const std::string& array, std::size_t i) { return array + "[" + std::to_string(i) + "]"; }
-
 /// Unit normals where the file's are usable; zero-length ones stay zero (they light nothing,
 /// and renormalising them would invent a direction).
 void normalizeNormals(std::vector<glm::vec3>& normals) {

@@ -8,6 +8,8 @@ namespace shadow::gltf {
 
 Error elementError(const std::string& where, const std::string& what) { return Error{where + ": " + what}; }
 
+std::string indexed(const std::string& array, std::size_t i) { return array + "[" + std::to_string(i) + "]"; }
+
 const tinygltf::Value* member(const tinygltf::Value& object, const std::string& key) {
     if (!object.IsObject()) return nullptr;
     const auto& map = object.Get<tinygltf::Value::Object>();

@@ -14,6 +14,9 @@ namespace shadow::gltf {
 /// `"<where>: <what>"`, the shape of every import error before the file name is prefixed.
 [[nodiscard]] Error elementError(const std::string& where, const std::string& what);
 
+/// `"<array>[<i>]"`: element `i` of a glTF array as messages name it (`nodes[3]`).
+[[nodiscard]] std::string indexed(const std::string& array, std::size_t i);
+
 /// The member `key` of `object`, or null when `object` is not an object or lacks the key.
 /// (tinygltf's `Value::Get` asserts on non-objects, so never call it on unchecked input.)
 [[nodiscard]] const tinygltf::Value* member(const tinygltf::Value& object, const std::string& key);

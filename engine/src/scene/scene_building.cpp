@@ -21,7 +21,7 @@ std::shared_ptr<MeshData> makeBoxMesh(const glm::vec3& halfExtents) {
             const auto base = static_cast<std::uint32_t>(mesh->positions.size());
             for (int k = 0; k < 4; ++k) {
                 glm::vec3 p(0.0f);
-                p[axis] = sign * halfExtents[axis];
+                p[axis] = n[axis] * halfExtents[axis];
                 p[u] = ((k == 1 || k == 2) ? 1.0f : -1.0f) * halfExtents[u];
                 p[v] = (k >= 2 ? 1.0f : -1.0f) * halfExtents[v];
                 mesh->positions.push_back(p);

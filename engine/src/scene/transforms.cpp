@@ -33,23 +33,41 @@ glm::dmat4 localMatrix(const Transform& t) {
 
 struct Resolver {
     World& world;
-    std::vector<Visit>& state;  // by entity index; reused across frames
+    std::vector<Visit>& state;   // by entity index; reused across frames
+    std::vector<Entity>& chain;  // scratch for resolve(); reused across frames
     TransformStats stats;
 
-    /// Resolves `e` and its ancestors. Returns false when `e`'s matrix is not finite.
+    /// Resolves `e` and its ancestors, parents first. Returns false when `e`'s matrix is not
+    /// finite. A loop, not recursion: a file can hold parent chains deeper than the stack.
     bool resolve(Entity e) {
-        const std::uint32_t i = e.index();
-        if (state[i] == Visit::Done) return world.get<WorldTransform>(e).finite;
-        if (state[i] == Visit::InProgress) return false;  // a parent cycle: no finite answer
-        state[i] = Visit::InProgress;
+        // Walk up to the first ancestor that is resolved already (or is a root), marking the
+        // entities on the way; a parent met again on the way is a cycle, with no finite answer.
+        chain.clear();
+        bool aboveFinite = true;
+        for (Entity next = e; !next.isNull();) {
+            const Visit visit = state[next.index()];
+            if (visit != Visit::NotYet) {
+                aboveFinite = visit == Visit::Done && world.get<WorldTransform>(next).finite;
+                break;
+            }
+            state[next.index()] = Visit::InProgress;
+            chain.push_back(next);
+            const Entity parent = world.get<Transform>(next).parent;
+            next = (!parent.isNull() && world.has<Transform, WorldTransform>(parent)) ? parent : Entity::null();
+        }
+        // Then down again, each entity after its parent.
+        bool finite = aboveFinite;
+        for (auto it = chain.rbegin(); it != chain.rend(); ++it) finite = update(*it, finite);
+        return finite;
+    }
+
+    /// Sets the world matrix of `e`, whose parent (if any) is resolved or in a cycle;
+    /// `parentFinite` is what resolving the parent answered (true for a root).
+    bool update(Entity e, bool parentFinite) {
         const Transform t = world.get<Transform>(e);
         glm::dmat4 parentMatrix(1.0);
-        bool parentFinite = true;
-        if (!t.parent.isNull()) {
-            if (world.has<Transform, WorldTransform>(t.parent)) {
-                parentFinite = resolve(t.parent);
-                parentMatrix = world.get<WorldTransform>(t.parent).worldFromLocal;
-            }
+        if (!t.parent.isNull() && world.has<Transform, WorldTransform>(t.parent)) {
+            parentMatrix = world.get<WorldTransform>(t.parent).worldFromLocal;
         }
         WorldTransform& wt = world.get<WorldTransform>(e);
         const glm::dmat4 next = parentMatrix * localMatrix(t);
@@ -57,7 +75,7 @@ struct Resolver {
         wt.movedThisFrame = wt.movedThisFrame || next != wt.worldFromLocal || finite != wt.finite;
         wt.worldFromLocal = next;
         wt.finite = finite;
-        state[i] = Visit::Done;
+        state[e.index()] = Visit::Done;
         ++stats.updated;
         if (wt.movedThisFrame) ++stats.moved;
         if (!finite) {
@@ -86,10 +104,11 @@ TransformStats updateTransforms(World& world) {
     for (Entity e : missing) world.emplace<WorldBounds>(e);
 
     static thread_local std::vector<Visit> state;
+    static thread_local std::vector<Entity> chain;
     std::uint32_t maxIndex = 0;
     world.view<Transform>().each([&](Entity e, Transform&) { maxIndex = std::max(maxIndex, e.index()); });
     state.assign(static_cast<std::size_t>(maxIndex) + 1, Visit::NotYet);
-    Resolver resolver{world, state, {}};
+    Resolver resolver{world, state, chain, {}};
     world.view<Transform, WorldTransform>().each([&](Entity e, Transform&, WorldTransform&) { resolver.resolve(e); });
 
     TransformStats& stats = resolver.stats;

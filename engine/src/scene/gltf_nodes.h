@@ -1,0 +1,32 @@
+// glTF nodes: each node's transform and references checked, and the node graph's shape (a
+// forest) and the chosen scene's roots worked out, before anything is instantiated.
+#pragma once
+
+#include <shadow/components.h>
+#include <shadow/result.h>
+#include <tiny_gltf.h>
+
+#include <optional>
+#include <vector>
+
+namespace shadow::gltf {
+
+/// What the importer needs of a node, checked.
+struct NodeInfo {
+    Transform transform;
+    std::optional<std::size_t> light;
+};
+
+/// `nodes[i]` checked: mesh and camera indices in range, the transform (TRS or an affine
+/// `matrix`) finite, and the light it references (an index below `lightCount`).
+[[nodiscard]] Result<NodeInfo> checkNode(const tinygltf::Model& model, std::size_t i, std::size_t lightCount);
+
+/// Each node's parent (-1 for roots). The node graph must be a forest: children in range, no
+/// node with two parents, no cycles.
+[[nodiscard]] Result<std::vector<int>> nodeParents(const tinygltf::Model& model);
+
+/// The root nodes to instantiate, in order: the file's `scene` (else scenes[0]) as it lists
+/// them, or every root node in index order when the file has no scenes.
+[[nodiscard]] Result<std::vector<int>> sceneRoots(const tinygltf::Model& model, const std::vector<int>& parents);
+
+}  // namespace shadow::gltf
