@@ -65,10 +65,8 @@ GlState captureGlState(const std::vector<GLint>& units, const std::vector<GLint>
     s.cullFace = enabled(GL_CULL_FACE);
     gl.GetIntegerv(GL_CULL_FACE_MODE, &s.cullFaceMode);
     for (GLuint i = 0; i < s.blend.size(); ++i) s.blend[i] = gl.IsEnabledi(GL_BLEND, i);
-    gl.GetIntegerv(GL_BLEND_SRC_RGB, &s.blendFunc[0]);
-    gl.GetIntegerv(GL_BLEND_DST_RGB, &s.blendFunc[1]);
-    gl.GetIntegerv(GL_BLEND_SRC_ALPHA, &s.blendFunc[2]);
-    gl.GetIntegerv(GL_BLEND_DST_ALPHA, &s.blendFunc[3]);
+    const std::array<GLenum, 4> blendQueries{GL_BLEND_SRC_RGB, GL_BLEND_DST_RGB, GL_BLEND_SRC_ALPHA, GL_BLEND_DST_ALPHA};
+    for (std::size_t i = 0; i < blendQueries.size(); ++i) gl.GetIntegerv(blendQueries[i], s.blendFunc.data() + i);
     gl.GetBooleanv(GL_COLOR_WRITEMASK, s.colorMask.data());
     gl.GetIntegerv(GL_PACK_ALIGNMENT, &s.packAlignment);
     gl.GetIntegerv(GL_ACTIVE_TEXTURE, &s.activeTexture);

@@ -62,7 +62,7 @@ struct PackingEntry {
 struct PassLights {
     std::array<gpu::GpuLight, SG_MAX_LIGHTS_PER_PASS> lights{};
     /// Layer k of slot s at s * SG_MAX_LAYERS_PER_LIGHT + k.
-    std::array<gpu::GpuShadowLayer, SG_MAX_LIGHTS_PER_PASS * SG_MAX_LAYERS_PER_LIGHT> layers{};
+    std::array<gpu::GpuShadowLayer, std::size_t{SG_MAX_LIGHTS_PER_PASS} * SG_MAX_LAYERS_PER_LIGHT> layers{};
     std::array<int, SG_MAX_LIGHTS_PER_PASS> sceneLight{};  ///< -1 for an unused slot
     LitVariant variant;
     /// The pixels its lights can reach (the union of their bounds); the first pass covers the
@@ -86,8 +86,8 @@ struct PassLights {
 void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const ScreenView& view,
                 std::vector<PassLights>& passes, std::vector<PackingEntry>& order);
 
-/// `light` as the shader reads it, without its shadow (technique None).
-gpu::GpuLight packLight(const ShadowLightPlan& light, const glm::dvec3& wsCamera);
+/// `plan`'s light as the shader reads it, without its shadow (technique None).
+gpu::GpuLight packLight(const ShadowLightPlan& plan, const glm::dvec3& wsCamera);
 
 /// The layer record of `layer`, its matrices made to take camera-relative positions.
 gpu::GpuShadowLayer packLayer(const ShadowLayerPlan& layer, const glm::dvec3& wsCamera);

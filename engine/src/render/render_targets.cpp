@@ -41,7 +41,7 @@ void RenderTargets::ensure(int width, int height, bool aovs, int passes) {
 }
 
 GLuint RenderTargets::visibility(int pass, int slot) const {
-    return visibility_[static_cast<std::size_t>(2 * pass + slot / 4)].get();
+    return visibility_[2 * static_cast<std::size_t>(pass) + static_cast<std::size_t>(slot / 4)].get();
 }
 
 void RenderTargets::bindPass(int pass) {

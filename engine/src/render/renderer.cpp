@@ -16,6 +16,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <numeric>
 #include <optional>
 
 namespace shadow {
@@ -107,7 +108,7 @@ struct Renderer::Impl {
     void drawMeshes(World& world, const CameraView& cam, GLuint program, const render::MeshUniforms& uniforms,
                     const DAabb* reach, PerMesh&& perMesh, int& draws);
     void depthPrepass(World& world, const CameraView& cam, const MainCamera& mc, FrameStats& stats);
-    void litPass(World& world, const CameraView& cam, const MainCamera& mc, std::size_t pass,
+    void litPass(World& world, const CameraView& cam, const MainCamera& mc, std::size_t index,
                  const ShadowSystem& shadows, const RenderOptions& options, FrameStats& stats);
 };
 
@@ -141,7 +142,7 @@ void Renderer::Impl::preparePrograms(const RenderOptions& options, FrameStats& s
         render::LitVariant& v = pass.variant;
         v.aovs = options.aovs;
         v.debugView = debugViewId(options.debugView);
-        const auto slot = std::find(pass.sceneLight.begin(), pass.sceneLight.end(), options.debugLight);
+        const auto* const slot = std::find(pass.sceneLight.begin(), pass.sceneLight.end(), options.debugLight);
         v.debugSlot = slot != pass.sceneLight.end() && v.debugView != SG_DEBUG_NONE
                           ? static_cast<int>(slot - pass.sceneLight.begin())
                           : -1;
@@ -273,8 +274,8 @@ namespace {
 
 /// The texture units and uniform-buffer binding points the lit passes bind.
 std::vector<GLint> litTextureUnits() {
-    std::vector<GLint> units;
-    for (GLint i = 0; i < SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS; ++i) units.push_back(i);
+    std::vector<GLint> units(SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS);
+    std::iota(units.begin(), units.end(), 0);
     return units;
 }
 const std::vector<GLint> kLitUniformBindings{SG_BINDING_LIGHTS, SG_BINDING_LAYERS};
