@@ -11,11 +11,15 @@
 #include <shadow/stats.h>
 
 #include <chrono>
+#include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace shadow::gpu {
 
+/// Times the passes of a frame. Kept from frame to frame by its owner: the names and queries of
+/// one frame's passes are reused by the next, so timing allocates nothing in steady state.
 class PassTimer {
 public:
     /// `wallClock` true for CPU rasterisers.
@@ -24,8 +28,9 @@ public:
     PassTimer(const PassTimer&) = delete;
     PassTimer& operator=(const PassTimer&) = delete;
 
-    /// Starts timing a pass named `name` (also pushes a debug group of that name).
-    void begin(const std::string& name);
+    /// Starts timing a pass named `name` (also pushes a debug group of that name). Passes do
+    /// not nest: each ends before the next begins.
+    void begin(std::string_view name);
     /// Ends the pass begun last.
     void end();
     /// Appends the timings of the passes since the last collect to `stats`.
@@ -40,14 +45,17 @@ private:
     };
     bool wallClock_;
     std::chrono::steady_clock::time_point start_{};
+    /// The passes since the last collect are the first `pendingCount_`; the entries after them
+    /// are kept for their storage.
     std::vector<Pending> pending_;
+    std::size_t pendingCount_ = 0;
     std::vector<GLuint> freeQueries_;
 };
 
 /// Times a pass for the duration of a scope.
 class ScopedPass {
 public:
-    ScopedPass(PassTimer& timer, const std::string& name) : timer_(timer) { timer_.begin(name); }
+    ScopedPass(PassTimer& timer, std::string_view name) : timer_(timer) { timer_.begin(name); }
     ~ScopedPass() { timer_.end(); }
     ScopedPass(const ScopedPass&) = delete;
     ScopedPass& operator=(const ScopedPass&) = delete;

@@ -27,6 +27,12 @@ const CameraView& FrameRunner::lastCamera() const { return impl_->camera; }
 
 FrameStats FrameRunner::runFrame(Scene& scene, double t, Entity camera, const RenderOptions& options) {
     FrameStats stats;
+    runFrame(scene, t, camera, options, stats);
+    return stats;
+}
+
+void FrameRunner::runFrame(Scene& scene, double t, Entity camera, const RenderOptions& options, FrameStats& stats) {
+    stats.reset();
     stats.renderer = impl_->rendererName;
     auto t0 = std::chrono::steady_clock::now();
     animate(scene.world, t);
@@ -49,7 +55,6 @@ FrameStats FrameRunner::runFrame(Scene& scene, double t, Entity camera, const Re
     impl_->shadows.render(scene.world, impl_->renderer.meshes(), stats);
     impl_->renderer.render(scene.world, impl_->camera, impl_->shadows, options, stats);
     stats.cpuRenderSubmitMs = msSince(t0);
-    return stats;
 }
 
 }  // namespace shadow

@@ -90,6 +90,7 @@ struct Renderer::Impl {
     GLint uniformAlignment = 256;
     std::size_t lightCount = 0;  ///< scene lights of the last frame
     bool softwareRenderer = false;
+    gpu::PassTimer timer;  ///< the main passes'
 
     Impl();
     /// Adds what the options ask of every pass's program (AOVs, debug view) to its variant and
@@ -110,8 +111,7 @@ struct Renderer::Impl {
                  const ShadowSystem& shadows, const RenderOptions& options, FrameStats& stats);
 };
 
-Renderer::Impl::Impl() {
-    softwareRenderer = queryGlInfo().softwareRenderer;
+Renderer::Impl::Impl() : softwareRenderer(queryGlInfo().softwareRenderer), timer(softwareRenderer) {
     gl.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &uniformAlignment);
     GLuint s[2] = {0, 0};
     gl.CreateSamplers(2, s);
@@ -285,7 +285,7 @@ void Renderer::render(World& world, const CameraView& camera, const ShadowSystem
     r.targets.ensure(options.width, options.height, options.aovs, static_cast<int>(r.passes.size()));
 
     const MainCamera mc = mainCamera(camera);
-    gpu::PassTimer timer(r.softwareRenderer);
+    gpu::PassTimer& timer = r.timer;
     gl.BindFramebuffer(GL_FRAMEBUFFER, r.targets.framebuffer());
     gl.Viewport(0, 0, options.width, options.height);
     gl.CullFace(GL_BACK);  // counter-clockwise front faces, GL's default and glTF's
