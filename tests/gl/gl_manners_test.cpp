@@ -161,14 +161,44 @@ TEST(GlManners, AnErrorTheHostLeftPendingIsReportedNotThrown) {
     EXPECT_NO_THROW(stats = runner.runFrame(scene, 0.5, scene.cameras.at(0), options));
     ASSERT_TRUE(test::hasWarning(stats.warnings, WarningCode::HostGlError, "ShadowSystem::render"))
         << test::describe(stats.warnings);
-    EXPECT_EQ(hostErrors(stats), 1)
-        << "reported once, by the first call that found it";
+    EXPECT_EQ(hostErrors(stats), 1) << "reported once, by the first call that found it";
     for (const Warning& w : stats.warnings) {
         if (w.code == WarningCode::HostGlError) {
             EXPECT_NE(w.message.find("GL_INVALID_ENUM"), std::string::npos) << w.message;
         }
     }
     EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+TEST(GlManners, TimingIsOffUnlessAskedFor) {
+    test::glContext();
+    Scene scene = threeLightScene();
+    RenderOptions options;
+    options.width = 64;
+    options.height = 48;
+    FrameRunner runner;  // turns timing on
+    FrameStats timed = runner.runFrame(scene, 0.0, scene.cameras.at(0), options);
+    EXPECT_GT(timed.passMs("Shadow/"), 0.0);
+    EXPECT_GT(timed.passMs("Main/"), 0.0);
+    EXPECT_NE(timed.timingMethod, "off");
+
+    // A shadow system and a renderer as a game makes them: no timing, no pass listed.
+    ShadowSystem shadows;
+    Renderer renderer;
+    updateTransforms(scene.world);
+    FrameStats quiet;
+    shadows.prepare(scene.world, runner.lastCamera(), scene.lights);
+    shadows.render(scene.world, renderer.meshes(), quiet);
+    renderer.render(scene.world, runner.lastCamera(), shadows, options, quiet);
+    EXPECT_TRUE(quiet.passes.empty());
+    EXPECT_EQ(quiet.timingMethod, "off");
+    EXPECT_GT(quiet.shadowLayersDrawn, 0) << "the frame was drawn all the same";
+    shadows.setTiming(true);
+    shadows.planner().setCaching(false);
+    FrameStats again;
+    shadows.prepare(scene.world, runner.lastCamera(), scene.lights);
+    shadows.render(scene.world, renderer.meshes(), again);
+    EXPECT_GT(again.passMs("Shadow/"), 0.0);
 }
 
 }  // namespace

@@ -39,6 +39,21 @@ glm::dvec3 ndcOf(const glm::dmat4& clipFromX, const glm::dvec3& p) {
     return glm::dvec3(clip) / clip.w;
 }
 
+/// `cascadeSplits` for `count` cascades, into a new list.
+std::vector<double> splitsOf(double near, double far, int count, double lambda) {
+    std::vector<double> splits(static_cast<std::size_t>(count) + 1);
+    cascadeSplits(near, far, lambda, splits);
+    return splits;
+}
+
+/// `planLayers` into a new list.
+std::vector<ShadowLayerPlan> layersOf(const ShadowLightPlan& plan, const LightPose& pose, const CameraView& camera,
+                                      const SceneGeometry& geometry) {
+    std::vector<ShadowLayerPlan> layers;
+    planLayers(plan, pose, camera, geometry, layers);
+    return layers;
+}
+
 // ---- Pose and camera ----
 
 TEST(LightProjection, LightPoseIsTheNodeOriginAndItsMinusZ) {
@@ -147,7 +162,7 @@ TEST(LightProjection, CascadeSplitsAreMonotoneAndFollowTheClosedForms) {
     const double f = 100.0;
     for (int count = 1; count <= 4; ++count) {
         for (double lambda : {0.0, 0.25, 0.75, 1.0}) {
-            const std::vector<double> s = cascadeSplits(n, f, count, lambda);
+            const std::vector<double> s = splitsOf(n, f, count, lambda);
             ASSERT_EQ(s.size(), static_cast<std::size_t>(count) + 1);
             EXPECT_DOUBLE_EQ(s.front(), n);
             EXPECT_DOUBLE_EQ(s.back(), f);
@@ -162,10 +177,10 @@ TEST(LightProjection, CascadeSplitsAreMonotoneAndFollowTheClosedForms) {
         }
     }
     // The two ends of the blend, spelled out.
-    const std::vector<double> uniform = cascadeSplits(1.0, 9.0, 4, 0.0);
+    const std::vector<double> uniform = splitsOf(1.0, 9.0, 4, 0.0);
     EXPECT_NEAR(uniform[1], 3.0, 1e-12);
     EXPECT_NEAR(uniform[2], 5.0, 1e-12);
-    const std::vector<double> logarithmic = cascadeSplits(1.0, 16.0, 4, 1.0);
+    const std::vector<double> logarithmic = splitsOf(1.0, 16.0, 4, 1.0);
     EXPECT_NEAR(logarithmic[1], 2.0, 1e-12);
     EXPECT_NEAR(logarithmic[2], 4.0, 1e-12);
     EXPECT_NEAR(logarithmic[3], 8.0, 1e-12);
@@ -175,7 +190,7 @@ TEST(LightProjection, CascadeSplitsAreMonotoneAndFollowTheClosedForms) {
 // finite, non-decreasing splits (the logarithmic term divides by near).
 TEST(LightProjection, CascadeSplitsStayFiniteForDegenerateRanges) {
     for (const auto& [near, far] : {std::pair{0.0, 10.0}, std::pair{2.0, 2.0}, std::pair{3.0, 1.0}}) {
-        const std::vector<double> s = cascadeSplits(near, far, 4, 0.75);
+        const std::vector<double> s = splitsOf(near, far, 4, 0.75);
         ASSERT_EQ(s.size(), 5u);
         EXPECT_GT(s.front(), 0.0) << near << ".." << far;
         EXPECT_LT(s.front(), s.back()) << near << ".." << far;
@@ -205,7 +220,10 @@ TEST(LightProjection, GatherGeometryKeepsCastersInEntityOrderAndSkipsWhatDrawsNo
     addMeshInstance(world, "no triangles", noTriangles, at({20, 0, 0}));
     (void)updateTransforms(world);
 
-    const SceneGeometry g = gatherGeometry(world);
+    SceneGeometry g;
+    g.casters.push_back({world.create(), {}});  // what the list held before: replaced
+    g.everything.extend(glm::dvec3(100.0));
+    gatherGeometry(world, g);
     ASSERT_EQ(g.casters.size(), 2u);
     EXPECT_TRUE(g.casters[0].entity == both);
     EXPECT_TRUE(g.casters[1].entity == castOnly);
@@ -239,8 +257,7 @@ double cornerDistance(double far, double tanHalf) { return far * std::sqrt(1.0 +
 TEST(LightProjection, SpotLayerIsThePerspectiveOfItsConeWithTwoTexelsOfMargin) {
     const ShadowLightPlan plan = planFor(LightType::Spot, 20.0f, 0.25f, 1024);
     const LightPose pose{{1.0, 5.0, -2.0}, glm::normalize(glm::dvec3(0.2, -1.0, 0.1))};
-    const std::vector<ShadowLayerPlan> layers =
-        planLayers(plan, pose, cameraAt({0, 2, 6}, {0, 0, -1}), SceneGeometry{});
+    const std::vector<ShadowLayerPlan> layers = layersOf(plan, pose, cameraAt({0, 2, 6}, {0, 0, -1}), SceneGeometry{});
     ASSERT_EQ(layers.size(), 1u);
     const ShadowLayerPlan& layer = layers[0];
     const double tanHalf = std::tan(0.5) * (1.0 + 4.0 / 1024.0);
@@ -272,7 +289,7 @@ TEST(LightProjection, SpotNearPlaneIsThePowerOfTwoBeforeTheNearestCasterInItsFru
     g.casters.push_back({aside, {{9.5, 1.0, -0.5}, {10.5, 2.0, 0.5}}});  // outside the cone
     const CameraView camera = cameraAt({0, 2, 6}, {0, 0, -1});
     {
-        const ShadowLayerPlan layer = planLayers(plan, pose, camera, g).at(0);
+        const ShadowLayerPlan layer = layersOf(plan, pose, camera, g).at(0);
         const double expected = std::exp2(std::floor(std::log2(0.9 * 3.0 * cornerCos)));
         EXPECT_EQ(expected, 2.0) << "0.9 x 3 m x " << cornerCos;
         EXPECT_FLOAT_EQ(layer.depthNear, 2.0f);
@@ -283,7 +300,7 @@ TEST(LightProjection, SpotNearPlaneIsThePowerOfTwoBeforeTheNearestCasterInItsFru
         // With only the caster outside the cone, nothing pulls the near plane in: the largest
         // power of two below 0.9 x far x cornerCos (14.2 m), at most half the far plane.
         g.casters.erase(g.casters.begin());
-        const ShadowLayerPlan layer = planLayers(plan, pose, camera, g).at(0);
+        const ShadowLayerPlan layer = layersOf(plan, pose, camera, g).at(0);
         EXPECT_FLOAT_EQ(layer.depthNear, 8.0f);
         EXPECT_TRUE(layer.casters.empty());
     }
@@ -297,7 +314,7 @@ TEST(LightProjection, PointLayersAreTheSixCubeFacesReachingThePowerOfTwoAboveThe
     // Farthest scene corner: (5, 0, 5), sqrt(59) = 7.7 m from the light; far rounds up to 8 m.
     const double far = 8.0;
     const double tanHalf = 1.0 + 4.0 / 512.0;  // 45 degrees and two texels
-    const std::vector<ShadowLayerPlan> layers = planLayers(plan, pose, cameraAt({0, 2, 6}, {0, 0, -1}), g);
+    const std::vector<ShadowLayerPlan> layers = layersOf(plan, pose, cameraAt({0, 2, 6}, {0, 0, -1}), g);
     ASSERT_EQ(layers.size(), 6u);
     // The order the shader's cubeFace() indexes: +X, -X, +Y, -Y, +Z, -Z.
     const glm::dvec3 faces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
@@ -324,7 +341,7 @@ struct SunOverGround {
     }
     std::vector<ShadowLayerPlan> layers(double cameraX) const {
         const glm::dvec3 eye(cameraX, 3.0, 8.0);
-        return planLayers(plan, pose, cameraAt(eye, glm::normalize(-eye)), geometry);
+        return layersOf(plan, pose, cameraAt(eye, glm::normalize(-eye)), geometry);
     }
 };
 
@@ -336,7 +353,7 @@ TEST(LightProjection, DirectionalCascadesSplitTheDistancesToTheReceivers) {
     // and end at the farthest ground corner, (+-5, 0, -5).
     const double nearest = std::sqrt(3.0 * 3.0 + 3.0 * 3.0);
     const double farthest = std::sqrt(5.0 * 5.0 + 3.0 * 3.0 + 13.0 * 13.0);
-    const std::vector<double> splits = cascadeSplits(nearest, farthest, 3, sun.plan.settings.cascadeSplitLambda);
+    const std::vector<double> splits = splitsOf(nearest, farthest, 3, sun.plan.settings.cascadeSplitLambda);
     const glm::dmat4 rotation = lookAlong(glm::dvec3(0.0), sun.pose.wsDirection);
     for (std::size_t k = 0; k < 3; ++k) {
         const std::string what = "cascade " + std::to_string(k);
@@ -367,6 +384,36 @@ TEST(LightProjection, DirectionalCascadeCentresSnapToWholeTexels) {
                     << "camera x " << cameraX << ", cascade " << k << ", axis " << a;
             }
         }
+    }
+}
+
+// The planner plans into last frame's layers to reuse their caster lists: every field must come
+// out as planning into an empty list gives, whatever the list held (here a sun's cascades).
+TEST(LightProjection, PlanningIntoUsedLayersGivesWhatPlanningAfreshGives) {
+    const SunOverGround sun;
+    World world;
+    SceneGeometry g = sun.geometry;
+    g.casters.push_back({world.create(), {{-0.5, 0.0, -0.5}, {0.5, 1.0, 0.5}}});
+    const CameraView camera = cameraAt({0, 3, 8}, glm::normalize(glm::dvec3(0, -3, -8)));
+    std::vector<ShadowLayerPlan> layers;
+    planLayers(sun.plan, sun.pose, camera, g, layers);
+    for (ShadowLayerPlan& layer : layers) layer.dirty = false;
+
+    const ShadowLightPlan bulb = planFor(LightType::Point, 0.0f, 0.0f, 512);
+    const LightPose bulbPose{{0.0, 3.0, 0.0}, {0.0, -1.0, 0.0}};
+    planLayers(bulb, bulbPose, camera, g, layers);
+    const std::vector<ShadowLayerPlan> fresh = layersOf(bulb, bulbPose, camera, g);
+    ASSERT_EQ(layers.size(), fresh.size());
+    for (std::size_t k = 0; k < fresh.size(); ++k) {
+        const std::string what = "face " + std::to_string(k);
+        EXPECT_EQ(layers[k].lightFromWorld, fresh[k].lightFromWorld) << what;
+        EXPECT_EQ(layers[k].clipFromLight, fresh[k].clipFromLight) << what;
+        EXPECT_EQ(layers[k].orthographic, fresh[k].orthographic) << what;
+        EXPECT_EQ(layers[k].depthScale, fresh[k].depthScale) << what;
+        EXPECT_EQ(layers[k].depthNear, fresh[k].depthNear) << what;
+        EXPECT_EQ(layers[k].splitFar, fresh[k].splitFar) << what;
+        EXPECT_EQ(layers[k].casters, fresh[k].casters) << what;
+        EXPECT_EQ(layers[k].dirty, fresh[k].dirty) << what;
     }
 }
 

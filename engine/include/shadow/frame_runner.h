@@ -11,6 +11,7 @@ namespace shadow {
 
 /// Everything a frame needs, in the documented order: animate, transforms, shadow prepare,
 /// shadow render, main pass. A convenience for samples and games with no loop of their own.
+/// Turns pass timing on (`ShadowSystem::setTiming`, `Renderer::setTiming`).
 /// Requires a current OpenGL 4.5 context with `loadGl` done, from construction on.
 class FrameRunner {
 public:
@@ -19,10 +20,15 @@ public:
     FrameRunner(const FrameRunner&) = delete;
     FrameRunner& operator=(const FrameRunner&) = delete;
 
-    /// Runs one frame of `scene` at time `t` (s) through camera entity `camera`. Bad input
-    /// (settings out of range, non-finite transforms) never throws: it is clamped or skipped and
-    /// reported in `FrameStats::warnings`. Throws `GlError` only when the GL side fails (a
-    /// shader that does not compile, an incomplete framebuffer: a broken build or driver).
+    /// Runs one frame of `scene` at time `t` (s) through camera entity `camera`, measured into
+    /// `stats`. `stats` is reset first and its storage reused: given the same `stats` every
+    /// frame, a frame in steady state allocates nothing (one that reports warnings allocates
+    /// their text). Bad input (settings out of range, non-finite transforms) never throws: it is
+    /// clamped or skipped and reported in `FrameStats::warnings`. Throws `GlError` only when the
+    /// GL side fails (a shader that does not compile, an incomplete framebuffer: a broken build
+    /// or driver).
+    void runFrame(Scene& scene, double t, Entity camera, const RenderOptions& options, FrameStats& stats);
+    /// `runFrame` into a new `FrameStats`: a convenience that allocates its lists every frame.
     FrameStats runFrame(Scene& scene, double t, Entity camera, const RenderOptions& options);
 
     [[nodiscard]] ShadowSystem& shadows();

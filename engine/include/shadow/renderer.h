@@ -81,6 +81,8 @@ public:
     void present(int width, int height) const;
 
     [[nodiscard]] MeshCache& meshes();
+    /// Per-pass timing of `render` and `readback`, as `ShadowSystem::setTiming` (default off).
+    void setTiming(bool enabled);
 
 private:
     struct Impl;

@@ -118,9 +118,15 @@ void clampLight(Light& light, std::string_view who, std::vector<Warning>& warnin
 void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, const std::string& who,
                          std::vector<Warning>& warnings);
 
-/// CPU half of the shadow system. Keeps last frame's decisions to find what changed.
+/// CPU half of the shadow system. Keeps last frame's decisions to find what changed, and the
+/// storage of its lists: planning a frame like the last allocates nothing.
 class ShadowPlanner {
 public:
+    ShadowPlanner();
+    ~ShadowPlanner();
+    ShadowPlanner(const ShadowPlanner&) = delete;
+    ShadowPlanner& operator=(const ShadowPlanner&) = delete;
+
     /// Decides this frame's layers. `lights` is the scene's light order.
     const ShadowFrame& prepare(World& world, const CameraView& camera, const std::vector<Entity>& lights);
     /// The last prepared frame.
@@ -143,6 +149,8 @@ private:
 
     ShadowFrame frame_;
     std::vector<std::pair<Entity, LightMemory>> memory_;
+    struct Scratch;  ///< the working lists of `prepare` (planner.cpp), kept for their storage
+    std::unique_ptr<Scratch> scratch_;
     ShadowLimits limits_;
     bool caching_ = true;
 };
@@ -169,6 +177,11 @@ public:
     /// also when it throws. An error the host left pending is read, cleared and reported as a
     /// `HostGlError` warning, never thrown; `GlError` is thrown only for the engine's own.
     void render(World& world, MeshCache& meshes, FrameStats& stats);
+    /// Per-pass timing into `FrameStats::passes`. Default off: timing brackets every pass with
+    /// glFinish on a CPU rasteriser and reads timer queries at the end of the frame on a GPU
+    /// (a stall, and a query of the host's own could not be open across the call). FrameRunner
+    /// turns it on. Off, `FrameStats::timingMethod` says "off" and no pass is listed.
+    void setTiming(bool enabled);
 
     [[nodiscard]] const ShadowFrame& frame() const { return planner_.frame(); }
     [[nodiscard]] ShadowPlanner& planner() { return planner_; }

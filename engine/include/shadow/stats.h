@@ -4,6 +4,8 @@
 #include <shadow/warnings.h>
 
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 namespace shadow {
@@ -31,6 +33,10 @@ struct LightShadowStats {
 };
 
 /// Everything measured in one frame. Timings are milliseconds.
+///
+/// One `FrameStats` reused frame after frame (`FrameRunner::runFrame(…, FrameStats&)`) costs no
+/// allocation in steady state: `reset` keeps the storage of its lists and of the strings in
+/// them, and `addPass` and `addLight` reuse it.
 struct FrameStats {
     std::string renderer;  ///< GL_RENDERER
     /// "wall-clock-fence" on CPU rasterisers (timer queries miss rasterisation there),
@@ -65,6 +71,67 @@ struct FrameStats {
         }
         return sum;
     }
+
+    /// Makes these the stats of a new frame: every number 0, every string and list empty. The
+    /// entries of `passes` and `lights` are set aside, for `addPass` and `addLight` to reuse.
+    void reset() {
+        FrameStats next;
+        next.renderer = std::move(renderer);
+        next.renderer.clear();
+        next.timingMethod = std::move(timingMethod);
+        next.timingMethod.clear();
+        next.passes = std::move(passes);
+        next.sparePasses_ = std::move(sparePasses_);
+        setAside(next.passes, next.sparePasses_);
+        next.lights = std::move(lights);
+        next.spareLights_ = std::move(spareLights_);
+        setAside(next.lights, next.spareLights_);
+        next.warnings = std::move(warnings);
+        next.warnings.clear();
+        *this = std::move(next);
+    }
+
+    /// Appends the timing of the pass `name`.
+    void addPass(std::string_view name, double ms) {
+        PassTiming& p = passes.emplace_back();
+        if (!sparePasses_.empty()) {
+            p.name = std::move(sparePasses_.back().name);
+            sparePasses_.pop_back();
+        }
+        p.name.assign(name);
+        p.ms = ms;
+    }
+
+    /// Appends the stats of the next scene light, every field at its default.
+    LightShadowStats& addLight() {
+        LightShadowStats& ls = lights.emplace_back();
+        if (!spareLights_.empty()) {
+            LightShadowStats& spare = spareLights_.back();
+            auto reuse = [](std::string& to, std::string& from) {
+                to = std::move(from);
+                to.clear();
+            };
+            reuse(ls.name, spare.name);
+            reuse(ls.type, spare.type);
+            reuse(ls.technique, spare.technique);
+            spareLights_.pop_back();
+        }
+        return ls;
+    }
+
+private:
+    /// Moves the entries of `list` to `spare`, last first: the next frame's entry k reuses the
+    /// storage of this frame's entry k.
+    template <typename T>
+    static void setAside(std::vector<T>& list, std::vector<T>& spare) {
+        while (!list.empty()) {
+            spare.push_back(std::move(list.back()));
+            list.pop_back();
+        }
+    }
+
+    std::vector<PassTiming> sparePasses_;
+    std::vector<LightShadowStats> spareLights_;
 };
 
 }  // namespace shadow

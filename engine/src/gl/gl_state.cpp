@@ -2,6 +2,8 @@
 
 #include <shadow/context.h>
 
+#include <algorithm>
+
 namespace shadow::gpu {
 namespace {
 
@@ -26,7 +28,8 @@ void setEnabled(GLenum cap, GLboolean on) { on ? gl.Enable(cap) : gl.Disable(cap
 
 void requireLoaded(std::string_view who) {
     if (gl.GetError == nullptr || gl.GetIntegerv == nullptr) {
-        throw GlError(std::string(who) + ": OpenGL is not loaded; make a 4.5 core context current and call loadGl first");
+        throw GlError(std::string(who) +
+                      ": OpenGL is not loaded; make a 4.5 core context current and call loadGl first");
     }
 }
 
@@ -50,7 +53,7 @@ void reportHostGlErrors(std::string_view call, FrameStats& stats) {
                                   " was called (an earlier call of the host's, not the engine's); read and cleared"});
 }
 
-GlState captureGlState(const std::vector<GLint>& units, const std::vector<GLint>& uniformBindings) {
+GlState captureGlState(std::span<const GLint> units, std::span<const GLint> uniformBindings) {
     GlState s;
     gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s.drawFramebuffer);
     gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &s.readFramebuffer);
@@ -65,30 +68,29 @@ GlState captureGlState(const std::vector<GLint>& units, const std::vector<GLint>
     s.cullFace = enabled(GL_CULL_FACE);
     gl.GetIntegerv(GL_CULL_FACE_MODE, &s.cullFaceMode);
     for (GLuint i = 0; i < s.blend.size(); ++i) s.blend[i] = gl.IsEnabledi(GL_BLEND, i);
-    const std::array<GLenum, 4> blendQueries{GL_BLEND_SRC_RGB, GL_BLEND_DST_RGB, GL_BLEND_SRC_ALPHA, GL_BLEND_DST_ALPHA};
+    const std::array<GLenum, 4> blendQueries{GL_BLEND_SRC_RGB, GL_BLEND_DST_RGB, GL_BLEND_SRC_ALPHA,
+                                             GL_BLEND_DST_ALPHA};
     for (std::size_t i = 0; i < blendQueries.size(); ++i) gl.GetIntegerv(blendQueries[i], s.blendFunc.data() + i);
     gl.GetBooleanv(GL_COLOR_WRITEMASK, s.colorMask.data());
     gl.GetIntegerv(GL_PACK_ALIGNMENT, &s.packAlignment);
     gl.GetIntegerv(GL_ACTIVE_TEXTURE, &s.activeTexture);
     gl.GetIntegerv(GL_UNIFORM_BUFFER_BINDING, &s.uniformBuffer);
-    for (GLint unit : units) {
-        GlState::Unit u;
+    for (GLint unit : units.first(std::min(units.size(), s.units.size()))) {
+        GlState::Unit& u = s.units[s.unitCount++];
         u.unit = unit;
         gl.ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(unit));
         gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &u.texture2D);
         gl.GetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &u.texture2DArray);
         gl.GetIntegerv(GL_SAMPLER_BINDING, &u.sampler);
-        s.units.push_back(u);
     }
     gl.ActiveTexture(static_cast<GLenum>(s.activeTexture));
-    for (GLint index : uniformBindings) {
-        GlState::UniformBinding b;
+    for (GLint index : uniformBindings.first(std::min(uniformBindings.size(), s.uniformBindings.size()))) {
+        GlState::UniformBinding& b = s.uniformBindings[s.uniformBindingCount++];
         b.index = index;
         const auto i = static_cast<GLuint>(index);
         gl.GetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, i, &b.buffer);
         gl.GetInteger64i_v(GL_UNIFORM_BUFFER_START, i, &b.start);
         gl.GetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, i, &b.size);
-        s.uniformBindings.push_back(b);
     }
     return s;
 }
@@ -111,7 +113,7 @@ void restoreGlState(const GlState& s) {
                          static_cast<GLenum>(s.blendFunc[2]), static_cast<GLenum>(s.blendFunc[3]));
     gl.ColorMask(s.colorMask[0], s.colorMask[1], s.colorMask[2], s.colorMask[3]);
     gl.PixelStorei(GL_PACK_ALIGNMENT, s.packAlignment);
-    for (const GlState::Unit& u : s.units) {
+    for (const GlState::Unit& u : std::span(s.units).first(s.unitCount)) {
         // Unbinds every target of the unit, then binds the host's textures back by target.
         gl.BindTextureUnit(static_cast<GLuint>(u.unit), 0);
         if (u.texture2D != 0 || u.texture2DArray != 0) {
@@ -122,7 +124,7 @@ void restoreGlState(const GlState& s) {
         gl.BindSampler(static_cast<GLuint>(u.unit), static_cast<GLuint>(u.sampler));
     }
     gl.ActiveTexture(static_cast<GLenum>(s.activeTexture));
-    for (const GlState::UniformBinding& b : s.uniformBindings) {
+    for (const GlState::UniformBinding& b : std::span(s.uniformBindings).first(s.uniformBindingCount)) {
         const auto i = static_cast<GLuint>(b.index);
         if (b.buffer != 0 && b.size > 0) {
             gl.BindBufferRange(GL_UNIFORM_BUFFER, i, static_cast<GLuint>(b.buffer), static_cast<GLintptr>(b.start),

@@ -8,9 +8,10 @@
 #include <shadow/stats.h>
 
 #include <array>
+#include <cstddef>
+#include <span>
 #include <string>
 #include <string_view>
-#include <vector>
 
 namespace shadow::gpu {
 
@@ -54,7 +55,9 @@ struct GlState {
         GLint sampler = 0;
         bool operator==(const Unit&) const = default;
     };
-    std::vector<Unit> units;
+    /// The first `unitCount` are captured (fixed storage: capturing allocates nothing).
+    std::array<Unit, 32> units{};
+    std::size_t unitCount = 0;
     struct UniformBinding {
         GLint index = 0;
         GLint buffer = 0;
@@ -62,21 +65,22 @@ struct GlState {
         GLint64 size = 0;
         bool operator==(const UniformBinding&) const = default;
     };
-    std::vector<UniformBinding> uniformBindings;
+    std::array<UniformBinding, 4> uniformBindings{};
+    std::size_t uniformBindingCount = 0;
 
     bool operator==(const GlState&) const = default;
 };
 
-/// Reads the state, with the texture units `units` and the uniform-buffer binding points
-/// `uniformBindings`.
-[[nodiscard]] GlState captureGlState(const std::vector<GLint>& units, const std::vector<GLint>& uniformBindings);
+/// Reads the state, with the texture units `units` (at most 32) and the uniform-buffer binding
+/// points `uniformBindings` (at most 4); the ones beyond are not captured.
+[[nodiscard]] GlState captureGlState(std::span<const GLint> units, std::span<const GLint> uniformBindings);
 /// Puts `state` back.
 void restoreGlState(const GlState& state);
 
 /// Captures on construction, restores on destruction (also when the scope is left by a throw).
 class GlStateGuard {
 public:
-    GlStateGuard(const std::vector<GLint>& units, const std::vector<GLint>& uniformBindings)
+    GlStateGuard(std::span<const GLint> units, std::span<const GLint> uniformBindings)
         : saved_(captureGlState(units, uniformBindings)) {}
     ~GlStateGuard() { restoreGlState(saved_); }
     GlStateGuard(const GlStateGuard&) = delete;

@@ -11,11 +11,15 @@
 #include <shadow/stats.h>
 
 #include <chrono>
+#include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace shadow::gpu {
 
+/// Times the passes of a frame. Kept from frame to frame by its owner: the names and queries of
+/// one frame's passes are reused by the next, so timing allocates nothing in steady state.
 class PassTimer {
 public:
     /// `wallClock` true for CPU rasterisers.
@@ -24,13 +28,21 @@ public:
     PassTimer(const PassTimer&) = delete;
     PassTimer& operator=(const PassTimer&) = delete;
 
-    /// Starts timing a pass named `name` (also pushes a debug group of that name).
-    void begin(const std::string& name);
+    /// Starts timing a pass named `name` (also pushes a debug group of that name). Passes do
+    /// not nest: each ends before the next begins.
+    void begin(std::string_view name);
     /// Ends the pass begun last.
     void end();
     /// Appends the timings of the passes since the last collect to `stats`.
     void collect(FrameStats& stats);
-    [[nodiscard]] const char* method() const { return wallClock_ ? "wall-clock-fence" : "timer-query"; }
+    [[nodiscard]] const char* method() const {
+        if (!enabled_) return "off";
+        return wallClock_ ? "wall-clock-fence" : "timer-query";
+    }
+    /// Off: passes keep their debug groups but are not timed (no glFinish, no query) and
+    /// `collect` adds none.
+    void setEnabled(bool enabled) { enabled_ = enabled; }
+    [[nodiscard]] bool enabled() const { return enabled_; }
 
 private:
     struct Pending {
@@ -39,15 +51,19 @@ private:
         GLuint query = 0;
     };
     bool wallClock_;
+    bool enabled_ = true;
     std::chrono::steady_clock::time_point start_{};
+    /// The passes since the last collect are the first `pendingCount_`; the entries after them
+    /// are kept for their storage.
     std::vector<Pending> pending_;
+    std::size_t pendingCount_ = 0;
     std::vector<GLuint> freeQueries_;
 };
 
 /// Times a pass for the duration of a scope.
 class ScopedPass {
 public:
-    ScopedPass(PassTimer& timer, const std::string& name) : timer_(timer) { timer_.begin(name); }
+    ScopedPass(PassTimer& timer, std::string_view name) : timer_(timer) { timer_.begin(name); }
     ~ScopedPass() { timer_.end(); }
     ScopedPass(const ScopedPass&) = delete;
     ScopedPass& operator=(const ScopedPass&) = delete;

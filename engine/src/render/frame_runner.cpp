@@ -18,7 +18,11 @@ struct FrameRunner::Impl {
     std::string rendererName = queryGlInfo().renderer;
 };
 
-FrameRunner::FrameRunner() : impl_(std::make_unique<Impl>()) {}
+FrameRunner::FrameRunner() : impl_(std::make_unique<Impl>()) {
+    // The runner serves the samples, tests and benchmarks, which report pass timings.
+    impl_->shadows.setTiming(true);
+    impl_->renderer.setTiming(true);
+}
 FrameRunner::~FrameRunner() = default;
 
 ShadowSystem& FrameRunner::shadows() { return impl_->shadows; }
@@ -27,6 +31,12 @@ const CameraView& FrameRunner::lastCamera() const { return impl_->camera; }
 
 FrameStats FrameRunner::runFrame(Scene& scene, double t, Entity camera, const RenderOptions& options) {
     FrameStats stats;
+    runFrame(scene, t, camera, options, stats);
+    return stats;
+}
+
+void FrameRunner::runFrame(Scene& scene, double t, Entity camera, const RenderOptions& options, FrameStats& stats) {
+    stats.reset();
     stats.renderer = impl_->rendererName;
     auto t0 = std::chrono::steady_clock::now();
     animate(scene.world, t);
@@ -49,7 +59,6 @@ FrameStats FrameRunner::runFrame(Scene& scene, double t, Entity camera, const Re
     impl_->shadows.render(scene.world, impl_->renderer.meshes(), stats);
     impl_->renderer.render(scene.world, impl_->camera, impl_->shadows, options, stats);
     stats.cpuRenderSubmitMs = msSince(t0);
-    return stats;
 }
 
 }  // namespace shadow

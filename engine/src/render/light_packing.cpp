@@ -124,9 +124,11 @@ void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const Scre
         const bool wide = 4 * b.area() >= whole.area();
         order.push_back({wide, plan.sceneIndex, b});
     }
-    // Wide lights first, in scene order; the local ones after them.
-    std::stable_sort(order.begin(), order.end(),
-                     [](const PackingEntry& a, const PackingEntry& b) { return a.wide && !b.wide; });
+    // Wide lights first, in scene order; the local ones after them. Scene order is spelled out
+    // rather than left to std::stable_sort, which allocates a buffer every call.
+    std::sort(order.begin(), order.end(), [](const PackingEntry& a, const PackingEntry& b) {
+        return a.wide != b.wide ? a.wide : a.sceneLight < b.sceneLight;
+    });
 
     std::size_t used = 0;
     auto openPass = [&]() -> PassLights& {

@@ -16,6 +16,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 #include <optional>
 
@@ -92,6 +93,7 @@ struct Renderer::Impl {
     GLint uniformAlignment = 256;
     std::size_t lightCount = 0;  ///< scene lights of the last frame
     bool softwareRenderer = false;
+    gpu::PassTimer timer;  ///< the main passes'
 
     Impl();
     /// Adds what the options ask of every pass's program (AOVs, debug view) to its variant and
@@ -112,8 +114,8 @@ struct Renderer::Impl {
                  const ShadowSystem& shadows, const RenderOptions& options, FrameStats& stats);
 };
 
-Renderer::Impl::Impl() {
-    softwareRenderer = queryGlInfo().softwareRenderer;
+Renderer::Impl::Impl() : softwareRenderer(queryGlInfo().softwareRenderer), timer(softwareRenderer) {
+    timer.setEnabled(false);
     gl.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &uniformAlignment);
     GLuint s[2] = {0, 0};
     gl.CreateSamplers(2, s);
@@ -273,12 +275,13 @@ void Renderer::Impl::litPass(World& world, const CameraView& cam, const MainCame
 namespace {
 
 /// The texture units and uniform-buffer binding points the lit passes bind.
-std::vector<GLint> litTextureUnits() {
-    std::vector<GLint> units(SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS);
+constexpr std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS> litTextureUnits() {
+    std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS> units{};
     std::iota(units.begin(), units.end(), 0);
     return units;
 }
-const std::vector<GLint> kLitUniformBindings{SG_BINDING_LIGHTS, SG_BINDING_LAYERS};
+constexpr std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS> kLitTextureUnits = litTextureUnits();
+constexpr std::array<GLint, 2> kLitUniformBindings{SG_BINDING_LIGHTS, SG_BINDING_LAYERS};
 
 }  // namespace
 
@@ -287,11 +290,12 @@ Renderer::~Renderer() = default;
 
 MeshCache& Renderer::meshes() { return impl_->meshes; }
 
+void Renderer::setTiming(bool enabled) { impl_->timer.setEnabled(enabled); }
+
 void Renderer::render(World& world, const CameraView& camera, const ShadowSystem& shadows, const RenderOptions& options,
                       FrameStats& stats) {
     gpu::reportHostGlErrors("Renderer::render", stats);
-    static const std::vector<GLint> units = litTextureUnits();
-    const gpu::GlStateGuard hostState(units, kLitUniformBindings);
+    const gpu::GlStateGuard hostState(kLitTextureUnits, kLitUniformBindings);
     Impl& r = *impl_;
     r.lightCount = shadows.frame().lights.size();
     const render::ScreenView view{cameraClipFromWorld(camera), options.width, options.height,
@@ -302,7 +306,7 @@ void Renderer::render(World& world, const CameraView& camera, const ShadowSystem
     r.targets.ensure(options.width, options.height, options.aovs, static_cast<int>(r.passes.size()));
 
     const MainCamera mc = mainCamera(camera);
-    gpu::PassTimer timer(r.softwareRenderer);
+    gpu::PassTimer& timer = r.timer;
     gl.BindFramebuffer(GL_FRAMEBUFFER, r.targets.framebuffer());
     gl.Viewport(0, 0, options.width, options.height);
     gl.CullFace(GL_BACK);  // counter-clockwise front faces, GL's default and glTF's
@@ -347,6 +351,7 @@ FrameImages Renderer::readback(const CameraView& camera, FrameStats& stats) cons
     const render::RenderTargets& t = r.targets;
     FrameImages out;
     gpu::PassTimer timer(r.softwareRenderer);
+    timer.setEnabled(r.timer.enabled());
     timer.begin("Readback");
     const GLuint fb = t.framebuffer();
     auto read = [&](GLenum attachment, GLenum format, int channels) {

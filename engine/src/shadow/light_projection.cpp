@@ -2,7 +2,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "shared_constants.h"
+
 #include <algorithm>
+#include <array>
+#include <cassert>
 #include <cmath>
 
 namespace shadow {
@@ -24,13 +28,22 @@ DAabb toLightSpace(const glm::dmat4& lightFromWorld, const DAabb& box) {
     return out;
 }
 
-std::vector<Entity> castersIn(const glm::dmat4& clipFromWorld, const SceneGeometry& g) {
+/// Sets `out` to the casters whose bounds meet the frustum of `clipFromWorld`, in entity order,
+/// with room for every caster: one moving into the layer later costs no allocation.
+void castersIn(const glm::dmat4& clipFromWorld, const SceneGeometry& g, std::vector<Entity>& out) {
     const Frustum f = Frustum::fromMatrix(clipFromWorld);
-    std::vector<Entity> out;
+    out.clear();
+    out.reserve(g.casters.size());
     for (const BoundedEntity& c : g.casters) {
         if (f.intersects(c.bounds)) out.push_back(c.entity);
     }
-    return out;
+}
+
+/// `layer` at its defaults, but with the storage of its caster list.
+void resetLayer(ShadowLayerPlan& layer) {
+    std::vector<Entity> casters = std::move(layer.casters);
+    layer = ShadowLayerPlan{};
+    layer.casters = std::move(casters);
 }
 
 /// Distance from `p` to the box (0 inside).
@@ -71,8 +84,8 @@ void zRangeOfColumn(const glm::dmat4& rotation, const SceneGeometry& g, const gl
     }
 }
 
-std::vector<ShadowLayerPlan> planDirectional(const ShadowLightPlan& plan, const LightPose& pose, const CameraView& cam,
-                                             const SceneGeometry& g) {
+void planDirectional(const ShadowLightPlan& plan, const LightPose& pose, const CameraView& cam, const SceneGeometry& g,
+                     std::vector<ShadowLayerPlan>& layers) {
     const Shadow& s = plan.settings;
     const glm::dmat4 rotation = lookAlong(glm::dvec3(0.0), pose.wsDirection);
     const double reach =
@@ -85,10 +98,13 @@ std::vector<ShadowLayerPlan> planDirectional(const ShadowLightPlan& plan, const 
     const double nearest =
         std::clamp(distanceToBox(cam.wsPosition, g.receivers), std::min(znear, 0.5 * distance), 0.5 * distance);
     const glm::dvec3 lsCamera(rotation * glm::dvec4(cam.wsPosition, 1.0));
-    const std::vector<double> splits = cascadeSplits(nearest, distance, s.cascades, s.cascadeSplitLambda);
+    assert(s.cascades >= 1 && s.cascades <= SG_MAX_CASCADES);  // clamped by the planner
+    std::array<double, SG_MAX_CASCADES + 1> splitStorage{};
+    const std::span<double> splits(splitStorage.data(), static_cast<std::size_t>(s.cascades) + 1);
+    cascadeSplits(nearest, distance, s.cascadeSplitLambda, splits);
     const DAabb lsReceivers = toLightSpace(rotation, g.receivers);
 
-    std::vector<ShadowLayerPlan> layers;
+    layers.resize(static_cast<std::size_t>(s.cascades));
     for (int k = 0; k < s.cascades; ++k) {
         // Bounding sphere of the slice: invariant under camera rotation, so the texel size
         // stays fixed while the camera turns (no shimmering).
@@ -125,7 +141,8 @@ std::vector<ShadowLayerPlan> planDirectional(const ShadowLightPlan& plan, const 
         zTop = (std::floor(zTop / step) + 1.0) * step;
         zBottom = (std::ceil(zBottom / step) - 1.0) * step;
 
-        ShadowLayerPlan layer;
+        ShadowLayerPlan& layer = layers[static_cast<std::size_t>(k)];
+        resetLayer(layer);
         layer.orthographic = true;
         layer.lightFromWorld = glm::translate(glm::dmat4(1.0), -glm::dvec3(lsCenter, zTop)) * rotation;
         const double depthRange = zTop - zBottom;
@@ -133,10 +150,8 @@ std::vector<ShadowLayerPlan> planDirectional(const ShadowLightPlan& plan, const 
         layer.depthScale = static_cast<float>(depthRange);
         layer.depthNear = 0.0f;
         layer.splitFar = static_cast<float>(splits[k + 1]);
-        layer.casters = castersIn(layer.clipFromLight * layer.lightFromWorld, g);
-        layers.push_back(std::move(layer));
+        castersIn(layer.clipFromLight * layer.lightFromWorld, g, layer.casters);
     }
-    return layers;
 }
 
 /// Far plane of a perspective light at `position`: its range, or else the whole scene rounded
@@ -152,12 +167,12 @@ double perspectiveFar(const ShadowLightPlan& plan, const glm::dvec3& position, c
 /// caster moves a little, so layers whose own casters did not move are not redrawn.
 double powerOfTwoBelow(double x) { return std::exp2(std::floor(std::log2(x))); }
 
-/// One perspective layer looking along `direction`. With `fixedNear` 0 the near plane is fitted
-/// just before the nearest caster in this layer's frustum.
-ShadowLayerPlan perspectiveLayer(const glm::dvec3& position, const glm::dvec3& direction, double tanHalf,
-                                 double fixedNear, double far, const SceneGeometry& g) {
+/// One perspective layer looking along `direction`, into `layer`. With `fixedNear` 0 the near
+/// plane is fitted just before the nearest caster in this layer's frustum.
+void perspectiveLayer(const glm::dvec3& position, const glm::dvec3& direction, double tanHalf, double fixedNear,
+                      double far, const SceneGeometry& g, ShadowLayerPlan& layer) {
     const double minNear = far * 1e-6;
-    ShadowLayerPlan layer;
+    resetLayer(layer);
     layer.orthographic = false;
     layer.lightFromWorld = lookAlong(position, direction);
     const double fov = 2.0 * std::atan(tanHalf);
@@ -179,14 +194,15 @@ ShadowLayerPlan perspectiveLayer(const glm::dvec3& position, const glm::dvec3& d
     // far-plane corner.
     layer.depthScale = static_cast<float>(far * std::sqrt(1.0 + 2.0 * tanHalf * tanHalf));
     layer.depthNear = static_cast<float>(near);
-    layer.casters = castersIn(layer.clipFromLight * layer.lightFromWorld, g);
-    return layer;
+    castersIn(layer.clipFromLight * layer.lightFromWorld, g, layer.casters);
 }
 
 }  // namespace
 
-SceneGeometry gatherGeometry(World& world) {
-    SceneGeometry g;
+void gatherGeometry(World& world, SceneGeometry& g) {
+    g.casters.clear();
+    g.receivers = DAabb{};
+    g.everything = DAabb{};
     world.view<Mesh, WorldTransform, WorldBounds>().each(
         [&](Entity e, Mesh& mesh, WorldTransform& wt, WorldBounds& wb) {
             // A mesh with no triangles draws nothing: it must not widen any layer's fit either.
@@ -198,7 +214,6 @@ SceneGeometry gatherGeometry(World& world) {
     // Views walk back to front; entity order keeps caster lists comparable frame to frame.
     std::sort(g.casters.begin(), g.casters.end(),
               [](const BoundedEntity& a, const BoundedEntity& b) { return a.entity < b.entity; });
-    return g;
 }
 
 LightPose lightPose(const WorldTransform& wt) {
@@ -221,8 +236,9 @@ bool lightAffectsView(const Light& light, const LightPose& pose, const Frustum& 
     return cameraFrustum.intersectsSphere(pose.wsPosition, light.range);
 }
 
-std::vector<double> cascadeSplits(double near, double far, int count, double lambda) {
-    std::vector<double> splits(static_cast<std::size_t>(count) + 1);
+void cascadeSplits(double near, double far, double lambda, std::span<double> splits) {
+    assert(splits.size() >= 2);
+    const int count = static_cast<int>(splits.size()) - 1;
     near = std::max(near, 1e-6);
     far = std::max(far, near * (1.0 + 1e-6));
     for (int i = 0; i <= count; ++i) {
@@ -233,29 +249,31 @@ std::vector<double> cascadeSplits(double near, double far, int count, double lam
     }
     splits.front() = near;
     splits.back() = far;
-    return splits;
 }
 
-std::vector<ShadowLayerPlan> planLayers(const ShadowLightPlan& plan, const LightPose& pose, const CameraView& camera,
-                                        const SceneGeometry& geometry) {
-    if (plan.light.type == LightType::Directional) return planDirectional(plan, pose, camera, geometry);
+void planLayers(const ShadowLightPlan& plan, const LightPose& pose, const CameraView& camera,
+                const SceneGeometry& geometry, std::vector<ShadowLayerPlan>& layers) {
+    if (plan.light.type == LightType::Directional) {
+        planDirectional(plan, pose, camera, geometry, layers);
+        return;
+    }
     // Two texels of margin on each side keep bilinear taps at the edge inside the map.
     const double margin = 1.0 + 4.0 / plan.mapSize;
     const double tanHalf =
         plan.light.type == LightType::Spot ? std::tan(static_cast<double>(plan.light.outerConeAngle)) * margin : margin;
     const double far = perspectiveFar(plan, pose.wsPosition, geometry);
     const double near = plan.settings.nearPlane;  // 0: fitted per layer
-    std::vector<ShadowLayerPlan> layers;
     if (plan.light.type == LightType::Spot) {
-        layers.push_back(perspectiveLayer(pose.wsPosition, pose.wsDirection, tanHalf, near, far, geometry));
-        return layers;
+        layers.resize(1);
+        perspectiveLayer(pose.wsPosition, pose.wsDirection, tanHalf, near, far, geometry, layers[0]);
+        return;
     }
     // Point: cube faces +X, -X, +Y, -Y, +Z, -Z, the order the shader's cubeFace() uses.
     static const glm::dvec3 kFaces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    for (const glm::dvec3& dir : kFaces) {
-        layers.push_back(perspectiveLayer(pose.wsPosition, dir, tanHalf, near, far, geometry));
+    layers.resize(6);
+    for (std::size_t k = 0; k < 6; ++k) {
+        perspectiveLayer(pose.wsPosition, kFaces[k], tanHalf, near, far, geometry, layers[k]);
     }
-    return layers;
 }
 
 }  // namespace shadow

@@ -6,6 +6,7 @@
 
 #include "shadow/frustum.h"
 
+#include <span>
 #include <vector>
 
 namespace shadow {
@@ -32,8 +33,9 @@ struct SceneGeometry {
     DAabb everything;                    ///< union of all finite meshes
 };
 
-/// Collects casters and receivers from meshes with finite world transforms and triangles.
-SceneGeometry gatherGeometry(World& world);
+/// Collects casters and receivers from meshes with finite world transforms and triangles into
+/// `out`, reusing its storage.
+void gatherGeometry(World& world, SceneGeometry& out);
 
 /// Where a light is and where it points, in world space.
 struct LightPose {
@@ -49,14 +51,17 @@ glm::dmat4 cameraClipFromWorld(const CameraView& camera);
 /// False when the light's range sphere misses the camera frustum (only lights with a range).
 bool lightAffectsView(const Light& light, const LightPose& pose, const Frustum& cameraFrustum);
 
-/// Fits the layers of a light: cascades (directional), one frustum (spot), six faces (point),
-/// each with the casters that fall in it.
-std::vector<ShadowLayerPlan> planLayers(const ShadowLightPlan& plan, const LightPose& pose, const CameraView& camera,
-                                        const SceneGeometry& geometry);
+/// Fits the layers of a light into `layers`: cascades (directional), one frustum (spot), six
+/// faces (point), each with the casters that fall in it. Every field of every layer is written
+/// (`dirty` to its default); the storage of the layers' caster lists is reused, and each list
+/// holds room for every caster of `geometry`, so that planning the same light again allocates
+/// nothing.
+void planLayers(const ShadowLightPlan& plan, const LightPose& pose, const CameraView& camera,
+                const SceneGeometry& geometry, std::vector<ShadowLayerPlan>& layers);
 
-/// Cascade split distances (m from the camera) for `count` cascades over [near, far]:
-/// lambda * logarithmic + (1 - lambda) * uniform (the "practical" scheme). Returns count + 1
-/// values, first = near, last = far.
-std::vector<double> cascadeSplits(double near, double far, int count, double lambda);
+/// Cascade split distances (m from the camera) for `splits.size() - 1` cascades over
+/// [near, far]: lambda * logarithmic + (1 - lambda) * uniform (the "practical" scheme), written
+/// to `splits`, first = near, last = far.
+void cascadeSplits(double near, double far, double lambda, std::span<double> splits);
 
 }  // namespace shadow

@@ -37,32 +37,36 @@ const char* lightName(const World& world, Entity e) {
     return n != nullptr ? n->value.c_str() : "light";
 }
 
-/// Scene light `index` as far as the scene says: name, pose and unclamped `Light`; no shadow yet.
-ShadowLightPlan describeLight(const World& world, Entity e, int index) {
-    ShadowLightPlan plan;
+/// Scene light `index` as far as the scene says, into `plan`: name, pose and unclamped `Light`;
+/// no shadow yet (mapSize 0). `plan.layers` is left for `planLayers` to reuse: the caller empties
+/// it if the light ends up without a map.
+void describeLight(const World& world, Entity e, int index, ShadowLightPlan& plan) {
+    std::string name = std::move(plan.name);
+    std::vector<ShadowLayerPlan> layers = std::move(plan.layers);
+    plan = ShadowLightPlan{};
+    plan.name = std::move(name);
+    plan.layers = std::move(layers);
     plan.entity = e;
     plan.sceneIndex = index;
-    plan.name = lightName(world, e);
+    plan.name.assign(lightName(world, e));
     plan.settings.technique = ShadowTechnique::None;
     const Light* light = world.tryGet<Light>(e);
     const WorldTransform* wt = world.tryGet<WorldTransform>(e);
     plan.shaded = light != nullptr && wt != nullptr && wt->finite;
-    if (!plan.shaded) return plan;
+    if (!plan.shaded) return;
     plan.light = *light;
     const LightPose pose = lightPose(*wt);
     plan.wsPosition = pose.wsPosition;
     plan.wsDirection = pose.wsDirection;
-    return plan;
 }
 
 /// Smallest map edge the texel budget halves a light to before it drops its shadow.
 constexpr int kMinBudgetMapSize = 256;
 
-/// A shadowed light before its layers are planned.
+/// A shadowed light of the frame being planned, before its layers are.
 struct Candidate {
-    ShadowLightPlan plan;
-    LightPose pose;
-    bool dropped = false;
+    ShadowLightPlan* plan = nullptr;  ///< into `ShadowFrame::lights`
+    bool dropped = false;             ///< by the shadow texel budget
 };
 
 /// Layers of a light's array: its cascades, one spot layer, or six cube faces.
@@ -86,31 +90,32 @@ std::vector<std::size_t> budgetOrder(const std::vector<Candidate>& lights, const
     std::vector<double> distance(lights.size(), 0.0);
     for (std::size_t i = 0; i < lights.size(); ++i) {
         order[i] = i;
-        const ShadowLightPlan& p = lights[i].plan;
+        const ShadowLightPlan& p = *lights[i].plan;
         if (!p.affectsView) {
             distance[i] = std::numeric_limits<double>::infinity();
         } else if (p.light.type != LightType::Directional) {
-            distance[i] = glm::distance(camera, lights[i].pose.wsPosition);
+            distance[i] = glm::distance(camera, p.wsPosition);
         }
     }
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
         if (distance[a] != distance[b]) return distance[a] > distance[b];
-        return lights[a].plan.sceneIndex > lights[b].plan.sceneIndex;
+        return lights[a].plan->sceneIndex > lights[b].plan->sceneIndex;
     });
     return order;
 }
 
 /// Fits the lights' maps into `budget` texels by the policy of `ShadowLimits::maxShadowTexels`.
+/// Allocates only over budget (a frame that also allocates its warnings).
 void fitTexelBudget(std::vector<Candidate>& lights, const glm::dvec3& camera, std::int64_t budget,
                     std::vector<Warning>& warnings) {
     std::int64_t total = 0;
-    for (const Candidate& c : lights) total += texelsOf(c.plan);
+    for (const Candidate& c : lights) total += texelsOf(*c.plan);
     if (total <= budget) return;
     const std::vector<std::size_t> order = budgetOrder(lights, camera);
     for (bool halved = true; total > budget && halved;) {
         halved = false;
         for (std::size_t i : order) {
-            ShadowLightPlan& p = lights[i].plan;
+            ShadowLightPlan& p = *lights[i].plan;
             if (total <= budget) break;
             if (p.mapSize <= kMinBudgetMapSize) continue;
             total -= texelsOf(p);
@@ -121,17 +126,18 @@ void fitTexelBudget(std::vector<Candidate>& lights, const glm::dvec3& camera, st
     }
     for (std::size_t i : order) {
         if (total <= budget) break;
-        total -= texelsOf(lights[i].plan);
+        total -= texelsOf(*lights[i].plan);
         lights[i].dropped = true;
     }
     const std::string why = " to fit the shadow texel budget (" + std::to_string(budget) + " texels)";
     for (const Candidate& c : lights) {
+        const ShadowLightPlan& p = *c.plan;
         if (c.dropped) {
-            warnings.push_back({WarningCode::ShadowDropped, c.plan.name, c.plan.name + ": shadow dropped" + why});
-        } else if (c.plan.mapSize != c.plan.settings.mapSize) {
-            warnings.push_back({WarningCode::MapSizeReduced, c.plan.name,
-                                c.plan.name + ": mapSize " + std::to_string(c.plan.settings.mapSize) + " reduced to " +
-                                    std::to_string(c.plan.mapSize) + why});
+            warnings.push_back({WarningCode::ShadowDropped, p.name, p.name + ": shadow dropped" + why});
+        } else if (p.mapSize != p.settings.mapSize) {
+            warnings.push_back({WarningCode::MapSizeReduced, p.name,
+                                p.name + ": mapSize " + std::to_string(p.settings.mapSize) + " reduced to " +
+                                    std::to_string(p.mapSize) + why});
         }
     }
 }
@@ -170,19 +176,29 @@ void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, co
     clampField(light.innerConeAngle, 0.0f, light.outerConeAngle, who, "innerConeAngle", warnings);
 }
 
+struct ShadowPlanner::Scratch {
+    SceneGeometry geometry;
+    std::vector<Candidate> candidates;
+};
+
+ShadowPlanner::ShadowPlanner() : scratch_(std::make_unique<Scratch>()) {}
+ShadowPlanner::~ShadowPlanner() = default;
+
 const ShadowFrame& ShadowPlanner::prepare(World& world, const CameraView& camera, const std::vector<Entity>& lights) {
     frame_.warnings.clear();
     frame_.techniquesInUse = 0;
     frame_.lights.resize(lights.size());
-    const SceneGeometry geometry = gatherGeometry(world);
+    SceneGeometry& geometry = scratch_->geometry;
+    std::vector<Candidate>& candidates = scratch_->candidates;
+    gatherGeometry(world, geometry);
     frame_.wsGeometry = geometry.everything;
     const Frustum cameraFrustum = Frustum::fromMatrix(cameraClipFromWorld(camera));
 
     // Every light is clamped once, here; the shadowed ones become candidates for a map.
-    std::vector<Candidate> candidates;
+    candidates.clear();
     for (std::size_t i = 0; i < lights.size(); ++i) {
         ShadowLightPlan& plan = frame_.lights[i];
-        plan = describeLight(world, lights[i], static_cast<int>(i));
+        describeLight(world, lights[i], static_cast<int>(i), plan);
         if (!plan.shaded) continue;  // a non-finite transform is reported by the transform system
         const Shadow* shadow = world.tryGet<Shadow>(plan.entity);
         if (shadow == nullptr || shadow->technique == ShadowTechnique::None) {
@@ -194,23 +210,22 @@ const ShadowFrame& ShadowPlanner::prepare(World& world, const CameraView& camera
         plan.settings = *shadow;
         clampShadowSettings(plan.settings, plan.light, limits_, plan.name, frame_.warnings);
         plan.mapSize = plan.settings.mapSize;
-        const LightPose pose{plan.wsPosition, plan.wsDirection};
-        plan.affectsView = lightAffectsView(plan.light, pose, cameraFrustum);
-        candidates.push_back({plan, pose});
+        plan.affectsView = lightAffectsView(plan.light, {plan.wsPosition, plan.wsDirection}, cameraFrustum);
+        candidates.push_back({&plan});
     }
     // Sizes first: the layers' texel snapping and margins depend on them.
     fitTexelBudget(candidates, camera.wsPosition, limits_.maxShadowTexels, frame_.warnings);
-    for (Candidate& c : candidates) {
-        ShadowLightPlan& plan = frame_.lights[static_cast<std::size_t>(c.plan.sceneIndex)];
+    for (const Candidate& c : candidates) {
+        ShadowLightPlan& plan = *c.plan;
         if (c.dropped) {
             plan.mapSize = 0;
             continue;
         }
-        plan.mapSize = c.plan.mapSize;
-        plan.layers = planLayers(c.plan, c.pose, camera, geometry);
+        planLayers(plan, {plan.wsPosition, plan.wsDirection}, camera, geometry, plan.layers);
         markDirty(world, plan);
     }
-    for (const ShadowLightPlan& plan : frame_.lights) {
+    for (ShadowLightPlan& plan : frame_.lights) {
+        if (plan.mapSize == 0) plan.layers.clear();  // kept by describeLight in case it had a map
         frame_.techniquesInUse |= 1u << static_cast<unsigned>(plan.technique());
     }
     // Forget lights that are gone so their memory does not grow without bound.
@@ -253,6 +268,9 @@ void ShadowPlanner::markDirty(World& world, ShadowLightPlan& plan) {
         if (dirty) {
             last.lightFromWorld = layer.lightFromWorld;
             last.clipFromLight = layer.clipFromLight;
+            // With the layer's room for every caster (planLayers): a caster moving in later
+            // costs no allocation here either.
+            last.casters.reserve(layer.casters.capacity());
             last.casters = layer.casters;
         }
     }

@@ -14,7 +14,10 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <array>
+#include <charconv>
 #include <optional>
+#include <string_view>
 
 namespace shadow {
 
@@ -69,8 +72,12 @@ std::unique_ptr<ShadowMapGpu> allocate(const ShadowLightPlan& plan) {
     return map;
 }
 
-std::string layerName(const ShadowLightPlan& plan, std::size_t k) {
-    return "Shadow/" + plan.name + "/layer" + std::to_string(k);
+/// Sets `out` to the name of pass `what`<k> of `plan`'s map, e.g. "Shadow/sun/layer0". Into a
+/// string kept from frame to frame: building names anew would allocate every frame.
+void formatPassName(std::string& out, const ShadowLightPlan& plan, std::string_view what, std::size_t k) {
+    char index[24];
+    char* end = std::to_chars(index, index + sizeof(index), k).ptr;
+    out.assign("Shadow/").append(plan.name).append("/").append(what).append(index, end);
 }
 
 /// Depth-only state of the shadow passes.
@@ -89,17 +96,16 @@ void endDepthOnly() {
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-LightShadowStats statsOf(const ShadowLightPlan& plan) {
-    LightShadowStats ls;
+/// Fills what `ls` says of `plan` before any layer is drawn (its strings keep their storage).
+void describe(const ShadowLightPlan& plan, LightShadowStats& ls) {
     ls.sceneIndex = plan.sceneIndex;
-    ls.name = plan.name;
-    ls.type = lightTypeName(plan.light.type);
-    ls.technique = techniqueName(plan.technique());
+    ls.name.assign(plan.name);
+    ls.type.assign(lightTypeName(plan.light.type));
+    ls.technique.assign(techniqueName(plan.technique()));
     ls.mapSize = plan.mapSize;
     ls.requestedMapSize = plan.settings.technique != ShadowTechnique::None ? plan.settings.mapSize : 0;
     ls.layers = static_cast<int>(plan.layers.size());
     ls.affectsView = plan.affectsView;
-    return ls;
 }
 
 }  // namespace
@@ -107,27 +113,35 @@ LightShadowStats statsOf(const ShadowLightPlan& plan) {
 struct ShadowGpu {
     DepthProgram depth;
     MinMaxBuilder minMax;
-    bool softwareRenderer = false;
+    gpu::PassTimer timer;
+    std::string passName;  ///< the name of the pass being timed (see `formatPassName`)
     /// Per scene light (index = `ShadowFrame::lights`): its map, or null without one.
     std::vector<std::pair<Entity, std::unique_ptr<ShadowMapGpu>>> maps;
+    /// Last frame's `maps` while `syncMaps` moves them to this frame's slots; empty otherwise.
+    std::vector<std::pair<Entity, std::unique_ptr<ShadowMapGpu>>> lastMaps;
+
+    explicit ShadowGpu(bool softwareRenderer) : timer(softwareRenderer) {}
 
     /// Gives every light of `frame` with a map an array of its size, reusing last frame's.
     void syncMaps(const ShadowFrame& frame);
     /// Draws layer `k` of `plan`'s map: its casters, depth only.
     void drawLayer(World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k, LightShadowStats& ls);
     /// Brings the pyramid of every layer of `plan` whose map changed up to date.
-    void updatePyramids(const ShadowLightPlan& plan, gpu::PassTimer& timer);
+    void updatePyramids(const ShadowLightPlan& plan);
 };
 
 void ShadowGpu::syncMaps(const ShadowFrame& frame) {
-    std::vector<std::pair<Entity, std::unique_ptr<ShadowMapGpu>>> next(frame.lights.size());
+    // The two lists trade places every frame, so their storage is reused: only maps move.
+    std::swap(maps, lastMaps);
+    maps.clear();
+    maps.resize(frame.lights.size());
     for (std::size_t i = 0; i < frame.lights.size(); ++i) {
         const ShadowLightPlan& plan = frame.lights[i];
-        next[i].first = plan.entity;
+        maps[i].first = plan.entity;
         if (!plan.hasMap()) continue;
-        auto it =
-            std::find_if(maps.begin(), maps.end(), [&](const auto& m) { return m.second && m.first == plan.entity; });
-        std::unique_ptr<ShadowMapGpu> map = it != maps.end() ? std::move(it->second) : nullptr;
+        auto it = std::find_if(lastMaps.begin(), lastMaps.end(),
+                               [&](const auto& m) { return m.second && m.first == plan.entity; });
+        std::unique_ptr<ShadowMapGpu> map = it != lastMaps.end() ? std::move(it->second) : nullptr;
         if (!map || map->mapSize != plan.mapSize || map->layers != static_cast<int>(plan.layers.size())) {
             map = allocate(plan);
         }
@@ -138,12 +152,12 @@ void ShadowGpu::syncMaps(const ShadowFrame& frame) {
         } else if (!readsPyramid(plan.technique())) {
             map->pyramid.reset();  // no technique of the light reads it: no memory for it
         }
-        next[i].second = std::move(map);
+        maps[i].second = std::move(map);
     }
-    maps = std::move(next);
+    lastMaps.clear();  // the maps of lights gone or without a map this frame
 }
 
-void ShadowGpu::updatePyramids(const ShadowLightPlan& plan, gpu::PassTimer& timer) {
+void ShadowGpu::updatePyramids(const ShadowLightPlan& plan) {
     ShadowMapGpu& map = *maps[static_cast<std::size_t>(plan.sceneIndex)].second;
     if (!map.pyramid) return;
     for (std::size_t k = 0; k < plan.layers.size(); ++k) {
@@ -151,7 +165,8 @@ void ShadowGpu::updatePyramids(const ShadowLightPlan& plan, gpu::PassTimer& time
         if (plan.layers[k].casters.empty()) {
             map.pyramid->clearLayer(map.mapSize, static_cast<int>(k));
         } else {
-            const gpu::ScopedPass pass(timer, "Shadow/" + plan.name + "/minmax" + std::to_string(k));
+            formatPassName(passName, plan, "minmax", k);
+            const gpu::ScopedPass pass(timer, passName);
             minMax.build(map.array.get(), *map.pyramid, map.mapSize, static_cast<int>(k));
         }
         map.pyramidCurrent[k] = true;
@@ -195,10 +210,12 @@ void ShadowGpu::drawLayer(World& world, MeshCache& meshes, const ShadowLightPlan
     ++ls.layersDrawn;
 }
 
-ShadowSystem::ShadowSystem() : gpu_((gpu::requireLoaded("ShadowSystem"), std::make_unique<ShadowGpu>())) {
+ShadowSystem::ShadowSystem() {
+    gpu::requireLoaded("ShadowSystem");
     const GlInfo info = queryGlInfo();
     planner_.setLimits({info.maxTextureSize, info.maxArrayLayers});
-    gpu_->softwareRenderer = info.softwareRenderer;
+    gpu_ = std::make_unique<ShadowGpu>(info.softwareRenderer);
+    gpu_->timer.setEnabled(false);
 }
 
 ShadowSystem::~ShadowSystem() = default;
@@ -209,14 +226,16 @@ const ShadowFrame& ShadowSystem::prepare(World& world, const CameraView& camera,
 
 void ShadowSystem::render(World& world, MeshCache& meshes, FrameStats& stats) {
     gpu::reportHostGlErrors("ShadowSystem::render", stats);
-    const gpu::GlStateGuard hostState({SG_UNIT_MINMAX_SOURCE}, {});
+    static constexpr std::array<GLint, 1> kUnits{SG_UNIT_MINMAX_SOURCE};
+    const gpu::GlStateGuard hostState(kUnits, {});
     const ShadowFrame& frame = planner_.frame();
     gpu_->syncMaps(frame);
     stats.warnings.insert(stats.warnings.end(), frame.warnings.begin(), frame.warnings.end());
-    gpu::PassTimer timer(gpu_->softwareRenderer);
+    ShadowGpu& g = *gpu_;
     beginDepthOnly();
     for (const ShadowLightPlan& plan : frame.lights) {
-        LightShadowStats ls = statsOf(plan);
+        LightShadowStats& ls = stats.addLight();
+        describe(plan, ls);
         for (std::size_t k = 0; k < plan.layers.size(); ++k) {
             if (!plan.layers[k].dirty) {
                 ++ls.layersReused;
@@ -224,23 +243,27 @@ void ShadowSystem::render(World& world, MeshCache& meshes, FrameStats& stats) {
             }
             const bool drawn = !plan.layers[k].casters.empty();
             std::optional<gpu::ScopedPass> pass;
-            if (drawn) pass.emplace(timer, layerName(plan, k));
-            gpu_->drawLayer(world, meshes, plan, k, ls);
+            if (drawn) {
+                formatPassName(g.passName, plan, "layer", k);
+                pass.emplace(g.timer, g.passName);
+            }
+            g.drawLayer(world, meshes, plan, k, ls);
         }
         stats.shadowLayersDrawn += ls.layersDrawn;
         stats.shadowLayersReused += ls.layersReused;
         stats.shadowLayersCleared += ls.layersCleared;
         stats.shadowDrawCalls += ls.castersDrawn;
-        stats.lights.push_back(std::move(ls));
     }
     endDepthOnly();
     gl.Disable(GL_DEPTH_TEST);
     for (const ShadowLightPlan& plan : frame.lights) {
-        if (plan.hasMap()) gpu_->updatePyramids(plan, timer);
+        if (plan.hasMap()) g.updatePyramids(plan);
     }
     gpu::checkGlError("shadow pass");
-    timer.collect(stats);
+    g.timer.collect(stats);
 }
+
+void ShadowSystem::setTiming(bool enabled) { gpu_->timer.setEnabled(enabled); }
 
 unsigned ShadowSystem::textureOf(std::size_t i) const {
     const auto& maps = gpu_->maps;
