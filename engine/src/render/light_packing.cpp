@@ -110,6 +110,46 @@ PixelRect unite(const PixelRect& a, const PixelRect& b) {
 
 }  // namespace
 
+namespace {
+
+/// Pass `used` (growing `passes` when needed), emptied; the first pass covers the whole screen.
+PassLights& openPass(std::vector<PassLights>& passes, std::size_t& used, const PixelRect& whole) {
+    if (used == passes.size()) passes.emplace_back();
+    PassLights& p = passes[used++];
+    p.lights.fill(gpu::GpuLight{});
+    p.sceneLight.fill(-1);
+    p.variant.lights = 0;
+    p.variant.type.fill(0);
+    p.variant.technique.fill(0);
+    p.variant.kernel.fill(0);
+    p.bounds = used == 1 ? whole : PixelRect{};
+    p.wsReach = DAabb{};
+    p.unbounded = used == 1;
+    return p;
+}
+
+/// Puts `plan` (its packing `entry`) in the next slot of `pass`: records, variant key, bounds.
+void addToPass(PassLights& pass, const ShadowLightPlan& plan, const PackingEntry& entry, const glm::dvec3& wsCamera) {
+    const auto slot = static_cast<std::size_t>(pass.variant.lights++);
+    gpu::GpuLight& g = pass.lights[slot];
+    g = packLight(plan, wsCamera);
+    const std::size_t firstLayer = slot * SG_MAX_LAYERS_PER_LIGHT;
+    if (plan.hasMap()) packShadow(plan, wsCamera, static_cast<int>(firstLayer), g, &pass.layers[firstLayer]);
+    pass.sceneLight[slot] = plan.sceneIndex;
+    pass.variant.type[slot] = static_cast<std::uint8_t>(g.type);
+    pass.variant.technique[slot] = static_cast<std::uint8_t>(g.technique);
+    pass.variant.kernel[slot] = static_cast<std::uint8_t>(g.kernel);
+    pass.bounds = unite(pass.bounds, entry.bounds);
+    if (entry.wide || plan.light.type == LightType::Directional || !(plan.light.range > 0.0f)) {
+        pass.unbounded = true;
+    } else {
+        pass.wsReach.extend(plan.wsPosition - glm::dvec3(plan.light.range));
+        pass.wsReach.extend(plan.wsPosition + glm::dvec3(plan.light.range));
+    }
+}
+
+}  // namespace
+
 void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const ScreenView& view,
                 std::vector<PassLights>& passes, std::vector<PackingEntry>& order) {
     const PixelRect whole{0, 0, view.width, view.height};
@@ -130,48 +170,17 @@ void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const Scre
         return a.wide != b.wide ? a.wide : a.sceneLight < b.sceneLight;
     });
 
-    std::size_t used = 0;
-    auto openPass = [&]() -> PassLights& {
-        if (used == passes.size()) passes.emplace_back();
-        PassLights& p = passes[used++];
-        p.lights.fill(gpu::GpuLight{});
-        p.sceneLight.fill(-1);
-        p.variant.lights = 0;
-        p.variant.type.fill(0);
-        p.variant.technique.fill(0);
-        p.variant.kernel.fill(0);
-        p.bounds = used == 1 ? whole : PixelRect{};
-        p.wsReach = DAabb{};
-        p.unbounded = used == 1;
-        return p;
-    };
     // When every light fits in one pass, one pass it is (another pass over the triangles costs
     // more than the pixels it would spare); otherwise local lights start passes of their own.
     const bool onePass = order.size() <= SG_MAX_LIGHTS_PER_PASS;
-    PassLights* pass = &openPass();
+    std::size_t used = 0;
+    PassLights* pass = &openPass(passes, used, whole);
     for (const PackingEntry& entry : order) {
-        const ShadowLightPlan& plan = frame.lights[static_cast<std::size_t>(entry.sceneLight)];
         const bool local = !onePass && !entry.wide;
         if (pass->variant.lights == SG_MAX_LIGHTS_PER_PASS || (local && (used == 1 || pass->variant.lights > 0))) {
-            pass = &openPass();
+            pass = &openPass(passes, used, whole);
         }
-        const int slot = pass->variant.lights++;
-        gpu::GpuLight& g = pass->lights[static_cast<std::size_t>(slot)];
-        g = packLight(plan, wsCamera);
-        const int firstLayer = slot * SG_MAX_LAYERS_PER_LIGHT;
-        if (plan.hasMap())
-            packShadow(plan, wsCamera, firstLayer, g, &pass->layers[static_cast<std::size_t>(firstLayer)]);
-        pass->sceneLight[static_cast<std::size_t>(slot)] = plan.sceneIndex;
-        pass->variant.type[static_cast<std::size_t>(slot)] = static_cast<std::uint8_t>(g.type);
-        pass->variant.technique[static_cast<std::size_t>(slot)] = static_cast<std::uint8_t>(g.technique);
-        pass->variant.kernel[static_cast<std::size_t>(slot)] = static_cast<std::uint8_t>(g.kernel);
-        pass->bounds = unite(pass->bounds, entry.bounds);
-        if (entry.wide || plan.light.type == LightType::Directional || !(plan.light.range > 0.0f)) {
-            pass->unbounded = true;
-        } else {
-            pass->wsReach.extend(plan.wsPosition - glm::dvec3(plan.light.range));
-            pass->wsReach.extend(plan.wsPosition + glm::dvec3(plan.light.range));
-        }
+        addToPass(*pass, frame.lights[static_cast<std::size_t>(entry.sceneLight)], entry, wsCamera);
     }
     passes.resize(used);
 }

@@ -84,6 +84,56 @@ void zRangeOfColumn(const glm::dmat4& rotation, const SceneGeometry& g, const gl
     }
 }
 
+/// The square a cascade covers in the light's view: centre (light-space xy) and edge (m).
+struct CascadeSquare {
+    glm::dvec2 lsCenter{0.0};
+    double extent = 0.0;
+};
+
+/// The square of the camera slice [near, far]: the slice's bounding sphere (invariant under
+/// camera rotation, so the texel size stays fixed while the camera turns: no shimmering), or
+/// the receivers' bounds when they fit inside it; within reach of the camera; snapped to whole
+/// texels so that a moving camera moves the map by whole texels only.
+CascadeSquare fitCascadeSquare(const CameraView& cam, double near, double far, const glm::dmat4& rotation,
+                               const DAabb& lsReceivers, const glm::dvec3& lsCamera, int mapSize) {
+    const auto corners = sliceCorners(cam, near, far);
+    glm::dvec3 center(0.0);
+    for (const glm::dvec3& c : corners) center += c / 8.0;
+    double radius = 0.0;
+    for (const glm::dvec3& c : corners) radius = std::max(radius, glm::distance(c, center));
+    CascadeSquare sq{glm::dvec2(rotation * glm::dvec4(center, 1.0)), 2.0 * quantizeUp(radius)};
+    // When every receiver fits inside the sphere's square, fit the receivers instead: tighter,
+    // and just as stable since they only move when the scene does.
+    const glm::dvec3 recvSize = lsReceivers.extent();
+    if (!lsReceivers.empty() && std::max(recvSize.x, recvSize.y) <= sq.extent) {
+        sq.extent = quantizeUp(std::max({recvSize.x, recvSize.y, 1e-3}));
+        sq.lsCenter = glm::dvec2(lsReceivers.center());
+    }
+    // Within reach of the camera (kMaxShadowReach), whatever the receivers' spread.
+    sq.extent = std::min(sq.extent, 2.0 * kMaxShadowReach);
+    sq.lsCenter =
+        glm::clamp(sq.lsCenter, glm::dvec2(lsCamera) - kMaxShadowReach, glm::dvec2(lsCamera) + kMaxShadowReach);
+    const double texel = sq.extent / mapSize;
+    sq.lsCenter = glm::floor(sq.lsCenter / texel) * texel;
+    return sq;
+}
+
+/// The light-space depth range [zBottom, zTop] of the column over the square [lo, hi]: what the
+/// receivers and casters in it span, within reach of the camera, rounded out to steps of an
+/// eighth of its power of two (stable while things move inside it).
+void cascadeDepthRange(const glm::dmat4& rotation, const SceneGeometry& g, const DAabb& lsReceivers,
+                       const glm::dvec3& lsCamera, const glm::dvec2& lo, const glm::dvec2& hi, double& zTop,
+                       double& zBottom) {
+    zTop = lsReceivers.empty() ? 0.0 : lsReceivers.max.z;
+    zBottom = lsReceivers.empty() ? -1.0 : lsReceivers.min.z;
+    zRangeOfColumn(rotation, g, lo, hi, zTop, zBottom);
+    zTop = std::clamp(zTop, lsCamera.z - kMaxShadowReach, lsCamera.z + kMaxShadowReach);
+    zBottom = std::clamp(zBottom, lsCamera.z - kMaxShadowReach, zTop);
+    const double step = std::exp2(std::ceil(std::log2(std::max(zTop - zBottom, 1e-3) / 8.0)));
+    zTop = (std::floor(zTop / step) + 1.0) * step;
+    zBottom = (std::ceil(zBottom / step) - 1.0) * step;
+}
+
 void planDirectional(const ShadowLightPlan& plan, const LightPose& pose, const CameraView& cam, const SceneGeometry& g,
                      std::vector<ShadowLayerPlan>& layers) {
     const Shadow& s = plan.settings;
@@ -106,40 +156,14 @@ void planDirectional(const ShadowLightPlan& plan, const LightPose& pose, const C
 
     layers.resize(static_cast<std::size_t>(s.cascades));
     for (int k = 0; k < s.cascades; ++k) {
-        // Bounding sphere of the slice: invariant under camera rotation, so the texel size
-        // stays fixed while the camera turns (no shimmering).
-        const auto corners = sliceCorners(cam, splits[k], splits[k + 1]);
-        glm::dvec3 center(0.0);
-        for (const glm::dvec3& c : corners) center += c / 8.0;
-        double radius = 0.0;
-        for (const glm::dvec3& c : corners) radius = std::max(radius, glm::distance(c, center));
-        radius = quantizeUp(radius);
-        glm::dvec2 lsCenter(rotation * glm::dvec4(center, 1.0));
-        double extent = 2.0 * radius;
-        // When every receiver fits inside the sphere's square, fit the receivers instead:
-        // tighter, and just as stable since they only move when the scene does.
-        const glm::dvec3 recvSize = lsReceivers.extent();
-        if (!lsReceivers.empty() && std::max(recvSize.x, recvSize.y) <= extent) {
-            extent = quantizeUp(std::max({recvSize.x, recvSize.y, 1e-3}));
-            lsCenter = glm::dvec2(lsReceivers.center());
-        }
-        // Within reach of the camera (kMaxShadowReach), whatever the receivers' spread.
-        extent = std::min(extent, 2.0 * kMaxShadowReach);
-        lsCenter = glm::clamp(lsCenter, glm::dvec2(lsCamera) - kMaxShadowReach, glm::dvec2(lsCamera) + kMaxShadowReach);
-        // Snap to whole texels so a moving camera moves the map by whole texels only.
-        const double texel = extent / plan.mapSize;
-        lsCenter = glm::floor(lsCenter / texel) * texel;
-        const glm::dvec2 lo = lsCenter - 0.5 * extent;
-        const glm::dvec2 hi = lsCenter + 0.5 * extent;
-
-        double zTop = lsReceivers.empty() ? 0.0 : lsReceivers.max.z;
-        double zBottom = lsReceivers.empty() ? -1.0 : lsReceivers.min.z;
-        zRangeOfColumn(rotation, g, lo, hi, zTop, zBottom);
-        zTop = std::clamp(zTop, lsCamera.z - kMaxShadowReach, lsCamera.z + kMaxShadowReach);
-        zBottom = std::clamp(zBottom, lsCamera.z - kMaxShadowReach, zTop);
-        const double step = std::exp2(std::ceil(std::log2(std::max(zTop - zBottom, 1e-3) / 8.0)));
-        zTop = (std::floor(zTop / step) + 1.0) * step;
-        zBottom = (std::ceil(zBottom / step) - 1.0) * step;
+        const CascadeSquare sq =
+            fitCascadeSquare(cam, splits[k], splits[k + 1], rotation, lsReceivers, lsCamera, plan.mapSize);
+        const glm::dvec2 lsCenter = sq.lsCenter;
+        const double extent = sq.extent;
+        double zTop = 0.0;
+        double zBottom = 0.0;
+        cascadeDepthRange(rotation, g, lsReceivers, lsCamera, lsCenter - 0.5 * extent, lsCenter + 0.5 * extent, zTop,
+                          zBottom);
 
         ShadowLayerPlan& layer = layers[static_cast<std::size_t>(k)];
         resetLayer(layer);
