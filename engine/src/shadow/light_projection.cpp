@@ -223,20 +223,20 @@ void perspectiveLayer(const glm::dvec3& position, const glm::dvec3& direction, d
 
 }  // namespace
 
-void gatherGeometry(World& world, SceneGeometry& g) {
-    g.casters.clear();
-    g.receivers = DAabb{};
-    g.everything = DAabb{};
+void gatherGeometry(World& world, SceneGeometry& out) {
+    out.casters.clear();
+    out.receivers = DAabb{};
+    out.everything = DAabb{};
     world.view<Mesh, WorldTransform, WorldBounds>().each(
         [&](Entity e, Mesh& mesh, WorldTransform& wt, WorldBounds& wb) {
             // A mesh with no triangles draws nothing: it must not widen any layer's fit either.
             if (!wt.finite || wb.box.empty() || mesh.data == nullptr || mesh.data->indices.empty()) return;
-            g.everything.extend(wb.box);
-            if (mesh.castShadows) g.casters.push_back({e, wb.box});
-            if (mesh.receiveShadows) g.receivers.extend(wb.box);
+            out.everything.extend(wb.box);
+            if (mesh.castShadows) out.casters.push_back({e, wb.box});
+            if (mesh.receiveShadows) out.receivers.extend(wb.box);
         });
     // Views walk back to front; entity order keeps caster lists comparable frame to frame.
-    std::sort(g.casters.begin(), g.casters.end(),
+    std::sort(out.casters.begin(), out.casters.end(),
               [](const BoundedEntity& a, const BoundedEntity& b) { return a.entity < b.entity; });
 }
 
