@@ -1,24 +1,13 @@
 #include "gl/gl_state.h"
 
+#include "gl/objects.h"
+
 #include <shadow/context.h>
 
 #include <algorithm>
 
 namespace shadow::gpu {
 namespace {
-
-const char* errorName(GLenum e) {
-    switch (e) {
-        case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-        case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-        case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-        case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-        case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-        case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
-        case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
-        default: return "GL error";
-    }
-}
 
 GLboolean enabled(GLenum cap) { return gl.IsEnabled(cap); }
 
@@ -40,7 +29,7 @@ std::string takePendingErrors() {
         const GLenum e = gl.GetError();
         if (e == GL_NO_ERROR) break;
         if (!codes.empty()) codes += ", ";
-        codes += errorName(e);
+        codes += glErrorName(e);
     }
     return codes;
 }

@@ -32,8 +32,7 @@ Framebuffer makeFramebuffer(std::string_view label) {
     return f;
 }
 
-namespace {
-const char* errorName(GLenum e) {
+const char* glErrorName(GLenum e) {
     switch (e) {
         case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
         case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
@@ -45,12 +44,11 @@ const char* errorName(GLenum e) {
         default: return "unknown GL error";
     }
 }
-}  // namespace
 
 void checkGlError(std::string_view where) {
     const GLenum e = gl.GetError();
     if (e == GL_NO_ERROR) return;
-    std::string message = std::string(where) + ": " + errorName(e);
+    std::string message = std::string(where) + ": " + glErrorName(e);
     // Drain the remaining flags so the next check reports only new errors.
     while (gl.GetError() != GL_NO_ERROR) {}
     throw GlError(message);

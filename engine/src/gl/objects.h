@@ -83,6 +83,9 @@ Texture makeTexture(std::string_view label, GLenum target);
 /// Makes a framebuffer, labelled.
 Framebuffer makeFramebuffer(std::string_view label);
 
+/// The name of GL error code `e` ("GL_INVALID_ENUM", ...).
+[[nodiscard]] const char* glErrorName(GLenum e);
+
 /// Throws `GlError` naming `where` and the error if the GL error flag is set.
 void checkGlError(std::string_view where);
 
