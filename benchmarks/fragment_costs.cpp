@@ -19,11 +19,11 @@
 #include <shadow/context.h>
 #include <shadow/mesh_cache.h>
 #include <shadow/scene.h>
+#include <shadow/gpu_records.h>
 
 #include "gl/gl_api.h"
 #include "gl/objects.h"
 #include "gl/program.h"
-#include "render/gpu_types.h"
 
 #include <CLI/CLI.hpp>
 #include <glm/gtc/matrix_transform.hpp>

@@ -15,8 +15,8 @@
 # them again (TinyGLTF, OpenEXR, stb, Threads; OSMesa and Embree only for their components).
 #
 # GLSL under share/ and not include/: it is data a game's shader loader reads (or its build
-# embeds), not C++ for the game's include path; the two headers C++ and GLSL share come along
-# as shader sources (a game that wants them in C++ adds the directory itself).
+# embeds), not C++ for the game's include path. The two headers C++ and GLSL share are public
+# headers of shadow::engine (include/shadow/) and stand beside the GLSL as well.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -44,7 +44,10 @@ if(TARGET shadow_reference_lib)
 endif()
 
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/shaders/ DESTINATION ${SHADOW_INSTALL_SHADERDIR}
-        FILES_MATCHING PATTERN "*.glsl" PATTERN "*.h" PATTERN "README.md")
+        FILES_MATCHING PATTERN "*.glsl" PATTERN "README.md")
+# Beside the GLSL too, so that the folder compiles by `#include` on its own.
+install(FILES ${PROJECT_SOURCE_DIR}/engine/include/shadow/shared_constants.h
+              ${PROJECT_SOURCE_DIR}/engine/include/shadow/gpu_structs.h DESTINATION ${SHADOW_INSTALL_SHADERDIR})
 
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/shadow_engineConfig.cmake.in
   ${PROJECT_BINARY_DIR}/shadow_engineConfig.cmake

@@ -1,4 +1,4 @@
-// GLSL side of gpu_structs.h (the C++ side is engine/src/render/gpu_types.h): the shared struct
+// GLSL side of gpu_structs.h (the C++ side is engine/include/shadow/gpu_records.h): the shared struct
 // declarations in GLSL types.
 #include "shared_constants.h"
 #define SG_STRUCT(name) struct name {

@@ -9,6 +9,7 @@
 // Depth comes from the depth pre-pass (depth test EQUAL), so each visible pixel is shaded once;
 // further passes (more lights) add with blending.
 #include "shadow_visibility.glsl"
+#include "shadow_surface.glsl"
 #include "lighting.glsl"
 
 #if SG_MAX_LIGHTS_PER_PASS != 8
@@ -89,15 +90,10 @@ void main() {
     Surface s;
     s.csPosition = vCsPosition;
     s.toViewer = normalize(-vCsPosition);  // never zero: the near plane clips the camera's point
-    // A zero normal (a file's, or opposite normals interpolated) takes the triangle's own.
-    s.geoNormal = safeNormalize(cross(dFdx(vCsPosition), dFdy(vCsPosition)), s.toViewer);
-    vec3 n = safeNormalize(vWsNormal, s.geoNormal);
-    // How fast the interpolated normal turns per metre of surface (0 on a flat mesh).
-    vec3 dpx = dFdx(vCsPosition), dpy = dFdy(vCsPosition);
-    vec3 dnx = dFdx(n), dny = dFdy(n);
-    s.curvature = max(length(dnx) / max(length(dpx), 1e-20), length(dny) / max(length(dpy), 1e-20));
-    // Two-sided: shade the side facing the camera.
-    s.normal = dot(n, s.toViewer) < 0.0 ? -n : n;
+    ShadowSurface shadowSide = shadowSurface(vCsPosition, vWsNormal);
+    s.geoNormal = shadowSide.geoNormal;
+    s.curvature = shadowSide.curvature;
+    s.normal = shadowSide.normal;  // two-sided: the side facing the camera
     s.albedo = uAlbedo;
     s.specular = uSpecular;
     s.shininess = uShininess;

@@ -15,9 +15,16 @@ float interleavedGradientNoise(vec2 pixel) {
     return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
 }
 
-// Best-candidate Poisson disk points in the unit disk, set by the renderer (every prefix is well
-// spread, so n taps use the first n).
-uniform vec2 uPoissonDisk[SG_MAX_SAMPLES];
+// Best-candidate Poisson disk points in the unit disk (every prefix is well spread, so n taps use
+// the first n), two per vec4: the shadow system fills the block once (ShadowSystem::kernelBuffer).
+layout(std140, binding = SG_BINDING_KERNELS) uniform KernelBlock {
+    vec4 uPoissonPairs[SG_MAX_SAMPLES / 2];
+};
+
+vec2 poissonPoint(int i) {
+    vec4 pair = uPoissonPairs[i >> 1];
+    return (i & 1) == 0 ? pair.xy : pair.zw;
+}
 
 // A hash of the pixel and an index to [0, 1) (Wang-style integer mixing).
 float hashToUnit(uvec2 pixel, uint i) {
@@ -61,7 +68,7 @@ DiskWalk beginDisk(vec2 rotation, int count) {
 
 // Sample i (taken in order 0, 1, ...) of the walk, in the unit disk, with the light's kernel.
 vec2 nextDiskSample(int kernel, inout DiskWalk w, int i) {
-    if (kernel == SG_KERNEL_POISSON) return rotate(uPoissonDisk[i], w.rotation);
+    if (kernel == SG_KERNEL_POISSON) return rotate(poissonPoint(i), w.rotation);
     if (kernel == SG_KERNEL_UNIFORM) {
         uvec2 pixel = uvec2(gl_FragCoord.xy);
         float radius = sqrt(hashToUnit(pixel, uint(2 * i)));

@@ -1,11 +1,12 @@
 // The min/max depth pyramid (engine/src/shadow/minmax_pyramid.cpp): every texel of every level
 // holds exactly the least and greatest stored depth of its tile of the map, it exists only for
 // the techniques that read it, and it follows the map when the map changes.
+#include <shadow/shared_constants.h>
+
 #include <gtest/gtest.h>
 
 #include "gl/objects.h"
 #include "render/render_test_support.h"
-#include "shared_constants.h"
 
 #include <algorithm>
 

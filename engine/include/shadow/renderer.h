@@ -56,7 +56,7 @@ struct FrameImages {
 
 /// The forward renderer. Requires a current OpenGL 4.5 context with `loadGl` done.
 /// `render` and `readback` put back the GL state they change (as `ShadowSystem::render` does;
-/// here also texture units 0-23 with their samplers and uniform-buffer bindings 0-1) and report
+/// here also texture units 0-23 with their samplers and uniform-buffer bindings 0-2) and report
 /// an error the host left pending as a `HostGlError` warning instead of throwing it.
 class Renderer {
 public:

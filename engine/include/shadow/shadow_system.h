@@ -18,11 +18,13 @@
 
 #include <shadow/components.h>
 #include <shadow/scene.h>
+#include <shadow/shadow_shaders.h>
 #include <shadow/stats.h>
 #include <shadow/warnings.h>
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -195,9 +197,27 @@ public:
     /// empty when it has no such layer.
     [[nodiscard]] std::vector<float> readLayerDepth(std::size_t i, int layer) const;
 
+    /// The public shader contract (shadow_shaders.h): uploads the records of scene lights
+    /// `sceneLights` of the last prepared frame (slot i is `sceneLights[i]`), positions relative
+    /// to `wsCamera`, into buffers the system owns, and returns what a game's shader reads. Call
+    /// after `render`. A light without a map this frame reads as lit. The buffers are rewritten
+    /// by the next call. Throws `std::invalid_argument` for more than SG_MAX_LIGHTS_PER_PASS
+    /// lights or an index that is not a scene light; `GlError` for an error of its own.
+    const ShadowShaderInputs& shaderInputs(std::span<const int> sceneLights, const glm::dvec3& wsCamera);
+    /// Binds `inputs` at `points`: the three uniform buffers (whole), and per slot the depth
+    /// array with the comparison sampler and with the raw-depth sampler, and the pyramid. These
+    /// bindings are the host's draw state: they stay after the call (nothing else changes).
+    void bindShaderInputs(const ShadowShaderInputs& inputs, const ShadowBindingPoints& points = {}) const;
+    /// What `bindShaderInputs` binds besides the light and layer blocks: the kernel block, and
+    /// per slot i < SG_MAX_LIGHTS_PER_PASS the maps of scene light `sceneLights[i]` (-1 or a
+    /// slot beyond the span: none). For a renderer that keeps its own light and layer records.
+    void bindShadowResources(std::span<const int> sceneLights, const ShadowBindingPoints& points = {}) const;
+
 private:
+    struct ShaderInputsGpu;
     ShadowPlanner planner_;
     std::unique_ptr<ShadowGpu> gpu_;
+    std::unique_ptr<ShaderInputsGpu> inputs_;
 };
 
 }  // namespace shadow

@@ -82,6 +82,16 @@ ExpandedSource expandShader(const std::string& file, const std::vector<std::stri
     return out;
 }
 
+ExpandedSource expandShaderBody(const std::string& file, const std::vector<std::string>& defines,
+                                const std::string& hostName) {
+    ExpandedSource out;
+    out.files.push_back(hostName);
+    for (const std::string& d : defines) out.text += "#define " + d + "\n";
+    std::vector<std::string> stack;
+    expandInto(file, out, stack);
+    return out;
+}
+
 std::string mapShaderLog(const std::string& log, const std::vector<std::string>& files) {
     // Mesa prints "F:L(C): ", NVIDIA "F(L) : ". Both start with the file number.
     static const std::regex kPrefix(R"((^|\n)(\d+)([:(]))");

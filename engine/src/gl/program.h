@@ -37,6 +37,12 @@ Program linkProgram(const std::string& label, const ExpandedSource& vertex, cons
 /// missing file or an include cycle.
 ExpandedSource expandShader(const std::string& file, const std::vector<std::string>& defines);
 
+/// The same without the `#version` line, for a text that goes into another shader (the public
+/// shadow GLSL): file number 0 is the host's own source, named `hostName` in the file table, and
+/// the expanded files count from 1.
+ExpandedSource expandShaderBody(const std::string& file, const std::vector<std::string>& defines,
+                                const std::string& hostName);
+
 /// Rewrites `F:LINE(COL)` prefixes of a compiler log into `name:LINE(COL)`.
 std::string mapShaderLog(const std::string& log, const std::vector<std::string>& files);
 

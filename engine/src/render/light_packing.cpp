@@ -1,5 +1,7 @@
 #include "render/light_packing.h"
 
+#include "shadow/light_records.h"
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -7,70 +9,6 @@
 #include <cstdint>
 
 namespace shadow::render {
-namespace {
-
-int lightTypeId(LightType t) {
-    switch (t) {
-        case LightType::Directional: return SG_LIGHT_DIRECTIONAL;
-        case LightType::Spot: return SG_LIGHT_SPOT;
-        case LightType::Point: return SG_LIGHT_POINT;
-    }
-    return SG_LIGHT_POINT;
-}
-
-// ShadowTechnique and SG_TECH_* list the techniques in the same order (shared_constants.h).
-static_assert(static_cast<int>(ShadowTechnique::PcssTextbook) == SG_TECH_PCSS_TEXTBOOK);
-int techniqueId(ShadowTechnique t) { return static_cast<int>(t); }
-
-/// Adds the shadow of `plan` to `g`, its layers at `layers[firstLayer...]`.
-void packShadow(const ShadowLightPlan& plan, const glm::dvec3& wsCamera, int firstLayer, gpu::GpuLight& g,
-                gpu::GpuShadowLayer* layers) {
-    const Shadow& s = plan.settings;
-    g.technique = techniqueId(plan.technique());
-    g.layerCount = static_cast<int>(plan.layers.size());
-    g.constantBias = s.constantBias;
-    g.slopeBias = s.slopeBias;
-    g.normalOffset = s.normalOffset;
-    g.pcfRadius = s.pcfRadius;
-    g.pcfSamples = s.pcfSamples;
-    g.blockerSamples = s.blockerSamples;
-    g.maxFilterTexels = s.maxFilterTexels;
-    g.mapSize = static_cast<float>(plan.mapSize);
-    g.firstLayer = firstLayer;
-    g.cascadeBlend = s.cascadeBlend;
-    g.kernel = static_cast<int>(s.kernel);
-    for (std::size_t k = 0; k < plan.layers.size(); ++k) layers[k] = packLayer(plan.layers[k], wsCamera);
-}
-
-}  // namespace
-
-gpu::GpuLight packLight(const ShadowLightPlan& plan, const glm::dvec3& wsCamera) {
-    const Light& light = plan.light;
-    gpu::GpuLight g{};
-    g.csPosition = glm::vec3(plan.wsPosition - wsCamera);
-    g.wsDirection = glm::vec3(plan.wsDirection);
-    g.type = lightTypeId(light.type);
-    g.range = light.range;
-    g.radiance = light.color * light.intensity;
-    g.emitterSize = light.type == LightType::Directional ? light.angularRadius : light.radius;
-    g.cosOuter = std::cos(light.outerConeAngle);
-    g.cosInner = std::cos(light.innerConeAngle);
-    g.technique = SG_TECH_NONE;
-    return g;
-}
-
-gpu::GpuShadowLayer packLayer(const ShadowLayerPlan& layer, const glm::dvec3& wsCamera) {
-    gpu::GpuShadowLayer l{};
-    // Composed in double, so the float matrix is exact enough far from the origin.
-    l.lightFromCs = glm::mat4(layer.lightFromWorld * glm::translate(glm::dmat4(1.0), wsCamera));
-    l.clipFromLight = glm::mat4(layer.clipFromLight);
-    l.depthScale = layer.depthScale;
-    l.depthNear = layer.depthNear;
-    l.splitFar = layer.splitFar;
-    l.orthographic = layer.orthographic ? 1 : 0;
-    return l;
-}
-
 PixelRect screenBounds(const ShadowLightPlan& plan, const ScreenView& view) {
     const PixelRect whole{0, 0, view.width, view.height};
     if (plan.light.type == LightType::Directional || !(plan.light.range > 0.0f)) return whole;
@@ -132,9 +70,7 @@ PassLights& openPass(std::vector<PassLights>& passes, std::size_t& used, const P
 void addToPass(PassLights& pass, const ShadowLightPlan& plan, const PackingEntry& entry, const glm::dvec3& wsCamera) {
     const auto slot = static_cast<std::size_t>(pass.variant.lights++);
     gpu::GpuLight& g = pass.lights[slot];
-    g = packLight(plan, wsCamera);
-    const std::size_t firstLayer = slot * SG_MAX_LAYERS_PER_LIGHT;
-    if (plan.hasMap()) packShadow(plan, wsCamera, static_cast<int>(firstLayer), g, &pass.layers[firstLayer]);
+    g = gpu::packSlot(plan, wsCamera, static_cast<int>(slot), &pass.layers[slot * SG_MAX_LAYERS_PER_LIGHT]);
     pass.sceneLight[slot] = plan.sceneIndex;
     pass.variant.type[slot] = static_cast<std::uint8_t>(g.type);
     pass.variant.technique[slot] = static_cast<std::uint8_t>(g.technique);

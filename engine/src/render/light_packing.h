@@ -3,8 +3,7 @@
 #pragma once
 
 #include <shadow/shadow_system.h>
-
-#include "render/gpu_types.h"
+#include <shadow/gpu_records.h>
 
 #include <array>
 #include <compare>
@@ -85,11 +84,5 @@ struct PassLights {
 /// `passes` and `order` (scratch): no allocation once they have grown.
 void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const ScreenView& view,
                 std::vector<PassLights>& passes, std::vector<PackingEntry>& order);
-
-/// `plan`'s light as the shader reads it, without its shadow (technique None).
-gpu::GpuLight packLight(const ShadowLightPlan& plan, const glm::dvec3& wsCamera);
-
-/// The layer record of `layer`, its matrices made to take camera-relative positions.
-gpu::GpuShadowLayer packLayer(const ShadowLayerPlan& layer, const glm::dvec3& wsCamera);
 
 }  // namespace shadow::render

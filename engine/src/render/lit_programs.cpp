@@ -12,36 +12,6 @@
 namespace shadow::render {
 namespace {
 
-/// Best-candidate (Mitchell) Poisson disk in the unit disk: each point is the candidate farthest
-/// from those before it, so every prefix of the sequence is well spread. Deterministic.
-std::vector<glm::vec2> poissonDisk(int count) {
-    std::vector<glm::vec2> points;
-    std::uint32_t state = 0x9e3779b9u;
-    auto next = [&state] {  // xorshift32
-        state ^= state << 13;
-        state ^= state >> 17;
-        state ^= state << 5;
-        return static_cast<float>(state) * (1.0f / 4294967296.0f);
-    };
-    while (static_cast<int>(points.size()) < count) {
-        glm::vec2 best(0.0f);
-        float bestDistance = -1.0f;
-        for (int c = 0; c < 32 * static_cast<int>(points.size() + 1); ++c) {
-            const float r = std::sqrt(next());
-            const float a = 6.28318531f * next();
-            const glm::vec2 candidate(r * std::cos(a), r * std::sin(a));
-            float nearest = 4.0f;
-            for (const glm::vec2& p : points) nearest = std::min(nearest, glm::distance(p, candidate));
-            if (nearest > bestDistance) {
-                bestDistance = nearest;
-                best = candidate;
-            }
-        }
-        points.push_back(best);
-    }
-    return points;
-}
-
 const char* typeLabel(int type) { return lightTypeName(static_cast<LightType>(type)); }
 
 MeshUniforms meshUniforms(GLuint program) {
@@ -64,9 +34,6 @@ LitProgram buildLit(const LitVariant& variant) {
     p.shininess = loc("uShininess");
     p.ambient = loc("uAmbient");
     p.cameraForward = loc("uCameraForward");
-    static const std::vector<glm::vec2> disk = poissonDisk(SG_MAX_SAMPLES);
-    const GLint poisson = loc("uPoissonDisk");
-    if (poisson >= 0) gl.ProgramUniform2fv(id, poisson, SG_MAX_SAMPLES, glm::value_ptr(disk[0]));
     return p;
 }
 

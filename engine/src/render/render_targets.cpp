@@ -1,6 +1,6 @@
 #include "render/render_targets.h"
 
-#include "shared_constants.h"
+#include <shadow/shared_constants.h>
 
 #include <array>
 #include <string>

@@ -2,11 +2,11 @@
 // lights, each with the program specialised for its lights, after an optional depth pre-pass.
 #include <shadow/context.h>
 #include <shadow/renderer.h>
+#include <shadow/gpu_records.h>
 
 #include "gl/gl_state.h"
 #include "gl/objects.h"
 #include "gl/pass_timer.h"
-#include "render/gpu_types.h"
 #include "render/light_packing.h"
 #include "render/lit_programs.h"
 #include "render/render_targets.h"
@@ -89,7 +89,6 @@ struct Renderer::Impl {
     std::vector<const render::LitProgram*> passPrograms;  ///< per pass, into `programs` (stable)
     std::vector<render::PackingEntry> packingOrder;       ///< scratch of packLights
     PassBlocks lightBlocks, layerBlocks;
-    gpu::Sampler compareSampler, depthSampler;
     GLint uniformAlignment = 256;
     std::size_t lightCount = 0;  ///< scene lights of the last frame
     bool softwareRenderer = false;
@@ -102,7 +101,6 @@ struct Renderer::Impl {
     /// every later frame at 29-39 ms instead of 24-26.
     void preparePrograms(const RenderOptions& options, FrameStats& stats);
     void uploadPasses();
-    void bindShadowMaps(const PassLights& pass, const ShadowSystem& shadows) const;
     /// Draws every visible mesh with `uniforms`; `perMesh` sets the material uniforms.
     /// Draws every visible mesh (those whose bounds meet `reach`, unless it is null) with
     /// `uniforms`; `perMesh` sets the material uniforms.
@@ -117,25 +115,6 @@ struct Renderer::Impl {
 Renderer::Impl::Impl() : softwareRenderer(queryGlInfo().softwareRenderer), timer(softwareRenderer) {
     timer.setEnabled(false);
     gl.GetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &uniformAlignment);
-    GLuint s[2] = {0, 0};
-    gl.CreateSamplers(2, s);
-    compareSampler = gpu::Sampler(s[0]);
-    depthSampler = gpu::Sampler(s[1]);
-    const float border[4] = {1.0f, 1.0f, 1.0f, 1.0f};  // outside the map: nothing blocks
-    for (const gpu::Sampler* smp : {&compareSampler, &depthSampler}) {
-        gl.SamplerParameteri(smp->get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-        gl.SamplerParameteri(smp->get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-        gl.SamplerParameterfv(smp->get(), GL_TEXTURE_BORDER_COLOR, border);
-    }
-    // Hardware comparison with linear filtering: every tap is a 2x2 bilinear PCF.
-    gl.SamplerParameteri(compareSampler.get(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    gl.SamplerParameteri(compareSampler.get(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    gl.SamplerParameteri(compareSampler.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    gl.SamplerParameteri(compareSampler.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    gl.SamplerParameteri(depthSampler.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl.SamplerParameteri(depthSampler.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    compareSampler.label("Shadow/compareSampler");
-    depthSampler.label("Shadow/depthSampler");
 }
 
 void Renderer::Impl::preparePrograms(const RenderOptions& options, FrameStats& stats) {
@@ -157,20 +136,6 @@ void Renderer::Impl::uploadPasses() {
                        [](const PassLights& p) -> const void* { return p.lights.data(); });
     layerBlocks.upload("Main/shadowLayers", sizeof(PassLights::layers), uniformAlignment, passes,
                        [](const PassLights& p) -> const void* { return p.layers.data(); });
-}
-
-void Renderer::Impl::bindShadowMaps(const PassLights& pass, const ShadowSystem& shadows) const {
-    for (int slot = 0; slot < SG_MAX_LIGHTS_PER_PASS; ++slot) {
-        const int light = pass.sceneLight[static_cast<std::size_t>(slot)];
-        const GLuint texture = light >= 0 ? shadows.textureOf(static_cast<std::size_t>(light)) : 0u;
-        gl.BindTextureUnit(SG_UNIT_SHADOW_COMPARE + slot, texture);
-        gl.BindSampler(SG_UNIT_SHADOW_COMPARE + slot, compareSampler.get());
-        gl.BindTextureUnit(SG_UNIT_SHADOW_DEPTH + slot, texture);
-        gl.BindSampler(SG_UNIT_SHADOW_DEPTH + slot, depthSampler.get());
-        gl.BindTextureUnit(SG_UNIT_SHADOW_MINMAX + slot,
-                           light >= 0 ? shadows.minMaxOf(static_cast<std::size_t>(light)) : 0u);
-        gl.BindSampler(SG_UNIT_SHADOW_MINMAX + slot, 0);  // nearest, per level: the texture's own
-    }
 }
 
 template <typename PerMesh>
@@ -236,7 +201,7 @@ void Renderer::Impl::litPass(World& world, const CameraView& cam, const MainCame
     if (index == 0 || options.aovs) targets.bindPass(static_cast<int>(index));
     lightBlocks.bind(SG_BINDING_LIGHTS, index);
     layerBlocks.bind(SG_BINDING_LAYERS, index);
-    bindShadowMaps(pass, shadows);
+    shadows.bindShadowResources(pass.sceneLight);
     // The first lit pass resolves visibility itself unless a pre-pass did; the passes after it
     // shade the same surfaces (equal depth, no depth writes) and add their light.
     const bool resolvesDepth = index == 0 && !options.depthPrepass;
@@ -281,7 +246,7 @@ constexpr std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS> litT
     return units;
 }
 constexpr std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS> kLitTextureUnits = litTextureUnits();
-constexpr std::array<GLint, 2> kLitUniformBindings{SG_BINDING_LIGHTS, SG_BINDING_LAYERS};
+constexpr std::array<GLint, 3> kLitUniformBindings{SG_BINDING_LIGHTS, SG_BINDING_LAYERS, SG_BINDING_KERNELS};
 
 }  // namespace
 

@@ -1,8 +1,8 @@
 #include "shadow/light_projection.h"
 
-#include <glm/gtc/matrix_transform.hpp>
+#include <shadow/shared_constants.h>
 
-#include "shared_constants.h"
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <array>

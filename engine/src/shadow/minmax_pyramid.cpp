@@ -1,7 +1,8 @@
 #include "shadow/minmax_pyramid.h"
 
+#include <shadow/shared_constants.h>
+
 #include "gl/program.h"
-#include "shared_constants.h"
 
 #include <algorithm>
 

@@ -3,13 +3,14 @@
 #include <shadow/context.h>
 #include <shadow/mesh_cache.h>
 #include <shadow/shadow_system.h>
+#include <shadow/shared_constants.h>
 
 #include "gl/gl_state.h"
 #include "gl/objects.h"
 #include "gl/pass_timer.h"
 #include "gl/program.h"
 #include "shadow/minmax_pyramid.h"
-#include "shared_constants.h"
+#include "shadow/shader_inputs.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -216,6 +217,7 @@ ShadowSystem::ShadowSystem() {
     planner_.setLimits({info.maxTextureSize, info.maxArrayLayers});
     gpu_ = std::make_unique<ShadowGpu>(info.softwareRenderer);
     gpu_->timer.setEnabled(false);
+    inputs_ = std::make_unique<ShaderInputsGpu>();
 }
 
 ShadowSystem::~ShadowSystem() = default;

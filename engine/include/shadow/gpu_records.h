@@ -1,4 +1,4 @@
-// C++ side of shaders/gpu_structs.h: the same struct declarations in glm types with std430
+// C++ side of gpu_structs.h: the same struct declarations in glm types with std430
 // alignment, so the buffers the engine fills are the layout the shaders read.
 #pragma once
 

@@ -1,5 +1,5 @@
 // Constants shared by the C++ engine and the GLSL shaders: the one source of truth for both.
-// Only #define lines and comments may stand here, since C++ and GLSL both include this file.
+// Only preprocessor lines and comments may stand here, since C++ and GLSL both include this file.
 #ifndef SHADOW_SHARED_CONSTANTS_H
 #define SHADOW_SHARED_CONSTANTS_H
 
@@ -28,16 +28,31 @@
 // Largest filter tap counts a light may ask for.
 #define SG_MAX_SAMPLES 64
 
-// Buffer binding points.
+// Where the shadow GLSL reads its inputs: uniform-buffer binding points and texture units. A
+// game's shader may define any of these before including the shadow GLSL (shadow_shaders.h,
+// `ShadowBindingPoints`); the engine's own passes use these defaults.
+#ifndef SG_BINDING_LIGHTS
 #define SG_BINDING_LIGHTS 0
+#endif
+#ifndef SG_BINDING_LAYERS
 #define SG_BINDING_LAYERS 1
-
+#endif
+// The filter kernels' sample points (Poisson disk), one block shared by every pass.
+#ifndef SG_BINDING_KERNELS
+#define SG_BINDING_KERNELS 2
+#endif
 // Texture units: the comparison sampler of pass slot i is unit SG_UNIT_SHADOW_COMPARE + i, the
 // raw-depth sampler (PCSS blocker search) is unit SG_UNIT_SHADOW_DEPTH + i.
+#ifndef SG_UNIT_SHADOW_COMPARE
 #define SG_UNIT_SHADOW_COMPARE 0
+#endif
+#ifndef SG_UNIT_SHADOW_DEPTH
 #define SG_UNIT_SHADOW_DEPTH 8
+#endif
 // The min/max depth pyramid of pass slot i (PCF and PCSS lights) is unit SG_UNIT_SHADOW_MINMAX + i.
+#ifndef SG_UNIT_SHADOW_MINMAX
 #define SG_UNIT_SHADOW_MINMAX 16
+#endif
 // Unit the pyramid builder reads its source from.
 #define SG_UNIT_MINMAX_SOURCE 0
 

@@ -1,0 +1,76 @@
+// The public shader contract: a game's own shader (forward or deferred) evaluates the same shadow
+// visibility as the module's renderer, from the same GLSL function and the same inputs.
+//
+// In the game's fragment shader, after `#version 450 core`:
+//
+//     <the text of shadowShaderSource(points, techniques)>
+//     ...
+//     ShadowSurface s = shadowSurface(csPosition, wsNormal);   // uniform control flow
+//     float v = shadowLightVisibility(slot, csPosition, s, viewDistance);
+//
+// where `csPosition` is the shaded point minus the camera's world position (the `wsCamera` given
+// to `ShadowSystem::shaderInputs`), `wsNormal` its interpolated world normal and `viewDistance`
+// its distance along the camera's forward axis (the cascades' split measure). `slot` indexes the
+// lights handed to `shaderInputs`; it must be dynamically uniform (a loop counter or constant).
+// Each frame, after `ShadowSystem::render`, the game calls `shaderInputs` and binds what it
+// returns (`bindShaderInputs`, or the names itself at the binding points).
+//
+// The same files stand under share/shadow_engine/shaders/ of an installed package for a game
+// that expands `#include`s itself: `shadow.glsl` is the entry point, and the `SG_BINDING_*` and
+// `SG_UNIT_SHADOW_*` macros of shared_constants.h may be defined before it.
+#pragma once
+
+#include <shadow/components.h>
+#include <shadow/shared_constants.h>
+
+#include <array>
+#include <string>
+
+namespace shadow {
+
+/// Where the shadow GLSL reads its inputs: uniform-buffer binding points of its three blocks and
+/// the first texture unit of each of its three sampler arrays (slot i at unit + i). The defaults
+/// are the engine's own.
+struct ShadowBindingPoints {
+    int lightBlock = SG_BINDING_LIGHTS;    ///< GpuLight[SG_MAX_LIGHTS_PER_PASS]
+    int layerBlock = SG_BINDING_LAYERS;    ///< GpuShadowLayer[slot * SG_MAX_LAYERS_PER_LIGHT + k]
+    int kernelBlock = SG_BINDING_KERNELS;  ///< the filters' Poisson disk
+    int compareUnit = SG_UNIT_SHADOW_COMPARE;  ///< depth arrays with the comparison sampler
+    int depthUnit = SG_UNIT_SHADOW_DEPTH;      ///< the same arrays with the raw-depth sampler
+    int minMaxUnit = SG_UNIT_SHADOW_MINMAX;    ///< min/max pyramids (PCF, PCSS)
+};
+
+/// Bit `1 << t` for technique t (`ShadowTechnique`).
+constexpr unsigned techniqueBit(ShadowTechnique t) { return 1u << static_cast<unsigned>(t); }
+/// Every technique with a shadow map.
+constexpr unsigned kAllShadowTechniques = techniqueBit(ShadowTechnique::Hard) | techniqueBit(ShadowTechnique::Pcf) |
+                                          techniqueBit(ShadowTechnique::Pcss) |
+                                          techniqueBit(ShadowTechnique::PcssTextbook);
+
+/// The public shadow GLSL as one text for a game's fragment shader, to stand after its
+/// `#version 450 core` line: the `#define`s of `points` and of the techniques whose bits are set
+/// in `techniques` (code of the others is left out; a light whose technique is left out reads as
+/// lit), then shaders/shadow.glsl with its `#include`s expanded. Its `#line` directives number
+/// the files in include order from 1, so a compiler message names a line of the module's file; a
+/// game that wants its own line numbers after the text adds its own `#line`.
+/// Throws `std::invalid_argument` naming the problem when a binding point or unit is negative,
+/// two blocks share a binding point, or two sampler arrays' units overlap.
+std::string shadowShaderSource(const ShadowBindingPoints& points = {}, unsigned techniques = kAllShadowTechniques);
+
+/// What a game's shader reads for up to SG_MAX_LIGHTS_PER_PASS lights (slots), from
+/// `ShadowSystem::shaderInputs`. Names are GL object names, valid until the next `shaderInputs`
+/// or `render` call (a light's arrays can be reallocated when its map size changes).
+struct ShadowShaderInputs {
+    int lights = 0;                                       ///< slots in use
+    std::array<int, SG_MAX_LIGHTS_PER_PASS> sceneLight{};  ///< scene light of each slot, -1 none
+    unsigned lightBuffer = 0;   ///< uniform buffer: the light block (bind whole)
+    unsigned layerBuffer = 0;   ///< uniform buffer: the layer block
+    unsigned kernelBuffer = 0;  ///< uniform buffer: the kernel block
+    std::array<unsigned, SG_MAX_LIGHTS_PER_PASS> depthArray{};  ///< per slot, 0 without a map
+    std::array<unsigned, SG_MAX_LIGHTS_PER_PASS> minMax{};      ///< per slot, 0 without a pyramid
+    unsigned compareSampler = 0;  ///< sampler object for the compare units (hardware comparison)
+    unsigned depthSampler = 0;    ///< sampler object for the raw-depth units
+    unsigned techniques = 0;      ///< `techniqueBit`s of the slots' techniques
+};
+
+}  // namespace shadow
