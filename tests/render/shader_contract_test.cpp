@@ -1,0 +1,288 @@
+// The public shader contract (shadow/shadow_shaders.h): a host's own program, built from
+// `shadowShaderSource` with binding points of its own choosing and fed by
+// `ShadowSystem::shaderInputs`, computes the visibility the renderer's AOVs hold, within 1/255 on
+// every covered pixel, for a PCSS spot, a PCF point light and a hard cascaded sun together.
+// tests/embed does the same from an installed package.
+#include "gl/gl_api.h"
+
+#include <gtest/gtest.h>
+#include <shadow/shadow_shaders.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "render/render_test_support.h"
+
+namespace shadow {
+namespace {
+
+constexpr int kWidth = 160;
+constexpr int kHeight = 120;
+constexpr int kLights = 3;
+
+/// A ground, a box and three lights, one per type and filtering technique.
+Scene contractScene() {
+    Scene scene;
+    test::addGround(scene, 3.0f);
+    test::addBox(scene, "box", {0.0, 0.6, 0.0}, {0.4, 0.4, 0.4});
+    test::addBox(scene, "post", {-1.2, 0.5, 0.8}, {0.1, 0.5, 0.1});
+    Light spot = test::pointSizedLight(LightType::Spot, 0.7f);
+    spot.radius = 0.15f;
+    Shadow pcss = test::hardShadow(256);
+    pcss.technique = ShadowTechnique::Pcss;
+    addLight(scene, "spot", spot, pcss, {0.5, 4.0, 0.3}, {0, -1, 0});
+    Shadow pcf = test::hardShadow(128);
+    pcf.technique = ShadowTechnique::Pcf;
+    addLight(scene, "bulb", test::pointSizedLight(LightType::Point), pcf, {-1.0, 2.0, 1.0}, {0, -1, 0});
+    addLight(scene, "sun", test::pointSizedLight(LightType::Directional), test::hardShadow(256), {0, 10, 0},
+             glm::normalize(glm::dvec3(0.3, -1.0, 0.2)));
+    addCamera(scene, "camera", Camera{}, {0.0, 3.0, 5.0}, {0.0, 0.0, 0.0});
+    return scene;
+}
+
+/// Binding points unlike the engine's defaults, as a host with its own bindings would choose.
+ShadowBindingPoints hostPoints() {
+    ShadowBindingPoints p;
+    p.lightBlock = 5;
+    p.layerBlock = 6;
+    p.kernelBlock = 7;
+    p.compareUnit = 3;
+    p.depthUnit = 11;
+    p.minMaxUnit = 19;
+    return p;
+}
+
+const char* kHostVertex = R"(#version 450 core
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in vec3 inNormal;
+uniform mat4 uCsFromLocal;
+uniform mat3 uNormalFromLocal;
+uniform mat4 uClipFromCs;
+out vec3 vCsPosition;
+out vec3 vNormal;
+void main() {
+    vec4 cs = uCsFromLocal * vec4(inPosition, 1.0);
+    vCsPosition = cs.xyz;
+    vNormal = uNormalFromLocal * inNormal;
+    gl_Position = uClipFromCs * cs;
+}
+)";
+
+const char* kHostFragmentMain = R"(
+in vec3 vCsPosition;
+in vec3 vNormal;
+uniform vec3 uCameraForward;
+layout(location = 0) out vec4 outVisibility;
+void main() {
+    ShadowSurface s = shadowSurface(vCsPosition, vNormal);
+    float viewDistance = dot(vCsPosition, uCameraForward);
+    vec3 v;
+    for (int slot = 0; slot < 3; ++slot) v[slot] = shadowLightVisibility(slot, vCsPosition, s, viewDistance);
+    outVisibility = vec4(v, 1.0);
+}
+)";
+
+GLuint compile(GLenum stage, const std::string& text) {
+    const GLuint shader = gl.CreateShader(stage);
+    const char* src = text.c_str();
+    gl.ShaderSource(shader, 1, &src, nullptr);
+    gl.CompileShader(shader);
+    GLint ok = GL_FALSE;
+    gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (ok != GL_TRUE) {
+        std::array<char, 4096> log{};
+        gl.GetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
+        ADD_FAILURE() << "host shader: " << log.data();
+    }
+    return shader;
+}
+
+/// The host's program: its own vertex shader, its fragment shader around the public text.
+GLuint hostProgram(const ShadowBindingPoints& points, unsigned techniques) {
+    const GLuint v = compile(GL_VERTEX_SHADER, kHostVertex);
+    const GLuint f =
+        compile(GL_FRAGMENT_SHADER, std::string("#version 450 core\n") + shadowShaderSource(points, techniques) + kHostFragmentMain);
+    const GLuint program = gl.CreateProgram();
+    gl.AttachShader(program, v);
+    gl.AttachShader(program, f);
+    gl.LinkProgram(program);
+    gl.DeleteShader(v);
+    gl.DeleteShader(f);
+    GLint ok = GL_FALSE;
+    gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
+    EXPECT_EQ(ok, GL_TRUE);
+    return program;
+}
+
+/// Draws every mesh of `scene` with the host's program into an RGBA32F target and reads the
+/// visibility of the three lights back, rows top first (as the renderer's images).
+std::vector<glm::vec4> hostVisibility(Scene& scene, FrameRunner& runner, const ShadowBindingPoints& points,
+                                      unsigned techniques = kAllShadowTechniques) {
+    const CameraView& cam = runner.lastCamera();
+    GLuint colour = 0, depth = 0, framebuffer = 0;
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &colour);
+    gl.TextureStorage2D(colour, 1, GL_RGBA32F, kWidth, kHeight);
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &depth);
+    gl.TextureStorage2D(depth, 1, GL_DEPTH_COMPONENT32F, kWidth, kHeight);
+    gl.CreateFramebuffers(1, &framebuffer);
+    gl.NamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, colour, 0);
+    gl.NamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, depth, 0);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    gl.Viewport(0, 0, kWidth, kHeight);
+    const std::array<float, 4> clear{0.0f, 0.0f, 0.0f, 0.0f};
+    gl.ClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, clear.data());
+    const float far = 1.0f;
+    gl.ClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &far);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LESS);
+    gl.DepthMask(GL_TRUE);
+
+    const GLuint program = hostProgram(points, techniques);
+    gl.UseProgram(program);
+    const glm::dmat4 viewFromCs = cam.viewFromWorld * glm::translate(glm::dmat4(1.0), cam.wsPosition);
+    const glm::dmat4 clipFromView = glm::perspective(static_cast<double>(cam.yfov), static_cast<double>(cam.aspect),
+                                                     static_cast<double>(cam.znear), static_cast<double>(cam.zfar));
+    const glm::mat4 clipFromCs(clipFromView * viewFromCs);
+    const glm::vec3 forward = glm::normalize(glm::vec3(-glm::dvec3(glm::transpose(cam.viewFromWorld)[2])));
+    gl.ProgramUniformMatrix4fv(program, gl.GetUniformLocation(program, "uClipFromCs"), 1, GL_FALSE, glm::value_ptr(clipFromCs));
+    gl.ProgramUniform3fv(program, gl.GetUniformLocation(program, "uCameraForward"), 1, glm::value_ptr(forward));
+
+    const std::array<int, kLights> lights{0, 1, 2};
+    ShadowSystem& shadows = runner.shadows();
+    const ShadowShaderInputs& inputs = shadows.shaderInputs(lights, cam.wsPosition);
+    EXPECT_EQ(inputs.lights, kLights);
+    EXPECT_EQ(inputs.techniques, kAllShadowTechniques & ~techniqueBit(ShadowTechnique::PcssTextbook));
+    shadows.bindShaderInputs(inputs, points);
+
+    scene.world.view<Mesh, WorldTransform>().each([&](Entity, Mesh& mesh, WorldTransform& wt) {
+        glm::dmat4 csFromLocal = wt.worldFromLocal;
+        csFromLocal[3] -= glm::dvec4(cam.wsPosition, 0.0);
+        const glm::mat3 normalFromLocal(glm::transpose(glm::inverse(glm::dmat3(wt.worldFromLocal))));
+        gl.ProgramUniformMatrix4fv(program, gl.GetUniformLocation(program, "uCsFromLocal"), 1, GL_FALSE,
+                            glm::value_ptr(glm::mat4(csFromLocal)));
+        gl.ProgramUniformMatrix3fv(program, gl.GetUniformLocation(program, "uNormalFromLocal"), 1, GL_FALSE,
+                            glm::value_ptr(normalFromLocal));
+        const int indices = runner.renderer().meshes().bind(mesh.data);
+        gl.DrawElements(GL_TRIANGLES, indices, GL_UNSIGNED_INT, nullptr);
+    });
+    EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
+
+    std::vector<glm::vec4> pixels(static_cast<std::size_t>(kWidth) * kHeight);
+    gl.ReadPixels(0, 0, kWidth, kHeight, GL_RGBA, GL_FLOAT, pixels.data());
+    std::vector<glm::vec4> topFirst(pixels.size());
+    for (int y = 0; y < kHeight; ++y) {
+        std::copy_n(pixels.begin() + static_cast<std::ptrdiff_t>(y) * kWidth, kWidth,
+                    topFirst.begin() + static_cast<std::ptrdiff_t>(kHeight - 1 - y) * kWidth);
+    }
+    gl.BindVertexArray(0);
+    gl.UseProgram(0);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl.DeleteProgram(program);
+    gl.DeleteFramebuffers(1, &framebuffer);
+    gl.DeleteTextures(1, &colour);
+    gl.DeleteTextures(1, &depth);
+    return topFirst;
+}
+
+TEST(ShaderContract, HostShaderGetsTheRenderersVisibility) {
+    test::glContext();
+    Scene scene = contractScene();
+    FrameRunner runner;
+    const test::RenderedFrame frame = test::renderFrame(runner, scene, kWidth, kHeight);
+    ASSERT_EQ(frame.images.visibility.size(), static_cast<std::size_t>(kLights));
+    const std::vector<glm::vec4> host = hostVisibility(scene, runner, hostPoints());
+
+    for (int light = 0; light < kLights; ++light) {
+        const ImageF& engine = frame.images.visibility[static_cast<std::size_t>(light)];
+        double worst = 0.0;
+        int covered = 0, shadowed = 0, lit = 0;
+        for (int y = 0; y < kHeight; ++y) {
+            for (int x = 0; x < kWidth; ++x) {
+                const std::size_t i = static_cast<std::size_t>(y) * kWidth + static_cast<std::size_t>(x);
+                if (frame.images.position.at(x, y, 3) < 0.5f || host[i].a < 0.5f) continue;
+                ++covered;
+                const float e = engine.at(x, y, 0);
+                worst = std::max(worst, static_cast<double>(std::abs(e - host[i][light])));
+                shadowed += e < 0.1f ? 1 : 0;
+                lit += e > 0.9f ? 1 : 0;
+            }
+        }
+        SCOPED_TRACE("light " + std::to_string(light));
+        EXPECT_GT(covered, kWidth * kHeight / 2);
+        // Both shadow and light on screen: a host that read nothing (all lit) could not pass.
+        EXPECT_GT(shadowed, 100);
+        EXPECT_GT(lit, 100);
+        EXPECT_LE(worst, 1.0 / 255.0);
+        std::printf("light %d: %d pixels covered, largest difference %.3g\n", light, covered, worst);
+    }
+}
+
+TEST(ShaderContract, TechniquesLeftOutReadAsLit) {
+    test::glContext();
+    Scene scene = contractScene();
+    FrameRunner runner;
+    const test::RenderedFrame frame = test::renderFrame(runner, scene, kWidth, kHeight);
+    // Hard shadows only: the PCSS spot (slot 0) and the PCF bulb (slot 1) read as lit, the sun
+    // (slot 2) as the renderer has it.
+    const std::vector<glm::vec4> host =
+        hostVisibility(scene, runner, ShadowBindingPoints{}, techniqueBit(ShadowTechnique::Hard));
+    double worstSun = 0.0;
+    float darkest = 1.0f;
+    for (int y = 0; y < kHeight; ++y) {
+        for (int x = 0; x < kWidth; ++x) {
+            const glm::vec4& h = host[static_cast<std::size_t>(y) * kWidth + static_cast<std::size_t>(x)];
+            if (h.a < 0.5f) continue;
+            darkest = std::min({darkest, h.r, h.g});
+            worstSun = std::max(worstSun, static_cast<double>(std::abs(h.b - frame.images.visibility[2].at(x, y, 0))));
+        }
+    }
+    EXPECT_EQ(darkest, 1.0f);
+    EXPECT_LE(worstSun, 1.0 / 255.0);
+}
+
+TEST(ShaderContract, BadBindingPointsAreRefusedByName) {
+    ShadowBindingPoints shared;
+    shared.layerBlock = shared.lightBlock;
+    EXPECT_THROW((void)shadowShaderSource(shared), std::invalid_argument);
+    ShadowBindingPoints overlapping;
+    overlapping.depthUnit = overlapping.compareUnit + 4;
+    try {
+        (void)shadowShaderSource(overlapping);
+        ADD_FAILURE() << "overlapping units accepted";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("compareUnit"), std::string::npos) << e.what();
+    }
+    ShadowBindingPoints negative;
+    negative.kernelBlock = -1;
+    EXPECT_THROW((void)shadowShaderSource(negative), std::invalid_argument);
+}
+
+TEST(ShaderContract, ShaderInputsRefuseWhatIsNotASceneLight) {
+    test::glContext();
+    Scene scene = contractScene();
+    FrameRunner runner;
+    (void)test::renderFrame(runner, scene, 32, 24);
+    const std::array<int, 1> missing{7};
+    EXPECT_THROW((void)runner.shadows().shaderInputs(missing, glm::dvec3(0.0)), std::invalid_argument);
+    const std::array<int, SG_MAX_LIGHTS_PER_PASS + 1> tooMany{};
+    EXPECT_THROW((void)runner.shadows().shaderInputs(tooMany, glm::dvec3(0.0)), std::invalid_argument);
+    const std::array<int, 2> two{2, 0};
+    const ShadowShaderInputs& inputs = runner.shadows().shaderInputs(two, glm::dvec3(0.0));
+    EXPECT_EQ(inputs.sceneLight[0], 2);
+    EXPECT_EQ(inputs.sceneLight[1], 0);
+    EXPECT_EQ(inputs.sceneLight[2], -1);
+    EXPECT_EQ(inputs.depthArray[0], runner.shadows().textureOf(2));
+    EXPECT_EQ(inputs.minMax[0], 0u);  // a hard light has no pyramid
+    EXPECT_NE(inputs.minMax[1], 0u);  // a PCSS light has one
+}
+
+}  // namespace
+}  // namespace shadow
