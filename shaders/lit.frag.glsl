@@ -34,23 +34,12 @@ layout(location = SG_OUT_VISIBILITY0) out vec4 outVisibility0;
 layout(location = SG_OUT_VISIBILITY1) out vec4 outVisibility1;
 #endif
 
-// Light of pass slot `slot`, whose type and technique are the compile-time constants given: the
-// record's own fields are replaced by them so that the compiler folds every test on them.
-GpuLight slotLight(const int slot, const int type, const int technique, const int kernel) {
-    GpuLight L = uLights[slot];
-    L.type = type;
-    L.technique = technique;
-    L.kernel = kernel;
-    L.firstLayer = slot * SG_MAX_LAYERS_PER_LIGHT;
-    return L;
-}
-
 // Radiance from pass slot `slot` and its visibility. Without AOVs or debug views the shadow
 // lookup is skipped where the light's shading is zero (facing away, outside the cone, beyond
 // the range); the visibility AOV keeps its meaning everywhere on geometry.
 vec3 shadeSlot(const int slot, const int type, const int technique, const int kernel, Surface s, float viewDistance,
                out float visibility) {
-    GpuLight L = slotLight(slot, type, technique, kernel);
+    GpuLight L = shadowSlotLight(slot, type, technique, kernel);
     vec3 shading = shadeBlinnPhong(L, s);
     visibility = 1.0;
 #if defined(SG_WRITE_AOVS) || defined(SG_DEBUG_VIEWS)

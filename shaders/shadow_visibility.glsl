@@ -36,6 +36,19 @@ float techniqueVisibility(int slot, GpuLight L, Receiver r) {
     return v;
 }
 
+// The light of pass slot `slot` with its type, technique and kernel replaced by the
+// compile-time constants given, so that the compiler folds every test on them: a shader
+// specialised per light configuration (the renderer's lit passes, the shadow mask) runs no code
+// for a type or technique the light does not have.
+GpuLight shadowSlotLight(const int slot, const int type, const int technique, const int kernel) {
+    GpuLight L = uLights[slot];
+    L.type = type;
+    L.technique = technique;
+    L.kernel = kernel;
+    L.firstLayer = slot * SG_MAX_LAYERS_PER_LIGHT;
+    return L;
+}
+
 // Visibility in [0, 1] of light `L` (bound to pass slot `slot`) at a receiver point. Near the
 // far end of a cascade the next cascade is blended in over the last `cascadeBlend` fraction
 // of its range, so cascade borders do not show as seams.

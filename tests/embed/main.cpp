@@ -272,33 +272,32 @@ struct HostPass {
 
     /// Uploads every mesh of `world`: positions and normals interleaved, and the indices.
     void upload(shadow::World& world) {
-        world.view<shadow::Mesh, shadow::WorldTransform>().each(
-            [this](shadow::Entity, shadow::Mesh& mesh, shadow::WorldTransform& wt) {
-                HostMesh m;
-                std::vector<glm::vec3> vertices;
-                for (std::size_t i = 0; i < mesh.data->positions.size(); ++i) {
-                    vertices.push_back(mesh.data->positions[i]);
-                    vertices.push_back(mesh.data->normals[i]);
-                }
-                gl.CreateBuffers(1, &m.buffer);
-                gl.NamedBufferStorage(m.buffer, static_cast<GLsizeiptr>(vertices.size() * sizeof(glm::vec3)),
-                                      vertices.data(), 0);
-                gl.CreateBuffers(1, &m.indices);
-                gl.NamedBufferStorage(m.indices,
-                                      static_cast<GLsizeiptr>(mesh.data->indices.size() * sizeof(std::uint32_t)),
-                                      mesh.data->indices.data(), 0);
-                gl.CreateVertexArrays(1, &m.vertexArray);
-                gl.VertexArrayVertexBuffer(m.vertexArray, 0, m.buffer, 0, 2 * sizeof(glm::vec3));
-                gl.VertexArrayElementBuffer(m.vertexArray, m.indices);
-                for (GLuint a = 0; a < 2; ++a) {
-                    gl.VertexArrayAttribFormat(m.vertexArray, a, 3, GL_FLOAT, GL_FALSE, a * sizeof(glm::vec3));
-                    gl.VertexArrayAttribBinding(m.vertexArray, a, 0);
-                    gl.EnableVertexArrayAttrib(m.vertexArray, a);
-                }
-                m.count = static_cast<GLsizei>(mesh.data->indices.size());
-                m.worldFromLocal = wt.worldFromLocal;
-                meshes.push_back(m);
-            });
+        world.view<shadow::Mesh, shadow::WorldTransform>().each([this](shadow::Entity, shadow::Mesh& mesh,
+                                                                       shadow::WorldTransform& wt) {
+            HostMesh m;
+            std::vector<glm::vec3> vertices;
+            for (std::size_t i = 0; i < mesh.data->positions.size(); ++i) {
+                vertices.push_back(mesh.data->positions[i]);
+                vertices.push_back(mesh.data->normals[i]);
+            }
+            gl.CreateBuffers(1, &m.buffer);
+            gl.NamedBufferStorage(m.buffer, static_cast<GLsizeiptr>(vertices.size() * sizeof(glm::vec3)),
+                                  vertices.data(), 0);
+            gl.CreateBuffers(1, &m.indices);
+            gl.NamedBufferStorage(m.indices, static_cast<GLsizeiptr>(mesh.data->indices.size() * sizeof(std::uint32_t)),
+                                  mesh.data->indices.data(), 0);
+            gl.CreateVertexArrays(1, &m.vertexArray);
+            gl.VertexArrayVertexBuffer(m.vertexArray, 0, m.buffer, 0, 2 * sizeof(glm::vec3));
+            gl.VertexArrayElementBuffer(m.vertexArray, m.indices);
+            for (GLuint a = 0; a < 2; ++a) {
+                gl.VertexArrayAttribFormat(m.vertexArray, a, 3, GL_FLOAT, GL_FALSE, a * sizeof(glm::vec3));
+                gl.VertexArrayAttribBinding(m.vertexArray, a, 0);
+                gl.EnableVertexArrayAttrib(m.vertexArray, a);
+            }
+            m.count = static_cast<GLsizei>(mesh.data->indices.size());
+            m.worldFromLocal = wt.worldFromLocal;
+            meshes.push_back(m);
+        });
     }
 
     /// Builds the program: the host's defines, the module's GLSL from `shaderDir`, the host's

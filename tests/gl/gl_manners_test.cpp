@@ -38,10 +38,10 @@ Scene threeLightScene() {
 /// beyond.
 std::vector<GLint> unitsChecked() {
     std::vector<GLint> units;
-    for (GLint i = 0; i <= 24; ++i) units.push_back(i);
+    for (GLint i = 0; i <= SG_UNIT_MASK_NORMAL + 1; ++i) units.push_back(i);
     return units;
 }
-const std::vector<GLint> kBindingsChecked{0, 1, 2};
+const std::vector<GLint> kBindingsChecked{0, 1, 2, 3};
 
 /// Host state unlike anything the engine sets: its own framebuffer, VAO, program 0, an odd
 /// viewport and scissor, depth test off with GREATER and no writes, front-face culling, blending
@@ -93,6 +93,30 @@ struct HostObjects {
         gl.BindSampler(0, sampler);
         gl.BindBufferRange(GL_UNIFORM_BUFFER, 1, buffer, 256, 512);
         gl.ActiveTexture(GL_TEXTURE5);
+        gl.FrontFace(GL_CW);
+        gl.BindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
+        gl.PixelStorei(GL_PACK_ROW_LENGTH, 7);
+    }
+    /// GL's defaults for what `bindHostState` sets (other tests share the context).
+    static void bindDefaultState() {
+        gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+        gl.BindVertexArray(0);
+        gl.Disable(GL_SCISSOR_TEST);
+        gl.DepthFunc(GL_LESS);
+        gl.DepthMask(GL_TRUE);
+        gl.Disable(GL_CULL_FACE);
+        gl.CullFace(GL_BACK);
+        gl.Disablei(GL_BLEND, 0);
+        gl.BlendFuncSeparate(GL_ONE, GL_ZERO, GL_ONE, GL_ZERO);
+        gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+        gl.BindTextureUnit(0, 0);
+        gl.BindSampler(0, 0);
+        gl.BindBufferBase(GL_UNIFORM_BUFFER, 1, 0);
+        gl.ActiveTexture(GL_TEXTURE0);
+        gl.FrontFace(GL_CCW);
+        gl.BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+        gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
     }
 };
 
@@ -142,10 +166,55 @@ TEST(GlManners, EveryPublicCallLeavesTheHostStateAsItFoundIt) {
 
     const FrameImages images = runner.renderer().readback(runner.lastCamera(), stats);
     expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked), "Renderer::readback");
+
+    // The screen-space mask over a depth texture of the host's.
+    GLuint depth = 0, mask = 0;
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &depth);
+    gl.TextureStorage2D(depth, 1, GL_DEPTH_COMPONENT32F, 64, 48);
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &mask);
+    gl.TextureStorage2D(mask, 1, GL_RGBA8, 64, 48);
+    host.bindHostState();
+    const gpu::GlState beforeMask = gpu::captureGlState(unitsChecked(), kBindingsChecked);
+    ShadowMaskRequest request;
+    request.depthTexture = depth;
+    request.target = mask;
+    request.width = 64;
+    request.height = 48;
+    request.camera = runner.lastCamera();
+    const std::array<int, 3> lights{0, 1, 2};
+    runner.shadows().renderMask(lights, request, stats);
+    expectSameState(beforeMask, gpu::captureGlState(unitsChecked(), kBindingsChecked), "ShadowSystem::renderMask");
+    gl.DeleteTextures(1, &depth);
+    gl.DeleteTextures(1, &mask);
     EXPECT_EQ(images.visibility.size(), 3u);
     EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
     EXPECT_EQ(hostErrors(stats), 0) << test::describe(stats.warnings);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    HostObjects::bindDefaultState();
+}
+
+TEST(GlManners, TheHostsStateDoesNotChangeWhatTheEngineDraws) {
+    // The engine sets every piece of state its passes rely on: a host's scissor, colour mask,
+    // clockwise front faces, blending or pack buffer leave its pictures and readbacks as they are.
+    test::glContext();
+    Scene scene = threeLightScene();
+    FrameRunner cleanRunner;
+    const test::RenderedFrame clean = test::renderFrame(cleanRunner, scene, 64, 48);
+    FrameRunner runner;  // its own targets and maps, all drawn under the host's state
+    HostObjects host;
+    host.bindHostState();
+    RenderOptions options;
+    options.width = 64;
+    options.height = 48;
+    options.aovs = true;
+    FrameStats stats = runner.runFrame(scene, 0.0, scene.cameras.at(0), options);
+    const FrameImages hosted = runner.renderer().readback(runner.lastCamera(), stats);
+    EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
+    HostObjects::bindDefaultState();
+    EXPECT_EQ(hosted.color.pixels, clean.images.color.pixels);
+    ASSERT_EQ(hosted.visibility.size(), clean.images.visibility.size());
+    for (std::size_t i = 0; i < hosted.visibility.size(); ++i) {
+        EXPECT_EQ(hosted.visibility[i].pixels, clean.images.visibility[i].pixels) << "light " << i;
+    }
 }
 
 TEST(GlManners, AnErrorTheHostLeftPendingIsReportedNotThrown) {

@@ -108,8 +108,8 @@ GLuint compile(GLenum stage, const std::string& text) {
 /// The host's program: its own vertex shader, its fragment shader around the public text.
 GLuint hostProgram(const ShadowBindingPoints& points, unsigned techniques) {
     const GLuint v = compile(GL_VERTEX_SHADER, kHostVertex);
-    const GLuint f =
-        compile(GL_FRAGMENT_SHADER, std::string("#version 450 core\n") + shadowShaderSource(points, techniques) + kHostFragmentMain);
+    const GLuint f = compile(GL_FRAGMENT_SHADER, std::string("#version 450 core\n") +
+                                                     shadowShaderSource(points, techniques) + kHostFragmentMain);
     const GLuint program = gl.CreateProgram();
     gl.AttachShader(program, v);
     gl.AttachShader(program, f);
@@ -124,8 +124,9 @@ GLuint hostProgram(const ShadowBindingPoints& points, unsigned techniques) {
 
 /// Draws every mesh of `scene` with the host's program into an RGBA32F target and reads the
 /// visibility of the three lights back, rows top first (as the renderer's images).
+/// With `keepDepth`, the host's depth texture is left to the caller there.
 std::vector<glm::vec4> hostVisibility(Scene& scene, FrameRunner& runner, const ShadowBindingPoints& points,
-                                      unsigned techniques = kAllShadowTechniques) {
+                                      unsigned techniques = kAllShadowTechniques, GLuint* keepDepth = nullptr) {
     const CameraView& cam = runner.lastCamera();
     GLuint colour = 0, depth = 0, framebuffer = 0;
     gl.CreateTextures(GL_TEXTURE_2D, 1, &colour);
@@ -137,13 +138,19 @@ std::vector<glm::vec4> hostVisibility(Scene& scene, FrameRunner& runner, const S
     gl.NamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, depth, 0);
     gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     gl.Viewport(0, 0, kWidth, kHeight);
+    // Every state the host's draw relies on (a test before may have left its own).
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LESS);
+    gl.DepthMask(GL_TRUE);
+    gl.Disable(GL_SCISSOR_TEST);
+    gl.Disable(GL_CULL_FACE);
+    gl.Disablei(GL_BLEND, 0);
+    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    // Clears follow the depth and colour masks: after them.
     const std::array<float, 4> clear{0.0f, 0.0f, 0.0f, 0.0f};
     gl.ClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, clear.data());
     const float far = 1.0f;
     gl.ClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &far);
-    gl.Enable(GL_DEPTH_TEST);
-    gl.DepthFunc(GL_LESS);
-    gl.DepthMask(GL_TRUE);
 
     const GLuint program = hostProgram(points, techniques);
     gl.UseProgram(program);
@@ -152,7 +159,8 @@ std::vector<glm::vec4> hostVisibility(Scene& scene, FrameRunner& runner, const S
                                                      static_cast<double>(cam.znear), static_cast<double>(cam.zfar));
     const glm::mat4 clipFromCs(clipFromView * viewFromCs);
     const glm::vec3 forward = glm::normalize(glm::vec3(-glm::dvec3(glm::transpose(cam.viewFromWorld)[2])));
-    gl.ProgramUniformMatrix4fv(program, gl.GetUniformLocation(program, "uClipFromCs"), 1, GL_FALSE, glm::value_ptr(clipFromCs));
+    gl.ProgramUniformMatrix4fv(program, gl.GetUniformLocation(program, "uClipFromCs"), 1, GL_FALSE,
+                               glm::value_ptr(clipFromCs));
     gl.ProgramUniform3fv(program, gl.GetUniformLocation(program, "uCameraForward"), 1, glm::value_ptr(forward));
 
     const std::array<int, kLights> lights{0, 1, 2};
@@ -167,9 +175,9 @@ std::vector<glm::vec4> hostVisibility(Scene& scene, FrameRunner& runner, const S
         csFromLocal[3] -= glm::dvec4(cam.wsPosition, 0.0);
         const glm::mat3 normalFromLocal(glm::transpose(glm::inverse(glm::dmat3(wt.worldFromLocal))));
         gl.ProgramUniformMatrix4fv(program, gl.GetUniformLocation(program, "uCsFromLocal"), 1, GL_FALSE,
-                            glm::value_ptr(glm::mat4(csFromLocal)));
+                                   glm::value_ptr(glm::mat4(csFromLocal)));
         gl.ProgramUniformMatrix3fv(program, gl.GetUniformLocation(program, "uNormalFromLocal"), 1, GL_FALSE,
-                            glm::value_ptr(normalFromLocal));
+                                   glm::value_ptr(normalFromLocal));
         const int indices = runner.renderer().meshes().bind(mesh.data);
         gl.DrawElements(GL_TRIANGLES, indices, GL_UNSIGNED_INT, nullptr);
     });
@@ -188,7 +196,11 @@ std::vector<glm::vec4> hostVisibility(Scene& scene, FrameRunner& runner, const S
     gl.DeleteProgram(program);
     gl.DeleteFramebuffers(1, &framebuffer);
     gl.DeleteTextures(1, &colour);
-    gl.DeleteTextures(1, &depth);
+    if (keepDepth != nullptr) {
+        *keepDepth = depth;
+    } else {
+        gl.DeleteTextures(1, &depth);
+    }
     return topFirst;
 }
 
@@ -222,6 +234,68 @@ TEST(ShaderContract, HostShaderGetsTheRenderersVisibility) {
         EXPECT_GT(lit, 100);
         EXPECT_LE(worst, 1.0 / 255.0);
         std::printf("light %d: %d pixels covered, largest difference %.3g\n", light, covered, worst);
+    }
+}
+
+/// Reads an RGBA32F texture, rows top first.
+std::vector<glm::vec4> readTopFirst(GLuint texture) {
+    std::vector<glm::vec4> pixels(static_cast<std::size_t>(kWidth) * kHeight);
+    gl.GetTextureSubImage(texture, 0, 0, 0, 0, kWidth, kHeight, 1, GL_RGBA, GL_FLOAT,
+                          static_cast<GLsizei>(pixels.size() * sizeof(glm::vec4)), pixels.data());
+    std::vector<glm::vec4> topFirst(pixels.size());
+    for (int y = 0; y < kHeight; ++y) {
+        std::copy_n(pixels.begin() + static_cast<std::ptrdiff_t>(y) * kWidth, kWidth,
+                    topFirst.begin() + static_cast<std::ptrdiff_t>(kHeight - 1 - y) * kWidth);
+    }
+    return topFirst;
+}
+
+TEST(ShaderContract, ScreenSpaceMaskFromTheHostsDepthMatchesTheRenderer) {
+    test::glContext();
+    Scene scene = contractScene();
+    FrameRunner runner;
+    const test::RenderedFrame frame = test::renderFrame(runner, scene, kWidth, kHeight);
+    GLuint depth = 0;
+    (void)hostVisibility(scene, runner, ShadowBindingPoints{}, kAllShadowTechniques, &depth);
+    GLuint target = 0;
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &target);
+    gl.TextureStorage2D(target, 1, GL_RGBA32F, kWidth, kHeight);
+    ShadowMaskRequest request;
+    request.depthTexture = depth;
+    request.target = target;
+    request.width = kWidth;
+    request.height = kHeight;
+    request.camera = runner.lastCamera();
+    FrameStats stats;
+    const std::array<int, kLights> lights{0, 1, 2};
+    runner.shadows().renderMask(lights, request, stats);
+    const std::vector<glm::vec4> mask = readTopFirst(target);
+    gl.DeleteTextures(1, &target);
+    gl.DeleteTextures(1, &depth);
+
+    for (int light = 0; light < kLights; ++light) {
+        const ImageF& engine = frame.images.visibility[static_cast<std::size_t>(light)];
+        int covered = 0, close = 0, background = 0;
+        double sum = 0.0;
+        for (int y = 0; y < kHeight; ++y) {
+            for (int x = 0; x < kWidth; ++x) {
+                const float m = mask[static_cast<std::size_t>(y) * kWidth + static_cast<std::size_t>(x)][light];
+                if (frame.images.position.at(x, y, 3) < 0.5f) {
+                    background += m == 1.0f ? 1 : 0;
+                    continue;
+                }
+                ++covered;
+                const double d = std::abs(static_cast<double>(m) - engine.at(x, y, 0));
+                sum += d;
+                close += d <= 1.0 / 255.0 ? 1 : 0;
+            }
+        }
+        SCOPED_TRACE("light " + std::to_string(light));
+        std::printf("mask light %d: %d pixels, %.2f %% within 1/255, mean difference %.4f\n", light, covered,
+                    100.0 * close / std::max(covered, 1), sum / std::max(covered, 1));
+        EXPECT_EQ(background, kWidth * kHeight - covered);  // no geometry: lit
+        EXPECT_GE(close, covered * 99 / 100);
+        EXPECT_LE(sum / std::max(covered, 1), 0.002);
     }
 }
 

@@ -21,9 +21,12 @@
 #pragma once
 
 #include <shadow/components.h>
+#include <shadow/scene.h>
 #include <shadow/shared_constants.h>
 
 #include <array>
+
+#include <glm/glm.hpp>
 #include <string>
 
 namespace shadow {
@@ -32,9 +35,9 @@ namespace shadow {
 /// the first texture unit of each of its three sampler arrays (slot i at unit + i). The defaults
 /// are the engine's own.
 struct ShadowBindingPoints {
-    int lightBlock = SG_BINDING_LIGHTS;    ///< GpuLight[SG_MAX_LIGHTS_PER_PASS]
-    int layerBlock = SG_BINDING_LAYERS;    ///< GpuShadowLayer[slot * SG_MAX_LAYERS_PER_LIGHT + k]
-    int kernelBlock = SG_BINDING_KERNELS;  ///< the filters' Poisson disk
+    int lightBlock = SG_BINDING_LIGHTS;        ///< GpuLight[SG_MAX_LIGHTS_PER_PASS]
+    int layerBlock = SG_BINDING_LAYERS;        ///< GpuShadowLayer[slot * SG_MAX_LAYERS_PER_LIGHT + k]
+    int kernelBlock = SG_BINDING_KERNELS;      ///< the filters' Poisson disk
     int compareUnit = SG_UNIT_SHADOW_COMPARE;  ///< depth arrays with the comparison sampler
     int depthUnit = SG_UNIT_SHADOW_DEPTH;      ///< the same arrays with the raw-depth sampler
     int minMaxUnit = SG_UNIT_SHADOW_MINMAX;    ///< min/max pyramids (PCF, PCSS)
@@ -61,16 +64,50 @@ std::string shadowShaderSource(const ShadowBindingPoints& points = {}, unsigned 
 /// `ShadowSystem::shaderInputs`. Names are GL object names, valid until the next `shaderInputs`
 /// or `render` call (a light's arrays can be reallocated when its map size changes).
 struct ShadowShaderInputs {
-    int lights = 0;                                       ///< slots in use
-    std::array<int, SG_MAX_LIGHTS_PER_PASS> sceneLight{};  ///< scene light of each slot, -1 none
-    unsigned lightBuffer = 0;   ///< uniform buffer: the light block (bind whole)
-    unsigned layerBuffer = 0;   ///< uniform buffer: the layer block
-    unsigned kernelBuffer = 0;  ///< uniform buffer: the kernel block
+    int lights = 0;                                             ///< slots in use
+    std::array<int, SG_MAX_LIGHTS_PER_PASS> sceneLight{};       ///< scene light of each slot, -1 none
+    unsigned lightBuffer = 0;                                   ///< uniform buffer: the light block (bind whole)
+    unsigned layerBuffer = 0;                                   ///< uniform buffer: the layer block
+    unsigned kernelBuffer = 0;                                  ///< uniform buffer: the kernel block
     std::array<unsigned, SG_MAX_LIGHTS_PER_PASS> depthArray{};  ///< per slot, 0 without a map
     std::array<unsigned, SG_MAX_LIGHTS_PER_PASS> minMax{};      ///< per slot, 0 without a pyramid
     unsigned compareSampler = 0;  ///< sampler object for the compare units (hardware comparison)
     unsigned depthSampler = 0;    ///< sampler object for the raw-depth units
     unsigned techniques = 0;      ///< `techniqueBit`s of the slots' techniques
+    /// Per slot: the light's SG_LIGHT_*, SG_TECH_* and SG_KERNEL_*, for a shader specialised per
+    /// light configuration (`shadowVisibility(slot, shadowSlotLight(slot, type, technique,
+    /// kernel), ...)` with compile-time constants, as the module's own passes do).
+    std::array<int, SG_MAX_LIGHTS_PER_PASS> type{}, technique{}, kernel{};
+};
+
+/// A screen-space shadow mask (`ShadowSystem::renderMask`): the visibility of up to
+/// SG_MAX_MASK_LIGHTS lights at every pixel of the game's depth buffer, light i in channel i, for
+/// a game that multiplies it into its lighting without any shader of the module. The receiver is
+/// rebuilt from depth (and the normals when given), so it matches the module's forward
+/// visibility on surfaces and can differ at silhouettes, where depth has no plane.
+struct ShadowMaskRequest {
+    /// GL_TEXTURE_2D with the game's window depth (a depth format, or R32F), `width` x `height`.
+    unsigned depthTexture = 0;
+    /// Optional GL_TEXTURE_2D of world-space shading normals in xyz (any length; turned to face
+    /// the camera); 0: the normal of the surface rebuilt from depth.
+    unsigned normalTexture = 0;
+    /// GL_TEXTURE_2D the mask is written to (colour-renderable: RGBA8, RGBA16F, RG16, R8, ...;
+    /// channels beyond the format's are dropped, channels of no light are 1), `width` x `height`.
+    unsigned target = 0;
+    int width = 0;
+    int height = 0;
+    /// The camera the depth was drawn with; the lights' records are made relative to its position.
+    CameraView camera;
+    /// The projection the depth was drawn with (view -> clip). All zero (the default): the
+    /// perspective of `camera` with GL's [-1, 1] depth, as the module's renderer draws.
+    glm::dmat4 clipFromView{0.0};
+    /// True when the game set glClipControl(..., GL_ZERO_TO_ONE): window depth is NDC z.
+    bool zeroToOneDepth = false;
+    /// Window depth of pixels without geometry: 1 with GL's default clear, 0 for reversed Z.
+    float backgroundDepth = 1.0f;
+    /// Evaluate each light only within its screen bounds (its range); the rest of the target is
+    /// written 1 by a clear. Off: every pixel runs every light.
+    bool scissorToLights = true;
 };
 
 }  // namespace shadow

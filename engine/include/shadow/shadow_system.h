@@ -212,12 +212,23 @@ public:
     /// per slot i < SG_MAX_LIGHTS_PER_PASS the maps of scene light `sceneLights[i]` (-1 or a
     /// slot beyond the span: none). For a renderer that keeps its own light and layer records.
     void bindShadowResources(std::span<const int> sceneLights, const ShadowBindingPoints& points = {}) const;
+    /// Writes the screen-space shadow mask of scene lights `sceneLights` (up to
+    /// SG_MAX_MASK_LIGHTS; light i in channel i) of the last prepared and rendered frame into
+    /// `request.target` (see `ShadowMaskRequest`). Each light's technique is the one the module's
+    /// renderer uses, compiled only for the light configurations asked for. A guest like
+    /// `render`: the GL state it changes is put back, a host error pending before the call is a
+    /// `HostGlError` warning in `stats`. Throws `std::invalid_argument` naming the problem for
+    /// too many lights, a light that is not a scene light, a zero texture or a size below 1;
+    /// `GlError` when the target cannot be drawn to.
+    void renderMask(std::span<const int> sceneLights, const ShadowMaskRequest& request, FrameStats& stats);
 
 private:
     struct ShaderInputsGpu;
+    struct MaskGpu;
     ShadowPlanner planner_;
     std::unique_ptr<ShadowGpu> gpu_;
     std::unique_ptr<ShaderInputsGpu> inputs_;
+    std::unique_ptr<MaskGpu> mask_;  ///< made on the first `renderMask`
 };
 
 }  // namespace shadow

@@ -53,6 +53,12 @@
 #ifndef SG_UNIT_SHADOW_MINMAX
 #define SG_UNIT_SHADOW_MINMAX 16
 #endif
+// Units the shadow mask reads the game's depth and normal textures from (after the three arrays).
+#define SG_UNIT_MASK_DEPTH 24
+#define SG_UNIT_MASK_NORMAL 25
+// Lights one shadow mask holds: one per channel.
+#define SG_MAX_MASK_LIGHTS 4
+
 // Unit the pyramid builder reads its source from.
 #define SG_UNIT_MINMAX_SOURCE 0
 

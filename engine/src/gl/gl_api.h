@@ -38,6 +38,7 @@ namespace shadow::gpu {
     X(PFNGLDEPTHMASKPROC, DepthMask)                                       \
     X(PFNGLCOLORMASKPROC, ColorMask)                                       \
     X(PFNGLCULLFACEPROC, CullFace)                                         \
+    X(PFNGLFRONTFACEPROC, FrontFace)                                       \
     X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                               \
     X(PFNGLBLENDFUNCPROC, BlendFunc)                                       \
     X(PFNGLBLENDEQUATIONPROC, BlendEquation)                               \

@@ -56,12 +56,16 @@ GlState captureGlState(std::span<const GLint> units, std::span<const GLint> unif
     gl.GetBooleanv(GL_DEPTH_WRITEMASK, &s.depthMask);
     s.cullFace = enabled(GL_CULL_FACE);
     gl.GetIntegerv(GL_CULL_FACE_MODE, &s.cullFaceMode);
+    gl.GetIntegerv(GL_FRONT_FACE, &s.frontFace);
+    s.polygonOffsetFill = enabled(GL_POLYGON_OFFSET_FILL);
     for (GLuint i = 0; i < s.blend.size(); ++i) s.blend[i] = gl.IsEnabledi(GL_BLEND, i);
     const std::array<GLenum, 4> blendQueries{GL_BLEND_SRC_RGB, GL_BLEND_DST_RGB, GL_BLEND_SRC_ALPHA,
                                              GL_BLEND_DST_ALPHA};
     for (std::size_t i = 0; i < blendQueries.size(); ++i) gl.GetIntegerv(blendQueries[i], s.blendFunc.data() + i);
     gl.GetBooleanv(GL_COLOR_WRITEMASK, s.colorMask.data());
     gl.GetIntegerv(GL_PACK_ALIGNMENT, &s.packAlignment);
+    gl.GetIntegerv(GL_PACK_ROW_LENGTH, &s.packRowLength);
+    gl.GetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &s.pixelPackBuffer);
     gl.GetIntegerv(GL_ACTIVE_TEXTURE, &s.activeTexture);
     gl.GetIntegerv(GL_UNIFORM_BUFFER_BINDING, &s.uniformBuffer);
     for (GLint unit : units.first(std::min(units.size(), s.units.size()))) {
@@ -84,6 +88,20 @@ GlState captureGlState(std::span<const GLint> units, std::span<const GLint> unif
     return s;
 }
 
+void setPassDefaults() {
+    gl.Disable(GL_SCISSOR_TEST);
+    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl.FrontFace(GL_CCW);
+    gl.Disable(GL_POLYGON_OFFSET_FILL);
+    gl.Disable(GL_BLEND);
+}
+
+void setReadbackDefaults() {
+    gl.BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+}
+
 void restoreGlState(const GlState& s) {
     gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(s.drawFramebuffer));
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(s.readFramebuffer));
@@ -97,11 +115,15 @@ void restoreGlState(const GlState& s) {
     gl.DepthMask(s.depthMask);
     setEnabled(GL_CULL_FACE, s.cullFace);
     gl.CullFace(static_cast<GLenum>(s.cullFaceMode));
+    gl.FrontFace(static_cast<GLenum>(s.frontFace));
+    setEnabled(GL_POLYGON_OFFSET_FILL, s.polygonOffsetFill);
     for (GLuint i = 0; i < s.blend.size(); ++i) s.blend[i] ? gl.Enablei(GL_BLEND, i) : gl.Disablei(GL_BLEND, i);
     gl.BlendFuncSeparate(static_cast<GLenum>(s.blendFunc[0]), static_cast<GLenum>(s.blendFunc[1]),
                          static_cast<GLenum>(s.blendFunc[2]), static_cast<GLenum>(s.blendFunc[3]));
     gl.ColorMask(s.colorMask[0], s.colorMask[1], s.colorMask[2], s.colorMask[3]);
     gl.PixelStorei(GL_PACK_ALIGNMENT, s.packAlignment);
+    gl.PixelStorei(GL_PACK_ROW_LENGTH, s.packRowLength);
+    gl.BindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(s.pixelPackBuffer));
     for (const GlState::Unit& u : std::span(s.units).first(s.unitCount)) {
         // Unbinds every target of the unit, then binds the host's textures back by target.
         gl.BindTextureUnit(static_cast<GLuint>(u.unit), 0);

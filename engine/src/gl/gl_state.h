@@ -42,10 +42,14 @@ struct GlState {
     GLboolean depthMask = GL_TRUE;
     GLboolean cullFace = GL_FALSE;
     GLint cullFaceMode = GL_BACK;
+    GLint frontFace = GL_CCW;
+    GLboolean polygonOffsetFill = GL_FALSE;
     std::array<GLboolean, 8> blend{};  ///< per draw buffer
     std::array<GLint, 4> blendFunc{};  ///< src rgb, dst rgb, src alpha, dst alpha
     std::array<GLboolean, 4> colorMask{};
     GLint packAlignment = 4;
+    GLint packRowLength = 0;
+    GLint pixelPackBuffer = 0;
     GLint activeTexture = GL_TEXTURE0;
     GLint uniformBuffer = 0;  ///< the generic GL_UNIFORM_BUFFER binding
     struct Unit {
@@ -76,6 +80,15 @@ struct GlState {
 [[nodiscard]] GlState captureGlState(std::span<const GLint> units, std::span<const GLint> uniformBindings);
 /// Puts `state` back.
 void restoreGlState(const GlState& state);
+
+/// The raster state every pass of the engine assumes, whatever the host left: scissor test off,
+/// colour writes on, counter-clockwise front faces, no polygon offset, no blending. Each pass
+/// sets the rest (framebuffer, viewport, depth, culling) itself. Every piece is in `GlState`.
+void setPassDefaults();
+
+/// Pixel-pack state for reading back into client memory, whatever the host left: no pack buffer,
+/// rows tightly packed (alignment 1, row length 0). Every piece is in `GlState`.
+void setReadbackDefaults();
 
 /// Captures on construction, restores on destruction (also when the scope is left by a throw).
 class GlStateGuard {

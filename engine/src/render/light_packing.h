@@ -5,6 +5,8 @@
 #include <shadow/shadow_system.h>
 #include <shadow/gpu_records.h>
 
+#include "shadow/screen_bounds.h"
+
 #include <array>
 #include <compare>
 #include <cstdint>
@@ -25,29 +27,6 @@ struct LitVariant {
 
     auto operator<=>(const LitVariant&) const = default;
 };
-
-/// A rectangle of pixels, [x0, x1) x [y0, y1), GL's bottom-up rows.
-struct PixelRect {
-    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-
-    [[nodiscard]] bool empty() const { return x1 <= x0 || y1 <= y0; }
-    [[nodiscard]] long long area() const { return empty() ? 0 : static_cast<long long>(x1 - x0) * (y1 - y0); }
-    auto operator<=>(const PixelRect&) const = default;
-};
-
-/// What the packing needs of the view to bound each light on screen.
-struct ScreenView {
-    glm::dmat4 clipFromWorld{1.0};
-    int width = 1, height = 1;
-    /// World bounds of everything drawn (empty: unknown). A light reaches only the part of its
-    /// range inside them, which keeps the screen bounds of a light above a floor to the floor.
-    DAabb wsGeometry;
-};
-
-/// The pixels light `plan` can reach: the screen rectangle of its range sphere's box (within
-/// `view.wsGeometry` when known); the whole screen for a light without a range (directional, or
-/// range 0) or whose box reaches behind the camera's eye plane.
-PixelRect screenBounds(const ShadowLightPlan& plan, const ScreenView& view);
 
 /// A light on its way into a pass: wide (it reaches a quarter of the screen or more) or local,
 /// its scene index and screen bounds.

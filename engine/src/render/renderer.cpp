@@ -214,7 +214,7 @@ void Renderer::Impl::litPass(World& world, const CameraView& cam, const MainCame
     const GLuint id = p.program.get();
     // A pass lights only its lights' screen bounds. With AOVs every pass covers the screen, so
     // that each light's visibility is written wherever there is geometry.
-    const bool scissored = !options.aovs && pass.bounds != render::PixelRect{0, 0, options.width, options.height};
+    const bool scissored = !options.aovs && pass.bounds != PixelRect{0, 0, options.width, options.height};
     if (scissored) {
         gl.Enable(GL_SCISSOR_TEST);
         gl.Scissor(pass.bounds.x0, pass.bounds.y0, pass.bounds.x1 - pass.bounds.x0, pass.bounds.y1 - pass.bounds.y0);
@@ -263,8 +263,7 @@ void Renderer::render(World& world, const CameraView& camera, const ShadowSystem
     const gpu::GlStateGuard hostState(kLitTextureUnits, kLitUniformBindings);
     Impl& r = *impl_;
     r.lightCount = shadows.frame().lights.size();
-    const render::ScreenView view{cameraClipFromWorld(camera), options.width, options.height,
-                                  shadows.frame().wsGeometry};
+    const ScreenView view{cameraClipFromWorld(camera), options.width, options.height, shadows.frame().wsGeometry};
     render::packLights(shadows.frame(), camera.wsPosition, view, r.passes, r.packingOrder);
     r.preparePrograms(options, stats);
     r.uploadPasses();
@@ -274,8 +273,8 @@ void Renderer::render(World& world, const CameraView& camera, const ShadowSystem
     gpu::PassTimer& timer = r.timer;
     gl.BindFramebuffer(GL_FRAMEBUFFER, r.targets.framebuffer());
     gl.Viewport(0, 0, options.width, options.height);
-    gl.CullFace(GL_BACK);  // counter-clockwise front faces, GL's default and glTF's
-    gl.Disable(GL_BLEND);
+    gpu::setPassDefaults();  // counter-clockwise front faces, GL's default and glTF's
+    gl.CullFace(GL_BACK);
     gl.Enable(GL_DEPTH_TEST);
     r.targets.clear();
     if (options.depthPrepass) {
@@ -323,7 +322,7 @@ FrameImages Renderer::readback(const CameraView& camera, FrameStats& stats) cons
         ImageF img = makeImage(t.width(), t.height(), channels);
         gl.NamedFramebufferReadBuffer(fb, attachment);
         gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fb);
-        gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+        gpu::setReadbackDefaults();
         std::vector<float> raw(img.pixels.size());
         gl.ReadPixels(0, 0, t.width(), t.height(), format, GL_FLOAT, raw.data());
         // GL rows start at the bottom; images here start at the top.

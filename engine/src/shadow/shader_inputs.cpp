@@ -92,7 +92,8 @@ ShadowSystem::ShaderInputsGpu::ShaderInputsGpu() {
     depthSampler = gpu::Sampler(s[1]);
     setupSamplers(compareSampler, depthSampler);
     const std::vector<glm::vec2> disk = gpu::poissonDisk(SG_MAX_SAMPLES);
-    kernel = gpu::makeBuffer("Shadow/kernels", static_cast<GLsizeiptr>(disk.size() * sizeof(glm::vec2)), disk.data(), 0);
+    kernel =
+        gpu::makeBuffer("Shadow/kernels", static_cast<GLsizeiptr>(disk.size() * sizeof(glm::vec2)), disk.data(), 0);
     lights = gpu::makeBuffer("Shadow/shaderInputs/lights", sizeof(lightRecords), nullptr, GL_DYNAMIC_STORAGE_BIT);
     layers = gpu::makeBuffer("Shadow/shaderInputs/layers", sizeof(layerRecords), nullptr, GL_DYNAMIC_STORAGE_BIT);
     inputs.lightBuffer = lights.get();
@@ -116,20 +117,27 @@ const ShadowShaderInputs& ShadowSystem::shaderInputs(std::span<const int> sceneL
     in.depthArray.fill(0);
     in.minMax.fill(0);
     in.techniques = 0;
+    in.type.fill(SG_LIGHT_POINT);
+    in.technique.fill(SG_TECH_NONE);
+    in.kernel.fill(SG_KERNEL_VOGEL);
     g.lightRecords.fill(gpu::GpuLight{});
     for (std::size_t slot = 0; slot < sceneLights.size(); ++slot) {
         const int light = sceneLights[slot];
         if (light < 0 || static_cast<std::size_t>(light) >= frame.lights.size()) {
-            throw std::invalid_argument("shaderInputs: " + std::to_string(light) + " is not a scene light (the frame has " +
-                                        std::to_string(frame.lights.size()) + ")");
+            throw std::invalid_argument("shaderInputs: " + std::to_string(light) +
+                                        " is not a scene light (the frame has " + std::to_string(frame.lights.size()) +
+                                        ")");
         }
         const ShadowLightPlan& plan = frame.lights[static_cast<std::size_t>(light)];
-        g.lightRecords[slot] = gpu::packSlot(plan, wsCamera, static_cast<int>(slot),
-                                             &g.layerRecords[slot * SG_MAX_LAYERS_PER_LIGHT]);
+        g.lightRecords[slot] =
+            gpu::packSlot(plan, wsCamera, static_cast<int>(slot), &g.layerRecords[slot * SG_MAX_LAYERS_PER_LIGHT]);
         in.sceneLight[slot] = light;
         in.depthArray[slot] = textureOf(static_cast<std::size_t>(light));
         in.minMax[slot] = minMaxOf(static_cast<std::size_t>(light));
         if (plan.hasMap()) in.techniques |= techniqueBit(plan.technique());
+        in.type[slot] = g.lightRecords[slot].type;
+        in.technique[slot] = g.lightRecords[slot].technique;
+        in.kernel[slot] = g.lightRecords[slot].kernel;
     }
     gl.NamedBufferSubData(g.lights.get(), 0, sizeof(g.lightRecords), g.lightRecords.data());
     gl.NamedBufferSubData(g.layers.get(), 0, sizeof(g.layerRecords), g.layerRecords.data());

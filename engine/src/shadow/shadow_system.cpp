@@ -83,11 +83,11 @@ void formatPassName(std::string& out, const ShadowLightPlan& plan, std::string_v
 
 /// Depth-only state of the shadow passes.
 void beginDepthOnly() {
+    gpu::setPassDefaults();
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LESS);
     gl.DepthMask(GL_TRUE);
     gl.Disable(GL_CULL_FACE);  // open meshes (planes) cast from both sides
-    gl.Disable(GL_BLEND);
     gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
 }
 
@@ -284,6 +284,8 @@ std::vector<float> ShadowSystem::readLayerDepth(std::size_t i, int layer) const 
     const ShadowMapGpu& map = *maps[i].second;
     if (layer < 0 || layer >= map.layers) return {};
     std::vector<float> depth(static_cast<std::size_t>(map.mapSize) * map.mapSize);
+    const gpu::GlStateGuard hostState({}, {});
+    gpu::setReadbackDefaults();
     gl.GetTextureSubImage(map.array.get(), 0, 0, 0, layer, map.mapSize, map.mapSize, 1, GL_DEPTH_COMPONENT, GL_FLOAT,
                           static_cast<GLsizei>(depth.size() * sizeof(float)), depth.data());
     const float scale = frame.lights[i].layers[static_cast<std::size_t>(layer)].depthScale;

@@ -1,0 +1,182 @@
+// The screen-space shadow mask (ShadowSystem::renderMask): a full-screen pass over a game's
+// depth buffer that writes each light's visibility into one channel of the game's texture.
+#include <shadow/shadow_system.h>
+
+#include "gl/gl_state.h"
+#include "gl/objects.h"
+#include "gl/program.h"
+#include "shadow/screen_bounds.h"
+#include "shadow/shader_inputs.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <array>
+#include <cstdint>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace shadow {
+
+namespace {
+
+MaskKey maskKey(const ShadowShaderInputs& in, bool normals) {
+    MaskKey key{};
+    key[0] = static_cast<std::uint8_t>(in.lights);
+    key[1] = normals ? 1 : 0;
+    for (std::size_t i = 0; i < SG_MAX_MASK_LIGHTS; ++i) {
+        key[2 + 3 * i] = static_cast<std::uint8_t>(in.type[i]);
+        key[3 + 3 * i] = static_cast<std::uint8_t>(in.technique[i]);
+        key[4 + 3 * i] = static_cast<std::uint8_t>(in.kernel[i]);
+    }
+    return key;
+}
+
+MaskProgram buildMask(const ShadowShaderInputs& in, bool normals) {
+    std::vector<std::string> defines{"SG_MASK_LIGHTS " + std::to_string(in.lights)};
+    std::string label;
+    for (int i = 0; i < SG_MAX_MASK_LIGHTS; ++i) {
+        const auto s = static_cast<std::size_t>(i);
+        const std::string slot = "SG_SLOT" + std::to_string(i);
+        defines.push_back(slot + "_TYPE " + std::to_string(in.type[s]));
+        defines.push_back(slot + "_TECH " + std::to_string(in.technique[s]));
+        defines.push_back(slot + "_KERNEL " + std::to_string(in.kernel[s]));
+        if (i < in.lights) {
+            label += (label.empty() ? "" : ",") +
+                     std::string(techniqueName(static_cast<ShadowTechnique>(in.technique[s])));
+        }
+    }
+    static constexpr std::array<std::pair<ShadowTechnique, const char*>, 4> kEnabled{{
+        {ShadowTechnique::Hard, "SG_TECH_HARD_ENABLED"},
+        {ShadowTechnique::Pcf, "SG_TECH_PCF_ENABLED"},
+        {ShadowTechnique::Pcss, "SG_TECH_PCSS_ENABLED"},
+        {ShadowTechnique::PcssTextbook, "SG_TECH_PCSS_TEXTBOOK_ENABLED"},
+    }};
+    for (const auto& [technique, define] : kEnabled) {
+        if ((in.techniques & techniqueBit(technique)) != 0) defines.emplace_back(define);
+    }
+    if (normals) defines.emplace_back("SG_MASK_NORMALS");
+    MaskProgram p;
+    p.program = gpu::buildProgram(
+        {"Shadow/Mask[" + label + (normals ? ",normals]" : "]"), "fullscreen.vert.glsl", "shadow_mask.frag.glsl", defines});
+    const GLuint id = p.program.get();
+    p.csFromClip = gl.GetUniformLocation(id, "uCsFromClip");
+    p.cameraForward = gl.GetUniformLocation(id, "uCameraForward");
+    p.zeroToOne = gl.GetUniformLocation(id, "uZeroToOne");
+    p.backgroundDepth = gl.GetUniformLocation(id, "uBackgroundDepth");
+    return p;
+}
+
+/// Texture units the mask pass binds (the three shadow arrays, depth, normals) and the uniform
+/// binding points: what its guard puts back.
+constexpr std::array<GLint, SG_UNIT_MASK_NORMAL + 1> maskUnits() {
+    std::array<GLint, SG_UNIT_MASK_NORMAL + 1> units{};
+    std::iota(units.begin(), units.end(), 0);
+    return units;
+}
+constexpr std::array<GLint, SG_UNIT_MASK_NORMAL + 1> kMaskUnits = maskUnits();
+constexpr std::array<GLint, 3> kMaskBindings{SG_BINDING_LIGHTS, SG_BINDING_LAYERS, SG_BINDING_KERNELS};
+static_assert(SG_UNIT_MASK_DEPTH >= SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS);
+
+void validateMask(std::span<const int> sceneLights, const ShadowMaskRequest& r) {
+    if (sceneLights.size() > SG_MAX_MASK_LIGHTS) {
+        throw std::invalid_argument("renderMask: " + std::to_string(sceneLights.size()) + " lights, a mask holds " +
+                                    std::to_string(SG_MAX_MASK_LIGHTS));
+    }
+    if (r.depthTexture == 0) throw std::invalid_argument("renderMask: no depth texture");
+    if (r.target == 0) throw std::invalid_argument("renderMask: no target texture");
+    if (r.width < 1 || r.height < 1) {
+        throw std::invalid_argument("renderMask: size " + std::to_string(r.width) + " x " + std::to_string(r.height));
+    }
+}
+
+/// The projection the request's depth was drawn with.
+glm::dmat4 clipFromView(const ShadowMaskRequest& r) {
+    if (r.clipFromView != glm::dmat4(0.0)) return r.clipFromView;
+    return glm::perspective(static_cast<double>(r.camera.yfov), static_cast<double>(r.camera.aspect),
+                            static_cast<double>(r.camera.znear), static_cast<double>(r.camera.zfar));
+}
+
+}  // namespace
+
+ShadowSystem::MaskGpu::MaskGpu() {
+    GLuint vao = 0;
+    gl.CreateVertexArrays(1, &vao);
+    empty = gpu::VertexArray(vao);
+    framebuffer = gpu::makeFramebuffer("Shadow/Mask/framebuffer");
+    GLuint s = 0;
+    gl.CreateSamplers(1, &s);
+    point = gpu::Sampler(s);
+    gl.SamplerParameteri(s, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.SamplerParameteri(s, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl.SamplerParameteri(s, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    point.label("Shadow/Mask/pointSampler");
+}
+
+void ShadowSystem::renderMask(std::span<const int> sceneLights, const ShadowMaskRequest& r, FrameStats& stats) {
+    validateMask(sceneLights, r);
+    gpu::reportHostGlErrors("ShadowSystem::renderMask", stats);
+    const gpu::GlStateGuard hostState(kMaskUnits, kMaskBindings);
+    if (!mask_) mask_ = std::make_unique<MaskGpu>();
+    MaskGpu& m = *mask_;
+    const ShadowShaderInputs& in = shaderInputs(sceneLights, r.camera.wsPosition);
+    bindShaderInputs(in);
+
+    gl.NamedFramebufferTexture(m.framebuffer.get(), GL_COLOR_ATTACHMENT0, r.target, 0);
+    if (gl.CheckNamedFramebufferStatus(m.framebuffer.get(), GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        gpu::takePendingErrors();
+        throw GlError("renderMask: the target texture cannot be drawn to (not a colour-renderable 2D texture?)");
+    }
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, m.framebuffer.get());
+    gl.Viewport(0, 0, r.width, r.height);
+    gpu::setPassDefaults();
+    gl.Disable(GL_DEPTH_TEST);
+    gl.Disable(GL_CULL_FACE);
+    const std::array<float, 4> lit{1.0f, 1.0f, 1.0f, 1.0f};
+    gl.ClearNamedFramebufferfv(m.framebuffer.get(), GL_COLOR, 0, lit.data());
+
+    // Only the lights' screen bounds run the lights; the clear wrote 1 everywhere else.
+    const glm::dmat4 projection = clipFromView(r);
+    PixelRect bounds{0, 0, r.width, r.height};
+    if (r.scissorToLights) {
+        const ScreenView view{projection * r.camera.viewFromWorld, r.width, r.height, frame().wsGeometry};
+        bounds = PixelRect{};
+        for (const int light : sceneLights) {
+            const PixelRect b = screenBounds(frame().lights[static_cast<std::size_t>(light)], view);
+            if (b.empty()) continue;
+            bounds = bounds.empty() ? b
+                                    : PixelRect{std::min(bounds.x0, b.x0), std::min(bounds.y0, b.y0),
+                                                std::max(bounds.x1, b.x1), std::max(bounds.y1, b.y1)};
+        }
+    }
+    if (!bounds.empty() && in.techniques != 0) {
+        const bool normals = r.normalTexture != 0;
+        const MaskKey key = maskKey(in, normals);
+        auto it = m.programs.find(key);
+        if (it == m.programs.end()) it = m.programs.emplace(key, buildMask(in, normals)).first;
+        const MaskProgram& p = it->second;
+        const GLuint id = p.program.get();
+        const glm::dmat4 clipFromCs =
+            projection * r.camera.viewFromWorld * glm::translate(glm::dmat4(1.0), r.camera.wsPosition);
+        const glm::vec3 forward = glm::normalize(glm::vec3(-glm::dvec3(glm::transpose(r.camera.viewFromWorld)[2])));
+        gl.ProgramUniformMatrix4fv(id, p.csFromClip, 1, GL_FALSE, glm::value_ptr(glm::mat4(glm::inverse(clipFromCs))));
+        gl.ProgramUniform3fv(id, p.cameraForward, 1, glm::value_ptr(forward));
+        gl.ProgramUniform1i(id, p.zeroToOne, r.zeroToOneDepth ? 1 : 0);
+        gl.ProgramUniform1f(id, p.backgroundDepth, r.backgroundDepth);
+        gl.BindTextureUnit(SG_UNIT_MASK_DEPTH, r.depthTexture);
+        gl.BindSampler(SG_UNIT_MASK_DEPTH, m.point.get());
+        gl.BindTextureUnit(SG_UNIT_MASK_NORMAL, r.normalTexture);
+        gl.BindSampler(SG_UNIT_MASK_NORMAL, m.point.get());
+        gl.Enable(GL_SCISSOR_TEST);
+        gl.Scissor(bounds.x0, bounds.y0, bounds.x1 - bounds.x0, bounds.y1 - bounds.y0);
+        gl.UseProgram(id);
+        gl.BindVertexArray(m.empty.get());
+        gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    gl.NamedFramebufferTexture(m.framebuffer.get(), GL_COLOR_ATTACHMENT0, 0, 0);
+    gpu::checkGlError("renderMask");
+}
+
+}  // namespace shadow

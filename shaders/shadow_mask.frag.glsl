@@ -1,0 +1,81 @@
+// Screen-space shadow mask (ShadowSystem::renderMask): the visibility of up to four lights at
+// every pixel of a game's depth buffer, one light per channel, for a game whose lighting
+// multiplies it in without any shader of the module.
+//
+// The receiver is rebuilt from depth: the camera-relative position by unprojecting the pixel
+// centre, the triangle's plane from the neighbour on each axis whose depth is closer (so a
+// silhouette does not tilt the plane of the surface in front of it), the shading normal from the
+// game's normal texture when it gives one (SG_MASK_NORMALS) and the curvature from its change.
+// Slots are specialised like the lit passes' (SG_MASK_LIGHTS, SG_SLOT<i>_TYPE/_TECH/_KERNEL).
+#include "shadow_visibility.glsl"
+
+layout(binding = SG_UNIT_MASK_DEPTH) uniform sampler2D uSceneDepth;
+#ifdef SG_MASK_NORMALS
+layout(binding = SG_UNIT_MASK_NORMAL) uniform sampler2D uSceneNormal;
+#endif
+uniform mat4 uCsFromClip;      // inverse of the game's camera-relative world -> clip
+uniform vec3 uCameraForward;   // unit, world space
+uniform int uZeroToOne;        // 1: window depth is NDC z (glClipControl ZERO_TO_ONE)
+uniform float uBackgroundDepth;
+
+layout(location = 0) out vec4 outMask;
+
+// Camera-relative position of pixel `p` at window depth `d`.
+vec3 csAt(ivec2 p, float d) {
+    vec2 ndcXy = (vec2(p) + 0.5) / vec2(textureSize(uSceneDepth, 0)) * 2.0 - 1.0;
+    float ndcZ = uZeroToOne != 0 ? d : d * 2.0 - 1.0;
+    vec4 cs = uCsFromClip * vec4(ndcXy, ndcZ, 1.0);
+    return cs.xyz / cs.w;
+}
+
+// The step to the neighbour along `axis` on the same surface: of the two, the one whose depth
+// along the view is closer to the centre's (one-sided at the image border). Returns the
+// neighbour's pixel in `q`.
+vec3 surfaceStep(ivec2 p, vec3 c, ivec2 axis, out ivec2 q) {
+    ivec2 size = textureSize(uSceneDepth, 0);
+    ivec2 ahead = p + axis, behind = p - axis;
+    bool hasAhead = all(lessThan(ahead, size)), hasBehind = all(greaterThanEqual(behind, ivec2(0)));
+    vec3 a = hasAhead ? csAt(ahead, texelFetch(uSceneDepth, ahead, 0).r) : c;
+    vec3 b = hasBehind ? csAt(behind, texelFetch(uSceneDepth, behind, 0).r) : c;
+    float viewC = dot(c, uCameraForward);
+    bool useAhead = hasAhead && (!hasBehind || abs(dot(a, uCameraForward) - viewC) <= abs(dot(b, uCameraForward) - viewC));
+    q = useAhead ? ahead : behind;
+    return useAhead ? a - c : c - b;
+}
+
+#define SG_MASK_SLOT(i)                                                                             \
+    if (i < SG_MASK_LIGHTS) {                                                                       \
+        GpuLight L = shadowSlotLight(i, SG_SLOT##i##_TYPE, SG_SLOT##i##_TECH, SG_SLOT##i##_KERNEL); \
+        if (SG_SLOT##i##_TECH != SG_TECH_NONE)                                                      \
+            mask[i] = shadowVisibility(i, L, c, normal, geoNormal, curvature, viewDistance);        \
+    }
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    float d = texelFetch(uSceneDepth, p, 0).r;
+    vec4 mask = vec4(1.0);
+    if (d != uBackgroundDepth) {
+        vec3 c = csAt(p, d);
+        vec3 toViewer = normalize(-c);
+        ivec2 qx, qy;
+        vec3 dx = surfaceStep(p, c, ivec2(1, 0), qx);
+        vec3 dy = surfaceStep(p, c, ivec2(0, 1), qy);
+        vec3 geoNormal = safeNormalize(cross(dx, dy), toViewer);
+        float curvature = 0.0;
+#ifdef SG_MASK_NORMALS
+        vec3 n = safeNormalize(texelFetch(uSceneNormal, p, 0).xyz, geoNormal);
+        vec3 nx = safeNormalize(texelFetch(uSceneNormal, qx, 0).xyz, n);
+        vec3 ny = safeNormalize(texelFetch(uSceneNormal, qy, 0).xyz, n);
+        curvature = max(length(nx - n) / max(length(dx), 1e-20), length(ny - n) / max(length(dy), 1e-20));
+#else
+        vec3 n = geoNormal;
+#endif
+        vec3 normal = dot(n, toViewer) < 0.0 ? -n : n;
+        float viewDistance = dot(c, uCameraForward);
+        SG_MASK_SLOT(0)
+        SG_MASK_SLOT(1)
+        SG_MASK_SLOT(2)
+        SG_MASK_SLOT(3)
+    }
+    outMask = mask;
+}
