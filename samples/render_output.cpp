@@ -163,6 +163,7 @@ std::string statsJson(const Scene& scene, const std::vector<FrameStats>& frames,
     j["scene"] = scene.name;
     j["renderer"] = last.renderer;
     j["timingMethod"] = last.timingMethod;
+    j["timingLagFrames"] = last.timingLagFrames;
     j["size"] = {width, height};
     j["frames"] = frames.size();
     j["techniqueOverride"] = technique;

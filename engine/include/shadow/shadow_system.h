@@ -180,9 +180,10 @@ public:
     /// `HostGlError` warning, never thrown; `GlError` is thrown only for the engine's own.
     void render(World& world, MeshCache& meshes, FrameStats& stats);
     /// Per-pass timing into `FrameStats::passes`. Default off: timing brackets every pass with
-    /// glFinish on a CPU rasteriser and reads timer queries at the end of the frame on a GPU
-    /// (a stall, and a query of the host's own could not be open across the call). FrameRunner
-    /// turns it on. Off, `FrameStats::timingMethod` says "off" and no pass is listed.
+    /// glFinish on a CPU rasteriser, and on a GPU opens GL_TIME_ELAPSED queries (a host's own
+    /// time-elapsed query cannot be open across the call) whose results are read a frame or
+    /// more later, never stalling (`FrameStats::timingLagFrames`). FrameRunner turns it on.
+    /// Off, `FrameStats::timingMethod` says "off" and no pass is listed.
     void setTiming(bool enabled);
 
     [[nodiscard]] const ShadowFrame& frame() const { return planner_.frame(); }

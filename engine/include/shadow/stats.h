@@ -42,7 +42,11 @@ struct FrameStats {
     /// "wall-clock-fence" on CPU rasterisers (timer queries miss rasterisation there),
     /// "timer-query" on GPUs.
     std::string timingMethod;
+    /// The passes timed, in the order they ran. With timer queries they are an earlier frame's:
+    /// queries are read a frame or more later, so that timing never waits for the GPU.
     std::vector<PassTiming> passes;
+    /// How many frames before this one the passes in `passes` ran (0 with the wall clock).
+    int timingLagFrames = 0;
     double cpuAnimateMs = 0.0;
     double cpuTransformsMs = 0.0;
     double cpuShadowPrepareMs = 0.0;

@@ -121,7 +121,8 @@ namespace shadow::gpu {
     X(PFNGLDELETEQUERIESPROC, DeleteQueries)                               \
     X(PFNGLBEGINQUERYPROC, BeginQuery)                                     \
     X(PFNGLENDQUERYPROC, EndQuery)                                         \
-    X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)
+    X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)                   \
+    X(PFNGLGETQUERYOBJECTUIVPROC, GetQueryObjectuiv)
 
 /// Resolved GL entry points of the current context.
 struct Api {

@@ -314,7 +314,9 @@ FrameImages Renderer::readback(const CameraView& camera, FrameStats& stats) cons
     const Impl& r = *impl_;
     const render::RenderTargets& t = r.targets;
     FrameImages out;
-    gpu::PassTimer timer(r.softwareRenderer);
+    // Wall clock on every renderer: reading pixels back waits for the GPU anyway, and a query
+    // read a frame later would outlive this call.
+    gpu::PassTimer timer(true);
     timer.setEnabled(r.timer.enabled());
     timer.begin("Readback");
     const GLuint fb = t.framebuffer();

@@ -44,8 +44,8 @@ MaskProgram buildMask(const ShadowShaderInputs& in, bool normals) {
         defines.push_back(slot + "_TECH " + std::to_string(in.technique[s]));
         defines.push_back(slot + "_KERNEL " + std::to_string(in.kernel[s]));
         if (i < in.lights) {
-            label += (label.empty() ? "" : ",") +
-                     std::string(techniqueName(static_cast<ShadowTechnique>(in.technique[s])));
+            label +=
+                (label.empty() ? "" : ",") + std::string(techniqueName(static_cast<ShadowTechnique>(in.technique[s])));
         }
     }
     static constexpr std::array<std::pair<ShadowTechnique, const char*>, 4> kEnabled{{
@@ -59,8 +59,8 @@ MaskProgram buildMask(const ShadowShaderInputs& in, bool normals) {
     }
     if (normals) defines.emplace_back("SG_MASK_NORMALS");
     MaskProgram p;
-    p.program = gpu::buildProgram(
-        {"Shadow/Mask[" + label + (normals ? ",normals]" : "]"), "fullscreen.vert.glsl", "shadow_mask.frag.glsl", defines});
+    p.program = gpu::buildProgram({"Shadow/Mask[" + label + (normals ? ",normals]" : "]"), "fullscreen.vert.glsl",
+                                   "shadow_mask.frag.glsl", defines});
     const GLuint id = p.program.get();
     p.csFromClip = gl.GetUniformLocation(id, "uCsFromClip");
     p.cameraForward = gl.GetUniformLocation(id, "uCameraForward");
