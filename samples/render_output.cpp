@@ -146,6 +146,7 @@ nlohmann::json lightsJson(const Scene& scene, const FrameStats& last) {
                            {"layersDrawn", ls.layersDrawn},
                            {"layersReused", ls.layersReused},
                            {"layersCleared", ls.layersCleared},
+                           {"mapAllocated", ls.mapAllocated},
                            {"castersDrawn", ls.castersDrawn},
                            {"affectsView", ls.affectsView}};
         }

@@ -9,7 +9,9 @@
 
 namespace shadow {
 
-/// Each `MeshData` is uploaded once, on first use, and kept while its `MeshData` lives.
+/// Each `MeshData` is uploaded once, on first use, and kept while its `MeshData` lives: the
+/// GPU copies of meshes no longer alive are freed by `collect`, which the shadow system and the
+/// renderer call once a frame.
 /// Requires a current OpenGL 4.5 context with `loadGl` done; `bind` throws `GlError` when an
 /// upload fails.
 class MeshCache {
@@ -22,8 +24,10 @@ public:
 
     /// Binds the vertex array of `mesh` (uploading it on first use) and returns its index count.
     int bind(const std::shared_ptr<const MeshData>& mesh);
-    /// Number of meshes uploaded so far.
+    /// Number of meshes held on the GPU.
     [[nodiscard]] std::size_t size() const;
+    /// Frees the GPU copies of the meshes whose `MeshData` no longer exists; returns how many.
+    std::size_t collect();
 
 private:
     struct Impl;

@@ -22,7 +22,9 @@
 #include <shadow/stats.h>
 #include <shadow/warnings.h>
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -32,6 +34,46 @@
 namespace shadow {
 
 class MeshCache;
+
+/// What a `ShadowCasterDraw::draw` callback gets: the layer being drawn, with the module's depth
+/// program current and its framebuffer, viewport and depth state set.
+struct CasterDrawContext {
+    glm::dmat4 lightFromWorld{1.0};  ///< world -> light view (m; the light looks down -Z)
+    glm::dmat4 clipFromLight{1.0};
+    float depthScale = 1.0f;  ///< stored depth = lsDepth / depthScale (shadow_depth.frag.glsl)
+    bool orthographic = false;
+    /// The module's depth program (current): vec3 positions at attribute 0, object transform in
+    /// `uLightFromLocal`. A callback may draw with it after `setWorldFromLocal`, or with a program
+    /// of its own that writes the same depth (shaders/shadow_depth.frag.glsl) and put this back.
+    unsigned program = 0;
+    int lightFromLocalLocation = -1;
+    /// Points the depth program at object transform `worldFromLocal` for the next draws
+    /// (composed with `lightFromWorld` in double, so float precision holds far from the origin).
+    void setWorldFromLocal(const glm::dmat4& worldFromLocal) const;
+};
+
+/// A shadow caster drawn from the game's own geometry, with nothing mirrored into the module: an
+/// entity with a `Transform` (or `WorldTransform`) and this component. The shadow system culls
+/// it per layer by `localBounds` and, where it falls in a layer, draws `indexCount` indices of
+/// the game's vertex array with the module's depth program, or calls `draw` instead (for the
+/// game's instancing, skinning or streaming). The module's own renderer does not draw it in the
+/// main pass: a game with such casters lights its own frame (shadowShaderSource, renderMask).
+struct ShadowCasterDraw {
+    Aabb localBounds;             ///< object space (m): must hold everything the caster draws
+    unsigned vertexArray = 0;     ///< the game's vertex array: vec3 float positions at attribute 0
+    unsigned indexType = 0x1405;  ///< GL_UNSIGNED_INT, GL_UNSIGNED_SHORT (0x1403) or GL_UNSIGNED_BYTE (0x1401)
+    std::size_t indexOffset = 0;  ///< bytes into the vertex array's element buffer
+    int indexCount = 0;
+    int baseVertex = 0;
+    /// When set, called instead of the indexed draw, once per layer the caster falls in.
+    std::function<void(const CasterDrawContext&)> draw;
+    /// Set by the game in a frame where the geometry changed while the transform did not
+    /// (skinning, streaming): the layers it falls in are redrawn. The module does not reset it.
+    bool changedThisFrame = false;
+
+    /// Whether it draws anything: a callback, or a vertex array with indices.
+    [[nodiscard]] bool drawsSomething() const { return draw != nullptr || (vertexArray != 0 && indexCount > 0); }
+};
 
 /// One layer of a light's array as decided by `prepare`.
 struct ShadowLayerPlan {
@@ -43,7 +85,8 @@ struct ShadowLayerPlan {
     float depthScale = 1.0f;  ///< stored depth = lsDepth / depthScale
     float depthNear = 0.0f;   ///< near plane (m)
     float splitFar = 0.0f;    ///< directional: camera distance where the cascade ends (m)
-    /// Casters whose world bounds meet this layer's frustum, in entity order.
+    /// Casters (meshes and `ShadowCasterDraw`s) whose world bounds meet this layer's frustum,
+    /// in entity order.
     std::vector<Entity> casters;
     /// Must be drawn this frame: matrices, caster set, a caster's transform or the allocation
     /// changed (or caching is off).
@@ -189,6 +232,11 @@ public:
     [[nodiscard]] const ShadowFrame& frame() const { return planner_.frame(); }
     [[nodiscard]] ShadowPlanner& planner() { return planner_; }
 
+    /// The GL texture name of the depth array of light entity `light`, 0 when it has no map: the
+    /// same from frame to frame whatever the lights' order, until the map is made anew (a new
+    /// size or layer count, e.g. from the texel budget), which `LightShadowStats::mapAllocated`
+    /// reports.
+    [[nodiscard]] unsigned textureOfLight(Entity light) const;
     /// The GL texture name of the depth array of scene light `i`, 0 when it has no map.
     [[nodiscard]] unsigned textureOf(std::size_t i) const;
     /// The GL texture name of the min/max depth pyramid of scene light `i` (RG32F array, one

@@ -47,6 +47,7 @@ namespace shadow::gpu {
     X(PFNGLPIXELSTOREIPROC, PixelStorei)                                   \
     X(PFNGLREADPIXELSPROC, ReadPixels)                                     \
     X(PFNGLDRAWELEMENTSPROC, DrawElements)                                 \
+    X(PFNGLDRAWELEMENTSBASEVERTEXPROC, DrawElementsBaseVertex)             \
     X(PFNGLDRAWARRAYSPROC, DrawArrays)                                     \
     X(PFNGLCREATEBUFFERSPROC, CreateBuffers)                               \
     X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                               \

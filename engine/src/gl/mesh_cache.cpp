@@ -33,6 +33,10 @@ MeshCache::~MeshCache() = default;
 
 std::size_t MeshCache::size() const { return impl_->meshes.size(); }
 
+std::size_t MeshCache::collect() {
+    return std::erase_if(impl_->meshes, [](const auto& entry) { return entry.second.source.expired(); });
+}
+
 int MeshCache::bind(const std::shared_ptr<const MeshData>& meshPtr) {
     const MeshData& mesh = *meshPtr;
     auto it = impl_->meshes.find(&mesh);

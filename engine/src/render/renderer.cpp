@@ -262,6 +262,7 @@ void Renderer::render(World& world, const CameraView& camera, const ShadowSystem
     gpu::reportHostGlErrors("Renderer::render", stats);
     const gpu::GlStateGuard hostState(kLitTextureUnits, kLitUniformBindings);
     Impl& r = *impl_;
+    r.meshes.collect();  // the GPU copies of meshes gone since the last frame
     r.lightCount = shadows.frame().lights.size();
     const ScreenView view{cameraClipFromWorld(camera), options.width, options.height, shadows.frame().wsGeometry};
     render::packLights(shadows.frame(), camera.wsPosition, view, r.passes, r.packingOrder);

@@ -235,6 +235,13 @@ void gatherGeometry(World& world, SceneGeometry& out) {
             if (mesh.castShadows) out.casters.push_back({e, wb.box});
             if (mesh.receiveShadows) out.receivers.extend(wb.box);
         });
+    // The game's own casters: bounds from their object bounds, as updateTransforms does for meshes.
+    world.view<ShadowCasterDraw, WorldTransform>().each([&](Entity e, ShadowCasterDraw& c, WorldTransform& wt) {
+        if (!wt.finite || !c.drawsSomething() || c.localBounds.empty()) return;
+        const DAabb box = transformBounds(wt.worldFromLocal, c.localBounds);
+        out.everything.extend(box);
+        out.casters.push_back({e, box});
+    });
     // Views walk back to front; entity order keeps caster lists comparable frame to frame.
     std::sort(out.casters.begin(), out.casters.end(),
               [](const BoundedEntity& a, const BoundedEntity& b) { return a.entity < b.entity; });

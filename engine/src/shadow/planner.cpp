@@ -262,7 +262,8 @@ void ShadowPlanner::markDirty(World& world, ShadowLightPlan& plan) {
                      last.clipFromLight != layer.clipFromLight || last.casters != layer.casters;
         for (std::size_t c = 0; !dirty && c < layer.casters.size(); ++c) {
             const WorldTransform* wt = world.tryGet<WorldTransform>(layer.casters[c]);
-            dirty = wt == nullptr || wt->movedThisFrame;
+            const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(layer.casters[c]);
+            dirty = wt == nullptr || wt->movedThisFrame || (own != nullptr && own->changedThisFrame);
         }
         layer.dirty = dirty;
         if (dirty) {

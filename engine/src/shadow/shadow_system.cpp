@@ -33,6 +33,8 @@ struct ShadowMapGpu {
     /// For PCF and PCSS lights only; `pyramidCurrent[k]` once layer k's pyramid matches its map.
     std::optional<MinMaxPyramid> pyramid;
     std::vector<bool> pyramidCurrent;
+    /// Made this frame (a new light, or a new map size or layer count): its texture name changed.
+    bool allocatedThisFrame = true;
 };
 
 /// Techniques that read the min/max pyramid to skip taps outside penumbrae.
@@ -79,6 +81,21 @@ void formatPassName(std::string& out, const ShadowLightPlan& plan, std::string_v
     char index[24];
     char* end = std::to_chars(index, index + sizeof(index), k).ptr;
     out.assign("Shadow/").append(plan.name).append("/").append(what).append(index, end);
+}
+
+/// Draws a caster of the game's own (`ShadowCasterDraw`) into the layer of `context`.
+void drawOwnCaster(const ShadowCasterDraw& own, const WorldTransform& wt, const CasterDrawContext& context) {
+    if (own.draw) {
+        own.draw(context);
+        gl.UseProgram(context.program);  // the callback may have used its own
+        return;
+    }
+    context.setWorldFromLocal(wt.worldFromLocal);
+    gl.BindVertexArray(own.vertexArray);
+    gl.DrawElementsBaseVertex(
+        GL_TRIANGLES, own.indexCount, own.indexType,
+        reinterpret_cast<const void*>(own.indexOffset),  // NOLINT(performance-no-int-to-ptr): GL's offset
+        own.baseVertex);
 }
 
 /// Depth-only state of the shadow passes.
@@ -145,6 +162,8 @@ void ShadowGpu::syncMaps(const ShadowFrame& frame) {
         std::unique_ptr<ShadowMapGpu> map = it != lastMaps.end() ? std::move(it->second) : nullptr;
         if (!map || map->mapSize != plan.mapSize || map->layers != static_cast<int>(plan.layers.size())) {
             map = allocate(plan);
+        } else {
+            map->allocatedThisFrame = false;
         }
         const int levels = MinMaxPyramid::levelsFor(map->mapSize, plan.settings.maxFilterTexels);
         if (readsPyramid(plan.technique()) && (!map->pyramid || map->pyramid->levels != levels)) {
@@ -197,18 +216,29 @@ void ShadowGpu::drawLayer(World& world, MeshCache& meshes, const ShadowLightPlan
                                glm::value_ptr(glm::mat4(layer.clipFromLight)));
     gl.ProgramUniform1f(program, depth.depthScale, layer.depthScale);
     gl.ProgramUniform1i(program, depth.orthographic, layer.orthographic ? 1 : 0);
+    const CasterDrawContext context{
+        layer.lightFromWorld, layer.clipFromLight, layer.depthScale, layer.orthographic, program, depth.lightFromLocal};
     for (Entity caster : layer.casters) {
-        const Mesh* mesh = world.tryGet<Mesh>(caster);
         const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
-        if (mesh == nullptr || wt == nullptr || !wt->finite || mesh->data == nullptr) continue;
-        // Composed in double: light-relative float values stay precise far from the origin.
-        const glm::mat4 lightFromLocal(layer.lightFromWorld * wt->worldFromLocal);
-        gl.ProgramUniformMatrix4fv(program, depth.lightFromLocal, 1, GL_FALSE, glm::value_ptr(lightFromLocal));
-        const int count = meshes.bind(mesh->data);
-        gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+        if (wt == nullptr || !wt->finite) continue;
+        if (const Mesh* mesh = world.tryGet<Mesh>(caster); mesh != nullptr && mesh->data != nullptr) {
+            context.setWorldFromLocal(wt->worldFromLocal);
+            const int count = meshes.bind(mesh->data);
+            gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+        } else if (const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(caster); own != nullptr) {
+            drawOwnCaster(*own, *wt, context);
+        } else {
+            continue;
+        }
         ++ls.castersDrawn;
     }
     ++ls.layersDrawn;
+}
+
+void CasterDrawContext::setWorldFromLocal(const glm::dmat4& worldFromLocal) const {
+    // Composed in double: light-relative float values stay precise far from the origin.
+    const glm::mat4 lightFromLocal(lightFromWorld * worldFromLocal);
+    gl.ProgramUniformMatrix4fv(program, lightFromLocalLocation, 1, GL_FALSE, glm::value_ptr(lightFromLocal));
 }
 
 ShadowSystem::ShadowSystem() {
@@ -230,6 +260,7 @@ void ShadowSystem::render(World& world, MeshCache& meshes, FrameStats& stats) {
     gpu::reportHostGlErrors("ShadowSystem::render", stats);
     static constexpr std::array<GLint, 1> kUnits{SG_UNIT_MINMAX_SOURCE};
     const gpu::GlStateGuard hostState(kUnits, {});
+    meshes.collect();  // the GPU copies of meshes gone since the last frame
     const ShadowFrame& frame = planner_.frame();
     gpu_->syncMaps(frame);
     stats.warnings.insert(stats.warnings.end(), frame.warnings.begin(), frame.warnings.end());
@@ -238,6 +269,8 @@ void ShadowSystem::render(World& world, MeshCache& meshes, FrameStats& stats) {
     for (const ShadowLightPlan& plan : frame.lights) {
         LightShadowStats& ls = stats.addLight();
         describe(plan, ls);
+        const auto& map = g.maps[static_cast<std::size_t>(plan.sceneIndex)].second;
+        ls.mapAllocated = map != nullptr && map->allocatedThisFrame;
         for (std::size_t k = 0; k < plan.layers.size(); ++k) {
             if (!plan.layers[k].dirty) {
                 ++ls.layersReused;
@@ -270,6 +303,13 @@ void ShadowSystem::setTiming(bool enabled) { gpu_->timer.setEnabled(enabled); }
 unsigned ShadowSystem::textureOf(std::size_t i) const {
     const auto& maps = gpu_->maps;
     return i < maps.size() && maps[i].second ? maps[i].second->array.get() : 0u;
+}
+
+unsigned ShadowSystem::textureOfLight(Entity light) const {
+    for (const auto& [entity, map] : gpu_->maps) {
+        if (entity == light && map) return map->array.get();
+    }
+    return 0;
 }
 
 unsigned ShadowSystem::minMaxOf(std::size_t i) const {

@@ -1,0 +1,208 @@
+// Casters from the game's own geometry (ShadowCasterDraw): its vertex array and index range, or a
+// draw callback, give the same shadow map as the same geometry mirrored as a Mesh; a caster
+// whose geometry changes without moving redraws its layers when the game says so; the GPU
+// copies of meshes gone are freed; a light's texture name stays with the light.
+#include <gtest/gtest.h>
+#include <shadow/mesh_cache.h>
+#include <shadow/shadow_system.h>
+
+#include "gl/gl_api.h"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "render/render_test_support.h"
+
+namespace shadow {
+namespace {
+
+const glm::dvec3 kBoxAt{0.2, 0.6, -0.1};
+const glm::dvec3 kSecondBoxAt{-0.9, 0.4, 0.5};
+
+/// The game's own copy of a mesh: a vertex buffer of positions, an element buffer, a VAO.
+struct GameMesh {
+    GLuint vertices = 0, indices = 0, vertexArray = 0;
+    int indexCount = 0;
+    Aabb bounds;
+
+    explicit GameMesh(const MeshData& mesh) {
+        gl.CreateBuffers(1, &vertices);
+        gl.NamedBufferStorage(vertices, static_cast<GLsizeiptr>(mesh.positions.size() * sizeof(glm::vec3)),
+                              mesh.positions.data(), 0);
+        gl.CreateBuffers(1, &indices);
+        gl.NamedBufferStorage(indices, static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
+                              mesh.indices.data(), 0);
+        gl.CreateVertexArrays(1, &vertexArray);
+        gl.VertexArrayVertexBuffer(vertexArray, 0, vertices, 0, sizeof(glm::vec3));
+        gl.VertexArrayElementBuffer(vertexArray, indices);
+        gl.EnableVertexArrayAttrib(vertexArray, 0);
+        gl.VertexArrayAttribFormat(vertexArray, 0, 3, GL_FLOAT, GL_FALSE, 0);
+        gl.VertexArrayAttribBinding(vertexArray, 0, 0);
+        indexCount = static_cast<int>(mesh.indices.size());
+        bounds = mesh.bounds;
+    }
+    ~GameMesh() {
+        gl.DeleteVertexArrays(1, &vertexArray);
+        gl.DeleteBuffers(1, &vertices);
+        gl.DeleteBuffers(1, &indices);
+    }
+    GameMesh(const GameMesh&) = delete;
+    GameMesh& operator=(const GameMesh&) = delete;
+};
+
+std::shared_ptr<const MeshData> boxMesh() {
+    return makeBoxMesh(glm::vec3(0.4f, 0.3f, 0.4f));
+}
+
+/// A ground and a spot light; the casters are added by each test.
+Scene baseScene() {
+    Scene scene;
+    test::addGround(scene, 3.0f);
+    addLight(scene, "spot", test::pointSizedLight(LightType::Spot, 0.8f), test::hardShadow(256), {0.3, 4.0, 0.2},
+             {0, -1, 0});
+    addCamera(scene, "camera", Camera{}, {0.0, 3.0, 5.0}, {0.0, 0.0, 0.0});
+    return scene;
+}
+
+struct Shadows {
+    ShadowSystem system;
+    MeshCache meshes;
+
+    /// Prepares and draws the maps of `scene`; the stats of the frame.
+    FrameStats frame(Scene& scene) {
+        updateTransforms(scene.world);
+        const CameraView camera = makeCameraView(scene.world, scene.cameras.at(0), 4.0f / 3.0f);
+        system.prepare(scene.world, camera, scene.lights);
+        FrameStats stats;
+        system.render(scene.world, meshes, stats);
+        return stats;
+    }
+};
+
+Entity addOwnCaster(Scene& scene, const glm::dvec3& at, ShadowCasterDraw draw) {
+    const Entity e = scene.world.create();
+    scene.world.emplace<Transform>(e, test::placed(at));
+    scene.world.emplace<ShadowCasterDraw>(e, std::move(draw));
+    return e;
+}
+
+TEST(CasterDraw, TheGamesVertexArrayCastsTheSameShadowAsTheMirroredMesh) {
+    test::glContext();
+    const std::shared_ptr<const MeshData> box = boxMesh();
+    Scene mirrored = baseScene();
+    addMeshInstance(mirrored.world, "box", box, test::placed(kBoxAt));
+    Shadows reference;
+    reference.frame(mirrored);
+
+    GameMesh game(*box);
+    Scene own = baseScene();
+    ShadowCasterDraw draw;
+    draw.localBounds = game.bounds;
+    draw.vertexArray = game.vertexArray;
+    draw.indexCount = game.indexCount;
+    addOwnCaster(own, kBoxAt, draw);
+    Shadows shadows;
+    const FrameStats stats = shadows.frame(own);
+    EXPECT_EQ(stats.shadowDrawCalls, 2);  // the ground and the game's box
+    const std::vector<float> expected = reference.system.readLayerDepth(0, 0);
+    ASSERT_FALSE(expected.empty());
+    EXPECT_EQ(shadows.system.readLayerDepth(0, 0), expected);
+    EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+TEST(CasterDraw, ADrawCallbackDrawsItsOwnInstances) {
+    test::glContext();
+    const std::shared_ptr<const MeshData> box = boxMesh();
+    Scene mirrored = baseScene();
+    addMeshInstance(mirrored.world, "box", box, test::placed(kBoxAt));
+    addMeshInstance(mirrored.world, "box2", box, test::placed(kSecondBoxAt));
+    Shadows reference;
+    reference.frame(mirrored);
+
+    // One caster entity at the origin whose callback draws two instances of the game's mesh.
+    GameMesh game(*box);
+    Scene own = baseScene();
+    ShadowCasterDraw draw;
+    draw.localBounds.extend(glm::vec3(kBoxAt) + game.bounds.min);
+    draw.localBounds.extend(glm::vec3(kBoxAt) + game.bounds.max);
+    draw.localBounds.extend(glm::vec3(kSecondBoxAt) + game.bounds.min);
+    draw.localBounds.extend(glm::vec3(kSecondBoxAt) + game.bounds.max);
+    int calls = 0;
+    draw.draw = [&game, &calls](const CasterDrawContext& context) {
+        ++calls;
+        gl.BindVertexArray(game.vertexArray);
+        for (const glm::dvec3& at : {kBoxAt, kSecondBoxAt}) {
+            context.setWorldFromLocal(glm::translate(glm::dmat4(1.0), at));
+            gl.DrawElements(GL_TRIANGLES, game.indexCount, GL_UNSIGNED_INT, nullptr);
+        }
+    };
+    const Entity caster = addOwnCaster(own, glm::dvec3(0.0), draw);
+    Shadows shadows;
+    shadows.frame(own);
+    EXPECT_EQ(calls, 1);
+    EXPECT_EQ(shadows.system.readLayerDepth(0, 0), reference.system.readLayerDepth(0, 0));
+
+    // Unchanged: the layer is reused and the callback not called; changed in place: redrawn.
+    FrameStats still = shadows.frame(own);
+    EXPECT_EQ(still.shadowLayersDrawn, 0);
+    EXPECT_EQ(calls, 1);
+    own.world.get<ShadowCasterDraw>(caster).changedThisFrame = true;
+    FrameStats changed = shadows.frame(own);
+    EXPECT_EQ(changed.shadowLayersDrawn, 1);
+    EXPECT_EQ(calls, 2);
+}
+
+TEST(CasterDraw, ACasterThatDrawsNothingIsLeftOut) {
+    test::glContext();
+    Scene scene = baseScene();
+    ShadowCasterDraw nothing;  // no vertex array, no callback
+    nothing.localBounds.extend(glm::vec3(-1.0f));
+    nothing.localBounds.extend(glm::vec3(1.0f));
+    addOwnCaster(scene, kBoxAt, nothing);
+    Shadows shadows;
+    const FrameStats stats = shadows.frame(scene);
+    EXPECT_EQ(stats.shadowDrawCalls, 1);  // the ground only
+    EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+TEST(MeshCache, TheCopiesOfMeshesGoneAreFreed) {
+    test::glContext();
+    Scene scene = baseScene();
+    const Entity box = addMeshInstance(scene.world, "box", boxMesh(), test::placed(kBoxAt));
+    Shadows shadows;
+    shadows.frame(scene);
+    EXPECT_EQ(shadows.meshes.size(), 2u);  // ground and box
+    scene.world.destroy(box);              // the box's MeshData dies with its only instance
+    shadows.frame(scene);
+    EXPECT_EQ(shadows.meshes.size(), 1u);
+}
+
+TEST(ShadowSystem, ALightsTextureStaysWithTheLightWhateverTheOrder) {
+    test::glContext();
+    Scene scene = baseScene();
+    addMeshInstance(scene.world, "box", boxMesh(), test::placed(kBoxAt));
+    const Entity second = addLight(scene, "bulb", test::pointSizedLight(LightType::Point), test::hardShadow(128),
+                                   {1.0, 2.0, 0.0}, {0, -1, 0});
+    Shadows shadows;
+    FrameStats first = shadows.frame(scene);
+    ASSERT_EQ(first.lights.size(), 2u);
+    EXPECT_TRUE(first.lights[0].mapAllocated);
+    EXPECT_TRUE(first.lights[1].mapAllocated);
+    const unsigned bulbTexture = shadows.system.textureOfLight(second);
+    ASSERT_NE(bulbTexture, 0u);
+    std::swap(scene.lights[0], scene.lights[1]);  // the bulb is now scene light 0
+    FrameStats swapped = shadows.frame(scene);
+    EXPECT_EQ(shadows.system.textureOfLight(second), bulbTexture);
+    EXPECT_EQ(shadows.system.textureOf(0), bulbTexture);
+    EXPECT_FALSE(swapped.lights[0].mapAllocated);
+    EXPECT_FALSE(swapped.lights[1].mapAllocated);
+    scene.world.get<Shadow>(second).mapSize = 256;  // a new size: a new map, reported
+    FrameStats resized = shadows.frame(scene);
+    EXPECT_TRUE(resized.lights[0].mapAllocated);
+    EXPECT_FALSE(resized.lights[1].mapAllocated);
+}
+
+}  // namespace
+}  // namespace shadow
