@@ -53,6 +53,8 @@ json errorsJson(const VisibilityErrors& e) {
             {"acneFraction", e.acneFraction},
             {"acneMeanDarkening", e.acneMeanDarkening},
             {"leakFraction", e.leakFraction},
+            {"faintLeakFraction", e.faintLeakFraction},
+            {"interiorLeakFraction", e.interiorLeakFraction},
             {"leakMeanLightening", e.leakMeanLightening},
             {"counts",
              {{"receivers", e.receiverPixels},
@@ -63,7 +65,10 @@ json errorsJson(const VisibilityErrors& e) {
               {"umbra", e.umbraPixels},
               {"over0_1", e.over0_1Pixels},
               {"acne", e.acnePixels},
-              {"leak", e.leakPixels}}}};
+              {"leak", e.leakPixels},
+              {"faintLeak", e.faintLeakPixels},
+              {"interiorUmbra", e.interiorUmbraPixels},
+              {"interiorLeak", e.interiorLeakPixels}}}};
 }
 
 /// The thresholds behind the numbers, so a JSON file read later explains itself.
@@ -76,6 +81,9 @@ json definitionsJson() {
             {"penumbra", "classEpsilon < truth < 1 - classEpsilon"},
             {"largeError", kLargeVisibilityError},
             {"wrongSide", kWrongSideVisibility},
+            {"faintLeak", kFaintLeakVisibility},
+            {"interiorUmbra", "umbra pixels whose every neighbour within interiorUmbraMargin pixels is umbra"},
+            {"interiorUmbraMargin", kInteriorUmbraMargin},
             {"p99", "nearest rank: the ceil(0.99 N)-th smallest |error|"},
             {"acneMeanDarkening", "mean of max(0, truth - estimate) over all lit pixels"},
             {"leakMeanLightening", "mean of max(0, estimate - truth) over all umbra pixels"},

@@ -80,6 +80,7 @@ TEST(ErrorMetrics, HandComputedStatisticsOn4x4) {
     EXPECT_EQ(e.over0_1Pixels, 9);
     EXPECT_EQ(e.acnePixels, 2);
     EXPECT_EQ(e.leakPixels, 2);
+    EXPECT_EQ(e.faintLeakPixels, 3);  // 0.125, 0.75 and 1 in the umbra: above 0.1
 
     EXPECT_DOUBLE_EQ(e.rmse, std::sqrt(3.578125 / 16.0));
     EXPECT_DOUBLE_EQ(e.mae, 4.875 / 16.0);
@@ -91,6 +92,7 @@ TEST(ErrorMetrics, HandComputedStatisticsOn4x4) {
     EXPECT_DOUBLE_EQ(e.acneFraction, 2.0 / 6.0);
     EXPECT_DOUBLE_EQ(e.acneMeanDarkening, (0.25 + 0.75 + 1.0) / 6.0);
     EXPECT_DOUBLE_EQ(e.leakFraction, 2.0 / 5.0);
+    EXPECT_DOUBLE_EQ(e.faintLeakFraction, 3.0 / 5.0);
     EXPECT_DOUBLE_EQ(e.leakMeanLightening, (0.125 + 0.75 + 1.0) / 5.0);
 }
 
@@ -461,6 +463,25 @@ TEST_F(MetricsDirTest, CompareFoldersMaskFallsBackToEstimateThenEveryPixel) {
     EXPECT_EQ(r->maskSource, maskFile);
     EXPECT_EQ(r->allLights.receiverPixels, 1);
     EXPECT_EQ(r->allLights.rmse, 1.0);
+}
+
+TEST(ErrorMetrics, InteriorUmbraKeepsItsMarginFromEveryOtherPixel) {
+    // A 7x7 true umbra with one lit pixel at (6, 6): interior pixels are 2 pixels from the
+    // image's edge and from that pixel, x and y in [2, 4] except (4, 4), 8 of them.
+    std::vector<float> truth(49, 0.0f);
+    truth[6 * 7 + 6] = 1.0f;
+    std::vector<float> estimate(49, 0.0f);
+    estimate[3 * 7 + 3] = 0.2f;  // interior: an interior leak above 0.1
+    estimate[4 * 7 + 4] = 0.9f;  // next to the lit pixel's margin: a leak, not interior
+    estimate[0] = 0.05f;         // at the edge, below 0.1: no leak at all
+    const Result<VisibilityErrors> r = compareVisibility(imageOf(7, 7, estimate), imageOf(7, 7, truth));
+    ASSERT_TRUE(r.ok()) << r.error().message;
+    EXPECT_EQ(r->umbraPixels, 48);
+    EXPECT_EQ(r->interiorUmbraPixels, 8);
+    EXPECT_EQ(r->interiorLeakPixels, 1);
+    EXPECT_DOUBLE_EQ(r->interiorLeakFraction, 1.0 / 8.0);
+    EXPECT_EQ(r->faintLeakPixels, 2);
+    EXPECT_EQ(r->leakPixels, 1);
 }
 
 }  // namespace

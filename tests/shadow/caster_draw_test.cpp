@@ -52,9 +52,7 @@ struct GameMesh {
     GameMesh& operator=(const GameMesh&) = delete;
 };
 
-std::shared_ptr<const MeshData> boxMesh() {
-    return makeBoxMesh(glm::vec3(0.4f, 0.3f, 0.4f));
-}
+std::shared_ptr<const MeshData> boxMesh() { return makeBoxMesh(glm::vec3(0.4f, 0.3f, 0.4f)); }
 
 /// A ground and a spot light; the casters are added by each test.
 Scene baseScene() {

@@ -36,6 +36,13 @@ inline constexpr double kLargeVisibilityError = 0.1;
 /// A truly lit pixel whose estimate is below this is false shadow (acne); a truly umbral pixel
 /// whose estimate is above it leaks light.
 inline constexpr double kWrongSideVisibility = 0.5;
+/// A truly umbral pixel whose estimate is above this shows light where there is none to see
+/// (the performance issue's leak measure: visibility > 0.1 in the true umbra).
+inline constexpr double kFaintLeakVisibility = 0.1;
+/// An umbra pixel whose every neighbour within this many pixels (a square) is a receiver in the
+/// true umbra too is *interior*: light there is a leak of the technique, not the map's texel
+/// grid placing a shadow edge a fraction of a texel off.
+inline constexpr int kInteriorUmbraMargin = 2;
 /// Percentile reported as `p99`, by nearest rank.
 inline constexpr int kErrorPercentile = 99;
 
@@ -43,15 +50,18 @@ inline constexpr int kErrorPercentile = 99;
 /// population is empty (the counts say so); none is ever NaN or Inf.
 struct VisibilityErrors {
     // ---- Populations (pixels) ----
-    std::int64_t receiverPixels = 0;  ///< pixels in the mask (every pixel without a mask)
-    std::int64_t nonFinite = 0;       ///< receivers with a NaN/Inf estimate or truth: excluded
-    std::int64_t validPixels = 0;     ///< receiverPixels − nonFinite: population of rmse … p99
-    std::int64_t litPixels = 0;       ///< valid, V_true ≥ 1 − ε
-    std::int64_t penumbraPixels = 0;  ///< valid, ε < V_true < 1 − ε
-    std::int64_t umbraPixels = 0;     ///< valid, V_true ≤ ε
-    std::int64_t over0_1Pixels = 0;   ///< valid, |e| > kLargeVisibilityError
-    std::int64_t acnePixels = 0;      ///< lit, estimate < kWrongSideVisibility
-    std::int64_t leakPixels = 0;      ///< umbra, estimate > kWrongSideVisibility
+    std::int64_t receiverPixels = 0;       ///< pixels in the mask (every pixel without a mask)
+    std::int64_t nonFinite = 0;            ///< receivers with a NaN/Inf estimate or truth: excluded
+    std::int64_t validPixels = 0;          ///< receiverPixels − nonFinite: population of rmse … p99
+    std::int64_t litPixels = 0;            ///< valid, V_true ≥ 1 − ε
+    std::int64_t penumbraPixels = 0;       ///< valid, ε < V_true < 1 − ε
+    std::int64_t umbraPixels = 0;          ///< valid, V_true ≤ ε
+    std::int64_t over0_1Pixels = 0;        ///< valid, |e| > kLargeVisibilityError
+    std::int64_t acnePixels = 0;           ///< lit, estimate < kWrongSideVisibility
+    std::int64_t leakPixels = 0;           ///< umbra, estimate > kWrongSideVisibility
+    std::int64_t faintLeakPixels = 0;      ///< umbra, estimate > kFaintLeakVisibility
+    std::int64_t interiorUmbraPixels = 0;  ///< umbra, kInteriorUmbraMargin from any other pixel
+    std::int64_t interiorLeakPixels = 0;   ///< interior umbra, estimate > kFaintLeakVisibility
 
     // ---- Over valid pixels ----
     double rmse = 0.0;         ///< sqrt(mean e²)
@@ -70,7 +80,9 @@ struct VisibilityErrors {
     /// Mean of max(0, V_true − estimate) over *all* lit pixels, so it also shows faint acne
     /// that never crosses kWrongSideVisibility.
     double acneMeanDarkening = 0.0;
-    double leakFraction = 0.0;  ///< leakPixels / umbraPixels
+    double leakFraction = 0.0;          ///< leakPixels / umbraPixels
+    double faintLeakFraction = 0.0;     ///< faintLeakPixels / umbraPixels
+    double interiorLeakFraction = 0.0;  ///< interiorLeakPixels / interiorUmbraPixels
     /// Mean of max(0, estimate − V_true) over all umbra pixels.
     double leakMeanLightening = 0.0;
 };

@@ -63,7 +63,8 @@ bool bothFinite(float estimate, float truth) { return std::isfinite(estimate) &&
 /// Sums and counts of the errors of a set of pixels; `finish` turns them into statistics.
 class ErrorAccumulator {
 public:
-    void addReceiver(float estimate, float truth) {
+    /// `interiorUmbra`: the pixel is interior umbra (see `kInteriorUmbraMargin`).
+    void addReceiver(float estimate, float truth, bool interiorUmbra) {
         ++counts_.receiverPixels;
         if (!bothFinite(estimate, truth)) {
             ++counts_.nonFinite;
@@ -88,6 +89,11 @@ public:
             ++counts_.umbraPixels;
             lightening_ += std::max(0.0, e);
             if (estimate > kWrongSideVisibility) ++counts_.leakPixels;
+            if (estimate > kFaintLeakVisibility) ++counts_.faintLeakPixels;
+            if (interiorUmbra) {
+                ++counts_.interiorUmbraPixels;
+                if (estimate > kFaintLeakVisibility) ++counts_.interiorLeakPixels;
+            }
         } else {
             ++counts_.penumbraPixels;
             penumbraSumSq_ += e * e;
@@ -106,6 +112,9 @@ public:
         c.over0_1Pixels += o.over0_1Pixels;
         c.acnePixels += o.acnePixels;
         c.leakPixels += o.leakPixels;
+        c.faintLeakPixels += o.faintLeakPixels;
+        c.interiorUmbraPixels += o.interiorUmbraPixels;
+        c.interiorLeakPixels += o.interiorLeakPixels;
         sum_ += other.sum_;
         sumAbs_ += other.sumAbs_;
         sumSq_ += other.sumSq_;
@@ -129,6 +138,8 @@ public:
         r.acneFraction = ratio(static_cast<double>(r.acnePixels), r.litPixels);
         r.acneMeanDarkening = ratio(darkening_, r.litPixels);
         r.leakFraction = ratio(static_cast<double>(r.leakPixels), r.umbraPixels);
+        r.faintLeakFraction = ratio(static_cast<double>(r.faintLeakPixels), r.umbraPixels);
+        r.interiorLeakFraction = ratio(static_cast<double>(r.interiorLeakPixels), r.interiorUmbraPixels);
         r.leakMeanLightening = ratio(lightening_, r.umbraPixels);
         return r;
     }
@@ -161,11 +172,31 @@ private:
 };
 
 /// The accumulated receivers of validated inputs.
+/// Whether pixel (x, y) and every pixel within kInteriorUmbraMargin of it (a square inside the
+/// image) are receivers in the true umbra.
+bool isInteriorUmbra(const ImageF& truth, const ImageF* mask, int x, int y) {
+    const int m = kInteriorUmbraMargin;
+    if (x < m || y < m || x + m >= truth.width || y + m >= truth.height) return false;
+    for (int v = y - m; v <= y + m; ++v) {
+        for (int u = x - m; u <= x + m; ++u) {
+            const std::size_t j =
+                static_cast<std::size_t>(v) * static_cast<std::size_t>(truth.width) + static_cast<std::size_t>(u);
+            const float t = truth.pixels[j];
+            if (!isReceiver(mask, j) || !std::isfinite(t) || t > kVisibilityClassEpsilon) return false;
+        }
+    }
+    return true;
+}
+
 ErrorAccumulator accumulate(const ImageF& estimate, const ImageF& truth, const ImageF* mask) {
     ErrorAccumulator acc;
-    const std::size_t n = pixelCount(truth);
-    for (std::size_t i = 0; i < n; ++i) {
-        if (isReceiver(mask, i)) acc.addReceiver(estimate.pixels[i], truth.pixels[i]);
+    for (int y = 0; y < truth.height; ++y) {
+        for (int x = 0; x < truth.width; ++x) {
+            const std::size_t i =
+                static_cast<std::size_t>(y) * static_cast<std::size_t>(truth.width) + static_cast<std::size_t>(x);
+            if (!isReceiver(mask, i)) continue;
+            acc.addReceiver(estimate.pixels[i], truth.pixels[i], isInteriorUmbra(truth, mask, x, y));
+        }
     }
     return acc;
 }
