@@ -14,26 +14,6 @@
 namespace shadow {
 namespace {
 
-/// A ground, a box and three lights (PCSS spot, PCF point, hard sun): every pass the engine has,
-/// the min/max pyramids included.
-Scene threeLightScene() {
-    Scene scene;
-    test::addGround(scene, 3.0f);
-    test::addBox(scene, "box", {0.0, 0.6, 0.0}, {0.4, 0.4, 0.4});
-    Light spot = test::pointSizedLight(LightType::Spot, 0.7f);
-    spot.radius = 0.1f;
-    Shadow pcss = test::hardShadow(256);
-    pcss.technique = ShadowTechnique::Pcss;
-    addLight(scene, "spot", spot, pcss, {0.5, 4.0, 0.3}, {0, -1, 0});
-    Shadow pcf = test::hardShadow(128);
-    pcf.technique = ShadowTechnique::Pcf;
-    addLight(scene, "bulb", test::pointSizedLight(LightType::Point), pcf, {-1.0, 2.0, 1.0}, {0, -1, 0});
-    addLight(scene, "sun", test::pointSizedLight(LightType::Directional), test::hardShadow(256), {0, 10, 0},
-             glm::normalize(glm::dvec3(0.3, -1.0, 0.2)));
-    addCamera(scene, "camera", Camera{}, {0.0, 3.0, 5.0}, {0.0, 0.0, 0.0});
-    return scene;
-}
-
 /// Texture units and uniform-buffer binding points checked: every one the engine binds, and one
 /// beyond.
 std::vector<GLint> unitsChecked() {
@@ -141,7 +121,7 @@ void expectSameState(const gpu::GlState& before, const gpu::GlState& after, cons
 
 TEST(GlManners, EveryPublicCallLeavesTheHostStateAsItFoundIt) {
     test::glContext();
-    Scene scene = threeLightScene();
+    Scene scene = test::threeLightScene();
     FrameRunner runner;
     test::renderFrame(runner, scene, 64, 48);  // first frame: programs built, maps allocated
     HostObjects host;
@@ -196,7 +176,7 @@ TEST(GlManners, TheHostsStateDoesNotChangeWhatTheEngineDraws) {
     // The engine sets every piece of state its passes rely on: a host's scissor, colour mask,
     // clockwise front faces, blending or pack buffer leave its pictures and readbacks as they are.
     test::glContext();
-    Scene scene = threeLightScene();
+    Scene scene = test::threeLightScene();
     FrameRunner cleanRunner;
     const test::RenderedFrame clean = test::renderFrame(cleanRunner, scene, 64, 48);
     FrameRunner runner;  // its own targets and maps, all drawn under the host's state
@@ -219,7 +199,7 @@ TEST(GlManners, TheHostsStateDoesNotChangeWhatTheEngineDraws) {
 
 TEST(GlManners, AnErrorTheHostLeftPendingIsReportedNotThrown) {
     test::glContext();
-    Scene scene = threeLightScene();
+    Scene scene = test::threeLightScene();
     FrameRunner runner;
     test::renderFrame(runner, scene, 64, 48);
     gl.Enable(0x7fff);  // not a capability: GL_INVALID_ENUM, left pending by the "host"
@@ -241,7 +221,7 @@ TEST(GlManners, AnErrorTheHostLeftPendingIsReportedNotThrown) {
 
 TEST(GlManners, TimingIsOffUnlessAskedFor) {
     test::glContext();
-    Scene scene = threeLightScene();
+    Scene scene = test::threeLightScene();
     RenderOptions options;
     options.width = 64;
     options.height = 48;

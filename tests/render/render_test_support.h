@@ -261,4 +261,25 @@ inline void expectSaneAovs(const FrameImages& images) {
     }
 }
 
+/// A ground, a box, a post and three lights, one per type and filtering technique: a PCSS spot, a
+/// PCF point light and a hard sun (every pass the engine has, the min/max pyramids included).
+inline Scene threeLightScene() {
+    Scene scene;
+    addGround(scene, 3.0f);
+    addBox(scene, "box", {0.0, 0.6, 0.0}, {0.4, 0.4, 0.4});
+    addBox(scene, "post", {-1.2, 0.5, 0.8}, {0.1, 0.5, 0.1});
+    Light spot = pointSizedLight(LightType::Spot, 0.7f);
+    spot.radius = 0.15f;
+    Shadow pcss = hardShadow(256);
+    pcss.technique = ShadowTechnique::Pcss;
+    addLight(scene, "spot", spot, pcss, {0.5, 4.0, 0.3}, {0, -1, 0});
+    Shadow pcf = hardShadow(128);
+    pcf.technique = ShadowTechnique::Pcf;
+    addLight(scene, "bulb", pointSizedLight(LightType::Point), pcf, {-1.0, 2.0, 1.0}, {0, -1, 0});
+    addLight(scene, "sun", pointSizedLight(LightType::Directional), hardShadow(256), {0, 10, 0},
+             glm::normalize(glm::dvec3(0.3, -1.0, 0.2)));
+    addCamera(scene, "camera", Camera{}, {0.0, 3.0, 5.0}, {0.0, 0.0, 0.0});
+    return scene;
+}
+
 }  // namespace shadow::test

@@ -28,26 +28,6 @@ constexpr int kWidth = 160;
 constexpr int kHeight = 120;
 constexpr int kLights = 3;
 
-/// A ground, a box and three lights, one per type and filtering technique.
-Scene contractScene() {
-    Scene scene;
-    test::addGround(scene, 3.0f);
-    test::addBox(scene, "box", {0.0, 0.6, 0.0}, {0.4, 0.4, 0.4});
-    test::addBox(scene, "post", {-1.2, 0.5, 0.8}, {0.1, 0.5, 0.1});
-    Light spot = test::pointSizedLight(LightType::Spot, 0.7f);
-    spot.radius = 0.15f;
-    Shadow pcss = test::hardShadow(256);
-    pcss.technique = ShadowTechnique::Pcss;
-    addLight(scene, "spot", spot, pcss, {0.5, 4.0, 0.3}, {0, -1, 0});
-    Shadow pcf = test::hardShadow(128);
-    pcf.technique = ShadowTechnique::Pcf;
-    addLight(scene, "bulb", test::pointSizedLight(LightType::Point), pcf, {-1.0, 2.0, 1.0}, {0, -1, 0});
-    addLight(scene, "sun", test::pointSizedLight(LightType::Directional), test::hardShadow(256), {0, 10, 0},
-             glm::normalize(glm::dvec3(0.3, -1.0, 0.2)));
-    addCamera(scene, "camera", Camera{}, {0.0, 3.0, 5.0}, {0.0, 0.0, 0.0});
-    return scene;
-}
-
 /// Binding points unlike the engine's defaults, as a host with its own bindings would choose.
 ShadowBindingPoints hostPoints() {
     ShadowBindingPoints p;
@@ -206,7 +186,7 @@ std::vector<glm::vec4> hostVisibility(Scene& scene, FrameRunner& runner, const S
 
 TEST(ShaderContract, HostShaderGetsTheRenderersVisibility) {
     test::glContext();
-    Scene scene = contractScene();
+    Scene scene = test::threeLightScene();
     FrameRunner runner;
     const test::RenderedFrame frame = test::renderFrame(runner, scene, kWidth, kHeight);
     ASSERT_EQ(frame.images.visibility.size(), static_cast<std::size_t>(kLights));
@@ -252,7 +232,7 @@ std::vector<glm::vec4> readTopFirst(GLuint texture) {
 
 TEST(ShaderContract, ScreenSpaceMaskFromTheHostsDepthMatchesTheRenderer) {
     test::glContext();
-    Scene scene = contractScene();
+    Scene scene = test::threeLightScene();
     FrameRunner runner;
     const test::RenderedFrame frame = test::renderFrame(runner, scene, kWidth, kHeight);
     GLuint depth = 0;
@@ -301,7 +281,7 @@ TEST(ShaderContract, ScreenSpaceMaskFromTheHostsDepthMatchesTheRenderer) {
 
 TEST(ShaderContract, TechniquesLeftOutReadAsLit) {
     test::glContext();
-    Scene scene = contractScene();
+    Scene scene = test::threeLightScene();
     FrameRunner runner;
     const test::RenderedFrame frame = test::renderFrame(runner, scene, kWidth, kHeight);
     // Hard shadows only: the PCSS spot (slot 0) and the PCF bulb (slot 1) read as lit, the sun
@@ -341,7 +321,7 @@ TEST(ShaderContract, BadBindingPointsAreRefusedByName) {
 
 TEST(ShaderContract, ShaderInputsRefuseWhatIsNotASceneLight) {
     test::glContext();
-    Scene scene = contractScene();
+    Scene scene = test::threeLightScene();
     FrameRunner runner;
     (void)test::renderFrame(runner, scene, 32, 24);
     const std::array<int, 1> missing{7};

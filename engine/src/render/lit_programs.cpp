@@ -3,6 +3,7 @@
 #include <shadow/components.h>
 
 #include "gl/program.h"
+#include "shadow/light_records.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -55,8 +56,6 @@ std::string variantLabel(const LitVariant& v) {
 std::vector<std::string> variantDefines(const LitVariant& v) {
     std::vector<std::string> defines;
     defines.push_back("SG_PASS_LIGHTS " + std::to_string(v.lights));
-    static const char* const kEnabled[] = {nullptr, "SG_TECH_HARD_ENABLED", "SG_TECH_PCF_ENABLED",
-                                           "SG_TECH_PCSS_ENABLED", "SG_TECH_PCSS_TEXTBOOK_ENABLED"};
     unsigned used = 0;
     for (int i = 0; i < SG_MAX_LIGHTS_PER_PASS; ++i) {
         const bool inUse = i < v.lights;
@@ -68,9 +67,7 @@ std::vector<std::string> variantDefines(const LitVariant& v) {
         defines.push_back("SG_SLOT" + std::to_string(i) + "_KERNEL " + std::to_string(kernel));
         used |= 1u << technique;
     }
-    for (int t = SG_TECH_HARD; t <= SG_TECH_PCSS_TEXTBOOK; ++t) {
-        if (used & (1u << t)) defines.emplace_back(kEnabled[t]);
-    }
+    gpu::appendTechniqueDefines(used, defines);
     if (v.aovs) defines.emplace_back("SG_WRITE_AOVS");
     if (v.debugView != SG_DEBUG_NONE) {
         defines.emplace_back("SG_DEBUG_VIEWS");

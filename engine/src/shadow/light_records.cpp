@@ -3,6 +3,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <array>
+#include <utility>
 #include <cmath>
 #include <cstdint>
 
@@ -69,6 +71,18 @@ GpuShadowLayer packLayer(const ShadowLayerPlan& layer, const glm::dvec3& wsCamer
     l.splitFar = layer.splitFar;
     l.orthographic = layer.orthographic ? 1 : 0;
     return l;
+}
+
+void appendTechniqueDefines(unsigned techniques, std::vector<std::string>& defines) {
+    static constexpr std::array<std::pair<ShadowTechnique, const char*>, 4> kEnabled{{
+        {ShadowTechnique::Hard, "SG_TECH_HARD_ENABLED"},
+        {ShadowTechnique::Pcf, "SG_TECH_PCF_ENABLED"},
+        {ShadowTechnique::Pcss, "SG_TECH_PCSS_ENABLED"},
+        {ShadowTechnique::PcssTextbook, "SG_TECH_PCSS_TEXTBOOK_ENABLED"},
+    }};
+    for (const auto& [technique, define] : kEnabled) {
+        if ((techniques & techniqueBit(technique)) != 0) defines.emplace_back(define);
+    }
 }
 
 std::vector<glm::vec2> poissonDisk(int count) {

@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include <string>
 #include <vector>
 
 namespace shadow::gpu {
@@ -22,5 +23,9 @@ GpuShadowLayer packLayer(const ShadowLayerPlan& layer, const glm::dvec3& wsCamer
 /// Best-candidate (Mitchell) Poisson disk of `count` points in the unit disk: each point is the
 /// candidate farthest from those before it, so every prefix is well spread. Deterministic.
 std::vector<glm::vec2> poissonDisk(int count);
+
+/// Appends the `SG_TECH_*_ENABLED` define of every technique whose bit (`techniqueBit`) is set
+/// in `techniques`: the shadow GLSL compiles the code of those techniques only.
+void appendTechniqueDefines(unsigned techniques, std::vector<std::string>& defines);
 
 }  // namespace shadow::gpu

@@ -73,15 +73,7 @@ std::string shadowShaderSource(const ShadowBindingPoints& points, unsigned techn
         "SG_UNIT_SHADOW_DEPTH " + std::to_string(points.depthUnit),
         "SG_UNIT_SHADOW_MINMAX " + std::to_string(points.minMaxUnit),
     };
-    static constexpr std::array<std::pair<ShadowTechnique, const char*>, 4> kEnabled{{
-        {ShadowTechnique::Hard, "SG_TECH_HARD_ENABLED"},
-        {ShadowTechnique::Pcf, "SG_TECH_PCF_ENABLED"},
-        {ShadowTechnique::Pcss, "SG_TECH_PCSS_ENABLED"},
-        {ShadowTechnique::PcssTextbook, "SG_TECH_PCSS_TEXTBOOK_ENABLED"},
-    }};
-    for (const auto& [technique, define] : kEnabled) {
-        if ((techniques & techniqueBit(technique)) != 0) defines.emplace_back(define);
-    }
+    gpu::appendTechniqueDefines(techniques, defines);
     return gpu::expandShaderBody("shadow.glsl", defines, "host shader").text;
 }
 

@@ -5,6 +5,7 @@
 #include "gl/gl_state.h"
 #include "gl/objects.h"
 #include "gl/program.h"
+#include "shadow/light_records.h"
 #include "shadow/screen_bounds.h"
 #include "shadow/shader_inputs.h"
 
@@ -48,15 +49,7 @@ MaskProgram buildMask(const ShadowShaderInputs& in, bool normals) {
                 (label.empty() ? "" : ",") + std::string(techniqueName(static_cast<ShadowTechnique>(in.technique[s])));
         }
     }
-    static constexpr std::array<std::pair<ShadowTechnique, const char*>, 4> kEnabled{{
-        {ShadowTechnique::Hard, "SG_TECH_HARD_ENABLED"},
-        {ShadowTechnique::Pcf, "SG_TECH_PCF_ENABLED"},
-        {ShadowTechnique::Pcss, "SG_TECH_PCSS_ENABLED"},
-        {ShadowTechnique::PcssTextbook, "SG_TECH_PCSS_TEXTBOOK_ENABLED"},
-    }};
-    for (const auto& [technique, define] : kEnabled) {
-        if ((in.techniques & techniqueBit(technique)) != 0) defines.emplace_back(define);
-    }
+    gpu::appendTechniqueDefines(in.techniques, defines);
     if (normals) defines.emplace_back("SG_MASK_NORMALS");
     MaskProgram p;
     p.program = gpu::buildProgram({"Shadow/Mask[" + label + (normals ? ",normals]" : "]"), "fullscreen.vert.glsl",
