@@ -11,16 +11,6 @@
 namespace shadow::render {
 namespace {
 
-PixelRect unite(const PixelRect& a, const PixelRect& b) {
-    if (a.empty()) return b;
-    if (b.empty()) return a;
-    return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
-}
-
-}  // namespace
-
-namespace {
-
 /// Pass `used` (growing `passes` when needed), emptied; the first pass covers the whole screen.
 PassLights& openPass(std::vector<PassLights>& passes, std::size_t& used, const PixelRect& whole) {
     if (used == passes.size()) passes.emplace_back();

@@ -34,4 +34,10 @@ PixelRect screenBounds(const ShadowLightPlan& plan, const ScreenView& view) {
             pixel(hi.y, view.height, true)};
 }
 
+PixelRect unite(const PixelRect& a, const PixelRect& b) {
+    if (a.empty()) return b;
+    if (b.empty()) return a;
+    return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
+}
+
 }  // namespace shadow

@@ -19,6 +19,9 @@ struct PixelRect {
     auto operator<=>(const PixelRect&) const = default;
 };
 
+/// The smallest rectangle holding `a` and `b` (an empty one adds nothing).
+PixelRect unite(const PixelRect& a, const PixelRect& b);
+
 /// What the packing needs of the view to bound each light on screen.
 struct ScreenView {
     glm::dmat4 clipFromWorld{1.0};

@@ -92,6 +92,30 @@ glm::dmat4 clipFromView(const ShadowMaskRequest& r) {
                             static_cast<double>(r.camera.znear), static_cast<double>(r.camera.zfar));
 }
 
+/// The pixels the mask's lights can reach (the union of their screen bounds), or the whole
+/// target when the request does not scissor.
+PixelRect maskBounds(const ShadowFrame& frame, std::span<const int> sceneLights, const ShadowMaskRequest& r,
+                     const glm::dmat4& projection) {
+    if (!r.scissorToLights) return PixelRect{0, 0, r.width, r.height};
+    const ScreenView view{projection * r.camera.viewFromWorld, r.width, r.height, frame.wsGeometry};
+    PixelRect bounds;
+    for (const int light : sceneLights) {
+        bounds = unite(bounds, screenBounds(frame.lights[static_cast<std::size_t>(light)], view));
+    }
+    return bounds;
+}
+
+void setMaskUniforms(const MaskProgram& p, const ShadowMaskRequest& r, const glm::dmat4& projection) {
+    const GLuint id = p.program.get();
+    const glm::dmat4 clipFromCs =
+        projection * r.camera.viewFromWorld * glm::translate(glm::dmat4(1.0), r.camera.wsPosition);
+    const glm::vec3 forward = glm::normalize(glm::vec3(-glm::dvec3(glm::transpose(r.camera.viewFromWorld)[2])));
+    gl.ProgramUniformMatrix4fv(id, p.csFromClip, 1, GL_FALSE, glm::value_ptr(glm::mat4(glm::inverse(clipFromCs))));
+    gl.ProgramUniform3fv(id, p.cameraForward, 1, glm::value_ptr(forward));
+    gl.ProgramUniform1i(id, p.zeroToOne, r.zeroToOneDepth ? 1 : 0);
+    gl.ProgramUniform1f(id, p.backgroundDepth, r.backgroundDepth);
+}
+
 }  // namespace
 
 ShadowSystem::MaskGpu::MaskGpu() {
@@ -132,18 +156,7 @@ void ShadowSystem::renderMask(std::span<const int> sceneLights, const ShadowMask
 
     // Only the lights' screen bounds run the lights; the clear wrote 1 everywhere else.
     const glm::dmat4 projection = clipFromView(r);
-    PixelRect bounds{0, 0, r.width, r.height};
-    if (r.scissorToLights) {
-        const ScreenView view{projection * r.camera.viewFromWorld, r.width, r.height, frame().wsGeometry};
-        bounds = PixelRect{};
-        for (const int light : sceneLights) {
-            const PixelRect b = screenBounds(frame().lights[static_cast<std::size_t>(light)], view);
-            if (b.empty()) continue;
-            bounds = bounds.empty() ? b
-                                    : PixelRect{std::min(bounds.x0, b.x0), std::min(bounds.y0, b.y0),
-                                                std::max(bounds.x1, b.x1), std::max(bounds.y1, b.y1)};
-        }
-    }
+    const PixelRect bounds = maskBounds(frame(), sceneLights, r, projection);
     if (!bounds.empty() && in.techniques != 0) {
         const bool normals = r.normalTexture != 0;
         const MaskKey key = maskKey(in, normals);
@@ -151,13 +164,7 @@ void ShadowSystem::renderMask(std::span<const int> sceneLights, const ShadowMask
         if (it == m.programs.end()) it = m.programs.emplace(key, buildMask(in, normals)).first;
         const MaskProgram& p = it->second;
         const GLuint id = p.program.get();
-        const glm::dmat4 clipFromCs =
-            projection * r.camera.viewFromWorld * glm::translate(glm::dmat4(1.0), r.camera.wsPosition);
-        const glm::vec3 forward = glm::normalize(glm::vec3(-glm::dvec3(glm::transpose(r.camera.viewFromWorld)[2])));
-        gl.ProgramUniformMatrix4fv(id, p.csFromClip, 1, GL_FALSE, glm::value_ptr(glm::mat4(glm::inverse(clipFromCs))));
-        gl.ProgramUniform3fv(id, p.cameraForward, 1, glm::value_ptr(forward));
-        gl.ProgramUniform1i(id, p.zeroToOne, r.zeroToOneDepth ? 1 : 0);
-        gl.ProgramUniform1f(id, p.backgroundDepth, r.backgroundDepth);
+        setMaskUniforms(p, r, projection);
         gl.BindTextureUnit(SG_UNIT_MASK_DEPTH, r.depthTexture);
         gl.BindSampler(SG_UNIT_MASK_DEPTH, m.point.get());
         gl.BindTextureUnit(SG_UNIT_MASK_NORMAL, r.normalTexture);
