@@ -336,6 +336,25 @@ TEST(ShaderContract, ShaderInputsRefuseWhatIsNotASceneLight) {
     EXPECT_EQ(inputs.depthArray[0], runner.shadows().textureOf(2));
     EXPECT_EQ(inputs.minMax[0], 0u);  // a hard light has no pyramid
     EXPECT_NE(inputs.minMax[1], 0u);  // a PCSS light has one
+
+    // A mask request that names no texture, or a target that cannot be drawn to: one clear error.
+    ShadowMaskRequest request;
+    request.width = 32;
+    request.height = 24;
+    request.camera = runner.lastCamera();
+    FrameStats stats;
+    EXPECT_THROW(runner.shadows().renderMask(two, request, stats), std::invalid_argument);
+    GLuint depth = 0;
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &depth);
+    gl.TextureStorage2D(depth, 1, GL_DEPTH_COMPONENT32F, 32, 24);
+    request.depthTexture = depth;
+    request.target = depth;  // a depth texture is no colour target
+    EXPECT_THROW(runner.shadows().renderMask(two, request, stats), GlError);
+    EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
+    const std::array<int, SG_MAX_MASK_LIGHTS + 1> five{};
+    request.target = depth;
+    EXPECT_THROW(runner.shadows().renderMask(five, request, stats), std::invalid_argument);
+    gl.DeleteTextures(1, &depth);
 }
 
 }  // namespace

@@ -45,8 +45,8 @@ MaskProgram buildMask(const ShadowShaderInputs& in, bool normals) {
         defines.push_back(slot + "_TECH " + std::to_string(in.technique[s]));
         defines.push_back(slot + "_KERNEL " + std::to_string(in.kernel[s]));
         if (i < in.lights) {
-            label +=
-                (label.empty() ? "" : ",") + std::string(techniqueName(static_cast<ShadowTechnique>(in.technique[s])));
+            if (!label.empty()) label += ',';
+            label += techniqueName(static_cast<ShadowTechnique>(in.technique[s]));
         }
     }
     gpu::appendTechniqueDefines(in.techniques, defines);
@@ -143,8 +143,9 @@ void ShadowSystem::renderMask(std::span<const int> sceneLights, const ShadowMask
 
     gl.NamedFramebufferTexture(m.framebuffer.get(), GL_COLOR_ATTACHMENT0, r.target, 0);
     if (gl.CheckNamedFramebufferStatus(m.framebuffer.get(), GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        gpu::takePendingErrors();
-        throw GlError("renderMask: the target texture cannot be drawn to (not a colour-renderable 2D texture?)");
+        const std::string pending = gpu::takePendingErrors();
+        throw GlError("renderMask: the target texture cannot be drawn to (not a colour-renderable 2D texture?)" +
+                      (pending.empty() ? std::string() : " (" + pending + ")"));
     }
     gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, m.framebuffer.get());
     gl.Viewport(0, 0, r.width, r.height);
