@@ -14,7 +14,9 @@
 //      expander and its own binding points), fed by `ShadowSystem::shaderInputs`;
 //   5. compares the two visibilities of every light on every covered pixel: they must agree
 //      within 1/255, and each light must both shadow and light some pixels.
-// Exit code 0 when all of this holds, 1 otherwise (with a message on stderr).
+// Exit code 0 when all of this holds, 1 otherwise (with a message on stderr). Built without
+// exceptions, as many games are: the module's headers compile so, and its calls used here
+// return their errors as values (`ShadowSystem::create`, `tryRender`, `tryShaderInputs`).
 #define GL_GLEXT_PROTOTYPES 1  // declarations only, for the types of the host's GL table below
 #include <GL/osmesa.h>
 
@@ -32,9 +34,9 @@
 #include <cstdio>
 #include <cstdint>
 #include <fstream>
+#include <memory>
 #include <regex>
 #include <set>
-#include <stdexcept>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -161,7 +163,8 @@ struct HostContext {
 struct Module {
     shadow::Scene scene;
     shadow::CameraView camera;
-    shadow::ShadowSystem shadows;
+    /// Made by the factory that returns an error value: this host is built without exceptions.
+    std::unique_ptr<shadow::ShadowSystem> shadows;
     shadow::Renderer renderer;
 
     void buildScene() {
@@ -203,13 +206,18 @@ struct Module {
     /// light, rows top first, or an error.
     std::string referenceFrame(std::vector<shadow::ImageF>& visibility, shadow::ImageF& coverage) {
         shadow::FrameStats stats;
-        shadows.prepare(scene.world, camera, scene.lights);
-        shadows.render(scene.world, renderer.meshes(), stats);
+        shadow::Result<std::unique_ptr<shadow::ShadowSystem>> made = shadow::ShadowSystem::create();
+        if (!made) return made.error().message;
+        shadows = std::move(made).value();
+        shadows->prepare(scene.world, camera, scene.lights);
+        if (const shadow::Status drawn = shadows->tryRender(scene.world, renderer.meshes(), stats); !drawn) {
+            return drawn.error().message;
+        }
         shadow::RenderOptions options;
         options.width = kWidth;
         options.height = kHeight;
         options.aovs = true;
-        renderer.render(scene.world, camera, shadows, options, stats);
+        renderer.render(scene.world, camera, *shadows, options, stats);
         shadow::FrameImages images = renderer.readback(camera, stats);
         if (images.visibility.size() != kLights) return "the module's frame has no visibility for three lights";
         visibility = std::move(images.visibility);
@@ -227,20 +235,29 @@ std::string readFile(const std::string& path) {
 }
 
 /// The host's own include expander, as a game's shader loader has one: `#include "x"` lines of
-/// the module's GLSL replaced by x from `dir`, each file once.
+/// the module's GLSL replaced by x from `dir`, each file once. False (with `error` set) when a
+/// file cannot be read.
 // NOLINTNEXTLINE(misc-no-recursion): as deep as the module's includes.
-std::string expandIncludes(const std::string& dir, const std::string& file, std::set<std::string>& seen) {
-    if (!seen.insert(file).second) return {};
+bool expandIncludes(const std::string& dir, const std::string& file, std::set<std::string>& seen, std::string& out,
+                    std::string& error) {
+    if (!seen.insert(file).second) return true;
     const std::string text = readFile(dir + "/" + file);
-    if (text.empty()) throw std::runtime_error("cannot read " + dir + "/" + file);
+    if (text.empty()) {
+        error = "cannot read " + dir + "/" + file;
+        return false;
+    }
     static const std::regex kInclude(R"re(^\s*#\s*include\s*"([^"]+)"\s*$)re");
     std::istringstream lines(text);
-    std::string line, out;
+    std::string line;
     std::smatch m;
     while (std::getline(lines, line)) {
-        out += std::regex_match(line, m, kInclude) ? expandIncludes(dir, m[1].str(), seen) : line + "\n";
+        if (!std::regex_match(line, m, kInclude)) {
+            out += line + "\n";
+        } else if (!expandIncludes(dir, m[1].str(), seen, out, error)) {
+            return false;
+        }
     }
-    return out;
+    return true;
 }
 
 /// One mesh in the host's own buffers.
@@ -312,11 +329,7 @@ struct HostPass {
         }
         fragment += "#define SG_TECH_HARD_ENABLED\n#define SG_TECH_PCF_ENABLED\n#define SG_TECH_PCSS_ENABLED\n";
         std::set<std::string> seen;
-        try {
-            fragment += expandIncludes(shaderDir, "shadow.glsl", seen);
-        } catch (const std::runtime_error& e) {
-            return e.what();
-        }
+        if (std::string error; !expandIncludes(shaderDir, "shadow.glsl", seen, fragment, error)) return error;
         fragment += kFragmentMain;
         return link(fragment);
     }
@@ -448,8 +461,10 @@ int renderAndCheck() {
     points.compareUnit = kCompareUnit;
     points.depthUnit = kDepthUnit;
     points.minMaxUnit = kMinMaxUnit;
-    const shadow::ShadowShaderInputs& inputs = module.shadows.shaderInputs(lights, module.camera.wsPosition);
-    module.shadows.bindShaderInputs(inputs, points);
+    const shadow::Result<const shadow::ShadowShaderInputs*> inputs =
+        module.shadows->tryShaderInputs(lights, module.camera.wsPosition);
+    if (!inputs) return fail(inputs.error().message);
+    module.shadows->bindShaderInputs(**inputs, points);
     const std::vector<glm::vec4> host = pass.draw(module.camera);
     if (const GLenum error = gl.GetError(); error != GL_NO_ERROR) return fail("GL error " + std::to_string(error));
     std::printf("embed_host: %s\n", shadow::queryGlInfo().renderer.c_str());

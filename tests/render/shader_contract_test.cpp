@@ -354,6 +354,14 @@ TEST(ShaderContract, ShaderInputsRefuseWhatIsNotASceneLight) {
     const std::array<int, SG_MAX_MASK_LIGHTS + 1> five{};
     request.target = depth;
     EXPECT_THROW(runner.shadows().renderMask(five, request, stats), std::invalid_argument);
+    // The same as error values, for a game built without exceptions.
+    const Status mask = runner.shadows().tryRenderMask(five, request, stats);
+    ASSERT_FALSE(mask.ok());
+    EXPECT_NE(mask.error().message.find("renderMask"), std::string::npos) << mask.error().message;
+    const Result<const ShadowShaderInputs*> inputsOrError = runner.shadows().tryShaderInputs(missing, glm::dvec3(0.0));
+    ASSERT_FALSE(inputsOrError.ok());
+    EXPECT_NE(inputsOrError.error().message.find("not a scene light"), std::string::npos);
+    EXPECT_TRUE(runner.shadows().tryShaderInputs(two, glm::dvec3(0.0)).ok());
     gl.DeleteTextures(1, &depth);
 }
 

@@ -8,6 +8,7 @@
 #include <shadow/shadow_system.h>
 
 #include <functional>
+#include <utility>
 #include <string>
 
 namespace shadow {
@@ -29,6 +30,21 @@ TEST(GlRequired, EngineTypesBuiltBeforeLoadGlThrowAClearError) {
     expectLoadGlError([] { MeshCache m; }, "MeshCache");
     expectLoadGlError([] { Renderer r; }, "Renderer");
     expectLoadGlError([] { FrameRunner f; }, "ShadowSystem");  // its first GL member
+}
+
+TEST(GlRequired, WithoutExceptionsTheSameErrorComesBackAsAValue) {
+    // The factories a game built without exceptions calls: no throw, the same message.
+    for (const auto& [error, who] : {std::pair{ShadowSystem::create().error().message, "ShadowSystem"},
+                                     std::pair{MeshCache::create().error().message, "MeshCache"}}) {
+        EXPECT_NE(error.find(who), std::string::npos) << error;
+        EXPECT_NE(error.find("loadGl"), std::string::npos) << error;
+    }
+    ShadowBindingPoints clash;
+    clash.layerBlock = clash.lightBlock;
+    const Result<std::string> source = tryShadowShaderSource(clash);
+    ASSERT_FALSE(source.ok());
+    EXPECT_NE(source.error().message.find("lightBlock"), std::string::npos) << source.error().message;
+    EXPECT_TRUE(tryShadowShaderSource().ok());  // the embedded GLSL needs no GL to expand
 }
 
 }  // namespace

@@ -112,12 +112,16 @@ public:
         } else {
             components_.emplace_back(std::forward<Args>(args)...);
         }
+#if defined(__cpp_exceptions)
         try {
             owners_.push_back(e);
         } catch (...) {
             components_.pop_back();
             throw;
         }
+#else
+        owners_.push_back(e);  // a game built without exceptions: a failed allocation aborts
+#endif
         sparse_[i] = static_cast<std::uint32_t>(owners_.size() - 1);
         return components_.back();
     }

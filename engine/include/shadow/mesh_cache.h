@@ -2,6 +2,7 @@
 // both: the shadow subsystem and the renderer use it, neither owns it.
 #pragma once
 
+#include <shadow/result.h>
 #include <shadow/scene.h>
 
 #include <cstddef>
@@ -18,6 +19,8 @@ class MeshCache {
 public:
     /// Throws `GlError` when `loadGl` has not run.
     MeshCache();
+    /// For a game built without exceptions: the cache, or the error the constructor would throw.
+    [[nodiscard]] static Result<std::unique_ptr<MeshCache>> create() noexcept;
     ~MeshCache();
     MeshCache(const MeshCache&) = delete;
     MeshCache& operator=(const MeshCache&) = delete;

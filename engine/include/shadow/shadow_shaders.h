@@ -21,6 +21,7 @@
 #pragma once
 
 #include <shadow/components.h>
+#include <shadow/result.h>
 #include <shadow/scene.h>
 #include <shadow/shared_constants.h>
 
@@ -59,6 +60,9 @@ constexpr unsigned kAllShadowTechniques = techniqueBit(ShadowTechnique::Hard) | 
 /// Throws `std::invalid_argument` naming the problem when a binding point or unit is negative,
 /// two blocks share a binding point, or two sampler arrays' units overlap.
 std::string shadowShaderSource(const ShadowBindingPoints& points = {}, unsigned techniques = kAllShadowTechniques);
+/// `shadowShaderSource` for a game built without exceptions: the text, or the error it would throw.
+[[nodiscard]] Result<std::string> tryShadowShaderSource(const ShadowBindingPoints& points = {},
+                                                        unsigned techniques = kAllShadowTechniques) noexcept;
 
 /// What a game's shader reads for up to SG_MAX_LIGHTS_PER_PASS lights (slots), from
 /// `ShadowSystem::shaderInputs`. Names are GL object names, valid until the next `shaderInputs`

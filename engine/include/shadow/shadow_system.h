@@ -17,6 +17,7 @@
 #pragma once
 
 #include <shadow/components.h>
+#include <shadow/result.h>
 #include <shadow/scene.h>
 #include <shadow/shadow_shaders.h>
 #include <shadow/stats.h>
@@ -208,6 +209,8 @@ class ShadowSystem {
 public:
     /// Throws `GlError` when `loadGl` has not run (there is no GL to talk to).
     ShadowSystem();
+    /// For a game built without exceptions: the system, or the error the constructor would throw.
+    [[nodiscard]] static Result<std::unique_ptr<ShadowSystem>> create() noexcept;
     ~ShadowSystem();
     ShadowSystem(const ShadowSystem&) = delete;
     ShadowSystem& operator=(const ShadowSystem&) = delete;
@@ -222,6 +225,8 @@ public:
     /// also when it throws. An error the host left pending is read, cleared and reported as a
     /// `HostGlError` warning, never thrown; `GlError` is thrown only for the engine's own.
     void render(World& world, MeshCache& meshes, FrameStats& stats);
+    /// `render` for a game built without exceptions: what it would throw, as an error value.
+    [[nodiscard]] Status tryRender(World& world, MeshCache& meshes, FrameStats& stats) noexcept;
     /// Per-pass timing into `FrameStats::passes`. Default off: timing brackets every pass with
     /// glFinish on a CPU rasteriser, and on a GPU opens GL_TIME_ELAPSED queries (a host's own
     /// time-elapsed query cannot be open across the call) whose results are read a frame or
@@ -253,6 +258,9 @@ public:
     /// by the next call. Throws `std::invalid_argument` for more than SG_MAX_LIGHTS_PER_PASS
     /// lights or an index that is not a scene light; `GlError` for an error of its own.
     const ShadowShaderInputs& shaderInputs(std::span<const int> sceneLights, const glm::dvec3& wsCamera);
+    /// `shaderInputs` for a game built without exceptions.
+    [[nodiscard]] Result<const ShadowShaderInputs*> tryShaderInputs(std::span<const int> sceneLights,
+                                                                    const glm::dvec3& wsCamera) noexcept;
     /// Binds `inputs` at `points`: the three uniform buffers (whole), and per slot the depth
     /// array with the comparison sampler and with the raw-depth sampler, and the pyramid. These
     /// bindings are the host's draw state: they stay after the call (nothing else changes).
@@ -270,6 +278,9 @@ public:
     /// too many lights, a light that is not a scene light, a zero texture or a size below 1;
     /// `GlError` when the target cannot be drawn to.
     void renderMask(std::span<const int> sceneLights, const ShadowMaskRequest& request, FrameStats& stats);
+    /// `renderMask` for a game built without exceptions.
+    [[nodiscard]] Status tryRenderMask(std::span<const int> sceneLights, const ShadowMaskRequest& request,
+                                       FrameStats& stats) noexcept;
 
 private:
     struct ShaderInputsGpu;

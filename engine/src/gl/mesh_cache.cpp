@@ -1,6 +1,7 @@
 #include <shadow/mesh_cache.h>
 
 #include "gl/gl_state.h"
+#include "gl/no_throw.h"
 #include "gl/objects.h"
 
 #include <unordered_map>
@@ -30,6 +31,10 @@ struct MeshCache::Impl {
 
 MeshCache::MeshCache() : impl_((gpu::requireLoaded("MeshCache"), std::make_unique<Impl>())) {}
 MeshCache::~MeshCache() = default;
+
+Result<std::unique_ptr<MeshCache>> MeshCache::create() noexcept {
+    return gpu::noThrow<std::unique_ptr<MeshCache>>("MeshCache", [] { return std::make_unique<MeshCache>(); });
+}
 
 std::size_t MeshCache::size() const { return impl_->meshes.size(); }
 

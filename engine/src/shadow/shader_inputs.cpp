@@ -4,6 +4,7 @@
 
 #include <shadow/shadow_shaders.h>
 
+#include "gl/no_throw.h"
 #include "gl/program.h"
 #include "shadow/light_records.h"
 
@@ -75,6 +76,16 @@ std::string shadowShaderSource(const ShadowBindingPoints& points, unsigned techn
     };
     gpu::appendTechniqueDefines(techniques, defines);
     return gpu::expandShaderBody("shadow.glsl", defines, "host shader").text;
+}
+
+Result<std::string> tryShadowShaderSource(const ShadowBindingPoints& points, unsigned techniques) noexcept {
+    return gpu::noThrow<std::string>("shadowShaderSource", [&] { return shadowShaderSource(points, techniques); });
+}
+
+Result<const ShadowShaderInputs*> ShadowSystem::tryShaderInputs(std::span<const int> sceneLights,
+                                                                const glm::dvec3& wsCamera) noexcept {
+    return gpu::noThrow<const ShadowShaderInputs*>("shaderInputs",
+                                                   [&] { return &shaderInputs(sceneLights, wsCamera); });
 }
 
 ShadowSystem::ShaderInputsGpu::ShaderInputsGpu() {

@@ -3,6 +3,7 @@
 #include <shadow/shadow_system.h>
 
 #include "gl/gl_state.h"
+#include "gl/no_throw.h"
 #include "gl/objects.h"
 #include "gl/program.h"
 #include "shadow/light_records.h"
@@ -178,6 +179,11 @@ void ShadowSystem::renderMask(std::span<const int> sceneLights, const ShadowMask
     }
     gl.NamedFramebufferTexture(m.framebuffer.get(), GL_COLOR_ATTACHMENT0, 0, 0);
     gpu::checkGlError("renderMask");
+}
+
+Status ShadowSystem::tryRenderMask(std::span<const int> sceneLights, const ShadowMaskRequest& request,
+                                   FrameStats& stats) noexcept {
+    return gpu::noThrowStatus("renderMask", [&] { renderMask(sceneLights, request, stats); });
 }
 
 }  // namespace shadow

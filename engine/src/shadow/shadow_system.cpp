@@ -6,6 +6,7 @@
 #include <shadow/shared_constants.h>
 
 #include "gl/gl_state.h"
+#include "gl/no_throw.h"
 #include "gl/objects.h"
 #include "gl/pass_timer.h"
 #include "gl/program.h"
@@ -251,6 +252,14 @@ ShadowSystem::ShadowSystem() {
 }
 
 ShadowSystem::~ShadowSystem() = default;
+
+Result<std::unique_ptr<ShadowSystem>> ShadowSystem::create() noexcept {
+    return gpu::noThrow<std::unique_ptr<ShadowSystem>>("ShadowSystem", [] { return std::make_unique<ShadowSystem>(); });
+}
+
+Status ShadowSystem::tryRender(World& world, MeshCache& meshes, FrameStats& stats) noexcept {
+    return gpu::noThrowStatus("ShadowSystem::render", [&] { render(world, meshes, stats); });
+}
 
 const ShadowFrame& ShadowSystem::prepare(World& world, const CameraView& camera, const std::vector<Entity>& lights) {
     return planner_.prepare(world, camera, lights);
