@@ -11,8 +11,8 @@
 namespace shadow {
 
 /// Each `MeshData` is uploaded once, on first use, and kept while its `MeshData` lives: the
-/// GPU copies of meshes no longer alive are freed by `collect`, which the shadow system and the
-/// renderer call once a frame.
+/// GPU copies of meshes no longer alive are freed by `collect`, which `ShadowSystem::render`
+/// calls once a frame (once: a cache shared with the renderer is not walked twice).
 /// Requires a current OpenGL 4.5 context with `loadGl` done; `bind` throws `GlError` when an
 /// upload fails.
 class MeshCache {

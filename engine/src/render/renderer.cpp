@@ -12,7 +12,6 @@
 #include "render/render_targets.h"
 #include "shadow/light_projection.h"
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
@@ -69,12 +68,9 @@ struct MainCamera {
 };
 
 MainCamera mainCamera(const CameraView& cam) {
-    const glm::dmat4 viewFromCs = cam.viewFromWorld * glm::translate(glm::dmat4(1.0), cam.wsPosition);
-    const glm::dmat4 clipFromView = glm::perspective(static_cast<double>(cam.yfov), static_cast<double>(cam.aspect),
-                                                     static_cast<double>(cam.znear), static_cast<double>(cam.zfar));
     MainCamera m;
-    m.clipFromCs = glm::mat4(clipFromView * viewFromCs);
-    m.forward = glm::normalize(glm::vec3(-glm::dvec3(glm::transpose(cam.viewFromWorld)[2])));
+    m.clipFromCs = glm::mat4(cameraClipFromCs(cam, cameraClipFromView(cam)));
+    m.forward = cameraForward(cam);
     return m;
 }
 
@@ -262,7 +258,6 @@ void Renderer::render(World& world, const CameraView& camera, const ShadowSystem
     gpu::reportHostGlErrors("Renderer::render", stats);
     const gpu::GlStateGuard hostState(kLitTextureUnits, kLitUniformBindings);
     Impl& r = *impl_;
-    r.meshes.collect();  // the GPU copies of meshes gone since the last frame
     r.lightCount = shadows.frame().lights.size();
     const ScreenView view{cameraClipFromWorld(camera), options.width, options.height, shadows.frame().wsGeometry};
     render::packLights(shadows.frame(), camera.wsPosition, view, r.passes, r.packingOrder);

@@ -6,11 +6,11 @@
 #include "gl/no_throw.h"
 #include "gl/objects.h"
 #include "gl/program.h"
+#include "shadow/light_projection.h"
 #include "shadow/light_records.h"
 #include "shadow/screen_bounds.h"
 #include "shadow/shader_inputs.h"
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include <array>
@@ -88,9 +88,7 @@ void validateMask(std::span<const int> sceneLights, const ShadowMaskRequest& r) 
 
 /// The projection the request's depth was drawn with.
 glm::dmat4 clipFromView(const ShadowMaskRequest& r) {
-    if (r.clipFromView != glm::dmat4(0.0)) return r.clipFromView;
-    return glm::perspective(static_cast<double>(r.camera.yfov), static_cast<double>(r.camera.aspect),
-                            static_cast<double>(r.camera.znear), static_cast<double>(r.camera.zfar));
+    return r.clipFromView != glm::dmat4(0.0) ? r.clipFromView : cameraClipFromView(r.camera);
 }
 
 /// The pixels the mask's lights can reach (the union of their screen bounds), or the whole
@@ -108,9 +106,8 @@ PixelRect maskBounds(const ShadowFrame& frame, std::span<const int> sceneLights,
 
 void setMaskUniforms(const MaskProgram& p, const ShadowMaskRequest& r, const glm::dmat4& projection) {
     const GLuint id = p.program.get();
-    const glm::dmat4 clipFromCs =
-        projection * r.camera.viewFromWorld * glm::translate(glm::dmat4(1.0), r.camera.wsPosition);
-    const glm::vec3 forward = glm::normalize(glm::vec3(-glm::dvec3(glm::transpose(r.camera.viewFromWorld)[2])));
+    const glm::dmat4 clipFromCs = cameraClipFromCs(r.camera, projection);
+    const glm::vec3 forward = cameraForward(r.camera);
     gl.ProgramUniformMatrix4fv(id, p.csFromClip, 1, GL_FALSE, glm::value_ptr(glm::mat4(glm::inverse(clipFromCs))));
     gl.ProgramUniform3fv(id, p.cameraForward, 1, glm::value_ptr(forward));
     gl.ProgramUniform1i(id, p.zeroToOne, r.zeroToOneDepth ? 1 : 0);
