@@ -1,4 +1,4 @@
-// What a whole filter region holds, from the min/max depth pyramid (shadow_minmax.frag.glsl):
+// What a whole filter region holds, from the min/max depth pyramid (shadow_minmax.comp.glsl):
 // no blocker (fully lit), only blockers (umbra), or maybe a penumbra. PCF and PCSS run their
 // taps only in the last case. The answer is exact, not a guess: lit or umbra is returned only
 // when every tap the full filter would take is sure to compare that way.

@@ -3,6 +3,8 @@
 // reported as the host's (a HostGlError warning), not thrown as the engine's.
 #include "gl/gl_state.h"
 
+#include <shadow/shared_constants.h>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,6 +24,7 @@ std::vector<GLint> unitsChecked() {
     return units;
 }
 const std::vector<GLint> kBindingsChecked{0, 1, 2, 3};
+const std::vector<GLint> kImagesChecked{SG_IMAGE_MINMAX, SG_IMAGE_MINMAX + 1};
 
 /// Host state unlike anything the engine sets: its own framebuffer, VAO, program 0, an odd
 /// viewport and scissor, depth test off with GREATER and no writes, front-face culling, blending
@@ -76,6 +79,8 @@ struct HostObjects {
         gl.FrontFace(GL_CW);
         gl.BindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
         gl.PixelStorei(GL_PACK_ROW_LENGTH, 7);
+        // The pyramid builder writes through an image unit: the host's image there comes back.
+        gl.BindImageTexture(SG_IMAGE_MINMAX, texture, 0, GL_FALSE, 1, GL_READ_ONLY, GL_R8);
     }
     /// GL's defaults for what `bindHostState` sets (other tests share the context).
     static void bindDefaultState() {
@@ -92,6 +97,7 @@ struct HostObjects {
         gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
         gl.BindTextureUnit(0, 0);
         gl.BindSampler(0, 0);
+        gl.BindImageTexture(SG_IMAGE_MINMAX, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8);
         gl.BindBufferBase(GL_UNIFORM_BUFFER, 1, 0);
         gl.ActiveTexture(GL_TEXTURE0);
         gl.FrontFace(GL_CCW);
@@ -116,6 +122,7 @@ void expectSameState(const gpu::GlState& before, const gpu::GlState& after, cons
     EXPECT_EQ(after.blendFunc, before.blendFunc) << call;
     EXPECT_EQ(after.units, before.units) << call;
     EXPECT_EQ(after.uniformBindings, before.uniformBindings) << call;
+    EXPECT_EQ(after.images, before.images) << call;
     EXPECT_TRUE(after == before) << call << ": some other piece of state changed";
 }
 
@@ -126,7 +133,7 @@ TEST(GlManners, EveryPublicCallLeavesTheHostStateAsItFoundIt) {
     test::renderFrame(runner, scene, 64, 48);  // first frame: programs built, maps allocated
     HostObjects host;
     host.bindHostState();
-    const gpu::GlState before = gpu::captureGlState(unitsChecked(), kBindingsChecked);
+    const gpu::GlState before = gpu::captureGlState(unitsChecked(), kBindingsChecked, kImagesChecked);
     ASSERT_EQ(before.drawFramebuffer, static_cast<GLint>(host.framebuffer));  // the set-up took
 
     RenderOptions options;
@@ -134,18 +141,18 @@ TEST(GlManners, EveryPublicCallLeavesTheHostStateAsItFoundIt) {
     options.height = 48;
     options.aovs = true;
     FrameStats stats = runner.runFrame(scene, 0.5, scene.cameras.at(0), options);
-    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked), "FrameRunner::runFrame");
+    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked, kImagesChecked), "FrameRunner::runFrame");
 
     runner.shadows().planner().setCaching(false);  // every layer and pyramid drawn again
     runner.shadows().prepare(scene.world, runner.lastCamera(), scene.lights);
     runner.shadows().render(scene.world, runner.renderer().meshes(), stats);
-    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked), "ShadowSystem::render");
+    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked, kImagesChecked), "ShadowSystem::render");
 
     runner.renderer().render(scene.world, runner.lastCamera(), runner.shadows(), options, stats);
-    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked), "Renderer::render");
+    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked, kImagesChecked), "Renderer::render");
 
     const FrameImages images = runner.renderer().readback(runner.lastCamera(), stats);
-    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked), "Renderer::readback");
+    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked, kImagesChecked), "Renderer::readback");
 
     // The screen-space mask over a depth texture of the host's.
     GLuint depth = 0, mask = 0;
@@ -154,7 +161,7 @@ TEST(GlManners, EveryPublicCallLeavesTheHostStateAsItFoundIt) {
     gl.CreateTextures(GL_TEXTURE_2D, 1, &mask);
     gl.TextureStorage2D(mask, 1, GL_RGBA8, 64, 48);
     host.bindHostState();
-    const gpu::GlState beforeMask = gpu::captureGlState(unitsChecked(), kBindingsChecked);
+    const gpu::GlState beforeMask = gpu::captureGlState(unitsChecked(), kBindingsChecked, kImagesChecked);
     ShadowMaskRequest request;
     request.depthTexture = depth;
     request.target = mask;
@@ -163,7 +170,7 @@ TEST(GlManners, EveryPublicCallLeavesTheHostStateAsItFoundIt) {
     request.camera = runner.lastCamera();
     const std::array<int, 3> lights{0, 1, 2};
     runner.shadows().renderMask(lights, request, stats);
-    expectSameState(beforeMask, gpu::captureGlState(unitsChecked(), kBindingsChecked), "ShadowSystem::renderMask");
+    expectSameState(beforeMask, gpu::captureGlState(unitsChecked(), kBindingsChecked, kImagesChecked), "ShadowSystem::renderMask");
     gl.DeleteTextures(1, &depth);
     gl.DeleteTextures(1, &mask);
     EXPECT_EQ(images.visibility.size(), 3u);

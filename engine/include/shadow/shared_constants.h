@@ -61,6 +61,8 @@
 
 // Unit the pyramid builder reads its source from.
 #define SG_UNIT_MINMAX_SOURCE 0
+// Image unit the pyramid builder writes a level through.
+#define SG_IMAGE_MINMAX 0
 
 // Texels of the shadow map along one edge of a tile of the min/max pyramid's level 0.
 #define SG_MINMAX_TILE 4

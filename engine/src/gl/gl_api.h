@@ -49,6 +49,9 @@ namespace shadow::gpu {
     X(PFNGLDRAWELEMENTSPROC, DrawElements)                                 \
     X(PFNGLDRAWELEMENTSBASEVERTEXPROC, DrawElementsBaseVertex)             \
     X(PFNGLDRAWARRAYSPROC, DrawArrays)                                     \
+    X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                           \
+    X(PFNGLBINDIMAGETEXTUREPROC, BindImageTexture)                         \
+    X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                               \
     X(PFNGLCREATEBUFFERSPROC, CreateBuffers)                               \
     X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                               \
     X(PFNGLNAMEDBUFFERSTORAGEPROC, NamedBufferStorage)                     \

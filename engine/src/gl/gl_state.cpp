@@ -42,7 +42,8 @@ void reportHostGlErrors(std::string_view call, FrameStats& stats) {
                                   " was called (an earlier call of the host's, not the engine's); read and cleared"});
 }
 
-GlState captureGlState(std::span<const GLint> units, std::span<const GLint> uniformBindings) {
+GlState captureGlState(std::span<const GLint> units, std::span<const GLint> uniformBindings,
+                       std::span<const GLint> imageUnits) {
     GlState s;
     gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s.drawFramebuffer);
     gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &s.readFramebuffer);
@@ -84,6 +85,19 @@ GlState captureGlState(std::span<const GLint> units, std::span<const GLint> unif
         gl.GetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, i, &b.buffer);
         gl.GetInteger64i_v(GL_UNIFORM_BUFFER_START, i, &b.start);
         gl.GetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, i, &b.size);
+    }
+    for (GLint unit : imageUnits.first(std::min(imageUnits.size(), s.images.size()))) {
+        GlState::ImageBinding& b = s.images[s.imageCount++];
+        b.unit = unit;
+        const auto i = static_cast<GLuint>(unit);
+        GLint layered = 0;
+        gl.GetIntegeri_v(GL_IMAGE_BINDING_NAME, i, &b.texture);
+        gl.GetIntegeri_v(GL_IMAGE_BINDING_LEVEL, i, &b.level);
+        gl.GetIntegeri_v(GL_IMAGE_BINDING_LAYERED, i, &layered);
+        gl.GetIntegeri_v(GL_IMAGE_BINDING_LAYER, i, &b.layer);
+        gl.GetIntegeri_v(GL_IMAGE_BINDING_ACCESS, i, &b.access);
+        gl.GetIntegeri_v(GL_IMAGE_BINDING_FORMAT, i, &b.format);
+        b.layered = layered != 0 ? GL_TRUE : GL_FALSE;
     }
     return s;
 }
@@ -143,6 +157,10 @@ void restoreGlState(const GlState& s) {
         } else {
             gl.BindBufferBase(GL_UNIFORM_BUFFER, i, static_cast<GLuint>(b.buffer));
         }
+    }
+    for (const GlState::ImageBinding& b : std::span(s.images).first(s.imageCount)) {
+        gl.BindImageTexture(static_cast<GLuint>(b.unit), static_cast<GLuint>(b.texture), b.level, b.layered, b.layer,
+                            static_cast<GLenum>(b.access), static_cast<GLenum>(b.format));
     }
     // Indexed binds also set the generic binding: it goes back last.
     gl.BindBuffer(GL_UNIFORM_BUFFER, static_cast<GLuint>(s.uniformBuffer));

@@ -71,13 +71,27 @@ struct GlState {
     };
     std::array<UniformBinding, 4> uniformBindings{};
     std::size_t uniformBindingCount = 0;
+    struct ImageBinding {
+        GLint unit = 0;
+        GLint texture = 0;
+        GLint level = 0;
+        GLboolean layered = GL_FALSE;
+        GLint layer = 0;
+        GLint access = GL_READ_ONLY;
+        GLint format = GL_R8;
+        bool operator==(const ImageBinding&) const = default;
+    };
+    std::array<ImageBinding, 4> images{};
+    std::size_t imageCount = 0;
 
     bool operator==(const GlState&) const = default;
 };
 
-/// Reads the state, with the texture units `units` (at most 32) and the uniform-buffer binding
-/// points `uniformBindings` (at most 4); the ones beyond are not captured.
-[[nodiscard]] GlState captureGlState(std::span<const GLint> units, std::span<const GLint> uniformBindings);
+/// Reads the state, with the texture units `units` (at most 32), the uniform-buffer binding
+/// points `uniformBindings` (at most 4) and the image units `imageUnits` (at most 4); the ones
+/// beyond are not captured.
+[[nodiscard]] GlState captureGlState(std::span<const GLint> units, std::span<const GLint> uniformBindings,
+                                     std::span<const GLint> imageUnits = {});
 /// Puts `state` back.
 void restoreGlState(const GlState& state);
 
@@ -93,8 +107,9 @@ void setReadbackDefaults();
 /// Captures on construction, restores on destruction (also when the scope is left by a throw).
 class GlStateGuard {
 public:
-    GlStateGuard(std::span<const GLint> units, std::span<const GLint> uniformBindings)
-        : saved_(captureGlState(units, uniformBindings)) {}
+    GlStateGuard(std::span<const GLint> units, std::span<const GLint> uniformBindings,
+                 std::span<const GLint> imageUnits = {})
+        : saved_(captureGlState(units, uniformBindings, imageUnits)) {}
     ~GlStateGuard() { restoreGlState(saved_); }
     GlStateGuard(const GlStateGuard&) = delete;
     GlStateGuard& operator=(const GlStateGuard&) = delete;

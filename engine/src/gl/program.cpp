@@ -111,6 +111,27 @@ std::string mapShaderLog(const std::string& log, const std::vector<std::string>&
     return out;
 }
 
+namespace {
+
+/// Throws `GlError` with the link log of `program` (its messages mapped onto `files`) unless it
+/// linked; labels it `label` when it did.
+void requireLinked(const Program& program, const std::string& label, const std::vector<std::string>& files) {
+    GLint ok = GL_FALSE;
+    gl.GetProgramiv(program.get(), GL_LINK_STATUS, &ok);
+    if (ok != GL_TRUE) {
+        GLint length = 0;
+        gl.GetProgramiv(program.get(), GL_INFO_LOG_LENGTH, &length);
+        std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+        GLsizei written = 0;
+        gl.GetProgramInfoLog(program.get(), length, &written, log.data());
+        log.resize(static_cast<std::size_t>(std::max(written, 0)));  // without the terminating NUL
+        throw GlError("shader link failed for " + label + ":\n" + mapShaderLog(log, files));
+    }
+    program.label(label);
+}
+
+}  // namespace
+
 Program linkProgram(const std::string& label, const ExpandedSource& vertex, const ExpandedSource& fragment) {
     const GLuint v = compileStage(GL_VERTEX_SHADER, vertex, label + " (" + vertex.files.front() + ")");
     GLuint f = 0;
@@ -126,18 +147,18 @@ Program linkProgram(const std::string& label, const ExpandedSource& vertex, cons
     gl.LinkProgram(program.get());
     gl.DeleteShader(v);
     gl.DeleteShader(f);
-    GLint ok = GL_FALSE;
-    gl.GetProgramiv(program.get(), GL_LINK_STATUS, &ok);
-    if (ok != GL_TRUE) {
-        GLint length = 0;
-        gl.GetProgramiv(program.get(), GL_INFO_LOG_LENGTH, &length);
-        std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-        GLsizei written = 0;
-        gl.GetProgramInfoLog(program.get(), length, &written, log.data());
-        log.resize(static_cast<std::size_t>(std::max(written, 0)));  // without the terminating NUL
-        throw GlError("shader link failed for " + label + ":\n" + mapShaderLog(log, fragment.files));
-    }
-    program.label(label);
+    requireLinked(program, label, fragment.files);
+    return program;
+}
+
+Program buildComputeProgram(const std::string& label, const std::string& file, const std::vector<std::string>& defines) {
+    const ExpandedSource source = expandShader(file, defines);
+    const GLuint c = compileStage(GL_COMPUTE_SHADER, source, label + " (" + source.files.front() + ")");
+    Program program(gl.CreateProgram());
+    gl.AttachShader(program.get(), c);
+    gl.LinkProgram(program.get());
+    gl.DeleteShader(c);
+    requireLinked(program, label, source.files);
     return program;
 }
 

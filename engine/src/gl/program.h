@@ -23,6 +23,9 @@ struct ProgramDesc {
 /// Compiles and links; throws `GlError` naming the file and line of the first error.
 Program buildProgram(const ProgramDesc& desc);
 
+/// Compiles and links the compute shader `file`; throws `GlError` like `buildProgram`.
+Program buildComputeProgram(const std::string& label, const std::string& file, const std::vector<std::string>& defines);
+
 /// One preprocessed shader stage: the text handed to GL and the file table for messages.
 struct ExpandedSource {
     std::string text;

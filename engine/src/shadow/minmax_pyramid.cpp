@@ -35,15 +35,6 @@ MinMaxPyramid MinMaxPyramid::allocate(const std::string& label, int mapSize, int
     gl.TextureStorage3D(p.texture.get(), p.levels, GL_RG32F, base, base, layers);
     gl.TextureParameteri(p.texture.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
     gl.TextureParameteri(p.texture.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    for (int level = 0; level < p.levels; ++level) {
-        GLuint view = 0;
-        gl.GenTextures(1, &view);
-        gl.TextureView(view, GL_TEXTURE_2D_ARRAY, p.texture.get(), GL_RG32F, static_cast<GLuint>(level), 1, 0,
-                       static_cast<GLuint>(layers));
-        p.levelViews.emplace_back(view);
-        p.levelViews.back().label(label + "/minmax/level" + std::to_string(level));
-    }
-    p.framebuffer = gpu::makeFramebuffer(label + "/minmaxFramebuffer");
     gpu::checkGlError("allocating " + label + "/minmax");
     return p;
 }
@@ -56,40 +47,38 @@ void MinMaxPyramid::clearLayer(int mapSize, int layer) const {
     }
 }
 
+namespace {
+
+MinMaxBuilder::Pass makePass(const std::string& label, std::vector<std::string> defines) {
+    MinMaxBuilder::Pass p;
+    p.program = gpu::buildComputeProgram(label, "shadow_minmax.comp.glsl", defines);
+    p.layer = gl.GetUniformLocation(p.program.get(), "uLayer");
+    p.level = gl.GetUniformLocation(p.program.get(), "uLevel");
+    return p;
+}
+
+}  // namespace
+
 void MinMaxBuilder::build(GLuint depthArray, const MinMaxPyramid& pyramid, int mapSize, int layer) {
-    const GLuint framebuffer = pyramid.framebuffer.get();
     if (!programs_) {
-        Programs p;
-        p.fromDepth = gpu::buildProgram(
-            {"Shadow/MinMax/fromDepth", "fullscreen.vert.glsl", "shadow_minmax.frag.glsl", {"SG_MINMAX_FROM_DEPTH"}});
-        p.fromBelow =
-            gpu::buildProgram({"Shadow/MinMax/fromBelow", "fullscreen.vert.glsl", "shadow_minmax.frag.glsl", {}});
-        p.fromDepthLayer = gl.GetUniformLocation(p.fromDepth.get(), "uLayer");
-        p.fromBelowLayer = gl.GetUniformLocation(p.fromBelow.get(), "uLayer");
-        GLuint vao = 0;
-        gl.CreateVertexArrays(1, &vao);
-        p.empty = gpu::VertexArray(vao);
-        programs_ = std::move(p);
+        programs_ = Programs{makePass("Shadow/MinMax/fromDepth", {"SG_MINMAX_FROM_DEPTH"}),
+                             makePass("Shadow/MinMax/fromBelow", {})};
     }
-    const Programs& p = *programs_;
-    gl.BindVertexArray(p.empty.get());
     gl.BindSampler(SG_UNIT_MINMAX_SOURCE, 0);  // the textures' own nearest filtering, no comparison
-    gl.NamedFramebufferDrawBuffer(framebuffer, GL_COLOR_ATTACHMENT0);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     int size = MinMaxPyramid::baseSize(mapSize);
     for (int level = 0; level < pyramid.levels; ++level, size = std::max(1, size / 2)) {
-        gl.NamedFramebufferTextureLayer(framebuffer, GL_COLOR_ATTACHMENT0, pyramid.texture.get(), level, layer);
-        gl.Viewport(0, 0, size, size);
-        if (level == 0) {
-            gl.UseProgram(p.fromDepth.get());
-            gl.ProgramUniform1i(p.fromDepth.get(), p.fromDepthLayer, layer);
-            gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, depthArray);
-        } else {
-            gl.UseProgram(p.fromBelow.get());
-            gl.ProgramUniform1i(p.fromBelow.get(), p.fromBelowLayer, layer);
-            gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, pyramid.levelViews[static_cast<std::size_t>(level - 1)].get());
-        }
-        gl.DrawArrays(GL_TRIANGLES, 0, 3);
+        const Pass& pass = level == 0 ? programs_->fromDepth : programs_->fromBelow;
+        const GLuint program = pass.program.get();
+        gl.UseProgram(program);
+        gl.ProgramUniform1i(program, pass.layer, layer);
+        gl.ProgramUniform1i(program, pass.level, level);
+        // Reads level - 1 of the pyramid (texelFetch, never the level written) or the depth map.
+        gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, level == 0 ? depthArray : pyramid.texture.get());
+        gl.BindImageTexture(SG_IMAGE_MINMAX, pyramid.texture.get(), level, GL_FALSE, layer, GL_WRITE_ONLY, GL_RG32F);
+        const auto groups = static_cast<GLuint>((size + 7) / 8);
+        gl.DispatchCompute(groups, groups, 1);
+        // The next level reads this one; the lit pass samples them all.
+        gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     }
     gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
 }

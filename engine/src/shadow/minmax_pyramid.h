@@ -18,11 +18,15 @@ public:
     /// Builds every level of `layer` of `pyramid` from `depthArray`, a `mapSize`^2 array.
     void build(GLuint depthArray, const struct MinMaxPyramid& pyramid, int mapSize, int layer);
 
+    /// A compute program and its uniforms.
+    struct Pass {
+        gpu::Program program;
+        GLint layer = -1, level = -1;
+    };
+
 private:
     struct Programs {
-        gpu::Program fromDepth, fromBelow;
-        GLint fromDepthLayer = -1, fromBelowLayer = -1;
-        gpu::VertexArray empty;
+        Pass fromDepth, fromBelow;
     };
     std::optional<Programs> programs_;
 };
@@ -30,10 +34,6 @@ private:
 /// One light's pyramid texture (RG32F array, one mip chain per layer).
 struct MinMaxPyramid {
     gpu::Texture texture;
-    /// Views of one level each: the builder reads level k - 1 through its own texture object while
-    /// it draws level k, so no level is ever sampled and drawn at once.
-    std::vector<gpu::Texture> levelViews;
-    gpu::Framebuffer framebuffer;
     int levels = 0;
 
     /// Edge of level 0 for a map of `mapSize` texels: the power of two of at least

@@ -268,7 +268,8 @@ const ShadowFrame& ShadowSystem::prepare(World& world, const CameraView& camera,
 void ShadowSystem::render(World& world, MeshCache& meshes, FrameStats& stats) {
     gpu::reportHostGlErrors("ShadowSystem::render", stats);
     static constexpr std::array<GLint, 1> kUnits{SG_UNIT_MINMAX_SOURCE};
-    const gpu::GlStateGuard hostState(kUnits, {});
+    static constexpr std::array<GLint, 1> kImageUnits{SG_IMAGE_MINMAX};
+    const gpu::GlStateGuard hostState(kUnits, {}, kImageUnits);
     meshes.collect();  // the GPU copies of meshes gone since the last frame
     const ShadowFrame& frame = planner_.frame();
     gpu_->syncMaps(frame);
@@ -299,7 +300,6 @@ void ShadowSystem::render(World& world, MeshCache& meshes, FrameStats& stats) {
         stats.shadowDrawCalls += ls.castersDrawn;
     }
     endDepthOnly();
-    gl.Disable(GL_DEPTH_TEST);
     for (const ShadowLightPlan& plan : frame.lights) {
         if (plan.hasMap()) g.updatePyramids(plan);
     }
