@@ -36,8 +36,11 @@ image. The penumbra RMSE counts only pixels whose true visibility is strictly be
 Timings on llvmpipe (a CPU rasteriser) are noisy from run to run; compare rows of one run. One
 configuration sets every shadowed light of the scene. `pcss-textbook` is the seeds' PCSS (fixed
 Poisson taps around the receiver's UV), kept so our PCSS is measured against it in the same run.
+Every configuration of a scene draws the same depth layers, so no technique's frame can be shorter
+than the scene's fastest frame of all configurations (a hard shadow from the smallest map): the
+last column, textbook time over that frame, bounds the speed-up any filter could show.
 
-Reproduce (about 2 minutes here after the build: `time bash benchmarks/run_error_vs_time.sh`; rewrites this section and `benchmarks/results/`):
+Reproduce (2-7 minutes here after the build, with the machine's load: `time bash benchmarks/run_error_vs_time.sh`; rewrites this section and `benchmarks/results/`):
 
 ```sh
 bash benchmarks/run_error_vs_time.sh
