@@ -141,18 +141,21 @@ TEST(GlManners, EveryPublicCallLeavesTheHostStateAsItFoundIt) {
     options.height = 48;
     options.aovs = true;
     FrameStats stats = runner.runFrame(scene, 0.5, scene.cameras.at(0), options);
-    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked, kImagesChecked), "FrameRunner::runFrame");
+    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked, kImagesChecked),
+                    "FrameRunner::runFrame");
 
     runner.shadows().planner().setCaching(false);  // every layer and pyramid drawn again
     runner.shadows().prepare(scene.world, runner.lastCamera(), scene.lights);
     runner.shadows().render(scene.world, runner.renderer().meshes(), stats);
-    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked, kImagesChecked), "ShadowSystem::render");
+    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked, kImagesChecked),
+                    "ShadowSystem::render");
 
     runner.renderer().render(scene.world, runner.lastCamera(), runner.shadows(), options, stats);
     expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked, kImagesChecked), "Renderer::render");
 
     const FrameImages images = runner.renderer().readback(runner.lastCamera(), stats);
-    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked, kImagesChecked), "Renderer::readback");
+    expectSameState(before, gpu::captureGlState(unitsChecked(), kBindingsChecked, kImagesChecked),
+                    "Renderer::readback");
 
     // The screen-space mask over a depth texture of the host's.
     GLuint depth = 0, mask = 0;
@@ -170,7 +173,8 @@ TEST(GlManners, EveryPublicCallLeavesTheHostStateAsItFoundIt) {
     request.camera = runner.lastCamera();
     const std::array<int, 3> lights{0, 1, 2};
     runner.shadows().renderMask(lights, request, stats);
-    expectSameState(beforeMask, gpu::captureGlState(unitsChecked(), kBindingsChecked, kImagesChecked), "ShadowSystem::renderMask");
+    expectSameState(beforeMask, gpu::captureGlState(unitsChecked(), kBindingsChecked, kImagesChecked),
+                    "ShadowSystem::renderMask");
     gl.DeleteTextures(1, &depth);
     gl.DeleteTextures(1, &mask);
     EXPECT_EQ(images.visibility.size(), 3u);

@@ -151,7 +151,8 @@ Program linkProgram(const std::string& label, const ExpandedSource& vertex, cons
     return program;
 }
 
-Program buildComputeProgram(const std::string& label, const std::string& file, const std::vector<std::string>& defines) {
+Program buildComputeProgram(const std::string& label, const std::string& file,
+                            const std::vector<std::string>& defines) {
     const ExpandedSource source = expandShader(file, defines);
     const GLuint c = compileStage(GL_COMPUTE_SHADER, source, label + " (" + source.files.front() + ")");
     Program program(gl.CreateProgram());

@@ -49,7 +49,7 @@ void MinMaxPyramid::clearLayer(int mapSize, int layer) const {
 
 namespace {
 
-MinMaxBuilder::Pass makePass(const std::string& label, std::vector<std::string> defines) {
+MinMaxBuilder::Pass makePass(const std::string& label, const std::vector<std::string>& defines) {
     MinMaxBuilder::Pass p;
     p.program = gpu::buildComputeProgram(label, "shadow_minmax.comp.glsl", defines);
     p.layer = gl.GetUniformLocation(p.program.get(), "uLayer");
