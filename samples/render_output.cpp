@@ -113,7 +113,7 @@ Spread spreadOf(std::vector<double> values) {
 
 Result<ShadowTechnique> parseTechnique(const std::string& name) {
     if (const auto t = techniqueFromName(name)) return *t;
-    return Error{"unknown technique '" + name + "' (known: none, hard, pcf, pcss, pcss-textbook)"};
+    return Error{"unknown technique '" + name + "' (known: " + techniqueNameList() + ")"};
 }
 
 namespace {
@@ -147,6 +147,8 @@ nlohmann::json lightsJson(const Scene& scene, const FrameStats& last) {
                            {"layersReused", ls.layersReused},
                            {"layersCleared", ls.layersCleared},
                            {"mapAllocated", ls.mapAllocated},
+                           {"mapBytes", ls.mapBytes},
+                           {"filterChainBytes", ls.filterChainBytes},
                            {"castersDrawn", ls.castersDrawn},
                            {"affectsView", ls.affectsView}};
         }

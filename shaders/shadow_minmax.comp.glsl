@@ -13,19 +13,9 @@
 // Reference: the hierarchical min/max shadow map of G. Guennebaud, L. Barthe, M. Paulin,
 // "Real-time soft shadow mapping by backprojection", EGSR 2006, and of Z. Dong, B. Yang,
 // "Variance soft shadow mapping", 2010 (the seeds' VSSM notes).
-#include "shared_constants.h"
+#include "shadow_chain_level.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
-
-#ifdef SG_MINMAX_FROM_DEPTH
-layout(binding = SG_UNIT_MINMAX_SOURCE) uniform sampler2DArray uDepth;  // the layer's depth map
-#else
-layout(binding = SG_UNIT_MINMAX_SOURCE) uniform sampler2DArray uPyramid;  // its level uLevel - 1
-#endif
 layout(binding = SG_IMAGE_MINMAX, rg32f) writeonly uniform image2D uTarget;  // level uLevel of the layer
-
-uniform int uLayer;
-uniform int uLevel;
 
 vec2 merge(vec2 a, vec2 b) { return vec2(min(a.x, b.x), max(a.y, b.y)); }
 
@@ -33,7 +23,7 @@ void main() {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(texel, imageSize(uTarget)))) return;
     vec2 range = vec2(1.0, 0.0);
-#ifdef SG_MINMAX_FROM_DEPTH
+#ifdef SG_CHAIN_FROM_DEPTH
     // Gathers of 2x2 texels; coordinates past the map's edge clamp to it (the sampler's own).
     vec2 texelSize = 1.0 / vec2(textureSize(uDepth, 0).xy);
     for (int y = 0; y < SG_MINMAX_TILE; y += 2) {
@@ -44,10 +34,10 @@ void main() {
         }
     }
 #else
-    ivec2 size = textureSize(uPyramid, uLevel - 1).xy;
+    ivec2 size = textureSize(uBelow, uLevel - 1).xy;
     for (int k = 0; k < 4; ++k) {
         ivec3 below = ivec3(min(texel * 2 + ivec2(k & 1, k >> 1), size - 1), uLayer);
-        range = merge(range, texelFetch(uPyramid, below, uLevel - 1).rg);
+        range = merge(range, texelFetch(uBelow, below, uLevel - 1).rg);
     }
 #endif
     imageStore(uTarget, texel, vec4(range, 0.0, 0.0));

@@ -147,7 +147,8 @@ std::vector<glm::vec4> hostVisibility(Scene& scene, FrameRunner& runner, const S
     ShadowSystem& shadows = runner.shadows();
     const ShadowShaderInputs& inputs = shadows.shaderInputs(lights, cam.wsPosition);
     EXPECT_EQ(inputs.lights, kLights);
-    EXPECT_EQ(inputs.techniques, kAllShadowTechniques & ~techniqueBit(ShadowTechnique::PcssTextbook));
+    EXPECT_EQ(inputs.techniques, kAllShadowTechniques & ~techniqueBit(ShadowTechnique::PcssTextbook) &
+                                     ~techniqueBit(ShadowTechnique::Vsm));
     shadows.bindShaderInputs(inputs, points);
 
     scene.world.view<Mesh, WorldTransform>().each([&](Entity, Mesh& mesh, WorldTransform& wt) {

@@ -90,9 +90,9 @@ std::string lightShadowError(const json& shadow) {
 }
 
 TEST(GltfImport, RejectsUnknownShadowTechnique) {
-    EXPECT_MESSAGE(lightShadowError({{"technique", "vsm"}}),
+    EXPECT_MESSAGE(lightShadowError({{"technique", "raytraced"}}),
                    "light.gltf: KHR_lights_punctual.lights[1].extras.shadow.technique: "
-                   "unknown technique \"vsm\"");
+                   "unknown technique \"raytraced\"");
 }
 
 TEST(GltfImport, RejectsNegativeMapSize) {

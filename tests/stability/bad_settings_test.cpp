@@ -60,6 +60,7 @@ TEST(Stability, BadLightSettingsNeverStopTheOtherLights) {
     bad.pcfSamples = 0;
     bad.blockerSamples = 100000;
     bad.maxFilterTexels = kNaN;
+    bad.lightBleedReduction = -kInf;
     bad.nearPlane = -3.0f;
     addLight(scene, "wild bulb", wild, bad, {1.0, 3.0, -0.5}, {0, -1, 0});
 
@@ -70,11 +71,11 @@ TEST(Stability, BadLightSettingsNeverStopTheOtherLights) {
         scene, 128, 96, "bad lights", [&](ShadowTechnique technique, const test::RenderedFrame& frame, FrameRunner&) {
             // One warning per bad field: the nan lamp's intensity, colour (3), range and both
             // cone angles (the inner one is half the NaN outer one); the wild bulb's intensity,
-            // radius and its nine bad shadow settings. Nothing about the good lights.
+            // radius and its ten bad shadow settings. Nothing about the good lights.
             const auto& w = frame.stats.warnings;
             EXPECT_EQ(test::countWarnings(w, WarningCode::SettingClamped, "nan lamp"), 7) << test::describe(w);
-            EXPECT_EQ(test::countWarnings(w, WarningCode::SettingClamped, "wild bulb"), 11) << test::describe(w);
-            EXPECT_EQ(w.size(), 18u) << test::describe(w);
+            EXPECT_EQ(test::countWarnings(w, WarningCode::SettingClamped, "wild bulb"), 12) << test::describe(w);
+            EXPECT_EQ(w.size(), 19u) << test::describe(w);
             if (technique != ShadowTechnique::Hard) return;
             // The good lights' shadows are those of the clean scene.
             for (std::size_t i = 0; i < reference.images.visibility.size(); ++i) {
@@ -108,10 +109,11 @@ std::string threeLights(const std::string& badShadow) {
 
 TEST(Stability, BogusShadowExtrasFailStrictlyOrFallBackToDefaultsLeniently) {
     const std::vector<std::string> bogus = {
-        R"({"technique": "vsm"})",
+        R"({"technique": "raytraced"})",
         R"({"mapSize": "big"})",
         R"({"mapSize": -512})",
         R"({"radius": -1})",
+        R"({"lightBleedReduction": -0.5})",
         R"({"pcfSamples": 2.5})",
         R"({"kernel": 7})",
         R"("hard")",
@@ -181,7 +183,7 @@ TEST(Stability, LenientlyLoadedSceneRendersEveryLight) {
     GltfLoadOptions lenient;
     lenient.strictShadowSettings = false;
     Result<Scene> loaded =
-        gltf::loadGltfFromMemory(threeLights(R"({"technique": "vsm", "mapSize": "big"})"), "bogus.gltf", lenient);
+        gltf::loadGltfFromMemory(threeLights(R"({"technique": "raytraced", "mapSize": "big"})"), "bogus.gltf", lenient);
     ASSERT_TRUE(loaded.ok()) << loaded.error().message;
     Scene& scene = *loaded;
     test::addGround(scene, 3.0f);

@@ -119,13 +119,20 @@ enum class ShadowTechnique : std::uint8_t {
     /// blocker search and PCF in the receiver's shadow-map UV, no receiver-plane taps, no
     /// early-outs. Same physical units as Pcss.
     PcssTextbook,
+    /// Variance shadow map: depth and depth^2 per texel, prefiltered by a mip chain; the
+    /// filter region's mean and variance give Chebyshev's bound on the lit fraction. A filter of
+    /// `pcfRadius` for the cost of one trilinear fetch; light leaks where casters overlap
+    /// (`lightBleedReduction`).
+    Vsm,
 };
 
 /// A technique's name as glTF `extras.shadow.technique` and the CLI spell it ("none", "hard",
-/// "pcf", "pcss", "pcss-textbook").
+/// "pcf", "pcss", "pcss-textbook", "vsm").
 [[nodiscard]] const char* techniqueName(ShadowTechnique t);
 /// The technique named `name`, or nullopt for an unknown name.
 [[nodiscard]] std::optional<ShadowTechnique> techniqueFromName(std::string_view name);
+/// Every technique's name, comma-separated ("none, hard, ..."), for messages.
+[[nodiscard]] std::string techniqueNameList();
 
 /// Sample pattern of the PCF filter and the PCSS blocker search, all over the unit disk.
 enum class FilterKernel : std::uint8_t {
@@ -164,8 +171,12 @@ struct Shadow {
     /// umbra next to a caster (on the bunny, half a texel took the sun's hard-shadow umbra leak
     /// from 2.6 to 6.0 %). The seeds' textbook PCSS adds one texel to it.
     float normalOffset = 0.0f;
-    /// PCF filter radius (m) at the receiver, [0, 10]. Default 0.05.
+    /// PCF filter radius (m) at the receiver, [0, 10]. Default 0.05. VSM filters the same radius.
     float pcfRadius = 0.05f;
+    /// VSM light-bleeding reduction: Chebyshev bounds below this fraction read as shadow and the
+    /// rest is stretched back to [0, 1], [0, 0.95]. Default 0.2. Higher removes more of the light
+    /// that leaks where casters overlap and darkens penumbrae more.
+    float lightBleedReduction = 0.2f;
     /// Sample pattern of PCF and the blocker search. Default Vogel.
     FilterKernel kernel = FilterKernel::Vogel;
     /// Most taps of the PCF filter, [1, 64]. Default 16. A pixel takes about one tap per texel of

@@ -23,11 +23,11 @@ SG_FLOAT pcfRadius;     // m at the receiver
 SG_INT pcfSamples;
 SG_INT blockerSamples;
 SG_FLOAT maxFilterTexels;
-SG_FLOAT mapSize;       // texels per layer edge
-SG_INT firstLayer;      // index of layer 0 in the layer buffer
-SG_FLOAT cascadeBlend;  // directional: fraction of a cascade's range blended into the next
-SG_INT kernel;          // SG_KERNEL_*
-SG_INT pad0;
+SG_FLOAT mapSize;              // texels per layer edge
+SG_INT firstLayer;             // index of layer 0 in the layer buffer
+SG_FLOAT cascadeBlend;         // directional: fraction of a cascade's range blended into the next
+SG_INT kernel;                 // SG_KERNEL_*
+SG_FLOAT lightBleedReduction;  // VSM: Chebyshev bounds below it read as shadow
 SG_END_STRUCT
 
 // One layer (cascade, spot map or cube face) of a light's shadow-map array.

@@ -41,15 +41,15 @@ struct ShadowBindingPoints {
     int kernelBlock = SG_BINDING_KERNELS;      ///< the filters' Poisson disk
     int compareUnit = SG_UNIT_SHADOW_COMPARE;  ///< depth arrays with the comparison sampler
     int depthUnit = SG_UNIT_SHADOW_DEPTH;      ///< the same arrays with the raw-depth sampler
-    int minMaxUnit = SG_UNIT_SHADOW_MINMAX;    ///< min/max pyramids (PCF, PCSS)
+    int minMaxUnit = SG_UNIT_SHADOW_MINMAX;    ///< filter chains: min/max pyramids (PCF, PCSS), moments (VSM)
 };
 
 /// Bit `1 << t` for technique t (`ShadowTechnique`).
 constexpr unsigned techniqueBit(ShadowTechnique t) { return 1u << static_cast<unsigned>(t); }
 /// Every technique with a shadow map.
-constexpr unsigned kAllShadowTechniques = techniqueBit(ShadowTechnique::Hard) | techniqueBit(ShadowTechnique::Pcf) |
-                                          techniqueBit(ShadowTechnique::Pcss) |
-                                          techniqueBit(ShadowTechnique::PcssTextbook);
+constexpr unsigned kAllShadowTechniques =
+    techniqueBit(ShadowTechnique::Hard) | techniqueBit(ShadowTechnique::Pcf) | techniqueBit(ShadowTechnique::Pcss) |
+    techniqueBit(ShadowTechnique::PcssTextbook) | techniqueBit(ShadowTechnique::Vsm);
 
 /// The public shadow GLSL as one text for a game's fragment shader, to stand after its
 /// `#version 450 core` line: the `#define`s of `points` and of the techniques whose bits are set
@@ -74,7 +74,7 @@ struct ShadowShaderInputs {
     unsigned layerBuffer = 0;                                   ///< uniform buffer: the layer block
     unsigned kernelBuffer = 0;                                  ///< uniform buffer: the kernel block
     std::array<unsigned, SG_MAX_LIGHTS_PER_PASS> depthArray{};  ///< per slot, 0 without a map
-    std::array<unsigned, SG_MAX_LIGHTS_PER_PASS> minMax{};      ///< per slot, 0 without a pyramid
+    std::array<unsigned, SG_MAX_LIGHTS_PER_PASS> minMax{};      ///< per slot: its filter chain, 0 without one
     unsigned compareSampler = 0;  ///< sampler object for the compare units (hardware comparison)
     unsigned depthSampler = 0;    ///< sampler object for the raw-depth units
     unsigned techniques = 0;      ///< `techniqueBit`s of the slots' techniques

@@ -33,6 +33,10 @@ struct LightShadowStats {
     /// Its map was made this frame (first frame, or a new size or layer count): its texture name
     /// changed and every layer was drawn.
     bool mapAllocated = false;
+    /// GPU memory of its shadow map (32-bit depth) and of its filter chain (min/max pyramid for
+    /// PCF and PCSS, depth moments for VSM; 0 for the others), in bytes.
+    long long mapBytes = 0;
+    long long filterChainBytes = 0;
 };
 
 /// Everything measured in one frame. Timings are milliseconds.

@@ -26,7 +26,7 @@ Result<ShadowTechnique> parseTechnique(const tinygltf::Value& v, const std::stri
     auto name = readString(v, where);
     if (!name) return name.error();
     if (const auto t = techniqueFromName(*name)) return *t;
-    return elementError(where, "unknown technique \"" + *name + "\" (expected none, hard, pcf, pcss or pcss-textbook)");
+    return elementError(where, "unknown technique \"" + *name + "\" (expected one of " + techniqueNameList() + ")");
 }
 
 Result<FilterKernel> parseKernel(const tinygltf::Value& v, const std::string& where) {
@@ -78,12 +78,13 @@ Result<LightShadowExtras> parseShadowExtras(const tinygltf::Value& extras, const
                                          {"pcfSamples", &s.pcfSamples},
                                          {"blockerSamples", &s.blockerSamples},
                                          {"cascades", &s.cascades}}};
-    const std::array<Knob<float>, 11> floats{{{"radius", &out.radius},
+    const std::array<Knob<float>, 12> floats{{{"radius", &out.radius},
                                               {"angularRadius", &out.angularRadius},
                                               {"constantBias", &s.constantBias},
                                               {"slopeBias", &s.slopeBias},
                                               {"normalOffset", &s.normalOffset},
                                               {"pcfRadius", &s.pcfRadius},
+                                              {"lightBleedReduction", &s.lightBleedReduction},
                                               {"maxFilterTexels", &s.maxFilterTexels},
                                               {"cascadeSplitLambda", &s.cascadeSplitLambda},
                                               {"cascadeBlend", &s.cascadeBlend},

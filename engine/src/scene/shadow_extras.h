@@ -2,9 +2,9 @@
 // importer so a fuzzer can feed arbitrary JSON values to them directly.
 //
 // Light extras (`KHR_lights_punctual.lights[i].extras.shadow`):
-//   technique        "none" | "hard" | "pcf" | "pcss"        (default "hard")
+//   technique        "none" | "hard" | "pcf" | "pcss" | "pcss-textbook" | "vsm"  (default "hard")
 //   mapSize, pcfSamples, blockerSamples, cascades             positive integers
-//   radius, angularRadius, constantBias, slopeBias, normalOffset, pcfRadius,
+//   radius, angularRadius, constantBias, slopeBias, normalOffset, pcfRadius, lightBleedReduction,
 //   maxFilterTexels, cascadeSplitLambda, shadowDistance, nearPlane
 //                                                             finite numbers >= 0
 // Mesh node extras (`nodes[i].extras.shadow`):

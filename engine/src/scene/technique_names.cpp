@@ -1,5 +1,8 @@
 #include <shadow/components.h>
 
+#include <array>
+#include <string>
+
 namespace shadow {
 
 const char* lightTypeName(LightType t) {
@@ -18,16 +21,29 @@ const char* techniqueName(ShadowTechnique t) {
         case ShadowTechnique::Pcf: return "pcf";
         case ShadowTechnique::Pcss: return "pcss";
         case ShadowTechnique::PcssTextbook: return "pcss-textbook";
+        case ShadowTechnique::Vsm: return "vsm";
     }
     return "none";
 }
 
+namespace {
+
+constexpr std::array kTechniques{ShadowTechnique::None, ShadowTechnique::Hard,         ShadowTechnique::Pcf,
+                                 ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook, ShadowTechnique::Vsm};
+
+}  // namespace
+
 std::optional<ShadowTechnique> techniqueFromName(std::string_view name) {
-    for (ShadowTechnique t : {ShadowTechnique::None, ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss,
-                              ShadowTechnique::PcssTextbook}) {
+    for (ShadowTechnique t : kTechniques) {
         if (name == techniqueName(t)) return t;
     }
     return std::nullopt;
+}
+
+std::string techniqueNameList() {
+    std::string list;
+    for (ShadowTechnique t : kTechniques) list += (list.empty() ? "" : ", ") + std::string(techniqueName(t));
+    return list;
 }
 
 const char* filterKernelName(FilterKernel k) {

@@ -162,6 +162,7 @@ void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, co
     clampField(s.slopeBias, 0.0f, 16.0f, who, "slopeBias", warnings);
     clampField(s.normalOffset, 0.0f, 16.0f, who, "normalOffset", warnings);
     clampField(s.pcfRadius, 0.0f, 10.0f, who, "pcfRadius", warnings);
+    clampField(s.lightBleedReduction, 0.0f, 0.95f, who, "lightBleedReduction", warnings);
     clampField(s.pcfSamples, 1, 64, who, "pcfSamples", warnings);
     clampField(s.blockerSamples, 1, 64, who, "blockerSamples", warnings);
     clampField(s.maxFilterTexels, 1.0f, 256.0f, who, "maxFilterTexels", warnings);

@@ -168,7 +168,8 @@ void ShadowSystem::bindShadowResources(std::span<const int> sceneLights, const S
         gl.BindTextureUnit(static_cast<GLuint>(points.depthUnit + slot), texture);
         gl.BindSampler(static_cast<GLuint>(points.depthUnit + slot), g.depthSampler.get());
         gl.BindTextureUnit(static_cast<GLuint>(points.minMaxUnit + slot), light >= 0 ? minMaxOf(i) : 0u);
-        gl.BindSampler(static_cast<GLuint>(points.minMaxUnit + slot), 0);  // nearest per level: the texture's own
+        // The texture's own filtering: nearest per level for a pyramid, trilinear for moments.
+        gl.BindSampler(static_cast<GLuint>(points.minMaxUnit + slot), 0);
     }
 }
 

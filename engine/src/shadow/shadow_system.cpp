@@ -10,7 +10,7 @@
 #include "gl/objects.h"
 #include "gl/pass_timer.h"
 #include "gl/program.h"
-#include "shadow/minmax_pyramid.h"
+#include "shadow/filter_chain.h"
 #include "shadow/shader_inputs.h"
 
 #include <glm/gtc/type_ptr.hpp>
@@ -31,15 +31,13 @@ struct ShadowMapGpu {
     gpu::Framebuffer framebuffer;
     int mapSize = 0;
     int layers = 0;
-    /// For PCF and PCSS lights only; `pyramidCurrent[k]` once layer k's pyramid matches its map.
-    std::optional<MinMaxPyramid> pyramid;
-    std::vector<bool> pyramidCurrent;
+    /// For the techniques that read one only (filterChainOf); `chainCurrent[k]` once layer k's
+    /// chain matches its map.
+    std::optional<FilterChain> chain;
+    std::vector<bool> chainCurrent;
     /// Made this frame (a new light, or a new map size or layer count): its texture name changed.
     bool allocatedThisFrame = true;
 };
-
-/// Techniques that read the min/max pyramid to skip taps outside penumbrae.
-bool readsPyramid(ShadowTechnique t) { return t == ShadowTechnique::Pcf || t == ShadowTechnique::Pcss; }
 
 /// The depth-only program shared by every light type.
 struct DepthProgram {
@@ -131,7 +129,7 @@ void describe(const ShadowLightPlan& plan, LightShadowStats& ls) {
 
 struct ShadowGpu {
     DepthProgram depth;
-    MinMaxBuilder minMax;
+    FilterChainBuilder chains;
     gpu::PassTimer timer;
     std::string passName;  ///< the name of the pass being timed (see `formatPassName`)
     /// Per scene light (index = `ShadowFrame::lights`): its map, or null without one.
@@ -145,8 +143,8 @@ struct ShadowGpu {
     void syncMaps(const ShadowFrame& frame);
     /// Draws layer `k` of `plan`'s map: its casters, depth only.
     void drawLayer(World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k, LightShadowStats& ls);
-    /// Brings the pyramid of every layer of `plan` whose map changed up to date.
-    void updatePyramids(const ShadowLightPlan& plan);
+    /// Brings the filter chain of every layer of `plan` whose map changed up to date.
+    void updateChains(const ShadowLightPlan& plan);
 };
 
 void ShadowGpu::syncMaps(const ShadowFrame& frame) {
@@ -166,31 +164,32 @@ void ShadowGpu::syncMaps(const ShadowFrame& frame) {
         } else {
             map->allocatedThisFrame = false;
         }
-        const int levels = MinMaxPyramid::levelsFor(map->mapSize, plan.settings.maxFilterTexels);
-        if (readsPyramid(plan.technique()) && (!map->pyramid || map->pyramid->levels != levels)) {
-            map->pyramid = MinMaxPyramid::allocate("Shadow/" + plan.name, map->mapSize, map->layers, levels);
-            map->pyramidCurrent.assign(static_cast<std::size_t>(map->layers), false);
-        } else if (!readsPyramid(plan.technique())) {
-            map->pyramid.reset();  // no technique of the light reads it: no memory for it
+        const std::optional<FilterChainKind> kind = filterChainOf(plan.technique());
+        if (!kind) {
+            map->chain.reset();  // no technique of the light reads one: no memory for it
+        } else if (const int levels = FilterChain::levelsFor(*kind, map->mapSize, plan.settings.maxFilterTexels);
+                   !map->chain || map->chain->kind != *kind || map->chain->levels != levels) {
+            map->chain = FilterChain::allocate("Shadow/" + plan.name, *kind, map->mapSize, map->layers, levels);
+            map->chainCurrent.assign(static_cast<std::size_t>(map->layers), false);
         }
         maps[i].second = std::move(map);
     }
     lastMaps.clear();  // the maps of lights gone or without a map this frame
 }
 
-void ShadowGpu::updatePyramids(const ShadowLightPlan& plan) {
+void ShadowGpu::updateChains(const ShadowLightPlan& plan) {
     ShadowMapGpu& map = *maps[static_cast<std::size_t>(plan.sceneIndex)].second;
-    if (!map.pyramid) return;
+    if (!map.chain) return;
     for (std::size_t k = 0; k < plan.layers.size(); ++k) {
-        if (!plan.layers[k].dirty && map.pyramidCurrent[k]) continue;
+        if (!plan.layers[k].dirty && map.chainCurrent[k]) continue;
         if (plan.layers[k].casters.empty()) {
-            map.pyramid->clearLayer(map.mapSize, static_cast<int>(k));
+            map.chain->clearLayer(map.mapSize, static_cast<int>(k));
         } else {
-            formatPassName(passName, plan, "minmax", k);
+            formatPassName(passName, plan, map.chain->kind == FilterChainKind::Moments ? "moments" : "minmax", k);
             const gpu::ScopedPass pass(timer, passName);
-            minMax.build(map.array.get(), *map.pyramid, map.mapSize, static_cast<int>(k));
+            chains.build(map.array.get(), *map.chain, map.mapSize, static_cast<int>(k));
         }
-        map.pyramidCurrent[k] = true;
+        map.chainCurrent[k] = true;
     }
 }
 
@@ -281,6 +280,8 @@ void ShadowSystem::render(World& world, MeshCache& meshes, FrameStats& stats) {
         describe(plan, ls);
         const auto& map = g.maps[static_cast<std::size_t>(plan.sceneIndex)].second;
         ls.mapAllocated = map != nullptr && map->allocatedThisFrame;
+        ls.mapBytes = map != nullptr ? 4LL * map->mapSize * map->mapSize * map->layers : 0;
+        ls.filterChainBytes = map != nullptr && map->chain ? map->chain->bytes(map->mapSize, map->layers) : 0;
         for (std::size_t k = 0; k < plan.layers.size(); ++k) {
             if (!plan.layers[k].dirty) {
                 ++ls.layersReused;
@@ -301,7 +302,7 @@ void ShadowSystem::render(World& world, MeshCache& meshes, FrameStats& stats) {
     }
     endDepthOnly();
     for (const ShadowLightPlan& plan : frame.lights) {
-        if (plan.hasMap()) g.updatePyramids(plan);
+        if (plan.hasMap()) g.updateChains(plan);
     }
     gpu::checkGlError("shadow pass");
     g.timer.collect(stats);
@@ -323,7 +324,7 @@ unsigned ShadowSystem::textureOfLight(Entity light) const {
 
 unsigned ShadowSystem::minMaxOf(std::size_t i) const {
     const auto& maps = gpu_->maps;
-    return i < maps.size() && maps[i].second && maps[i].second->pyramid ? maps[i].second->pyramid->texture.get() : 0u;
+    return i < maps.size() && maps[i].second && maps[i].second->chain ? maps[i].second->chain->texture.get() : 0u;
 }
 
 std::vector<float> ShadowSystem::readLayerDepth(std::size_t i, int layer) const {

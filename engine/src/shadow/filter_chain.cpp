@@ -1,0 +1,112 @@
+#include "shadow/filter_chain.h"
+
+#include <shadow/shared_constants.h>
+
+#include "gl/program.h"
+
+#include <algorithm>
+
+namespace shadow {
+
+std::optional<FilterChainKind> filterChainOf(ShadowTechnique t) {
+    if (t == ShadowTechnique::Pcf || t == ShadowTechnique::Pcss) return FilterChainKind::MinMax;
+    if (t == ShadowTechnique::Vsm) return FilterChainKind::Moments;
+    return std::nullopt;
+}
+
+int FilterChain::baseSize(FilterChainKind kind, int mapSize) {
+    if (kind == FilterChainKind::Moments) return std::max(1, mapSize);
+    // A power of two, so that every level halves exactly: texel j of level k covers map texels
+    // [T j, T (j + 1)) with T = SG_MINMAX_TILE * 2^k (the shader's mapping); texels past the
+    // map's edge repeat the edge.
+    const int tiles = std::max(1, (mapSize + SG_MINMAX_TILE - 1) / SG_MINMAX_TILE);
+    int size = 1;
+    while (size < tiles) size *= 2;
+    return size;
+}
+
+int FilterChain::levelsFor(FilterChainKind kind, int mapSize, float maxFilterTexels) {
+    int all = 0;
+    for (int size = baseSize(kind, mapSize); size > 0; size /= 2) ++all;
+    const double widest = 2.0 * (static_cast<double>(maxFilterTexels) + 1.5);
+    int needed = 1;
+    for (double tile = kind == FilterChainKind::MinMax ? SG_MINMAX_TILE : 1; tile < widest; tile *= 2.0) ++needed;
+    return std::clamp(needed, 1, all);
+}
+
+FilterChain FilterChain::allocate(const std::string& label, FilterChainKind kind, int mapSize, int layers, int levels) {
+    FilterChain c;
+    const int base = baseSize(kind, mapSize);
+    c.kind = kind;
+    c.levels = levels;
+    const bool moments = kind == FilterChainKind::Moments;
+    c.texture = gpu::makeTexture(label + (moments ? "/moments" : "/minmax"), GL_TEXTURE_2D_ARRAY);
+    gl.TextureStorage3D(c.texture.get(), c.levels, GL_RG32F, base, base, layers);
+    // Moments are filtered (trilinear: a region's mean); min/max texels are read one by one.
+    gl.TextureParameteri(c.texture.get(), GL_TEXTURE_MIN_FILTER,
+                         moments ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_NEAREST);
+    gl.TextureParameteri(c.texture.get(), GL_TEXTURE_MAG_FILTER, moments ? GL_LINEAR : GL_NEAREST);
+    gl.TextureParameteri(c.texture.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.TextureParameteri(c.texture.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gpu::checkGlError("allocating " + label + " filter chain");
+    return c;
+}
+
+long long FilterChain::bytes(int mapSize, int layers) const {
+    long long total = 0;
+    int size = baseSize(kind, mapSize);
+    for (int level = 0; level < levels; ++level, size = std::max(1, size / 2)) {
+        total += 8LL * size * size * layers;  // RG32F
+    }
+    return total;
+}
+
+void FilterChain::clearLayer(int mapSize, int layer) const {
+    const float far[2] = {1.0f, 1.0f};
+    int size = baseSize(kind, mapSize);
+    for (int level = 0; level < levels; ++level, size = std::max(1, size / 2)) {
+        gl.ClearTexSubImage(texture.get(), level, 0, 0, layer, size, size, 1, GL_RG, GL_FLOAT, far);
+    }
+}
+
+namespace {
+
+FilterChainBuilder::Pass makePass(const std::string& label, const std::string& file, const std::vector<std::string>& defines) {
+    FilterChainBuilder::Pass p;
+    p.program = gpu::buildComputeProgram(label, file, defines);
+    p.layer = gl.GetUniformLocation(p.program.get(), "uLayer");
+    p.level = gl.GetUniformLocation(p.program.get(), "uLevel");
+    return p;
+}
+
+}  // namespace
+
+void FilterChainBuilder::build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer) {
+    const bool moments = chain.kind == FilterChainKind::Moments;
+    std::optional<Programs>& programs = moments ? moments_ : minMax_;
+    if (!programs) {
+        const std::string file = moments ? "shadow_moments.comp.glsl" : "shadow_minmax.comp.glsl";
+        const std::string label = moments ? "Shadow/Moments/" : "Shadow/MinMax/";
+        programs = Programs{makePass(label + "fromDepth", file, {"SG_CHAIN_FROM_DEPTH"}),
+                            makePass(label + "fromBelow", file, {})};
+    }
+    gl.BindSampler(SG_UNIT_MINMAX_SOURCE, 0);  // the textures' own nearest filtering, no comparison
+    int size = FilterChain::baseSize(chain.kind, mapSize);
+    for (int level = 0; level < chain.levels; ++level, size = std::max(1, size / 2)) {
+        const Pass& pass = level == 0 ? programs->fromDepth : programs->fromBelow;
+        const GLuint program = pass.program.get();
+        gl.UseProgram(program);
+        gl.ProgramUniform1i(program, pass.layer, layer);
+        gl.ProgramUniform1i(program, pass.level, level);
+        // Reads level - 1 of the pyramid (texelFetch, never the level written) or the depth map.
+        gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, level == 0 ? depthArray : chain.texture.get());
+        gl.BindImageTexture(SG_IMAGE_MINMAX, chain.texture.get(), level, GL_FALSE, layer, GL_WRITE_ONLY, GL_RG32F);
+        const auto groups = static_cast<GLuint>((size + 7) / 8);
+        gl.DispatchCompute(groups, groups, 1);
+        // The next level reads this one; the lit pass samples them all.
+        gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    }
+    gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
+}
+
+}  // namespace shadow

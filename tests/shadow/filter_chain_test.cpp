@@ -1,0 +1,196 @@
+// The filter chains (engine/src/shadow/filter_chain.cpp). The min/max depth pyramid: every texel
+// of every level holds exactly the least and greatest stored depth of its tile of the map. The
+// moments (VSM): every texel holds the mean depth and mean squared depth of its tile. A chain
+// exists only for the techniques that read it, and follows the map when the map changes.
+#include <shadow/shared_constants.h>
+
+#include <gtest/gtest.h>
+
+#include "gl/objects.h"
+#include "shadow/filter_chain.h"
+#include "render/render_test_support.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+
+namespace shadow {
+namespace {
+
+/// The box of the last scene made (one per test).
+Entity& boxOf(Scene&) {
+    static Entity box;
+    return box;
+}
+
+/// A spot light over a ground with a box and a sphere, so the map holds several depths.
+Scene tiltedScene(ShadowTechnique technique, int mapSize) {
+    Scene scene;
+    test::addGround(scene, 6.0f);
+    boxOf(scene) = test::addBox(scene, "box", {0.5, 0.6, -0.3}, {0.4, 0.6, 0.5});
+    Shadow shadow = test::hardShadow(mapSize);
+    shadow.technique = technique;
+    addLight(scene, "spot", test::pointSizedLight(LightType::Spot, 0.6f), shadow, {-3.0, 5.0, 2.0},
+             glm::normalize(glm::dvec3(3.0, -5.0, -2.0)));
+    addCamera(scene, "camera", Camera{}, {0.0, 6.0, 8.0}, {0.0, 0.0, 0.0});
+    return scene;
+}
+
+/// Level `level` of layer `layer` of the pyramid `texture` (RG pairs, rows bottom first).
+std::vector<float> readLevel(GLuint texture, int level, int layer, int size) {
+    std::vector<float> data(static_cast<std::size_t>(size) * size * 2);
+    gl.GetTextureSubImage(texture, level, 0, 0, layer, size, size, 1, GL_RG, GL_FLOAT,
+                          static_cast<GLsizei>(data.size() * sizeof(float)), data.data());
+    return data;
+}
+
+void expectPyramidMatchesMap(FrameRunner& runner, int mapSize, const std::string& what) {
+    const ShadowSystem& shadows = runner.shadows();
+    const GLuint pyramid = shadows.minMaxOf(0);
+    ASSERT_NE(pyramid, 0u) << what;
+    const float scale = shadows.frame().lights[0].layers[0].depthScale;
+    std::vector<float> depth = shadows.readLayerDepth(0, 0);  // metres, rows bottom first
+    for (float& d : depth) d /= scale;                        // back to stored units
+    int size = 1;  // level 0: the power of two of at least mapSize / SG_MINMAX_TILE texels
+    while (size * SG_MINMAX_TILE < mapSize) size *= 2;
+    // Levels up to the first whose tiles span the widest region the lookup asks for.
+    const float maxFilterTexels = shadows.frame().lights[0].settings.maxFilterTexels;
+    int levels = 1;
+    for (int tile = SG_MINMAX_TILE; tile < 2.0f * (maxFilterTexels + 1.5f) && (size >> levels) > 0; tile *= 2) ++levels;
+    int checked = 0;
+    for (int level = 0; level < levels; ++level, size = std::max(1, size / 2)) {
+        const std::vector<float> got = readLevel(pyramid, level, 0, size);
+        const int tile = SG_MINMAX_TILE << level;
+        for (int y = 0; y < size; ++y) {
+            for (int x = 0; x < size; ++x) {
+                float lo = 1.0f, hi = 0.0f;
+                for (int ty = y * tile; ty < std::min((y + 1) * tile, mapSize); ++ty) {
+                    for (int tx = x * tile; tx < std::min((x + 1) * tile, mapSize); ++tx) {
+                        const float d = depth[static_cast<std::size_t>(ty) * mapSize + tx];
+                        lo = std::min(lo, d);
+                        hi = std::max(hi, d);
+                    }
+                }
+                if (x * tile >= mapSize || y * tile >= mapSize) continue;  // past the map's edge
+                const std::size_t i = 2 * (static_cast<std::size_t>(y) * size + x);
+                ASSERT_FLOAT_EQ(got[i], lo) << what << ": level " << level << " texel " << x << "," << y;
+                ASSERT_FLOAT_EQ(got[i + 1], hi) << what << ": level " << level << " texel " << x << "," << y;
+                ++checked;
+            }
+        }
+    }
+    EXPECT_GT(checked, 1000) << what;
+}
+
+/// Renders the tilted scene with `technique` at a power-of-two map (256) and at one whose
+/// tiles overhang the map and whose levels round down (200), then runs `expect` on its chain.
+void forBothMapSizes(ShadowTechnique technique, const std::function<void(FrameRunner&, int, const std::string&)>& expect) {
+    test::glContext();
+    for (int mapSize : {256, 200}) {
+        Scene scene = tiltedScene(technique, mapSize);
+        FrameRunner runner;
+        (void)test::renderFrame(runner, scene, 64, 48);
+        expect(runner, mapSize, std::string(techniqueName(technique)) + ", map " + std::to_string(mapSize));
+    }
+}
+
+TEST(MinMaxPyramid, EveryTexelHoldsTheRangeOfItsTile) {
+    forBothMapSizes(ShadowTechnique::Pcss, expectPyramidMatchesMap);
+}
+
+TEST(MinMaxPyramid, OnlyForTechniquesThatReadItAndRebuiltWhenTheMapChanges) {
+    test::glContext();
+    Scene scene = tiltedScene(ShadowTechnique::Hard, 256);
+    FrameRunner runner;
+    (void)test::renderFrame(runner, scene, 64, 48);
+    EXPECT_EQ(runner.shadows().minMaxOf(0), 0u) << "hard shadows read no pyramid";
+
+    scene.world.get<Shadow>(scene.lights[0]).technique = ShadowTechnique::Pcf;
+    (void)test::renderFrame(runner, scene, 64, 48);
+    expectPyramidMatchesMap(runner, 256, "after switching to PCF");
+
+    // Move the box: the layer is redrawn and its pyramid follows.
+    scene.world.get<Transform>(boxOf(scene)).translation.x += 0.7;
+    const test::RenderedFrame moved = test::renderFrame(runner, scene, 64, 48);
+    EXPECT_EQ(moved.stats.shadowLayersDrawn, 1);
+    expectPyramidMatchesMap(runner, 256, "after the box moved");
+}
+
+/// The moments a chain level should hold, from the level below (level 0: from the stored depths)
+/// as the builder makes them: 2x2 means, the last row or column repeated past an odd edge.
+std::vector<double> momentsBelowAveraged(const std::vector<double>& below, int belowSize, int size) {
+    std::vector<double> out(static_cast<std::size_t>(size) * size * 2, 0.0);
+    for (int y = 0; y < size; ++y) {
+        for (int x = 0; x < size; ++x) {
+            for (int k = 0; k < 4; ++k) {
+                const int bx = std::min(2 * x + (k & 1), belowSize - 1);
+                const int by = std::min(2 * y + (k >> 1), belowSize - 1);
+                const std::size_t b = 2 * (static_cast<std::size_t>(by) * belowSize + bx);
+                const std::size_t o = 2 * (static_cast<std::size_t>(y) * size + x);
+                out[o] += 0.25 * below[b];
+                out[o + 1] += 0.25 * below[b + 1];
+            }
+        }
+    }
+    return out;
+}
+
+/// Largest difference allowed between a moment the GPU averaged in float and the same mean in
+/// double: a few float ulps of moments below 1, over up to 8 levels of 2x2 means.
+constexpr double kMomentTolerance = 1e-6;
+
+void expectMomentsMatchMap(FrameRunner& runner, int mapSize, const std::string& what) {
+    const ShadowSystem& shadows = runner.shadows();
+    const GLuint chain = shadows.minMaxOf(0);
+    ASSERT_NE(chain, 0u) << what;
+    const float scale = shadows.frame().lights[0].layers[0].depthScale;
+    std::vector<float> depth = shadows.readLayerDepth(0, 0);  // metres, rows bottom first
+    std::vector<double> expected(depth.size() * 2);
+    for (std::size_t i = 0; i < depth.size(); ++i) {
+        const float z = depth[i] / scale;  // back to stored units
+        expected[2 * i] = z;
+        expected[2 * i + 1] = static_cast<double>(z) * z;
+    }
+    const int levels = FilterChain::levelsFor(FilterChainKind::Moments, mapSize,
+                                              shadows.frame().lights[0].settings.maxFilterTexels);
+    ASSERT_GT(levels, 1) << what;
+    int size = mapSize;
+    double worst = 0.0;
+    for (int level = 0; level < levels; ++level) {
+        if (level > 0) {
+            const int next = std::max(1, size / 2);
+            expected = momentsBelowAveraged(expected, size, next);
+            size = next;
+        }
+        const std::vector<float> got = readLevel(chain, level, 0, size);
+        for (std::size_t i = 0; i < got.size(); ++i) worst = std::max(worst, std::abs(got[i] - expected[i]));
+    }
+    std::printf("[ measured ] %s: %d levels, largest |moment - double mean| %.3g\n", what.c_str(), levels, worst);
+    EXPECT_LT(worst, kMomentTolerance) << what;
+}
+
+TEST(FilterChain, MomentsHoldTheMeanDepthAndSquareOfEachTile) {
+    forBothMapSizes(ShadowTechnique::Vsm, expectMomentsMatchMap);
+}
+
+TEST(FilterChain, TheChainFollowsTheTechnique) {
+    test::glContext();
+    Scene scene = tiltedScene(ShadowTechnique::Vsm, 256);
+    FrameRunner runner;
+    (void)test::renderFrame(runner, scene, 64, 48);
+    expectMomentsMatchMap(runner, 256, "vsm");
+    scene.world.get<Transform>(boxOf(scene)).translation.x += 0.7;  // redrawn: the moments follow
+    (void)test::renderFrame(runner, scene, 64, 48);
+    expectMomentsMatchMap(runner, 256, "vsm after the box moved");
+    scene.world.get<Shadow>(scene.lights[0]).technique = ShadowTechnique::Pcss;
+    (void)test::renderFrame(runner, scene, 64, 48);
+    expectPyramidMatchesMap(runner, 256, "after switching from VSM to PCSS");
+    scene.world.get<Shadow>(scene.lights[0]).technique = ShadowTechnique::Hard;
+    (void)test::renderFrame(runner, scene, 64, 48);
+    EXPECT_EQ(runner.shadows().minMaxOf(0), 0u) << "hard shadows read no chain";
+}
+
+}  // namespace
+}  // namespace shadow
