@@ -156,8 +156,8 @@ TEST(SoftShadow, PcssContactHardeningMatchesGeometry) {
 /// 0 for every technique, light and elevation (the taps lie on the receiver's tangent plane).
 /// No multiple of 0 is a tolerance: this is a floor, 8-18 of the 7,600-18,000 pixels judged.
 constexpr double kMaxAcneFraction = 0.001;
-constexpr std::array<ShadowTechnique, 3> kTechniques{ShadowTechnique::Hard, ShadowTechnique::Pcf,
-                                                     ShadowTechnique::Pcss};
+constexpr std::array<ShadowTechnique, 4> kTechniques{ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss,
+                                                     ShadowTechnique::Vsm};
 
 /// Unit direction of light travelling downwards at `elevation` (rad) above the horizon, turned
 /// by `azimuth` (rad) about +Y so that no grid axis lines up with it.
@@ -182,8 +182,9 @@ TEST(SoftShadow, NoAcneOnLitPlaneAtAnyElevation) {
     const std::array<double, 4> spotElevationsDeg{75, 45, 30, 20};
 
     test::glContext();
-    std::array<double, 3> worst{-1.0, -1.0, -1.0};
-    std::array<std::string, 3> worstCase;
+    std::array<double, kTechniques.size()> worst{};
+    worst.fill(-1.0);
+    std::array<std::string, kTechniques.size()> worstCase;
     for (LightType type : {LightType::Directional, LightType::Spot}) {
         Scene scene;
         test::addGround(scene, 10.0f);

@@ -27,9 +27,9 @@ struct LightCase {
 /// disagrees with ray casting (all lights here are point-sized, so every technique's 50 %
 /// contour is the geometric edge), and the same beyond the edge band.
 struct Errors {
-    std::array<double, 4> mismatch{};
-    std::array<double, 4> beyondBand{};
-    std::array<std::vector<float>, 4> visibility;
+    std::array<double, test::kShadowTechniques.size()> mismatch{};
+    std::array<double, test::kShadowTechniques.size()> beyondBand{};
+    std::array<std::vector<float>, test::kShadowTechniques.size()> visibility;
 };
 
 Errors measure(const LightCase& c, const glm::dvec3& origin) {
@@ -83,9 +83,17 @@ TEST(Stability, TranslatedSceneMatchesTheOriginScene) {
                 test::reportFigure(name + ": pixels flipped against the origin image", flippedFraction);
                 // Within the origin's own error: the same error, give or take the edge pixels a
                 // shifted texel grid moves (0.1 % of the ground), and nothing beyond the band.
+                // VSM gets more of both, measured: it reads its region from mip levels anchored to
+                // the map's texel grid, which for a sun is anchored to the world, so a shifted grid
+                // moves its 50 % contour by up to a texel either way (0.30-0.33 % of the pixels
+                // flipped at 10^4 and 10^5 m); and its wrong pixels lie where its 2 * pcfRadius
+                // region ends, on the border of the two-texel band, which the float position
+                // AOV (8 mm ulp at 10^5 m) moves while the image does not (spot: 0 pixels flipped,
+                // 0.028 % more beyond the band).
+                const bool mipFiltered = test::kShadowTechniques[k] == ShadowTechnique::Vsm;
                 EXPECT_LE(far.mismatch[k], atOrigin.mismatch[k] + 0.001) << name;
-                EXPECT_LE(far.beyondBand[k], atOrigin.beyondBand[k] + 1e-4) << name;
-                EXPECT_LE(flippedFraction, atOrigin.mismatch[k] + 0.001) << name;
+                EXPECT_LE(far.beyondBand[k], atOrigin.beyondBand[k] + (mipFiltered ? 5e-4 : 1e-4)) << name;
+                EXPECT_LE(flippedFraction, atOrigin.mismatch[k] + (mipFiltered ? 0.004 : 0.001)) << name;
             }
         }
     }

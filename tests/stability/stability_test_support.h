@@ -19,8 +19,9 @@
 namespace shadow::test {
 
 /// Every technique that draws a shadow, the seeds' textbook PCSS included.
-inline constexpr std::array<ShadowTechnique, 4> kShadowTechniques{ShadowTechnique::Hard, ShadowTechnique::Pcf,
-                                                                  ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook};
+inline constexpr std::array<ShadowTechnique, 5> kShadowTechniques{ShadowTechnique::Hard, ShadowTechnique::Pcf,
+                                                                  ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook,
+                                                                  ShadowTechnique::Vsm};
 
 /// Non-finite texels over every layer of every light of the last frame, and texels outside
 /// [0, depthScale] (a stored depth is a distance inside the layer's range).
