@@ -36,6 +36,8 @@ image. The penumbra RMSE counts only pixels whose true visibility is strictly be
 Timings on llvmpipe (a CPU rasteriser) are noisy from run to run; compare rows of one run. One
 configuration sets every shadowed light of the scene. `pcss-textbook` is the seeds' PCSS (fixed
 Poisson taps around the receiver's UV), kept so our PCSS is measured against it in the same run.
+`vsm` is the variance shadow map (one trilinear fetch of prefiltered depth moments over the light's
+`pcfRadius`, Chebyshev's bound, `bleed` its lightBleedReduction): a fixed-width filter like PCF.
 Every configuration of a scene draws the same depth layers, so no technique's frame can be shorter
 than the scene's fastest frame of all configurations (a hard shadow from the smallest map): the
 last column, textbook time over that frame, bounds the speed-up any filter could show.
