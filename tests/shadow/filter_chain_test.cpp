@@ -86,7 +86,8 @@ void expectPyramidMatchesMap(FrameRunner& runner, int mapSize, const std::string
 
 /// Renders the tilted scene with `technique` at a power-of-two map (256) and at one whose
 /// tiles overhang the map and whose levels round down (200), then runs `expect` on its chain.
-void forBothMapSizes(ShadowTechnique technique, const std::function<void(FrameRunner&, int, const std::string&)>& expect) {
+void forBothMapSizes(ShadowTechnique technique,
+                     const std::function<void(FrameRunner&, int, const std::string&)>& expect) {
     test::glContext();
     for (int mapSize : {256, 200}) {
         Scene scene = tiltedScene(technique, mapSize);
@@ -153,8 +154,8 @@ void expectMomentsMatchMap(FrameRunner& runner, int mapSize, const std::string& 
         expected[2 * i] = z;
         expected[2 * i + 1] = static_cast<double>(z) * z;
     }
-    const int levels = FilterChain::levelsFor(FilterChainKind::Moments, mapSize,
-                                              shadows.frame().lights[0].settings.maxFilterTexels);
+    const int levels =
+        FilterChain::levelsFor(FilterChainKind::Moments, mapSize, shadows.frame().lights[0].settings.maxFilterTexels);
     ASSERT_GT(levels, 1) << what;
     int size = mapSize;
     double worst = 0.0;

@@ -35,9 +35,9 @@ Scene plateScene(float bleedReduction) {
 /// Ground pixels of a frame of the plate scene, split by where they lie from the shadow's edge
 /// |x| = 1 (away from the edges at |z| = 1).
 struct EdgeProfile {
-    int umbra = 0, umbraDark = 0;        ///< |x| < 1 - reach: visibility < 0.1
-    int open = 0, openLit = 0;           ///< |x| > 1 + reach: visibility 1
-    int band = 0, bandPartial = 0;       ///< |x| within 0.2 r of the edge: visibility in (0.1, 0.9)
+    int umbra = 0, umbraDark = 0;   ///< |x| < 1 - reach: visibility < 0.1
+    int open = 0, openLit = 0;      ///< |x| > 1 + reach: visibility 1
+    int band = 0, bandPartial = 0;  ///< |x| within 0.2 r of the edge: visibility in (0.1, 0.9)
     double umbraMax = 0.0, openMin = 1.0;
     double bandSum = 0.0;  ///< of the edge band's visibility
 };

@@ -71,7 +71,8 @@ void FilterChain::clearLayer(int mapSize, int layer) const {
 
 namespace {
 
-FilterChainBuilder::Pass makePass(const std::string& label, const std::string& file, const std::vector<std::string>& defines) {
+FilterChainBuilder::Pass makePass(const std::string& label, const std::string& file,
+                                  const std::vector<std::string>& defines) {
     FilterChainBuilder::Pass p;
     p.program = gpu::buildComputeProgram(label, file, defines);
     p.layer = gl.GetUniformLocation(p.program.get(), "uLayer");
