@@ -8,14 +8,7 @@
 #define SG_SHADOW_PCSS
 #include "shadow_pcf.glsl"
 #include "shadow_debug.glsl"
-
-// Blocker search region (lateral metres at the receiver): the cone from the receiver to the
-// emitter, widest at the nearest depth a blocker can have.
-float pcssSearchRadius(GpuLight L, Receiver r, float dReceiver, float size) {
-    if (L.type == SG_LIGHT_DIRECTIONAL) return dReceiver * tan(size);
-    float near = max(uLayers[L.firstLayer + r.layer].depthNear, 1e-6);
-    return size * max(dReceiver - near, 0.0) / near;
-}
+#include "shadow_penumbra.glsl"
 
 float pcssVisibility(int slot, GpuLight L, Receiver r) {
     float maxRadius = L.maxFilterTexels * r.texelMetres;
@@ -23,7 +16,7 @@ float pcssVisibility(int slot, GpuLight L, Receiver r) {
     float dReceiver = center.depth;
     float size = max(L.emitterSize, 0.0);
     bool pointEmitter = size <= 0.0 || maxRadius <= 0.0;  // a hard shadow: one tap at the receiver
-    float searchRadius = clamp(pcssSearchRadius(L, r, dReceiver, size), r.texelMetres, maxRadius);
+    float searchRadius = clamp(blockerSearchRadius(L, r, dReceiver, size), r.texelMetres, maxRadius);
     float known = pointEmitter ? -1.0 : regionVisibility(slot, L, r, center, searchRadius);
 
     // The search gathers 2x2 depth texels at blockerSamples / 2 points of the disk (textureGather,
@@ -48,9 +41,7 @@ float pcssVisibility(int slot, GpuLight L, Receiver r) {
     }
     float dBlocker = clamp(blockerSum / max(blockers, 1.0), 0.0, dReceiver);
     // Penumbra half-width at the receiver (m), by similar triangles.
-    float penumbra = L.type == SG_LIGHT_DIRECTIONAL ? (dReceiver - dBlocker) * tan(size)
-                                                    : (dReceiver - dBlocker) * size / max(dBlocker, 1e-6);
-    penumbra = blockers > 0.0 ? min(penumbra, maxRadius) : 0.0;
+    float penumbra = blockers > 0.0 ? min(penumbraRadius(L, dReceiver, dBlocker, size), maxRadius) : 0.0;
     int taps = pointEmitter ? 1 : (blockers > 0.0 ? tapsFor(penumbra / r.texelMetres, L.pcfSamples) : 0);
     float filtered = pcfTaps(slot, L, r, penumbra, taps, false);
     SG_DEBUG_STORE(gDebugBlockerDepth, blockers > 0.0 ? dBlocker : 0.0);

@@ -4,6 +4,7 @@
 #include "shadow_kernels.glsl"
 #include "shadow_receiver.glsl"
 #include "shadow_debug.glsl"
+#include "shadow_penumbra.glsl"
 
 // The seeds' PCSS, kept as the baseline every speed-up is measured against: a fixed-count
 // Poisson blocker search and PCF around the receiver's own shadow-map UV (no receiver-plane
@@ -17,10 +18,7 @@ float pcssTextbookVisibility(int slot, GpuLight L, Receiver r) {
     float dReceiver = center.depth;
     float size = max(L.emitterSize, 0.0);
     float maxRadius = L.maxFilterTexels * r.texelMetres;
-    float searchRadius = L.type == SG_LIGHT_DIRECTIONAL
-                             ? dReceiver * tan(size)
-                             : size * max(dReceiver - S.depthNear, 0.0) / max(S.depthNear, 1e-6);
-    searchRadius = clamp(searchRadius, r.texelMetres, maxRadius);
+    float searchRadius = clamp(blockerSearchRadius(L, r, dReceiver, size), r.texelMetres, maxRadius);
     DiskWalk disk = beginDisk(pixelRotation(), 0);
 
     float blockerSum = 0.0;
@@ -34,9 +32,7 @@ float pcssTextbookVisibility(int slot, GpuLight L, Receiver r) {
         }
     }
     float dBlocker = blockers > 0 ? blockerSum / float(blockers) : dReceiver;
-    float penumbra = L.type == SG_LIGHT_DIRECTIONAL ? (dReceiver - dBlocker) * tan(size)
-                                                    : (dReceiver - dBlocker) * size / max(dBlocker, 1e-6);
-    penumbra = clamp(penumbra, 0.0, maxRadius);
+    float penumbra = clamp(penumbraRadius(L, dReceiver, dBlocker, size), 0.0, maxRadius);
     SG_DEBUG_STORE(gDebugBlockerDepth, dBlocker);
     SG_DEBUG_STORE(gDebugPenumbra, penumbra);
     float reference = min((dReceiver - r.depthBias) / S.depthScale, 1.0);
