@@ -1,7 +1,7 @@
 // Shadow visibility of one light at one receiver point: the technique of the light, and the
 // blend between cascades. Each technique's code is compiled only when its define is set
 // (SG_TECH_HARD_ENABLED, SG_TECH_PCF_ENABLED, SG_TECH_PCSS_ENABLED,
-// SG_TECH_PCSS_TEXTBOOK_ENABLED, SG_TECH_VSM_ENABLED); the renderer sets exactly the ones its
+// SG_TECH_PCSS_TEXTBOOK_ENABLED, SG_TECH_VSM_ENABLED, SG_TECH_VSSM_ENABLED); the renderer sets exactly the ones its
 // lights use.
 #ifndef SG_SHADOW_VISIBILITY
 #define SG_SHADOW_VISIBILITY
@@ -22,6 +22,9 @@
 #if defined(SG_TECH_VSM_ENABLED)
 #include "shadow_vsm.glsl"
 #endif
+#if defined(SG_TECH_VSSM_ENABLED)
+#include "shadow_vssm.glsl"
+#endif
 
 float techniqueVisibility(int slot, GpuLight L, Receiver r) {
     float v = 1.0;
@@ -39,6 +42,9 @@ float techniqueVisibility(int slot, GpuLight L, Receiver r) {
 #endif
 #ifdef SG_TECH_VSM_ENABLED
     if (L.technique == SG_TECH_VSM) v = vsmVisibility(slot, L, r);
+#endif
+#ifdef SG_TECH_VSSM_ENABLED
+    if (L.technique == SG_TECH_VSSM) v = vssmVisibility(slot, L, r);
 #endif
     return v;
 }

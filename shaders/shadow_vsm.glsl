@@ -24,21 +24,54 @@ float chebyshevUpperBound(vec2 m, float reference, float minVariance) {
     return d <= 0.0 ? 1.0 : variance / (variance + d * d);
 }
 
-float vsmVisibility(int slot, GpuLight L, Receiver r) {
-    Tap center = lateralTap(L, r, vec2(0.0));
-    // A square about 2 * pcfRadius wide at the receiver, as PCF's disk, in this layer's texels:
-    // mip level log2(width) averages tiles of that width (trilinear between two levels).
-    float radiusTexels = min(L.pcfRadius / max(r.texelMetres, 1e-30), L.maxFilterTexels);
-    float level = log2(max(2.0 * radiusTexels, 1.0));
-    vec2 m = textureLod(uShadowMinMax[slot], vec3(center.uv, float(center.layer)), level).rg;
-    float reference = (center.depth - r.depthBias) / r.depthScale;
-    // The least variance is the spread of depths within one texel of the receiver's own plane
-    // (a plane's texels are not one depth), and never below the moments' float resolution.
+// The mean and mean square of the stored depths over a region of radius `radius` metres around
+// `center`, one fetch whatever the radius: the trilinear fetch at mip level L = log2(radius in
+// texels) filters with a box of 2^L texels convolved with a tent of half-width 2^L, whose
+// variance along each axis, 4^L / 4, is that of a disk of the same radius, r^2 / 4 (PCF's).
+// Measured on builtin:plates, 320x240, against the ray-traced truth: VSSM penumbra RMSE 0.055
+// at this level, 0.11 one level up (a box as wide as the disk: tails twice as long); VSM against
+// PCF of the same radius 0.018 RMSE here, 0.023 one level up.
+vec2 regionMoments(int slot, Receiver r, Tap center, float radius) {
+    float level = log2(max(radius / max(r.texelMetres, 1e-30), 1.0));
+    return textureLod(uShadowMinMax[slot], vec3(center.uv, float(center.layer)), level).rg;
+}
+
+// The least variance a region's moments are given: the spread of depths within one texel of the
+// receiver's own plane (a plane's texels are not one depth), and never below the moments' float
+// resolution.
+float varianceFloor(Receiver r, vec2 m) {
     float texelSpread = r.depthSlope * r.texelMetres / r.depthScale;
-    float minVariance = max(texelSpread * texelSpread / 12.0, kVsmMomentUlps * m.y);
-    float p = chebyshevUpperBound(m, reference, minVariance);
+    return max(texelSpread * texelSpread / 12.0, kVsmMomentUlps * m.y);
+}
+
+// The receiver's depth in stored units, the bias taken off. Clamped to the far plane as the
+// comparing taps clamp theirs (compareQuad): a receiver beyond it, where only cleared texels (1)
+// lie, is lit.
+float momentsReference(Receiver r, Tap center) {
+    return min((center.depth - r.depthBias) / r.depthScale, 1.0);
+}
+
+// Visibility of the receiver at `reference` (stored units) behind a region of moments `m`:
+// Chebyshev's bound with the variance floor, then the light-bleeding reduction.
+float momentsVisibility(GpuLight L, Receiver r, vec2 m, float reference) {
+    float p = chebyshevUpperBound(m, reference, varianceFloor(r, m));
     float cut = clamp(L.lightBleedReduction, 0.0, 0.95);
     return clamp((p - cut) / (1.0 - cut), 0.0, 1.0);
+}
+
+// Whether a receiver lies outside its layer's map: lit, as the comparing taps read outside
+// texels (their sampler's border is the far plane). The chain itself clamps to its edge, so that
+// a region reaching past a cube face's edge reads the texels along it rather than a far plane.
+bool outsideMap(Tap center) {
+    return any(lessThan(center.uv, vec2(0.0))) || any(greaterThan(center.uv, vec2(1.0)));
+}
+
+float vsmVisibility(int slot, GpuLight L, Receiver r) {
+    Tap center = lateralTap(L, r, vec2(0.0));
+    if (outsideMap(center)) return 1.0;
+    // PCF's disk of pcfRadius at the receiver, at most maxFilterTexels.
+    vec2 m = regionMoments(slot, r, center, min(L.pcfRadius, L.maxFilterTexels * r.texelMetres));
+    return momentsVisibility(L, r, m, momentsReference(r, center));
 }
 
 #endif

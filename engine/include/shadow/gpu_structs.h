@@ -27,7 +27,7 @@ SG_FLOAT mapSize;              // texels per layer edge
 SG_INT firstLayer;             // index of layer 0 in the layer buffer
 SG_FLOAT cascadeBlend;         // directional: fraction of a cascade's range blended into the next
 SG_INT kernel;                 // SG_KERNEL_*
-SG_FLOAT lightBleedReduction;  // VSM: Chebyshev bounds below it read as shadow
+SG_FLOAT lightBleedReduction;  // VSM, VSSM: Chebyshev bounds below it read as shadow
 SG_END_STRUCT
 
 // One layer (cascade, spot map or cube face) of a light's shadow-map array.

@@ -15,6 +15,7 @@
 #define SG_TECH_PCSS 3
 #define SG_TECH_PCSS_TEXTBOOK 4
 #define SG_TECH_VSM 5
+#define SG_TECH_VSSM 6
 
 // Filter kernels (FilterKernel in components.h, in the same order).
 #define SG_KERNEL_VOGEL 0

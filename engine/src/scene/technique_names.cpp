@@ -22,6 +22,7 @@ const char* techniqueName(ShadowTechnique t) {
         case ShadowTechnique::Pcss: return "pcss";
         case ShadowTechnique::PcssTextbook: return "pcss-textbook";
         case ShadowTechnique::Vsm: return "vsm";
+        case ShadowTechnique::Vssm: return "vssm";
     }
     return "none";
 }
@@ -29,7 +30,8 @@ const char* techniqueName(ShadowTechnique t) {
 namespace {
 
 constexpr std::array kTechniques{ShadowTechnique::None, ShadowTechnique::Hard,         ShadowTechnique::Pcf,
-                                 ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook, ShadowTechnique::Vsm};
+                                 ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook, ShadowTechnique::Vsm,
+                                 ShadowTechnique::Vssm};
 
 }  // namespace
 

@@ -10,7 +10,7 @@ namespace shadow {
 
 std::optional<FilterChainKind> filterChainOf(ShadowTechnique t) {
     if (t == ShadowTechnique::Pcf || t == ShadowTechnique::Pcss) return FilterChainKind::MinMax;
-    if (t == ShadowTechnique::Vsm) return FilterChainKind::Moments;
+    if (t == ShadowTechnique::Vsm || t == ShadowTechnique::Vssm) return FilterChainKind::Moments;
     return std::nullopt;
 }
 
