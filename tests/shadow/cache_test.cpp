@@ -107,13 +107,17 @@ TEST(Cache, CachedFramesAreBitIdenticalToUncached) {
     // there; this scene reuses most of its layers, so the comparison is not vacuous.
     const int reused = expectCachedEqualsUncached("three areas", [] { return makeThreeAreas().scene; });
     EXPECT_GT(reused, 0) << "the cached run never reused a layer";
-    // The same with every light on VSM: its moments are rebuilt with the layers they come from.
-    const int reusedVsm = expectCachedEqualsUncached("three areas, vsm", [] {
-        Scene scene = makeThreeAreas().scene;
-        for (Entity light : scene.lights) scene.world.get<Shadow>(light).technique = ShadowTechnique::Vsm;
-        return scene;
-    });
-    EXPECT_GT(reusedVsm, 0) << "the cached VSM run never reused a layer";
+    // The same with every light on VSM, then VSSM: their moments are rebuilt with the layers
+    // they come from.
+    for (ShadowTechnique t : {ShadowTechnique::Vsm, ShadowTechnique::Vssm}) {
+        const std::string name = std::string("three areas, ") + techniqueName(t);
+        const int reusedMoments = expectCachedEqualsUncached(name.c_str(), [t] {
+            Scene scene = makeThreeAreas().scene;
+            for (Entity light : scene.lights) scene.world.get<Shadow>(light).technique = t;
+            return scene;
+        });
+        EXPECT_GT(reusedMoments, 0) << name << ": the cached run never reused a layer";
+    }
 }
 
 TEST(Cache, OnlyTheLightSeeingTheMovingCasterRedraws) {

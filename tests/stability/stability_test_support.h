@@ -19,9 +19,15 @@
 namespace shadow::test {
 
 /// Every technique that draws a shadow, the seeds' textbook PCSS included.
-inline constexpr std::array<ShadowTechnique, 5> kShadowTechniques{ShadowTechnique::Hard, ShadowTechnique::Pcf,
+inline constexpr std::array<ShadowTechnique, 6> kShadowTechniques{ShadowTechnique::Hard, ShadowTechnique::Pcf,
                                                                   ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook,
-                                                                  ShadowTechnique::Vsm};
+                                                                  ShadowTechnique::Vsm,  ShadowTechnique::Vssm};
+
+/// Whether `t` reads the depth moments chain (VSM, VSSM): Chebyshev's bound over a filter
+/// region, which some extreme cases hold to their own measured bounds.
+inline constexpr bool readsMoments(ShadowTechnique t) {
+    return t == ShadowTechnique::Vsm || t == ShadowTechnique::Vssm;
+}
 
 /// Non-finite texels over every layer of every light of the last frame, and texels outside
 /// [0, depthScale] (a stored depth is a distance inside the layer's range).
