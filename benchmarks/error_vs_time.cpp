@@ -39,7 +39,7 @@ struct Config {
     int pcfSamples = 16;
     int blockerSamples = 16;
     FilterKernel kernel = FilterKernel::Vogel;
-    float lightBleedReduction = 0.2f;
+    float lightBleedReduction = 0.0f;
 
     [[nodiscard]] std::string label() const {
         std::ostringstream s;
@@ -48,7 +48,7 @@ struct Config {
         if (technique == ShadowTechnique::Pcss || technique == ShadowTechnique::PcssTextbook) {
             s << " taps" << blockerSamples << "+" << pcfSamples;
         }
-        if (technique == ShadowTechnique::Vsm) {
+        if (technique == ShadowTechnique::Vsm || technique == ShadowTechnique::Vssm) {
             s << " bleed" << lightBleedReduction;
         } else if (technique != ShadowTechnique::Hard) {
             s << " " << filterKernelName(kernel);
@@ -69,8 +69,10 @@ std::vector<Config> sweep() {
     out.push_back({ShadowTechnique::Pcss, 2048, 32, 32, FilterKernel::Vogel});
     for (int taps : {4, 8, 16, 32})
         out.push_back({ShadowTechnique::PcssTextbook, 1024, taps, taps, FilterKernel::Poisson});
-    for (int size : {512, 1024, 2048}) out.push_back({ShadowTechnique::Vsm, size, 1, 1, FilterKernel::Vogel, 0.2f});
-    for (float bleed : {0.0f, 0.4f}) out.push_back({ShadowTechnique::Vsm, 1024, 1, 1, FilterKernel::Vogel, bleed});
+    for (ShadowTechnique t : {ShadowTechnique::Vsm, ShadowTechnique::Vssm}) {
+        for (int size : {512, 1024, 2048}) out.push_back({t, size, 1, 1, FilterKernel::Vogel, 0.0f});
+        for (float bleed : {0.2f, 0.4f}) out.push_back({t, 1024, 1, 1, FilterKernel::Vogel, bleed});
+    }
     return out;
 }
 
@@ -312,8 +314,9 @@ void writePlot(const std::string& out, const std::vector<Row>& rows) {
     for (const Row& r : rows) {
         if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
     }
-    const std::vector<ShadowTechnique> techniques = {ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss,
-                                                     ShadowTechnique::PcssTextbook, ShadowTechnique::Vsm};
+    const std::vector<ShadowTechnique> techniques = {ShadowTechnique::Hard, ShadowTechnique::Pcf,
+                                                     ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook,
+                                                     ShadowTechnique::Vsm,  ShadowTechnique::Vssm};
     for (const std::string& s : scenes) {
         for (ShadowTechnique t : techniques) {
             std::vector<const Row*> sel;
