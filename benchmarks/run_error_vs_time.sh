@@ -38,6 +38,9 @@ configuration sets every shadowed light of the scene. `pcss-textbook` is the see
 Poisson taps around the receiver's UV), kept so our PCSS is measured against it in the same run.
 `vsm` is the variance shadow map (one trilinear fetch of prefiltered depth moments over the light's
 `pcfRadius`, Chebyshev's bound, `bleed` its lightBleedReduction): a fixed-width filter like PCF.
+`vssm` reads the same moments twice, for the blocker search cone (average blocker depth from the
+region's mean and Chebyshev's lit fraction) and for the penumbra by similar triangles: PCSS's
+contact hardening for two fetches whatever the width.
 Every configuration of a scene draws the same depth layers, so no technique's frame can be shorter
 than the scene's fastest frame of all configurations (a hard shadow from the smallest map): the
 last column, textbook time over that frame, bounds the speed-up any filter could show.
