@@ -5,8 +5,8 @@
 // SG_BINDING_LAYERS, SG_BINDING_KERNELS, SG_UNIT_SHADOW_COMPARE, SG_UNIT_SHADOW_DEPTH,
 // SG_UNIT_SHADOW_MINMAX; defaults in shared_constants.h) and must define the techniques it wants
 // compiled (SG_TECH_HARD_ENABLED, SG_TECH_PCF_ENABLED, SG_TECH_PCSS_ENABLED,
-// SG_TECH_PCSS_TEXTBOOK_ENABLED, SG_TECH_VSM_ENABLED, SG_TECH_VSSM_ENABLED); a light whose
-// technique is not compiled reads as lit.
+// SG_TECH_PCSS_TEXTBOOK_ENABLED, SG_TECH_VSM_ENABLED, SG_TECH_VSSM_ENABLED, SG_TECH_MSM_ENABLED,
+// SG_TECH_MSM_SOFT_ENABLED); a light whose technique is not compiled reads as lit.
 // shadowShaderSource() writes those defines and expands the includes.
 #ifndef SG_SHADOW_PUBLIC
 #define SG_SHADOW_PUBLIC

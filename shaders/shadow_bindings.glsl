@@ -18,8 +18,8 @@ layout(std140, binding = SG_BINDING_LAYERS) uniform LayerBlock {
 layout(binding = SG_UNIT_SHADOW_COMPARE) uniform sampler2DArrayShadow uShadowCompare[SG_MAX_LIGHTS_PER_PASS];
 layout(binding = SG_UNIT_SHADOW_DEPTH) uniform sampler2DArray uShadowDepth[SG_MAX_LIGHTS_PER_PASS];
 #if defined(SG_TECH_PCF_ENABLED) || defined(SG_TECH_PCSS_ENABLED) || defined(SG_TECH_VSM_ENABLED) || \
-    defined(SG_TECH_VSSM_ENABLED)
-// Each slot's filter chain: the min/max depth pyramid (PCF, PCSS) or the depth moments (VSM, VSSM).
+    defined(SG_TECH_VSSM_ENABLED) || defined(SG_TECH_MSM_ENABLED) || defined(SG_TECH_MSM_SOFT_ENABLED)
+// Each slot's filter chain: the min/max depth pyramid (PCF, PCSS) or the depth moments (VSM, VSSM: two; MSM, MSM-soft: four).
 layout(binding = SG_UNIT_SHADOW_MINMAX) uniform sampler2DArray uShadowMinMax[SG_MAX_LIGHTS_PER_PASS];
 #endif
 

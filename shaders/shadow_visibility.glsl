@@ -1,7 +1,8 @@
 // Shadow visibility of one light at one receiver point: the technique of the light, and the
 // blend between cascades. Each technique's code is compiled only when its define is set
 // (SG_TECH_HARD_ENABLED, SG_TECH_PCF_ENABLED, SG_TECH_PCSS_ENABLED,
-// SG_TECH_PCSS_TEXTBOOK_ENABLED, SG_TECH_VSM_ENABLED, SG_TECH_VSSM_ENABLED); the renderer sets exactly the ones its
+// SG_TECH_PCSS_TEXTBOOK_ENABLED, SG_TECH_VSM_ENABLED, SG_TECH_VSSM_ENABLED, SG_TECH_MSM_ENABLED,
+// SG_TECH_MSM_SOFT_ENABLED); the renderer sets exactly the ones its
 // lights use.
 #ifndef SG_SHADOW_VISIBILITY
 #define SG_SHADOW_VISIBILITY
@@ -22,7 +23,10 @@
 #if defined(SG_TECH_VSM_ENABLED)
 #include "shadow_vsm.glsl"
 #endif
-#if defined(SG_TECH_VSSM_ENABLED)
+#if defined(SG_TECH_MSM_ENABLED)
+#include "shadow_msm.glsl"
+#endif
+#if defined(SG_TECH_VSSM_ENABLED) || defined(SG_TECH_MSM_SOFT_ENABLED)
 #include "shadow_vssm.glsl"
 #endif
 
@@ -45,6 +49,12 @@ float techniqueVisibility(int slot, GpuLight L, Receiver r) {
 #endif
 #ifdef SG_TECH_VSSM_ENABLED
     if (L.technique == SG_TECH_VSSM) v = vssmVisibility(slot, L, r);
+#endif
+#ifdef SG_TECH_MSM_ENABLED
+    if (L.technique == SG_TECH_MSM) v = msmVisibility(slot, L, r);
+#endif
+#ifdef SG_TECH_MSM_SOFT_ENABLED
+    if (L.technique == SG_TECH_MSM_SOFT) v = msmSoftVisibility(slot, L, r);
 #endif
     return v;
 }

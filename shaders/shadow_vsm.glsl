@@ -24,16 +24,16 @@ float chebyshevUpperBound(vec2 m, float reference, float minVariance) {
     return d <= 0.0 ? 1.0 : variance / (variance + d * d);
 }
 
-// The mean and mean square of the stored depths over a region of radius `radius` metres around
+// The moments of the stored depths (VSM: mean and mean square; MSM: the first four) over a region of radius `radius` metres around
 // `center`, one fetch whatever the radius: the trilinear fetch at mip level L = log2(radius in
 // texels) filters with a box of 2^L texels convolved with a tent of half-width 2^L, whose
 // variance along each axis, 4^L / 4, is that of a disk of the same radius, r^2 / 4 (PCF's).
 // Measured on builtin:plates, 320x240, against the ray-traced truth: VSSM penumbra RMSE 0.055
 // at this level, 0.11 one level up (a box as wide as the disk: tails twice as long); VSM against
 // PCF of the same radius 0.018 RMSE here, 0.023 one level up.
-vec2 regionMoments(int slot, Receiver r, Tap center, float radius) {
+vec4 regionMoments(int slot, Receiver r, Tap center, float radius) {
     float level = log2(max(radius / max(r.texelMetres, 1e-30), 1.0));
-    return textureLod(uShadowMinMax[slot], vec3(center.uv, float(center.layer)), level).rg;
+    return textureLod(uShadowMinMax[slot], vec3(center.uv, float(center.layer)), level);
 }
 
 // The least variance a region's moments are given: the spread of depths within one texel of the
@@ -70,7 +70,7 @@ float vsmVisibility(int slot, GpuLight L, Receiver r) {
     Tap center = lateralTap(L, r, vec2(0.0));
     if (outsideMap(center)) return 1.0;
     // PCF's disk of pcfRadius at the receiver, at most maxFilterTexels.
-    vec2 m = regionMoments(slot, r, center, min(L.pcfRadius, L.maxFilterTexels * r.texelMetres));
+    vec2 m = regionMoments(slot, r, center, min(L.pcfRadius, L.maxFilterTexels * r.texelMetres)).xy;
     return momentsVisibility(L, r, m, momentsReference(r, center));
 }
 

@@ -1,21 +1,27 @@
-// Variance soft shadow mapping, as the seeds' notes describe it: the blocker search and the
-// filter both read region moments from the VSM moments chain (shadow_moments.comp.glsl), so
-// each costs one trilinear fetch whatever the penumbra's width.
-//   1. Moments (mean, mean square) of the blocker search region, the same cone as PCSS's.
-//   2. Chebyshev's bound gives the fraction p of the region at least as far as the receiver;
-//      taking those texels to lie on the receiver (the planar-receiver assumption,
-//      z_unoccluded = t), the mean splits as mean = p t + (1 - p) z_blocker, which gives the
-//      average blocker depth without a search loop.
-//   3. Penumbra width by similar triangles in the emitter's physical size (as PCSS), and VSM's
-//      Chebyshev over a region of that width.
-// Where the bound is loose (casters overlapping at different depths) both steps leak light; the
-// light-bleeding reduction applies to step 3 as for VSM.
+// Soft shadows from moments, with contact hardening: variance soft shadow mapping as the seeds'
+// notes describe it (`vssm`, two moments, Chebyshev's bound) and the same design on four moments
+// (`msm-soft`, Hamburger 4MSM). The blocker search and the filter both read region moments from
+// the light's moments chain (shadow_moments.comp.glsl), so each costs one trilinear fetch
+// whatever the penumbra's width.
+//   1. Moments of the blocker search region, the same cone as PCSS's.
+//   2. Chebyshev's bound gives the fraction p of the region at least as far as the receiver
+//      (for both: the 4MSM bound would need the receiver plane's spread over the whole search
+//      region as bias, which detached a thin wall's shadow by 3-13 cm); taking
+//      those texels to lie on the receiver (the planar-receiver assumption, z_unoccluded = t),
+//      the mean splits as mean = p t + (1 - p) z_blocker, which gives the average blocker depth
+//      without a search loop.
+//   3. Penumbra width by similar triangles in the emitter's physical size (as PCSS), and the
+//      bound (Chebyshev's, or 4MSM's) over a region of that width.
+// Where the bound is loose (casters overlapping at different depths) both steps leak light; step
+// 3 much less with four moments. The light-bleeding reduction applies to VSSM's step 3 as for VSM.
 //
 // References: Z. Dong, B. Yang, "Variance Soft Shadow Mapping", Pacific Graphics 2010; the
-// seeds' notes on real-time shadows (VSSM).
+// seeds' notes on real-time shadows (VSSM); C. Peters, R. Klein, "Moment Shadow Mapping", I3D
+// 2015. (C. Peters et al., "Moment Soft Shadow Mapping", 2016, estimates the blocker depth from
+// partial moments instead; this is the simpler estimate of step 2 on the four-moment bound.)
 #ifndef SG_SHADOW_VSSM
 #define SG_SHADOW_VSSM
-#include "shadow_vsm.glsl"
+#include "shadow_msm.glsl"
 #include "shadow_penumbra.glsl"
 #include "shadow_debug.glsl"
 
@@ -23,7 +29,7 @@
 // blocker depth (mean - p t) / (1 - p) is 0/0 there.
 const float kVssmLeastBlockers = 1e-3;
 
-float vssmVisibility(int slot, GpuLight L, Receiver r) {
+float softMomentsVisibility(int slot, GpuLight L, Receiver r, const bool fourMoments) {
     Tap center = lateralTap(L, r, vec2(0.0));
     if (outsideMap(center)) return 1.0;
     float maxRadius = L.maxFilterTexels * r.texelMetres;
@@ -33,16 +39,21 @@ float vssmVisibility(int slot, GpuLight L, Receiver r) {
     float penumbra = 0.0;
     if (size > 0.0) {
         float searchRadius = clamp(blockerSearchRadius(L, r, dReceiver, size), r.texelMetres, maxRadius);
-        vec2 m = regionMoments(slot, r, center, searchRadius);
-        float lit = chebyshevUpperBound(m, reference, varianceFloor(r, m));
+        vec4 b = regionMoments(slot, r, center, searchRadius);
+        float lit = chebyshevUpperBound(b.xy, reference, varianceFloor(r, b.xy));
         if (1.0 - lit < kVssmLeastBlockers) return 1.0;
-        float zBlocker = (m.x - lit * reference) / (1.0 - lit);
+        float zBlocker = (b.x - lit * reference) / (1.0 - lit);
         float dBlocker = clamp(zBlocker * r.depthScale, 0.0, dReceiver);
         penumbra = min(penumbraRadius(L, dReceiver, dBlocker, size), maxRadius);
         SG_DEBUG_STORE(gDebugBlockerDepth, dBlocker);
     }
     SG_DEBUG_STORE(gDebugPenumbra, penumbra);
-    return momentsVisibility(L, r, regionMoments(slot, r, center, penumbra), reference);
+    vec4 b = regionMoments(slot, r, center, penumbra);
+    return fourMoments ? 1.0 - msmShadowFraction(b, msmReference(r, center, penumbra))
+                       : momentsVisibility(L, r, b.xy, reference);
 }
+
+float vssmVisibility(int slot, GpuLight L, Receiver r) { return softMomentsVisibility(slot, L, r, false); }
+float msmSoftVisibility(int slot, GpuLight L, Receiver r) { return softMomentsVisibility(slot, L, r, true); }
 
 #endif

@@ -129,10 +129,18 @@ enum class ShadowTechnique : std::uint8_t {
     /// bound, assuming a planar receiver) and for the penumbra by similar triangles, in the same
     /// physical units as Pcss. Two fetches whatever the penumbra's width.
     Vssm,
+    /// Moment shadow map, hard-edged: z, z^2, z^3, z^4 per texel in a mip chain like VSM's; the
+    /// Hamburger 4MSM bound on the occluded fraction of a one-texel region, tighter than
+    /// Chebyshev's (less light leaks where casters overlap): hard shadows whose edges the
+    /// moments antialias.
+    Msm,
+    /// Moment soft shadows: Vssm's blocker search and penumbra on the same chain, and the 4MSM
+    /// bound over the penumbra.
+    MsmSoft,
 };
 
 /// A technique's name as glTF `extras.shadow.technique` and the CLI spell it ("none", "hard",
-/// "pcf", "pcss", "pcss-textbook", "vsm", "vssm").
+/// "pcf", "pcss", "pcss-textbook", "vsm", "vssm", "msm", "msm-soft").
 [[nodiscard]] const char* techniqueName(ShadowTechnique t);
 /// The technique named `name`, or nullopt for an unknown name.
 [[nodiscard]] std::optional<ShadowTechnique> techniqueFromName(std::string_view name);

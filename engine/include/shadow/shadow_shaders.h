@@ -41,16 +41,16 @@ struct ShadowBindingPoints {
     int kernelBlock = SG_BINDING_KERNELS;      ///< the filters' Poisson disk
     int compareUnit = SG_UNIT_SHADOW_COMPARE;  ///< depth arrays with the comparison sampler
     int depthUnit = SG_UNIT_SHADOW_DEPTH;      ///< the same arrays with the raw-depth sampler
-    int minMaxUnit = SG_UNIT_SHADOW_MINMAX;    ///< filter chains: min/max pyramids (PCF, PCSS), moments (VSM, VSSM)
+    int minMaxUnit = SG_UNIT_SHADOW_MINMAX;  ///< filter chains: min/max pyramids (PCF, PCSS), moments (VSM, VSSM, MSM)
 };
 
 /// Bit `1 << t` for technique t (`ShadowTechnique`).
 constexpr unsigned techniqueBit(ShadowTechnique t) { return 1u << static_cast<unsigned>(t); }
 /// Every technique with a shadow map.
-constexpr unsigned kAllShadowTechniques = techniqueBit(ShadowTechnique::Hard) | techniqueBit(ShadowTechnique::Pcf) |
-                                          techniqueBit(ShadowTechnique::Pcss) |
-                                          techniqueBit(ShadowTechnique::PcssTextbook) |
-                                          techniqueBit(ShadowTechnique::Vsm) | techniqueBit(ShadowTechnique::Vssm);
+constexpr unsigned kAllShadowTechniques =
+    techniqueBit(ShadowTechnique::Hard) | techniqueBit(ShadowTechnique::Pcf) | techniqueBit(ShadowTechnique::Pcss) |
+    techniqueBit(ShadowTechnique::PcssTextbook) | techniqueBit(ShadowTechnique::Vsm) |
+    techniqueBit(ShadowTechnique::Vssm) | techniqueBit(ShadowTechnique::Msm) | techniqueBit(ShadowTechnique::MsmSoft);
 
 /// The public shadow GLSL as one text for a game's fragment shader, to stand after its
 /// `#version 450 core` line: the `#define`s of `points` and of the techniques whose bits are set

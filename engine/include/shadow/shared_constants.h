@@ -16,6 +16,8 @@
 #define SG_TECH_PCSS_TEXTBOOK 4
 #define SG_TECH_VSM 5
 #define SG_TECH_VSSM 6
+#define SG_TECH_MSM 7
+#define SG_TECH_MSM_SOFT 8
 
 // Filter kernels (FilterKernel in components.h, in the same order).
 #define SG_KERNEL_VOGEL 0

@@ -2,7 +2,7 @@
 // importer so a fuzzer can feed arbitrary JSON values to them directly.
 //
 // Light extras (`KHR_lights_punctual.lights[i].extras.shadow`):
-//   technique        "none" | "hard" | "pcf" | "pcss" | "pcss-textbook" | "vsm" | "vssm"  (default "hard")
+//   technique        "none" | "hard" | "pcf" | "pcss" | "pcss-textbook" | "vsm" | "vssm" | "msm" | "msm-soft"  (default "hard")
 //   mapSize, pcfSamples, blockerSamples, cascades             positive integers
 //   radius, angularRadius, constantBias, slopeBias, normalOffset, pcfRadius, lightBleedReduction,
 //   maxFilterTexels, cascadeSplitLambda, shadowDistance, nearPlane

@@ -23,6 +23,8 @@ const char* techniqueName(ShadowTechnique t) {
         case ShadowTechnique::PcssTextbook: return "pcss-textbook";
         case ShadowTechnique::Vsm: return "vsm";
         case ShadowTechnique::Vssm: return "vssm";
+        case ShadowTechnique::Msm: return "msm";
+        case ShadowTechnique::MsmSoft: return "msm-soft";
     }
     return "none";
 }
@@ -31,7 +33,7 @@ namespace {
 
 constexpr std::array kTechniques{ShadowTechnique::None, ShadowTechnique::Hard,         ShadowTechnique::Pcf,
                                  ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook, ShadowTechnique::Vsm,
-                                 ShadowTechnique::Vssm};
+                                 ShadowTechnique::Vssm, ShadowTechnique::Msm,          ShadowTechnique::MsmSoft};
 
 }  // namespace
 

@@ -5,17 +5,27 @@
 #include "gl/program.h"
 
 #include <algorithm>
+#include <array>
 
 namespace shadow {
+
+namespace {
+
+/// The chain's texel format and its size in bytes.
+GLenum formatOf(FilterChainKind kind) { return kind == FilterChainKind::FourMoments ? GL_RGBA32F : GL_RG32F; }
+int texelBytes(FilterChainKind kind) { return kind == FilterChainKind::FourMoments ? 16 : 8; }
+
+}  // namespace
 
 std::optional<FilterChainKind> filterChainOf(ShadowTechnique t) {
     if (t == ShadowTechnique::Pcf || t == ShadowTechnique::Pcss) return FilterChainKind::MinMax;
     if (t == ShadowTechnique::Vsm || t == ShadowTechnique::Vssm) return FilterChainKind::Moments;
+    if (t == ShadowTechnique::Msm || t == ShadowTechnique::MsmSoft) return FilterChainKind::FourMoments;
     return std::nullopt;
 }
 
 int FilterChain::baseSize(FilterChainKind kind, int mapSize) {
-    if (kind == FilterChainKind::Moments) return std::max(1, mapSize);
+    if (kind != FilterChainKind::MinMax) return std::max(1, mapSize);
     // A power of two, so that every level halves exactly: texel j of level k covers map texels
     // [T j, T (j + 1)) with T = SG_MINMAX_TILE * 2^k (the shader's mapping); texels past the
     // map's edge repeat the edge.
@@ -39,9 +49,9 @@ FilterChain FilterChain::allocate(const std::string& label, FilterChainKind kind
     const int base = baseSize(kind, mapSize);
     c.kind = kind;
     c.levels = levels;
-    const bool moments = kind == FilterChainKind::Moments;
+    const bool moments = kind != FilterChainKind::MinMax;
     c.texture = gpu::makeTexture(label + (moments ? "/moments" : "/minmax"), GL_TEXTURE_2D_ARRAY);
-    gl.TextureStorage3D(c.texture.get(), c.levels, GL_RG32F, base, base, layers);
+    gl.TextureStorage3D(c.texture.get(), c.levels, formatOf(kind), base, base, layers);
     // Moments are filtered (trilinear: a region's mean); min/max texels are read one by one.
     gl.TextureParameteri(c.texture.get(), GL_TEXTURE_MIN_FILTER,
                          moments ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_NEAREST);
@@ -56,16 +66,17 @@ long long FilterChain::bytes(int mapSize, int layers) const {
     long long total = 0;
     int size = baseSize(kind, mapSize);
     for (int level = 0; level < levels; ++level, size = std::max(1, size / 2)) {
-        total += 8LL * size * size * layers;  // RG32F
+        total += static_cast<long long>(texelBytes(kind)) * size * size * layers;
     }
     return total;
 }
 
 void FilterChain::clearLayer(int mapSize, int layer) const {
-    const float far[2] = {1.0f, 1.0f};
+    const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     int size = baseSize(kind, mapSize);
     for (int level = 0; level < levels; ++level, size = std::max(1, size / 2)) {
-        gl.ClearTexSubImage(texture.get(), level, 0, 0, layer, size, size, 1, GL_RG, GL_FLOAT, far);
+        gl.ClearTexSubImage(texture.get(), level, 0, 0, layer, size, size, 1,
+                            kind == FilterChainKind::FourMoments ? GL_RGBA : GL_RG, GL_FLOAT, far);
     }
 }
 
@@ -83,13 +94,19 @@ FilterChainBuilder::Pass makePass(const std::string& label, const std::string& f
 }  // namespace
 
 void FilterChainBuilder::build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer) {
-    const bool moments = chain.kind == FilterChainKind::Moments;
-    std::optional<Programs>& programs = moments ? moments_ : minMax_;
+    const auto kind = static_cast<std::size_t>(chain.kind);
+    std::optional<Programs>& programs = programs_.at(kind);
     if (!programs) {
-        const std::string file = moments ? "shadow_moments.comp.glsl" : "shadow_minmax.comp.glsl";
-        const std::string label = moments ? "Shadow/Moments/" : "Shadow/MinMax/";
-        programs = Programs{makePass(label + "fromDepth", file, {"SG_CHAIN_FROM_DEPTH"}),
-                            makePass(label + "fromBelow", file, {})};
+        static constexpr std::array<const char*, 3> kFiles{"shadow_minmax.comp.glsl", "shadow_moments.comp.glsl",
+                                                           "shadow_moments.comp.glsl"};
+        static constexpr std::array<const char*, 3> kLabels{"Shadow/MinMax/", "Shadow/Moments/", "Shadow/FourMoments/"};
+        std::vector<std::string> defines;
+        if (chain.kind == FilterChainKind::FourMoments) defines.emplace_back("SG_FOUR_MOMENTS");
+        std::vector<std::string> fromDepth = defines;
+        fromDepth.emplace_back("SG_CHAIN_FROM_DEPTH");
+        const std::string label = kLabels.at(kind);
+        programs = Programs{makePass(label + "fromDepth", kFiles.at(kind), fromDepth),
+                            makePass(label + "fromBelow", kFiles.at(kind), defines)};
     }
     gl.BindSampler(SG_UNIT_MINMAX_SOURCE, 0);  // the textures' own nearest filtering, no comparison
     int size = FilterChain::baseSize(chain.kind, mapSize);
@@ -101,7 +118,8 @@ void FilterChainBuilder::build(GLuint depthArray, const FilterChain& chain, int 
         gl.ProgramUniform1i(program, pass.level, level);
         // Reads level - 1 of the pyramid (texelFetch, never the level written) or the depth map.
         gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, level == 0 ? depthArray : chain.texture.get());
-        gl.BindImageTexture(SG_IMAGE_MINMAX, chain.texture.get(), level, GL_FALSE, layer, GL_WRITE_ONLY, GL_RG32F);
+        gl.BindImageTexture(SG_IMAGE_MINMAX, chain.texture.get(), level, GL_FALSE, layer, GL_WRITE_ONLY,
+                            formatOf(chain.kind));
         const auto groups = static_cast<GLuint>((size + 7) / 8);
         gl.DispatchCompute(groups, groups, 1);
         // The next level reads this one; the lit pass samples them all.

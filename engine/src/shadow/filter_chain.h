@@ -3,40 +3,42 @@
 //   - MinMax (PCF, PCSS): texel (level k) holds the least and greatest stored depth of a tile of
 //     SG_MINMAX_TILE * 2^k map texels; the lookups decide "no blocker" or "only blockers" for a
 //     whole filter region from four fetches.
-//   - Moments (VSM): texel (level k) holds the mean stored depth and mean squared depth of a
-//     tile of 2^k map texels; a trilinear fetch gives a filter region's mean and variance.
+//   - Moments (VSM, VSSM): texel (level k) holds the mean stored depth and mean squared depth of
+//     a tile of 2^k map texels; a trilinear fetch gives a filter region's mean and variance.
+//   - FourMoments (MSM, MSM-soft): the same with the means of z, z^2, z^3 and z^4.
 #pragma once
 
 #include <shadow/components.h>
 
 #include "gl/objects.h"
 
+#include <array>
 #include <optional>
 #include <string>
 
 namespace shadow {
 
 /// What a filter chain holds.
-enum class FilterChainKind : std::uint8_t { MinMax, Moments };
+enum class FilterChainKind : std::uint8_t { MinMax, Moments, FourMoments };
 
 /// The chain technique `t` reads, or nullopt when it reads none (no memory is spent on one).
 [[nodiscard]] std::optional<FilterChainKind> filterChainOf(ShadowTechnique t);
 
-/// One light's chain texture (RG32F array, one mip chain per layer).
+/// One light's chain texture (an RG32F array, RGBA32F for four moments; one mip chain per layer).
 struct FilterChain {
     gpu::Texture texture;
     FilterChainKind kind = FilterChainKind::MinMax;
     int levels = 0;
 
     /// Edge of level 0 for a map of `mapSize` texels: for MinMax the power of two of at least
-    /// mapSize / SG_MINMAX_TILE texels (each level halves exactly), for Moments the map's own.
+    /// mapSize / SG_MINMAX_TILE texels (each level halves exactly), for moments the map's own.
     [[nodiscard]] static int baseSize(FilterChainKind kind, int mapSize);
     /// Levels a lookup of at most `maxFilterTexels` texels of radius can use: the first whose
     /// tiles are as wide as the widest region (2 * (maxFilterTexels + 1.5) texels), and those below.
     [[nodiscard]] static int levelsFor(FilterChainKind kind, int mapSize, float maxFilterTexels);
     /// Allocates the chain of a `mapSize`^2 array of `layers` layers with `levels` levels.
     static FilterChain allocate(const std::string& label, FilterChainKind kind, int mapSize, int layers, int levels);
-    /// Every level of `layer` as for a cleared layer, nothing in front of the far plane: (1, 1).
+    /// Every level of `layer` as for a cleared layer, nothing in front of the far plane: all 1.
     void clearLayer(int mapSize, int layer) const;
     /// Bytes of GPU memory the chain holds.
     [[nodiscard]] long long bytes(int mapSize, int layers) const;
@@ -58,7 +60,7 @@ private:
     struct Programs {
         Pass fromDepth, fromBelow;
     };
-    std::optional<Programs> minMax_, moments_;
+    std::array<std::optional<Programs>, 3> programs_;  ///< per FilterChainKind
 };
 
 }  // namespace shadow

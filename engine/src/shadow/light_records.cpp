@@ -24,6 +24,7 @@ int lightTypeId(LightType t) {
 static_assert(static_cast<int>(ShadowTechnique::PcssTextbook) == SG_TECH_PCSS_TEXTBOOK);
 static_assert(static_cast<int>(ShadowTechnique::Vsm) == SG_TECH_VSM);
 static_assert(static_cast<int>(ShadowTechnique::Vssm) == SG_TECH_VSSM);
+static_assert(static_cast<int>(ShadowTechnique::MsmSoft) == SG_TECH_MSM_SOFT);
 
 /// Adds the shadow of `plan` to `g`, its layers at `slotLayers`, layer 0 at `firstLayer`.
 void packShadow(const ShadowLightPlan& plan, const glm::dvec3& wsCamera, int firstLayer, GpuLight& g,
@@ -77,13 +78,15 @@ GpuShadowLayer packLayer(const ShadowLayerPlan& layer, const glm::dvec3& wsCamer
 }
 
 void appendTechniqueDefines(unsigned techniques, std::vector<std::string>& defines) {
-    static constexpr std::array<std::pair<ShadowTechnique, const char*>, 6> kEnabled{{
+    static constexpr std::array<std::pair<ShadowTechnique, const char*>, 8> kEnabled{{
         {ShadowTechnique::Hard, "SG_TECH_HARD_ENABLED"},
         {ShadowTechnique::Pcf, "SG_TECH_PCF_ENABLED"},
         {ShadowTechnique::Pcss, "SG_TECH_PCSS_ENABLED"},
         {ShadowTechnique::PcssTextbook, "SG_TECH_PCSS_TEXTBOOK_ENABLED"},
         {ShadowTechnique::Vsm, "SG_TECH_VSM_ENABLED"},
         {ShadowTechnique::Vssm, "SG_TECH_VSSM_ENABLED"},
+        {ShadowTechnique::Msm, "SG_TECH_MSM_ENABLED"},
+        {ShadowTechnique::MsmSoft, "SG_TECH_MSM_SOFT_ENABLED"},
     }};
     for (const auto& [technique, define] : kEnabled) {
         if ((techniques & techniqueBit(technique)) != 0) defines.emplace_back(define);

@@ -185,7 +185,7 @@ void ShadowGpu::updateChains(const ShadowLightPlan& plan) {
         if (plan.layers[k].casters.empty()) {
             map.chain->clearLayer(map.mapSize, static_cast<int>(k));
         } else {
-            formatPassName(passName, plan, map.chain->kind == FilterChainKind::Moments ? "moments" : "minmax", k);
+            formatPassName(passName, plan, map.chain->kind == FilterChainKind::MinMax ? "minmax" : "moments", k);
             const gpu::ScopedPass pass(timer, passName);
             chains.build(map.array.get(), *map.chain, map.mapSize, static_cast<int>(k));
         }
