@@ -148,7 +148,8 @@ std::vector<glm::vec4> hostVisibility(Scene& scene, FrameRunner& runner, const S
     const ShadowShaderInputs& inputs = shadows.shaderInputs(lights, cam.wsPosition);
     EXPECT_EQ(inputs.lights, kLights);
     EXPECT_EQ(inputs.techniques, kAllShadowTechniques & ~techniqueBit(ShadowTechnique::PcssTextbook) &
-                                     ~techniqueBit(ShadowTechnique::Vsm) & ~techniqueBit(ShadowTechnique::Vssm));
+                                     ~techniqueBit(ShadowTechnique::Vsm) & ~techniqueBit(ShadowTechnique::Vssm) &
+                                     ~techniqueBit(ShadowTechnique::Msm) & ~techniqueBit(ShadowTechnique::MsmSoft));
     shadows.bindShaderInputs(inputs, points);
 
     scene.world.view<Mesh, WorldTransform>().each([&](Entity, Mesh& mesh, WorldTransform& wt) {

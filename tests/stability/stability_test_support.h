@@ -19,14 +19,15 @@
 namespace shadow::test {
 
 /// Every technique that draws a shadow, the seeds' textbook PCSS included.
-inline constexpr std::array<ShadowTechnique, 6> kShadowTechniques{ShadowTechnique::Hard, ShadowTechnique::Pcf,
-                                                                  ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook,
-                                                                  ShadowTechnique::Vsm,  ShadowTechnique::Vssm};
+inline constexpr std::array<ShadowTechnique, 8> kShadowTechniques{
+    ShadowTechnique::Hard, ShadowTechnique::Pcf,  ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook,
+    ShadowTechnique::Vsm,  ShadowTechnique::Vssm, ShadowTechnique::Msm,  ShadowTechnique::MsmSoft};
 
-/// Whether `t` reads the depth moments chain (VSM, VSSM): Chebyshev's bound over a filter
+/// Whether `t` reads a depth moments chain (VSM, VSSM, MSM, MSM-soft): a bound over a filter
 /// region, which some extreme cases hold to their own measured bounds.
 inline constexpr bool readsMoments(ShadowTechnique t) {
-    return t == ShadowTechnique::Vsm || t == ShadowTechnique::Vssm;
+    return t == ShadowTechnique::Vsm || t == ShadowTechnique::Vssm || t == ShadowTechnique::Msm ||
+           t == ShadowTechnique::MsmSoft;
 }
 
 /// Non-finite texels over every layer of every light of the last frame, and texels outside
