@@ -50,6 +50,8 @@ struct Config {
         }
         if (technique == ShadowTechnique::Vsm || technique == ShadowTechnique::Vssm) {
             s << " bleed" << lightBleedReduction;
+        } else if (technique == ShadowTechnique::Msm || technique == ShadowTechnique::MsmSoft) {
+            // no knob of their own
         } else if (technique != ShadowTechnique::Hard) {
             s << " " << filterKernelName(kernel);
         }
@@ -72,6 +74,9 @@ std::vector<Config> sweep() {
     for (ShadowTechnique t : {ShadowTechnique::Vsm, ShadowTechnique::Vssm}) {
         for (int size : {512, 1024, 2048}) out.push_back({t, size, 1, 1, FilterKernel::Vogel, 0.0f});
         for (float bleed : {0.2f, 0.4f}) out.push_back({t, 1024, 1, 1, FilterKernel::Vogel, bleed});
+    }
+    for (ShadowTechnique t : {ShadowTechnique::Msm, ShadowTechnique::MsmSoft}) {
+        for (int size : {512, 1024, 2048}) out.push_back({t, size, 1, 1, FilterKernel::Vogel, 0.0f});
     }
     return out;
 }
@@ -314,9 +319,9 @@ void writePlot(const std::string& out, const std::vector<Row>& rows) {
     for (const Row& r : rows) {
         if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
     }
-    const std::vector<ShadowTechnique> techniques = {ShadowTechnique::Hard, ShadowTechnique::Pcf,
-                                                     ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook,
-                                                     ShadowTechnique::Vsm,  ShadowTechnique::Vssm};
+    const std::vector<ShadowTechnique> techniques = {
+        ShadowTechnique::Hard, ShadowTechnique::Pcf,  ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook,
+        ShadowTechnique::Vsm,  ShadowTechnique::Vssm, ShadowTechnique::Msm,  ShadowTechnique::MsmSoft};
     for (const std::string& s : scenes) {
         for (ShadowTechnique t : techniques) {
             std::vector<const Row*> sel;
