@@ -1,6 +1,7 @@
 // The filter chains (engine/src/shadow/filter_chain.cpp). The min/max depth pyramid: every texel
 // of every level holds exactly the least and greatest stored depth of its tile of the map. The
-// moments (VSM): every texel holds the mean depth and mean squared depth of its tile. A chain
+// moments (VSM, VSSM): every texel holds the mean depth and mean squared depth of its tile; the
+// four moments (MSM, MSM-soft) the means of z, z^2, z^3, z^4. A chain
 // exists only for the techniques that read it, and follows the map when the map changes.
 #include <shadow/shared_constants.h>
 
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <optional>
 #include <string>
 
 namespace shadow {
@@ -39,9 +41,10 @@ Scene tiltedScene(ShadowTechnique technique, int mapSize) {
 }
 
 /// Level `level` of layer `layer` of the pyramid `texture` (RG pairs, rows bottom first).
-std::vector<float> readLevel(GLuint texture, int level, int layer, int size) {
-    std::vector<float> data(static_cast<std::size_t>(size) * size * 2);
-    gl.GetTextureSubImage(texture, level, 0, 0, layer, size, size, 1, GL_RG, GL_FLOAT,
+/// Level `level` of `layer`, `channels` (2 or 4) floats per texel.
+std::vector<float> readLevel(GLuint texture, int level, int layer, int size, int channels = 2) {
+    std::vector<float> data(static_cast<std::size_t>(size) * size * channels);
+    gl.GetTextureSubImage(texture, level, 0, 0, layer, size, size, 1, channels == 4 ? GL_RGBA : GL_RG, GL_FLOAT,
                           static_cast<GLsizei>(data.size() * sizeof(float)), data.data());
     return data;
 }
@@ -121,17 +124,17 @@ TEST(MinMaxPyramid, OnlyForTechniquesThatReadItAndRebuiltWhenTheMapChanges) {
 
 /// The moments a chain level should hold, from the level below (level 0: from the stored depths)
 /// as the builder makes them: 2x2 means, the last row or column repeated past an odd edge.
-std::vector<double> momentsBelowAveraged(const std::vector<double>& below, int belowSize, int size) {
-    std::vector<double> out(static_cast<std::size_t>(size) * size * 2, 0.0);
+std::vector<double> momentsBelowAveraged(const std::vector<double>& below, int belowSize, int size, int channels) {
+    const auto n = static_cast<std::size_t>(channels);
+    std::vector<double> out(static_cast<std::size_t>(size) * size * n, 0.0);
     for (int y = 0; y < size; ++y) {
         for (int x = 0; x < size; ++x) {
             for (int k = 0; k < 4; ++k) {
                 const int bx = std::min(2 * x + (k & 1), belowSize - 1);
                 const int by = std::min(2 * y + (k >> 1), belowSize - 1);
-                const std::size_t b = 2 * (static_cast<std::size_t>(by) * belowSize + bx);
-                const std::size_t o = 2 * (static_cast<std::size_t>(y) * size + x);
-                out[o] += 0.25 * below[b];
-                out[o + 1] += 0.25 * below[b + 1];
+                const std::size_t b = n * (static_cast<std::size_t>(by) * belowSize + bx);
+                const std::size_t o = n * (static_cast<std::size_t>(y) * size + x);
+                for (std::size_t c = 0; c < n; ++c) out[o + c] += 0.25 * below[b + c];
             }
         }
     }
@@ -148,24 +151,26 @@ void expectMomentsMatchMap(FrameRunner& runner, int mapSize, const std::string& 
     ASSERT_NE(chain, 0u) << what;
     const float scale = shadows.frame().lights[0].layers[0].depthScale;
     std::vector<float> depth = shadows.readLayerDepth(0, 0);  // metres, rows bottom first
-    std::vector<double> expected(depth.size() * 2);
-    for (std::size_t i = 0; i < depth.size(); ++i) {
-        const float z = depth[i] / scale;  // back to stored units
-        expected[2 * i] = z;
-        expected[2 * i + 1] = static_cast<double>(z) * z;
+    const std::optional<FilterChainKind> kind = filterChainOf(shadows.frame().lights[0].technique());
+    ASSERT_TRUE(kind && *kind != FilterChainKind::MinMax) << what;
+    const int channels = *kind == FilterChainKind::FourMoments ? 4 : 2;
+    std::vector<double> expected;
+    for (float stored : depth) {
+        const double z = stored / scale;  // back to stored units, as the GPU rounds it
+        for (int c = 0; c < channels; ++c)
+            expected.push_back(std::pow(static_cast<double>(static_cast<float>(z)), c + 1));
     }
-    const int levels =
-        FilterChain::levelsFor(FilterChainKind::Moments, mapSize, shadows.frame().lights[0].settings.maxFilterTexels);
+    const int levels = FilterChain::levelsFor(*kind, mapSize, shadows.frame().lights[0].settings.maxFilterTexels);
     ASSERT_GT(levels, 1) << what;
     int size = mapSize;
     double worst = 0.0;
     for (int level = 0; level < levels; ++level) {
         if (level > 0) {
             const int next = std::max(1, size / 2);
-            expected = momentsBelowAveraged(expected, size, next);
+            expected = momentsBelowAveraged(expected, size, next, channels);
             size = next;
         }
-        const std::vector<float> got = readLevel(chain, level, 0, size);
+        const std::vector<float> got = readLevel(chain, level, 0, size, channels);
         for (std::size_t i = 0; i < got.size(); ++i) worst = std::max(worst, std::abs(got[i] - expected[i]));
     }
     std::printf("[ measured ] %s: %d levels, largest |moment - double mean| %.3g\n", what.c_str(), levels, worst);
@@ -174,6 +179,10 @@ void expectMomentsMatchMap(FrameRunner& runner, int mapSize, const std::string& 
 
 TEST(FilterChain, MomentsHoldTheMeanDepthAndSquareOfEachTile) {
     forBothMapSizes(ShadowTechnique::Vsm, expectMomentsMatchMap);
+}
+
+TEST(FilterChain, FourMomentsHoldTheMeansOfTheFirstFourPowersOfEachTile) {
+    forBothMapSizes(ShadowTechnique::Msm, expectMomentsMatchMap);
 }
 
 TEST(FilterChain, TheChainFollowsTheTechnique) {
