@@ -84,7 +84,8 @@ Measured measure(ShadowTechnique t, double radius, int frames, int width, int he
         main.push_back(s.passMs("Main/"));
         frame.push_back(s.passMs("Shadow/") + main.back());
     }
-    return {samples::spreadOf(main).median, samples::spreadOf(frame).median, groundTexelMetres(runner, PlatesGeometry{})};
+    return {samples::spreadOf(main).median, samples::spreadOf(frame).median,
+            groundTexelMetres(runner, PlatesGeometry{})};
 }
 
 int run(const Options& o) {
@@ -114,11 +115,12 @@ int run(const Options& o) {
             }
         }
     }
-    std::printf("Renderer `%s`, %dx%d, `builtin:plates` with the disk light's radius set so that the high "
-                "plate's penumbra spans the given texels of its 2048^2 map on the ground (ground texel %.2f mm); "
-                "%d interleaved rounds of %d frames after one warm-up frame, shadow maps redrawn every frame. "
-                "Main pass / whole frame, ms (median of the rounds' medians).\n\n",
-                queryGlInfo().renderer.c_str(), width, height, 1000.0 * texel, o.rounds, o.frames);
+    std::printf(
+        "Renderer `%s`, %dx%d, `builtin:plates` with the disk light's radius set so that the high "
+        "plate's penumbra spans the given texels of its 2048^2 map on the ground (ground texel %.2f mm); "
+        "%d interleaved rounds of %d frames after one warm-up frame, shadow maps redrawn every frame. "
+        "Main pass / whole frame, ms (median of the rounds' medians).\n\n",
+        queryGlInfo().renderer.c_str(), width, height, 1000.0 * texel, o.rounds, o.frames);
     std::printf("| technique |");
     for (int w : kWidthsTexels) std::printf(" %d texels (R %.1f mm) |", w, 1000.0 * w * texel / penumbraPerRadius(g));
     std::printf(" widest / narrowest (main, frame) |\n|---|");

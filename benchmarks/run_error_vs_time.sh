@@ -40,7 +40,10 @@ Poisson taps around the receiver's UV), kept so our PCSS is measured against it 
 `pcfRadius`, Chebyshev's bound, `bleed` its lightBleedReduction): a fixed-width filter like PCF.
 `vssm` reads the same moments twice, for the blocker search cone (average blocker depth from the
 region's mean and Chebyshev's lit fraction) and for the penumbra by similar triangles: PCSS's
-contact hardening for two fetches whatever the width.
+contact hardening for two fetches whatever the width. `msm` is the hard-edged moment shadow map
+(four moments, the Hamburger bound over one texel), `msm-soft` VSSM's blocker search and penumbra
+with the four-moment bound over it. The moment techniques' shadow column is mostly their moments
+chain, built at the map's full resolution every frame here (caching off).
 Every configuration of a scene draws the same depth layers, so no technique's frame can be shorter
 than the scene's fastest frame of all configurations (a hard shadow from the smallest map): the
 last column, textbook time over that frame, bounds the speed-up any filter could show.

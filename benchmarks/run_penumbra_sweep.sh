@@ -16,9 +16,11 @@ mkdir -p "$results"
 PCSS spends taps where the penumbra is (one tap per texel of its disk's area, up to
 `pcfSamples`, none where the min/max pyramid shows the region lit or in umbra); VSM reads one
 mip level of the moments for its fixed `pcfRadius`, VSSM two (search cone and penumbra) whatever
-the width. Both moment techniques pay for their moments chain, a full-resolution RG32F mip chain
-built by compute every time the layer is redrawn (here every frame: caching off): that is most
-of their frame at a 2048² map on this CPU rasteriser, and it does not depend on the width.
+the width, MSM-soft the same on four moments. The moment techniques pay for their moments chain,
+a full-resolution mip chain (RG32F, RGBA32F for four moments) built by compute every time the
+layer is redrawn (here every frame: caching off): that is most of their frame at a 2048² map on
+this CPU rasteriser, and it does not depend on the width (VSM's frame, whose filter is fixed,
+varies as much from run to run).
 
 ```sh
 bash benchmarks/run_penumbra_sweep.sh
