@@ -160,7 +160,8 @@ void expectMomentsMatchMap(FrameRunner& runner, int mapSize, const std::string& 
         for (int c = 0; c < channels; ++c)
             expected.push_back(std::pow(static_cast<double>(static_cast<float>(z)), c + 1));
     }
-    const int levels = FilterChain::levelsFor(*kind, mapSize, shadows.frame().lights[0].settings.maxFilterTexels);
+    const int levels = FilterChain::levelsFor(shadows.frame().lights[0].technique(), mapSize,
+                                              shadows.frame().lights[0].settings.maxFilterTexels);
     ASSERT_GT(levels, 1) << what;
     int size = mapSize;
     double worst = 0.0;
@@ -182,7 +183,18 @@ TEST(FilterChain, MomentsHoldTheMeanDepthAndSquareOfEachTile) {
 }
 
 TEST(FilterChain, FourMomentsHoldTheMeansOfTheFirstFourPowersOfEachTile) {
-    forBothMapSizes(ShadowTechnique::Msm, expectMomentsMatchMap);
+    forBothMapSizes(ShadowTechnique::MsmSoft, expectMomentsMatchMap);
+}
+
+TEST(FilterChain, LevelsReachTheWidestRegionTheTechniqueReads) {
+    // Moments: a trilinear fetch at log2(radius) reads up to level ceil(log2(maxFilterTexels)).
+    EXPECT_EQ(FilterChain::levelsFor(ShadowTechnique::Vsm, 2048, 32.0f), 6);
+    EXPECT_EQ(FilterChain::levelsFor(ShadowTechnique::MsmSoft, 2048, 20.0f), 6);
+    EXPECT_EQ(FilterChain::levelsFor(ShadowTechnique::Vssm, 16, 256.0f), 5);  // all the map has
+    // Hard-edged MSM reads one texel: level 0 alone.
+    EXPECT_EQ(FilterChain::levelsFor(ShadowTechnique::Msm, 2048, 256.0f), 1);
+    // The pyramid: tiles of 4 texels at level 0, up to the first as wide as 2 (32 + 1.5) texels.
+    EXPECT_EQ(FilterChain::levelsFor(ShadowTechnique::Pcss, 2048, 32.0f), 6);
 }
 
 TEST(FilterChain, TheChainFollowsTheTechnique) {

@@ -244,8 +244,9 @@ public:
     [[nodiscard]] unsigned textureOfLight(Entity light) const;
     /// The GL texture name of the depth array of scene light `i`, 0 when it has no map.
     [[nodiscard]] unsigned textureOf(std::size_t i) const;
-    /// The GL texture name of the filter chain of scene light `i` (RG32F array, one mip chain per
-    /// layer): the min/max depth pyramid of PCF and PCSS lights, the depth moments of VSM and VSSM lights;
+    /// The GL texture name of the filter chain of scene light `i` (an array, one mip chain per
+    /// layer): the min/max depth pyramid of PCF and PCSS lights (RG32F), the depth moments of VSM
+    /// and VSSM lights (RG32F) and of MSM and MSM-soft lights (RGBA32F);
     /// 0 when it has none. It is what unit SG_UNIT_SHADOW_MINMAX + slot reads.
     [[nodiscard]] unsigned minMaxOf(std::size_t i) const;
     /// Reads layer `layer` of scene light `i` as linear depth in metres (debug views, tests);

@@ -35,12 +35,21 @@ int FilterChain::baseSize(FilterChainKind kind, int mapSize) {
     return size;
 }
 
-int FilterChain::levelsFor(FilterChainKind kind, int mapSize, float maxFilterTexels) {
+int FilterChain::levelsFor(ShadowTechnique t, int mapSize, float maxFilterTexels) {
+    const FilterChainKind kind = filterChainOf(t).value_or(FilterChainKind::MinMax);
     int all = 0;
     for (int size = baseSize(kind, mapSize); size > 0; size /= 2) ++all;
-    const double widest = 2.0 * (static_cast<double>(maxFilterTexels) + 1.5);
     int needed = 1;
-    for (double tile = kind == FilterChainKind::MinMax ? SG_MINMAX_TILE : 1; tile < widest; tile *= 2.0) ++needed;
+    if (kind == FilterChainKind::MinMax) {
+        // A region test reads the first level whose tiles are as wide as the whole region.
+        const double widest = 2.0 * (static_cast<double>(maxFilterTexels) + 1.5);
+        for (double tile = SG_MINMAX_TILE; tile < widest; tile *= 2.0) ++needed;
+    } else {
+        // A trilinear fetch at level log2(radius in texels) reads that level's floor and ceiling;
+        // hard-edged MSM reads a one-texel region, level 0 only.
+        const double radius = t == ShadowTechnique::Msm ? 1.0 : static_cast<double>(maxFilterTexels);
+        for (double tile = 1.0; tile < radius; tile *= 2.0) ++needed;
+    }
     return std::clamp(needed, 1, all);
 }
 

@@ -1,5 +1,5 @@
 // A light's per-layer filter chain, built after a layer is drawn and cached with it: a mip
-// chain per layer of its shadow-map array, of one of two kinds.
+// chain per layer of its shadow-map array, of one of three kinds.
 //   - MinMax (PCF, PCSS): texel (level k) holds the least and greatest stored depth of a tile of
 //     SG_MINMAX_TILE * 2^k map texels; the lookups decide "no blocker" or "only blockers" for a
 //     whole filter region from four fetches.
@@ -33,9 +33,11 @@ struct FilterChain {
     /// Edge of level 0 for a map of `mapSize` texels: for MinMax the power of two of at least
     /// mapSize / SG_MINMAX_TILE texels (each level halves exactly), for moments the map's own.
     [[nodiscard]] static int baseSize(FilterChainKind kind, int mapSize);
-    /// Levels a lookup of at most `maxFilterTexels` texels of radius can use: the first whose
-    /// tiles are as wide as the widest region (2 * (maxFilterTexels + 1.5) texels), and those below.
-    [[nodiscard]] static int levelsFor(FilterChainKind kind, int mapSize, float maxFilterTexels);
+    /// Levels technique `t`'s lookups of at most `maxFilterTexels` texels of radius read. MinMax:
+    /// the first whose tiles are as wide as the widest region (2 * (maxFilterTexels + 1.5)
+    /// texels), and those below; moments: up to ceil(log2(radius)), the radius one texel for
+    /// hard-edged MSM (its chain is level 0 alone).
+    [[nodiscard]] static int levelsFor(ShadowTechnique t, int mapSize, float maxFilterTexels);
     /// Allocates the chain of a `mapSize`^2 array of `layers` layers with `levels` levels.
     static FilterChain allocate(const std::string& label, FilterChainKind kind, int mapSize, int layers, int levels);
     /// Every level of `layer` as for a cleared layer, nothing in front of the far plane: all 1.

@@ -167,7 +167,8 @@ void ShadowGpu::syncMaps(const ShadowFrame& frame) {
         const std::optional<FilterChainKind> kind = filterChainOf(plan.technique());
         if (!kind) {
             map->chain.reset();  // no technique of the light reads one: no memory for it
-        } else if (const int levels = FilterChain::levelsFor(*kind, map->mapSize, plan.settings.maxFilterTexels);
+        } else if (const int levels =
+                       FilterChain::levelsFor(plan.technique(), map->mapSize, plan.settings.maxFilterTexels);
                    !map->chain || map->chain->kind != *kind || map->chain->levels != levels) {
             map->chain = FilterChain::allocate("Shadow/" + plan.name, *kind, map->mapSize, map->layers, levels);
             map->chainCurrent.assign(static_cast<std::size_t>(map->layers), false);
