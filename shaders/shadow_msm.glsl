@@ -29,6 +29,13 @@ float msmShadowFraction(vec4 b, float z) {
     // cleared texels only, with nothing in front of anything. (The biased moments would read a
     // trace of shadow there.)
     if (b.x >= 1.0) return 0.0;
+    // The bias below and the floors of the factorisation are sized for depths spread over [0, 1]:
+    // a receiver near the light of a long range (z ~ 10^-6 under a 10^6 m range) would drown in
+    // them. Below 1/4, the receiver and the moments are scaled by the power of two (exact) that
+    // brings it to [1/4, 1/2): the bound is scale-invariant, the bias and floors are not.
+    float scale = exp2(max(-floor(log2(max(z, 1e-30))) - 2.0, 0.0));
+    b *= vec4(scale, scale * scale, scale * scale * scale, (scale * scale) * (scale * scale));
+    z *= scale;
     b = mix(b, vec4(0.5), kMsmMomentBias);
     // B = L D L^T for the Hankel matrix B = [[1, b1, b2], [b1, b2, b3], [b2, b3, b4]], L unit
     // lower triangular; then B c = (1, z, z^2) by forward and back substitution.
