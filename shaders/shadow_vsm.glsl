@@ -52,9 +52,9 @@ float momentsReference(Receiver r, Tap center) {
 }
 
 // Visibility of the receiver at `reference` (stored units) behind a region of moments `m`:
-// Chebyshev's bound with the variance floor, then the light-bleeding reduction.
-float momentsVisibility(GpuLight L, Receiver r, vec2 m, float reference) {
-    float p = chebyshevUpperBound(m, reference, varianceFloor(r, m));
+// Chebyshev's bound with the variance at least `minVariance`, then the light-bleeding reduction.
+float momentsVisibility(GpuLight L, vec2 m, float reference, float minVariance) {
+    float p = chebyshevUpperBound(m, reference, minVariance);
     float cut = clamp(L.lightBleedReduction, 0.0, 0.95);
     return clamp((p - cut) / (1.0 - cut), 0.0, 1.0);
 }
@@ -71,7 +71,7 @@ float vsmVisibility(int slot, GpuLight L, Receiver r) {
     if (outsideMap(center)) return 1.0;
     // PCF's disk of pcfRadius at the receiver, at most maxFilterTexels.
     vec2 m = regionMoments(slot, r, center, min(L.pcfRadius, L.maxFilterTexels * r.texelMetres)).xy;
-    return momentsVisibility(L, r, m, momentsReference(r, center));
+    return momentsVisibility(L, m, momentsReference(r, center), varianceFloor(r, m));
 }
 
 #endif

@@ -1,8 +1,9 @@
 // Soft shadows from moments, with contact hardening: variance soft shadow mapping as the seeds'
 // notes describe it (`vssm`, two moments, Chebyshev's bound) and the same design on four moments
-// (`msm-soft`, Hamburger 4MSM). The blocker search and the filter both read region moments from
-// the light's moments chain (shadow_moments.comp.glsl), so each costs one trilinear fetch
-// whatever the penumbra's width.
+// (`msm-soft`, Hamburger 4MSM). The blocker search and the filter both read region moments whose
+// cost does not depend on the region's width: VSSM from the light's summed-area table
+// (shadow_summed_area.glsl, 16 fetches of exact integer sums), MSM-soft from its mip chain of
+// four moments (shadow_moments.comp.glsl, one trilinear fetch).
 //   1. Moments of the blocker search region, the same cone as PCSS's.
 //   2. Chebyshev's bound gives the fraction p of the region at least as far as the receiver
 //      (for both: the 4MSM bound would need the receiver plane's spread over the whole search
@@ -23,24 +24,37 @@
 #define SG_SHADOW_VSSM
 #include "shadow_msm.glsl"
 #include "shadow_penumbra.glsl"
+#include "shadow_summed_area.glsl"
 #include "shadow_debug.glsl"
 
 // Below this fraction of blockers in the search region the receiver is taken as lit: the
 // blocker depth (mean - p t) / (1 - p) is 0/0 there.
 const float kVssmLeastBlockers = 1e-3;
 
+// A region's moments: VSSM's from the summed-area table (z, z^2), MSM-soft's from the mip chain
+// of four moments.
+vec4 regionMomentsOf(int slot, GpuLight L, Receiver r, Tap center, float radius, const bool fourMoments) {
+    return fourMoments ? regionMoments(slot, r, center, radius)
+                       : vec4(summedRegionMoments(slot, L, r, center, radius), 0.0, 0.0);
+}
+
+// The least variance of a region's moments: the table's fixed point adds its own.
+float regionVarianceFloor(GpuLight L, Receiver r, Tap center, vec2 m, const bool fourMoments) {
+    return fourMoments ? varianceFloor(r, m) : summedVarianceFloor(L, r, center, m);
+}
+
 float softMomentsVisibility(int slot, GpuLight L, Receiver r, const bool fourMoments) {
     Tap center = lateralTap(L, r, vec2(0.0));
     if (outsideMap(center)) return 1.0;
     float maxRadius = L.maxFilterTexels * r.texelMetres;
     float dReceiver = center.depth;
-    float reference = momentsReference(r, center);
+    float reference = fourMoments ? momentsReference(r, center) : summedReference(L, r, center);
     float size = max(L.emitterSize, 0.0);
     float penumbra = 0.0;
     if (size > 0.0) {
         float searchRadius = clamp(blockerSearchRadius(L, r, dReceiver, size), r.texelMetres, maxRadius);
-        vec4 b = regionMoments(slot, r, center, searchRadius);
-        float lit = chebyshevUpperBound(b.xy, reference, varianceFloor(r, b.xy));
+        vec4 b = regionMomentsOf(slot, L, r, center, searchRadius, fourMoments);
+        float lit = chebyshevUpperBound(b.xy, reference, regionVarianceFloor(L, r, center, b.xy, fourMoments));
         if (1.0 - lit < kVssmLeastBlockers) return 1.0;
         float zBlocker = (b.x - lit * reference) / (1.0 - lit);
         float dBlocker = clamp(zBlocker * r.depthScale, 0.0, dReceiver);
@@ -48,9 +62,9 @@ float softMomentsVisibility(int slot, GpuLight L, Receiver r, const bool fourMom
         SG_DEBUG_STORE(gDebugBlockerDepth, dBlocker);
     }
     SG_DEBUG_STORE(gDebugPenumbra, penumbra);
-    vec4 b = regionMoments(slot, r, center, penumbra);
+    vec4 b = regionMomentsOf(slot, L, r, center, penumbra, fourMoments);
     return fourMoments ? 1.0 - msmShadowFraction(b, msmReference(r, center, penumbra))
-                       : momentsVisibility(L, r, b.xy, reference);
+                       : momentsVisibility(L, b.xy, reference, regionVarianceFloor(L, r, center, b.xy, false));
 }
 
 float vssmVisibility(int slot, GpuLight L, Receiver r) { return softMomentsVisibility(slot, L, r, false); }

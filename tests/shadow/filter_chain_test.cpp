@@ -1,8 +1,10 @@
 // The filter chains (engine/src/shadow/filter_chain.cpp). The min/max depth pyramid: every texel
 // of every level holds exactly the least and greatest stored depth of its tile of the map. The
 // moments (VSM, VSSM): every texel holds the mean depth and mean squared depth of its tile; the
-// four moments (MSM, MSM-soft) the means of z, z^2, z^3, z^4. A chain
-// exists only for the techniques that read it, and follows the map when the map changes.
+// four moments (MSM, MSM-soft) the means of z, z^2, z^3, z^4. The summed-area table (VSSM):
+// exact integer sums of the quantised moments, and the region means read from it within the
+// quantisation of the depths, where a float table would not be. A chain exists only for the
+// techniques that read it, and follows the map when the map changes.
 #include <shadow/shared_constants.h>
 
 #include <gtest/gtest.h>
@@ -12,6 +14,8 @@
 #include "render/render_test_support.h"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -186,11 +190,136 @@ TEST(FilterChain, FourMomentsHoldTheMeansOfTheFirstFourPowersOfEachTile) {
     forBothMapSizes(ShadowTechnique::MsmSoft, expectMomentsMatchMap);
 }
 
+/// One unit of the table's fixed point (2^-24 of the stored range) and its limbs' modulus.
+constexpr double kSatUnit = 16777216.0;
+constexpr std::uint64_t kLimb = 1ull << 24;
+
+/// Sum of the quantised moment `m` (0: z, 1: z^2) over texels [x0, x1) x [y0, y1) from the table
+/// texels `t` (4 limbs each) as the lit pass takes it: the corners' limbs combined in integers,
+/// the result modulo 2^48 brought near [0, 2^47).
+double tableRectSum(const std::vector<float>& t, int size, int x0, int x1, int y0, int y1, int m) {
+    const auto lattice = [&](int x, int y, int limb) -> std::int64_t {
+        if (x <= 0 || y <= 0) return 0;
+        return static_cast<std::int64_t>(t[4 * (static_cast<std::size_t>(y - 1) * size + (x - 1)) + 2 * m + limb]);
+    };
+    std::array<std::int64_t, 2> limbs{};
+    for (int limb = 0; limb < 2; ++limb)
+        limbs[limb] = lattice(x1, y1, limb) - lattice(x0, y1, limb) - lattice(x1, y0, limb) + lattice(x0, y0, limb);
+    std::int64_t hi = limbs[1] & static_cast<std::int64_t>(kLimb - 1);
+    if (hi >= static_cast<std::int64_t>(kLimb / 2)) hi -= static_cast<std::int64_t>(kLimb);
+    return static_cast<double>(hi) * kSatUnit + static_cast<double>(limbs[0]);
+}
+
+/// The table: texel (x, y) holds, two 24-bit limbs per moment, the sums modulo 2^48 of z and z^2
+/// rounded to units of 2^-24, over the map texels [0, x] x [0, y]: checked bit for bit against
+/// the stored depths. Then the error the table adds to a region's mean: squares of half-width 1
+/// to 64 texels all over the layer, their means from four corners against the double means of
+/// the stored depths, beside the same from a float table (what the table's integers avoid).
+void expectSummedAreaMatchesMap(FrameRunner& runner, int mapSize, const std::string& what) {
+    const ShadowSystem& shadows = runner.shadows();
+    const GLuint table = shadows.minMaxOf(0);
+    ASSERT_NE(table, 0u) << what;
+    std::vector<float> stored(static_cast<std::size_t>(mapSize) * mapSize);  // bit for bit
+    gl.GetTextureSubImage(shadows.textureOf(0), 0, 0, 0, 0, mapSize, mapSize, 1, GL_DEPTH_COMPONENT, GL_FLOAT,
+                          static_cast<GLsizei>(stored.size() * sizeof(float)), stored.data());
+    const std::vector<float> got = readLevel(table, 0, 0, mapSize, 4);
+    const auto n = static_cast<std::size_t>(mapSize);
+    // The table holds the moments of w = min(z s, 1) (ShadowLayerPlan::momentScale).
+    const float scale = shadows.frame().lights[0].layers[0].momentScale;
+    std::printf("[ measured ] %s: moment scale %g\n", what.c_str(), scale);
+    const auto scaled = [&](std::size_t i) { return std::clamp(stored[i] * scale, 0.0f, 1.0f); };
+    std::vector<std::array<std::uint64_t, 2>> sums(n * n);  // exact prefix sums
+    std::vector<std::array<float, 2>> floatSums(n * n);     // the same summed in float
+    int mismatches = 0;
+    double depthSpread = 0.0;
+    for (std::size_t y = 0; y < n; ++y) {
+        for (std::size_t x = 0; x < n; ++x) {
+            const float z = scaled(y * n + x);
+            const std::array<float, 2> moments{z, z * z};
+            depthSpread = std::max(depthSpread, std::abs(static_cast<double>(z) - scaled(0)));
+            for (std::size_t m = 0; m < 2; ++m) {
+                const auto q = static_cast<std::uint64_t>(moments[m] * static_cast<float>(kSatUnit) + 0.5f);
+                const std::uint64_t left = x > 0 ? sums[y * n + x - 1][m] : 0;
+                const std::uint64_t below = y > 0 ? sums[(y - 1) * n + x][m] : 0;
+                const std::uint64_t diagonal = x > 0 && y > 0 ? sums[(y - 1) * n + x - 1][m] : 0;
+                sums[y * n + x][m] = q + left + below - diagonal;
+                const float fl = x > 0 ? floatSums[y * n + x - 1][m] : 0.0f;
+                const float fb = y > 0 ? floatSums[(y - 1) * n + x][m] : 0.0f;
+                const float fd = x > 0 && y > 0 ? floatSums[(y - 1) * n + x - 1][m] : 0.0f;
+                floatSums[y * n + x][m] = moments[m] + fl + fb - fd;
+                const std::uint64_t s = sums[y * n + x][m] % (kLimb * kLimb);
+                const float lo = got[4 * (y * n + x) + 2 * m];
+                const float hi = got[4 * (y * n + x) + 2 * m + 1];
+                if (lo != static_cast<float>(s % kLimb) || hi != static_cast<float>(s / kLimb)) {
+                    if (++mismatches <= 3)
+                        ADD_FAILURE() << what << ": texel " << x << "," << y << " moment " << m << " limbs " << lo
+                                      << "," << hi << ", expected " << s % kLimb << "," << s / kLimb;
+                }
+            }
+        }
+    }
+    EXPECT_EQ(mismatches, 0) << what;
+    ASSERT_GT(depthSpread, 0.01) << what << ": the layer should hold several depths";
+
+    double worstTable = 0.0, worstFloat = 0.0;
+    for (int half : {1, 2, 4, 8, 16, 32, 64}) {
+        for (int cy = half; cy + half <= mapSize; cy += 7) {
+            for (int cx = half; cx + half <= mapSize; cx += 11) {
+                const int x0 = cx - half, x1 = cx + half, y0 = cy - half, y1 = cy + half;
+                const double area = 4.0 * half * half;
+                for (int m = 0; m < 2; ++m) {
+                    double exact = 0.0;
+                    for (int y = y0; y < y1; ++y)
+                        for (int x = x0; x < x1; ++x) {
+                            const double z = scaled(static_cast<std::size_t>(y) * n + x);
+                            exact += m == 0 ? z : static_cast<double>(static_cast<float>(z * z));
+                        }
+                    exact /= area;
+                    const double fromTable = tableRectSum(got, mapSize, x0, x1, y0, y1, m) / (area * kSatUnit);
+                    worstTable = std::max(worstTable, std::abs(fromTable - exact));
+                    const auto fsum = [&](int x, int y) {
+                        return x <= 0 || y <= 0 ? 0.0f
+                                                : floatSums[static_cast<std::size_t>(y - 1) * n + (x - 1)]
+                                                           [static_cast<std::size_t>(m)];
+                    };
+                    const float floatTable =
+                        (fsum(x1, y1) - fsum(x0, y1) - fsum(x1, y0) + fsum(x0, y0)) / static_cast<float>(area);
+                    worstFloat = std::max(worstFloat, std::abs(floatTable - exact));
+                }
+            }
+        }
+    }
+    std::printf(
+        "[ measured ] %s: largest |region mean - double mean|, squares of 2-128 texels: table %.3g, "
+        "a float table %.3g\n",
+        what.c_str(), worstTable, worstFloat);
+    // Rounding to 2^-24 per texel (half a unit), then one float rounding of the sum: a few units.
+    EXPECT_LT(worstTable, 4.0 / kSatUnit) << what;
+}
+
+TEST(FilterChain, SummedAreaTableHoldsExactSumsAndExactRegionMeans) {
+    forBothMapSizes(ShadowTechnique::Vssm, expectSummedAreaMatchesMap);
+}
+
+TEST(FilterChain, SummedAreaTableScalesALongRangeLightsDepthsToItsCasters) {
+    // A range of 10 km over a scene 10 m deep: the casters' stored depths are below 10^-3, and
+    // the table holds them scaled by a power of two of at least 2^8.
+    test::glContext();
+    Scene scene = tiltedScene(ShadowTechnique::Vssm, 256);
+    scene.world.get<Light>(scene.lights[0]).range = 1e4f;
+    FrameRunner runner;
+    (void)test::renderFrame(runner, scene, 64, 48);
+    EXPECT_GE(runner.shadows().frame().lights[0].layers[0].momentScale, 256.0f);
+    expectSummedAreaMatchesMap(runner, 256, "vssm, range 10 km");
+}
+
 TEST(FilterChain, LevelsReachTheWidestRegionTheTechniqueReads) {
     // Moments: a trilinear fetch at log2(radius) reads up to level ceil(log2(maxFilterTexels)).
     EXPECT_EQ(FilterChain::levelsFor(ShadowTechnique::Vsm, 2048, 32.0f), 6);
     EXPECT_EQ(FilterChain::levelsFor(ShadowTechnique::MsmSoft, 2048, 20.0f), 6);
-    EXPECT_EQ(FilterChain::levelsFor(ShadowTechnique::Vssm, 16, 256.0f), 5);  // all the map has
+    EXPECT_EQ(FilterChain::levelsFor(ShadowTechnique::MsmSoft, 16, 256.0f), 5);  // all the map has
+    // VSSM's summed-area table is one level whatever the width.
+    EXPECT_EQ(FilterChain::levelsFor(ShadowTechnique::Vssm, 2048, 256.0f), 1);
     // Hard-edged MSM reads one texel: level 0 alone.
     EXPECT_EQ(FilterChain::levelsFor(ShadowTechnique::Msm, 2048, 256.0f), 1);
     // The pyramid: tiles of 4 texels at level 0, up to the first as wide as 2 (32 + 1.5) texels.

@@ -114,6 +114,64 @@ TEST(Planner, SpotNearAndFarContainTheCasters) {
     expectPerspectiveDepthRangeHoldsCasters(frame.lights[0], t.casterBounds());
 }
 
+/// The stored depth (stored units) of the farthest corner of the bounds of the casters of
+/// `layer`, as the depth pass stores depth: the distance from a perspective light, the axial
+/// depth for a sun.
+double farthestCasterStored(World& world, const ShadowLayerPlan& layer) {
+    double farthest = 0.0;
+    for (Entity e : layer.casters) {
+        const DAabb& b = world.get<WorldBounds>(e).box;
+        for (int k = 0; k < 8; ++k) {
+            const glm::dvec3 c((k & 1) != 0 ? b.max.x : b.min.x, (k & 2) != 0 ? b.max.y : b.min.y,
+                               (k & 4) != 0 ? b.max.z : b.min.z);
+            const glm::dvec3 ls(layer.lightFromWorld * glm::dvec4(c, 1.0));
+            farthest = std::max(farthest, layer.orthographic ? -ls.z : glm::length(ls));
+        }
+    }
+    return farthest / layer.depthScale;
+}
+
+// VSSM's summed-area table scales stored depths by the layer's moment scale before its 24-bit
+// fixed point: a power of two that puts the farthest caster in (1/4, 1/2], so that a light
+// whose range dwarfs its scene keeps the table's resolution on the casters; 1 where the
+// casters already reach past 1/4.
+TEST(Planner, MomentScalePutsTheFarthestCasterInTheUpperHalfOfTheFixedPoint) {
+    double largest = 0.0;
+    for (double range : {10.0, 1e3, 1e6}) {
+        for (LightType type : {LightType::Spot, LightType::Point, LightType::Directional}) {
+            TestScene t;
+            Light light = lightOf(type);
+            light.range = type == LightType::Directional ? 0.0f : static_cast<float>(range);
+            addLight(t.scene, "light", light, hard(), {0.5, 6, 0.2}, glm::normalize(glm::dvec3(0.1, -1, 0.05)));
+            const CameraView view = t.update();
+            ShadowPlanner planner;
+            const ShadowFrame& frame = planner.prepare(t.scene.world, view, t.scene.lights);
+            ASSERT_EQ(frame.lights.size(), 1u);
+            const std::string what = std::string(type == LightType::Spot    ? "spot"
+                                                 : type == LightType::Point ? "point"
+                                                                            : "sun") +
+                                     ", range " + std::to_string(range);
+            int checked = 0;
+            for (const ShadowLayerPlan& layer : frame.lights[0].layers) {
+                const double s = layer.momentScale;
+                EXPECT_EQ(std::exp2(std::round(std::log2(s))), s) << what << ": a power of two (exact scaling)";
+                if (layer.casters.empty()) continue;
+                const double far = farthestCasterStored(t.scene.world, layer);
+                if (far > 0.25) {
+                    EXPECT_EQ(s, 1.0) << what;
+                } else {
+                    EXPECT_GT(far * s, 0.25) << what;
+                    EXPECT_LE(far * s, 0.5) << what;
+                }
+                largest = std::max(largest, s);
+                ++checked;
+            }
+            EXPECT_GT(checked, 0) << what;
+        }
+    }
+    EXPECT_GE(largest, 65536.0) << "a 10^6 m range over a 6 m scene scales by at least 2^16";
+}
+
 /// A ground, one box centred at `boxCenter` and one light; checks the light's depth range.
 void expectOffAxisCasterBetweenNearAndFar(const Light& light, const glm::dvec3& position, const glm::dvec3& boxCenter) {
     Scene scene;

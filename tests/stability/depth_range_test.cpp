@@ -1,8 +1,8 @@
 // Depth range: spot and point lights whose near/far ratio runs from 1:10 to 1:10^6, and a sun
 // over a 10 km ground with 1 m casters. A layer stores linear depth / depthScale in a 32-bit
 // float, so its precision is relative to the depth itself (24 bits), not to the range: the
-// tests measure the stored depth of the open ground against the exact plane, and the hard
-// shadow against ray casting.
+// tests measure the stored depth of the open ground against the exact plane, and every
+// technique's shadow against ray casting.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -29,7 +29,7 @@ struct RangeCase {
     double range;
 };
 
-TEST(Stability, NearFarRatiosUpToAMillionKeepHardShadowsExact) {
+TEST(Stability, NearFarRatiosUpToAMillionKeepEveryTechniquesShadow) {
     const glm::dvec3 position{0.7, 3.5, -0.4};
     std::vector<RangeCase> cases;
     for (LightType type : {LightType::Spot, LightType::Point}) {
@@ -56,14 +56,21 @@ TEST(Stability, NearFarRatiosUpToAMillionKeepHardShadowsExact) {
             [&](ShadowTechnique technique, const test::RenderedFrame& frame, FrameRunner& runner) {
                 const ShadowLightPlan& plan = runner.shadows().frame().lights.at(0);
                 EXPECT_NEAR(plan.layers.at(0).depthNear, c.nearPlane, 1e-6 * c.nearPlane) << name;
-                if (technique != ShadowTechnique::Hard) return;
                 const test::AnalyticLight analytic{c.type, position, {0, -1, 0}};
                 const test::GeometryAgreement m = test::compareWithGeometry(frame.images, frame.images.visibility[0],
                                                                             plan, analytic, boxes, kBandTexels, 1.0);
+                const double ofShadow = static_cast<double>(m.outsideBand) / std::max(m.shadowedPixels, 1);
+                // Every technique: the soft ones' penumbrae (5 cm emitter) cross 0.5 at the
+                // analytic edge; beyond the band a mismatch is acne or a leak. The moment
+                // techniques are the ones to watch: their moments of depths near 0 (a scene
+                // 10^-6 of the range deep) cancel in float (MSM) or vanish in a fixed point (VSSM).
+                test::reportFigure(
+                    name + ", " + techniqueName(technique) + ": mismatch beyond the edge band / shadowed area",
+                    ofShadow);
+                EXPECT_LT(ofShadow, kMaxMismatchOfShadow) << name << ", " << techniqueName(technique);
+                if (technique != ShadowTechnique::Hard) return;
                 const test::StoredDepthError depth =
                     test::storedGroundDepthError(runner.shadows(), 0, glm::dvec3(0.0), kGroundHalf, boxes);
-                const double ofShadow = static_cast<double>(m.outsideBand) / std::max(m.shadowedPixels, 1);
-                test::reportFigure(name + ": hard mismatch beyond the edge band / shadowed area", ofShadow);
                 test::reportFigure(name + ": stored ground depth, largest error", depth.maxAbs, " m");
                 test::reportFigure(name + ": stored ground depth, largest relative error", depth.maxRelative);
                 EXPECT_GT(m.shadowedPixels, m.groundPixels / 50) << name << ": shadow out of view";

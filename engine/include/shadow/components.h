@@ -124,18 +124,19 @@ enum class ShadowTechnique : std::uint8_t {
     /// `pcfRadius` for the cost of one trilinear fetch; light leaks where casters overlap
     /// (`lightBleedReduction`).
     Vsm,
-    /// Variance soft shadow map (the seeds' VSSM): VSM's moments chain read twice, for the
-    /// blocker search region (the average blocker depth from the region's mean and Chebyshev's
-    /// bound, assuming a planar receiver) and for the penumbra by similar triangles, in the same
-    /// physical units as Pcss. Two fetches whatever the penumbra's width.
+    /// Variance soft shadow map (the seeds' VSSM): a summed-area table of depth and depth^2 per
+    /// layer (exact integer sums), read for two squares: the blocker search region (the average
+    /// blocker depth from the region's mean and Chebyshev's bound, assuming a planar receiver)
+    /// and the penumbra by similar triangles, in the same physical units as Pcss. The same 16
+    /// fetches per square whatever the penumbra's width.
     Vssm,
     /// Moment shadow map, hard-edged: z, z^2, z^3, z^4 per texel in a mip chain like VSM's; the
     /// Hamburger 4MSM bound on the occluded fraction of a one-texel region, tighter than
     /// Chebyshev's (less light leaks where casters overlap): hard shadows whose edges the
     /// moments antialias.
     Msm,
-    /// Moment soft shadows: Vssm's blocker search and penumbra on the same chain, and the 4MSM
-    /// bound over the penumbra.
+    /// Moment soft shadows: Vssm's blocker search and penumbra on Msm's mip chain of four
+    /// moments (one trilinear fetch per region), and the 4MSM bound over the penumbra.
     MsmSoft,
 };
 

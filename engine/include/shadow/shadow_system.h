@@ -86,6 +86,11 @@ struct ShadowLayerPlan {
     float depthScale = 1.0f;  ///< stored depth = lsDepth / depthScale
     float depthNear = 0.0f;   ///< near plane (m)
     float splitFar = 0.0f;    ///< directional: camera distance where the cascade ends (m)
+    /// VSSM: the power of two >= 1 its summed-area table scales stored depths by before their
+    /// fixed point (it holds the moments of min(z momentScale, 1)), so that the farthest
+    /// caster's bounds lie in (1/4, 1/2]: a light whose range is 10^6 times the depth of its
+    /// scene keeps 2^-24 of the casters' depth as its resolution rather than of its range.
+    float momentScale = 1.0f;
     /// Casters (meshes and `ShadowCasterDraw`s) whose world bounds meet this layer's frustum,
     /// in entity order.
     std::vector<Entity> casters;
@@ -246,7 +251,8 @@ public:
     [[nodiscard]] unsigned textureOf(std::size_t i) const;
     /// The GL texture name of the filter chain of scene light `i` (an array, one mip chain per
     /// layer): the min/max depth pyramid of PCF and PCSS lights (RG32F), the depth moments of VSM
-    /// and VSSM lights (RG32F) and of MSM and MSM-soft lights (RGBA32F);
+    /// lights (RG32F) and of MSM and MSM-soft lights (RGBA32F), the summed-area table of VSSM
+    /// lights (RGBA32F, one level: shaders/shadow_summed_area_format.glsl);
     /// 0 when it has none. It is what unit SG_UNIT_SHADOW_MINMAX + slot reads.
     [[nodiscard]] unsigned minMaxOf(std::size_t i) const;
     /// Reads layer `layer` of scene light `i` as linear depth in metres (debug views, tests);

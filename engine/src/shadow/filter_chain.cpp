@@ -12,14 +12,21 @@ namespace shadow {
 namespace {
 
 /// The chain's texel format and its size in bytes.
-GLenum formatOf(FilterChainKind kind) { return kind == FilterChainKind::FourMoments ? GL_RGBA32F : GL_RG32F; }
-int texelBytes(FilterChainKind kind) { return kind == FilterChainKind::FourMoments ? 16 : 8; }
+bool fourChannels(FilterChainKind kind) {
+    return kind == FilterChainKind::FourMoments || kind == FilterChainKind::SummedMoments;
+}
+GLenum formatOf(FilterChainKind kind) { return fourChannels(kind) ? GL_RGBA32F : GL_RG32F; }
+int texelBytes(FilterChainKind kind) { return fourChannels(kind) ? 16 : 8; }
+
+/// Summed-area table passes: one invocation per row (or column) of the layer.
+constexpr int kSatGroupSize = 64;
 
 }  // namespace
 
 std::optional<FilterChainKind> filterChainOf(ShadowTechnique t) {
     if (t == ShadowTechnique::Pcf || t == ShadowTechnique::Pcss) return FilterChainKind::MinMax;
-    if (t == ShadowTechnique::Vsm || t == ShadowTechnique::Vssm) return FilterChainKind::Moments;
+    if (t == ShadowTechnique::Vsm) return FilterChainKind::Moments;
+    if (t == ShadowTechnique::Vssm) return FilterChainKind::SummedMoments;
     if (t == ShadowTechnique::Msm || t == ShadowTechnique::MsmSoft) return FilterChainKind::FourMoments;
     return std::nullopt;
 }
@@ -37,6 +44,7 @@ int FilterChain::baseSize(FilterChainKind kind, int mapSize) {
 
 int FilterChain::levelsFor(ShadowTechnique t, int mapSize, float maxFilterTexels) {
     const FilterChainKind kind = filterChainOf(t).value_or(FilterChainKind::MinMax);
+    if (kind == FilterChainKind::SummedMoments) return 1;
     int all = 0;
     for (int size = baseSize(kind, mapSize); size > 0; size /= 2) ++all;
     int needed = 1;
@@ -58,13 +66,15 @@ FilterChain FilterChain::allocate(const std::string& label, FilterChainKind kind
     const int base = baseSize(kind, mapSize);
     c.kind = kind;
     c.levels = levels;
-    const bool moments = kind != FilterChainKind::MinMax;
-    c.texture = gpu::makeTexture(label + (moments ? "/moments" : "/minmax"), GL_TEXTURE_2D_ARRAY);
+    // Moments are filtered (trilinear: a region's mean); min/max texels and the table's limbs are
+    // read one by one.
+    const bool filtered = kind == FilterChainKind::Moments || kind == FilterChainKind::FourMoments;
+    static constexpr std::array<const char*, 4> kSuffix{"/minmax", "/moments", "/moments", "/summed-moments"};
+    c.texture = gpu::makeTexture(label + kSuffix.at(static_cast<std::size_t>(kind)), GL_TEXTURE_2D_ARRAY);
     gl.TextureStorage3D(c.texture.get(), c.levels, formatOf(kind), base, base, layers);
-    // Moments are filtered (trilinear: a region's mean); min/max texels are read one by one.
     gl.TextureParameteri(c.texture.get(), GL_TEXTURE_MIN_FILTER,
-                         moments ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_NEAREST);
-    gl.TextureParameteri(c.texture.get(), GL_TEXTURE_MAG_FILTER, moments ? GL_LINEAR : GL_NEAREST);
+                         filtered ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_NEAREST);
+    gl.TextureParameteri(c.texture.get(), GL_TEXTURE_MAG_FILTER, filtered ? GL_LINEAR : GL_NEAREST);
     gl.TextureParameteri(c.texture.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     gl.TextureParameteri(c.texture.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     gpu::checkGlError("allocating " + label + " filter chain");
@@ -84,8 +94,8 @@ void FilterChain::clearLayer(int mapSize, int layer) const {
     const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     int size = baseSize(kind, mapSize);
     for (int level = 0; level < levels; ++level, size = std::max(1, size / 2)) {
-        gl.ClearTexSubImage(texture.get(), level, 0, 0, layer, size, size, 1,
-                            kind == FilterChainKind::FourMoments ? GL_RGBA : GL_RG, GL_FLOAT, far);
+        gl.ClearTexSubImage(texture.get(), level, 0, 0, layer, size, size, 1, fourChannels(kind) ? GL_RGBA : GL_RG,
+                            GL_FLOAT, far);
     }
 }
 
@@ -97,18 +107,20 @@ FilterChainBuilder::Pass makePass(const std::string& label, const std::string& f
     p.program = gpu::buildComputeProgram(label, file, defines);
     p.layer = gl.GetUniformLocation(p.program.get(), "uLayer");
     p.level = gl.GetUniformLocation(p.program.get(), "uLevel");
+    p.momentScale = gl.GetUniformLocation(p.program.get(), "uMomentScale");
     return p;
 }
 
 }  // namespace
 
-void FilterChainBuilder::build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer) {
+void FilterChainBuilder::build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale) {
     const auto kind = static_cast<std::size_t>(chain.kind);
     std::optional<Programs>& programs = programs_.at(kind);
     if (!programs) {
-        static constexpr std::array<const char*, 3> kFiles{"shadow_minmax.comp.glsl", "shadow_moments.comp.glsl",
-                                                           "shadow_moments.comp.glsl"};
-        static constexpr std::array<const char*, 3> kLabels{"Shadow/MinMax/", "Shadow/Moments/", "Shadow/FourMoments/"};
+        static constexpr std::array<const char*, 4> kFiles{"shadow_minmax.comp.glsl", "shadow_moments.comp.glsl",
+                                                           "shadow_moments.comp.glsl", "shadow_summed_area.comp.glsl"};
+        static constexpr std::array<const char*, 4> kLabels{"Shadow/MinMax/", "Shadow/Moments/", "Shadow/FourMoments/",
+                                                            "Shadow/SummedMoments/"};
         std::vector<std::string> defines;
         if (chain.kind == FilterChainKind::FourMoments) defines.emplace_back("SG_FOUR_MOMENTS");
         std::vector<std::string> fromDepth = defines;
@@ -118,6 +130,10 @@ void FilterChainBuilder::build(GLuint depthArray, const FilterChain& chain, int 
                             makePass(label + "fromBelow", kFiles.at(kind), defines)};
     }
     gl.BindSampler(SG_UNIT_MINMAX_SOURCE, 0);  // the textures' own nearest filtering, no comparison
+    if (chain.kind == FilterChainKind::SummedMoments) {
+        buildSummedArea(depthArray, chain, mapSize, layer, momentScale);
+        return;
+    }
     int size = FilterChain::baseSize(chain.kind, mapSize);
     for (int level = 0; level < chain.levels; ++level, size = std::max(1, size / 2)) {
         const Pass& pass = level == 0 ? programs->fromDepth : programs->fromBelow;
@@ -134,6 +150,25 @@ void FilterChainBuilder::build(GLuint depthArray, const FilterChain& chain, int 
         // The next level reads this one; the lit pass samples them all.
         gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     }
+    gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
+}
+
+void FilterChainBuilder::buildSummedArea(GLuint depthArray, const FilterChain& chain, int mapSize, int layer,
+                                         float momentScale) {
+    const Programs& programs = *programs_.at(static_cast<std::size_t>(FilterChainKind::SummedMoments));
+    const auto groups = static_cast<GLuint>((mapSize + kSatGroupSize - 1) / kSatGroupSize);
+    // Rows: prefix sums of the quantised moments along x, from the depth map.
+    gl.UseProgram(programs.fromDepth.program.get());
+    gl.ProgramUniform1i(programs.fromDepth.program.get(), programs.fromDepth.layer, layer);
+    gl.ProgramUniform1f(programs.fromDepth.program.get(), programs.fromDepth.momentScale, momentScale);
+    gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, depthArray);
+    gl.BindImageTexture(SG_IMAGE_MINMAX, chain.texture.get(), 0, GL_FALSE, layer, GL_READ_WRITE, formatOf(chain.kind));
+    gl.DispatchCompute(groups, 1, 1);
+    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    // Columns: prefix sums of the row sums along y, in place.
+    gl.UseProgram(programs.fromBelow.program.get());
+    gl.DispatchCompute(groups, 1, 1);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // the lit pass fetches the table
     gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
 }
 

@@ -1,11 +1,15 @@
 // A light's per-layer filter chain, built after a layer is drawn and cached with it: a mip
-// chain per layer of its shadow-map array, of one of three kinds.
+// chain (or a table) per layer of its shadow-map array, of one of four kinds.
 //   - MinMax (PCF, PCSS): texel (level k) holds the least and greatest stored depth of a tile of
 //     SG_MINMAX_TILE * 2^k map texels; the lookups decide "no blocker" or "only blockers" for a
 //     whole filter region from four fetches.
 //   - Moments (VSM, VSSM): texel (level k) holds the mean stored depth and mean squared depth of
 //     a tile of 2^k map texels; a trilinear fetch gives a filter region's mean and variance.
 //   - FourMoments (MSM, MSM-soft): the same with the means of z, z^2, z^3 and z^4.
+//   - SummedMoments (VSSM): one level, a summed-area table of z and z^2 in 24-bit fixed point,
+//     exact integer sums modulo 2^48 held as two 24-bit limbs per moment in RGBA32F (integers
+//     below 2^24 are exact floats); any rectangle's moments come from its four corners, with no
+//     float cancellation however large the table.
 #pragma once
 
 #include <shadow/components.h>
@@ -19,27 +23,32 @@
 namespace shadow {
 
 /// What a filter chain holds.
-enum class FilterChainKind : std::uint8_t { MinMax, Moments, FourMoments };
+enum class FilterChainKind : std::uint8_t { MinMax, Moments, FourMoments, SummedMoments };
 
 /// The chain technique `t` reads, or nullopt when it reads none (no memory is spent on one).
 [[nodiscard]] std::optional<FilterChainKind> filterChainOf(ShadowTechnique t);
 
-/// One light's chain texture (an RG32F array, RGBA32F for four moments; one mip chain per layer).
+/// One light's chain texture (an RG32F array, RGBA32F for four moments and the summed-area
+/// table; one mip chain per layer, one level for the table).
 struct FilterChain {
     gpu::Texture texture;
     FilterChainKind kind = FilterChainKind::MinMax;
     int levels = 0;
 
     /// Edge of level 0 for a map of `mapSize` texels: for MinMax the power of two of at least
-    /// mapSize / SG_MINMAX_TILE texels (each level halves exactly), for moments the map's own.
+    /// mapSize / SG_MINMAX_TILE texels (each level halves exactly), for moments and the
+    /// summed-area table the map's own.
     [[nodiscard]] static int baseSize(FilterChainKind kind, int mapSize);
     /// Levels technique `t`'s lookups of at most `maxFilterTexels` texels of radius read. MinMax:
     /// the first whose tiles are as wide as the widest region (2 * (maxFilterTexels + 1.5)
     /// texels), and those below; moments: up to ceil(log2(radius)), the radius one texel for
-    /// hard-edged MSM (its chain is level 0 alone).
+    /// hard-edged MSM (its chain is level 0 alone); the summed-area table is one level.
     [[nodiscard]] static int levelsFor(ShadowTechnique t, int mapSize, float maxFilterTexels);
     /// Allocates the chain of a `mapSize`^2 array of `layers` layers with `levels` levels.
     static FilterChain allocate(const std::string& label, FilterChainKind kind, int mapSize, int layers, int levels);
+    /// Whether a cleared layer's chain is one value throughout, which clearLayer writes: not the
+    /// summed-area table's, whose sums grow across the layer (it is built from the cleared map).
+    [[nodiscard]] bool clearable() const { return kind != FilterChainKind::SummedMoments; }
     /// Every level of `layer` as for a cleared layer, nothing in front of the far plane: all 1.
     void clearLayer(int mapSize, int layer) const;
     /// Bytes of GPU memory the chain holds.
@@ -49,20 +58,25 @@ struct FilterChain {
 /// The programs that build chains, shared by every light; built on first use.
 class FilterChainBuilder {
 public:
-    /// Builds every level of `layer` of `chain` from `depthArray`, a `mapSize`^2 array.
-    void build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer);
+    /// Builds every level of `layer` of `chain` from `depthArray`, a `mapSize`^2 array; a
+    /// summed-area table of the moments of min(z momentScale, 1) (ShadowLayerPlan::momentScale).
+    void build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale = 1.0f);
 
     /// A compute program and its uniforms.
     struct Pass {
         gpu::Program program;
-        GLint layer = -1, level = -1;
+        GLint layer = -1, level = -1, momentScale = -1;
     };
 
 private:
+    void buildSummedArea(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale);
+
+    /// Mip chains: level 0 from the depth map, then each level from the one below. The
+    /// summed-area table: prefix sums along rows from the depth map, then along columns in place.
     struct Programs {
         Pass fromDepth, fromBelow;
     };
-    std::array<std::optional<Programs>, 3> programs_;  ///< per FilterChainKind
+    std::array<std::optional<Programs>, 4> programs_;  ///< per FilterChainKind
 };
 
 }  // namespace shadow

@@ -30,13 +30,37 @@ DAabb toLightSpace(const glm::dmat4& lightFromWorld, const DAabb& box) {
 
 /// Sets `out` to the casters whose bounds meet the frustum of `clipFromWorld`, in entity order,
 /// with room for every caster: one moving into the layer later costs no allocation.
-void castersIn(const glm::dmat4& clipFromWorld, const SceneGeometry& g, std::vector<Entity>& out) {
-    const Frustum f = Frustum::fromMatrix(clipFromWorld);
-    out.clear();
-    out.reserve(g.casters.size());
-    for (const BoundedEntity& c : g.casters) {
-        if (f.intersects(c.bounds)) out.push_back(c.entity);
+/// The stored depth (lsDepth, m) of the point of `box` farthest from the light of `layer`: the
+/// greatest of its corners' (axial for orthographic layers, the distance from the light for
+/// perspective ones, as shadow_depth.frag.glsl stores).
+double farthestDepth(const ShadowLayerPlan& layer, const DAabb& box) {
+    double farthest = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        const glm::dvec3 corner((k & 1) != 0 ? box.max.x : box.min.x, (k & 2) != 0 ? box.max.y : box.min.y,
+                                (k & 4) != 0 ? box.max.z : box.min.z);
+        const glm::dvec3 ls(layer.lightFromWorld * glm::dvec4(corner, 1.0));
+        farthest = std::max(farthest, layer.orthographic ? -ls.z : glm::length(ls));
     }
+    return farthest;
+}
+
+/// Fills `layer.casters` with the casters whose bounds meet the layer's frustum, and
+/// `layer.momentScale` from the farthest of them (ShadowLayerPlan::momentScale). Call once the
+/// layer's matrices and depth scale are set.
+void castersIn(const SceneGeometry& g, ShadowLayerPlan& layer) {
+    const Frustum f = Frustum::fromMatrix(layer.clipFromLight * layer.lightFromWorld);
+    layer.casters.clear();
+    layer.casters.reserve(g.casters.size());
+    double farthest = 0.0;
+    for (const BoundedEntity& c : g.casters) {
+        if (!f.intersects(c.bounds)) continue;
+        layer.casters.push_back(c.entity);
+        farthest = std::max(farthest, farthestDepth(layer, c.bounds));
+    }
+    // The power of two putting the farthest caster's stored depth in (1/4, 1/2]; at most 2^40
+    // (a caster 10^-12 of the range away), at least 1.
+    const double stored = std::clamp(farthest / std::max(static_cast<double>(layer.depthScale), 1e-30), 1e-12, 1.0);
+    layer.momentScale = static_cast<float>(std::clamp(std::exp2(std::floor(std::log2(0.5 / stored))), 1.0, 0x1p40));
 }
 
 /// `layer` at its defaults, but with the storage of its caster list.
@@ -174,7 +198,7 @@ void planDirectional(const ShadowLightPlan& plan, const LightPose& pose, const C
         layer.depthScale = static_cast<float>(depthRange);
         layer.depthNear = 0.0f;
         layer.splitFar = static_cast<float>(splits[k + 1]);
-        castersIn(layer.clipFromLight * layer.lightFromWorld, g, layer.casters);
+        castersIn(g, layer);
     }
 }
 
@@ -218,7 +242,7 @@ void perspectiveLayer(const glm::dvec3& position, const glm::dvec3& direction, d
     // far-plane corner.
     layer.depthScale = static_cast<float>(far * std::sqrt(1.0 + 2.0 * tanHalf * tanHalf));
     layer.depthNear = static_cast<float>(near);
-    castersIn(layer.clipFromLight * layer.lightFromWorld, g, layer.casters);
+    castersIn(g, layer);
 }
 
 }  // namespace

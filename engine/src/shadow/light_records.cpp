@@ -74,6 +74,7 @@ GpuShadowLayer packLayer(const ShadowLayerPlan& layer, const glm::dvec3& wsCamer
     l.depthNear = layer.depthNear;
     l.splitFar = layer.splitFar;
     l.orthographic = layer.orthographic ? 1 : 0;
+    l.momentScale = layer.momentScale;
     return l;
 }
 
