@@ -3,7 +3,7 @@
 // (`msm-soft`, Hamburger 4MSM). The blocker search and the filter both read region moments whose
 // cost does not depend on the region's width: VSSM from the light's summed-area table
 // (shadow_summed_area.glsl, 16 fetches of exact integer sums), MSM-soft from its mip chain of
-// four moments (shadow_moments.comp.glsl, one trilinear fetch).
+// four moments (shadow_moments.comp.glsl, four trilinear fetches: quadrantMoments).
 //   1. Moments of the blocker search region, the same cone as PCSS's.
 //   2. Chebyshev's bound gives the fraction p of the region at least as far as the receiver
 //      (for both: the 4MSM bound would need the receiver plane's spread over the whole search
@@ -33,8 +33,27 @@ const float kVssmLeastBlockers = 1e-3;
 
 // A region's moments: VSSM's from the summed-area table (z, z^2), MSM-soft's from the mip chain
 // of four moments.
+// MSM-soft's region moments from the mip chain: the square VSSM reads from its table (half-width
+// h = r sqrt(3) / 2) as four trilinear fetches at the centres of its quadrants, each half a
+// level finer than a quadrant's width (log2(h) - 1/2), instead of one fetch at log2(r), whose
+// box-and-tent has tails half again as long as the disk. Measured on builtin:plates, 320x240,
+// against the ray-traced truth: penumbra RMSE 0.050 with one fetch; with four at level
+// log2(h) + {-1.5, -1, -0.5, -0.3, 0}: 0.066, 0.034, 0.025, 0.027, 0.038 (quadrant centres),
+// 0.059 and 0.043 with the taps at 0.4 h and 0.6 h.
+vec4 quadrantMoments(int slot, Receiver r, Tap center, float radius) {
+    float h = 0.8660254 * radius / max(r.texelMetres, 1e-30);
+    float level = max(log2(max(h, 1e-30)) - 0.5, 0.0);
+    vec2 offset = vec2(0.5 * h) / vec2(textureSize(uShadowMinMax[slot], 0).xy);
+    vec4 m = vec4(0.0);
+    for (int k = 0; k < 4; ++k) {
+        vec2 quadrant = vec2((k & 1) == 1 ? 1.0 : -1.0, (k & 2) == 2 ? 1.0 : -1.0);
+        m += textureLod(uShadowMinMax[slot], vec3(center.uv + quadrant * offset, float(center.layer)), level);
+    }
+    return 0.25 * m;
+}
+
 vec4 regionMomentsOf(int slot, GpuLight L, Receiver r, Tap center, float radius, const bool fourMoments) {
-    return fourMoments ? regionMoments(slot, r, center, radius)
+    return fourMoments ? quadrantMoments(slot, r, center, radius)
                        : vec4(summedRegionMoments(slot, L, r, center, radius), 0.0, 0.0);
 }
 

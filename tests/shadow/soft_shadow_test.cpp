@@ -159,33 +159,45 @@ TEST(SoftShadow, PcssContactHardeningMatchesGeometry) {
     EXPECT_NEAR(c.farEdge.midpoint, 0.0, kMidpointTolerance);
 }
 
-/// VSSM reads its blocker depth and its filter from mip levels of the moments (one trilinear
-/// fetch each), not from taps over a disk: its average blocker depth is exact for two plane
-/// depths, but the trilinear kernel, whose variance matches the disk's, has a steeper 5-95 %
-/// band than a disk's edge profile. Measured by the same command as PCSS's: near band -36.5 %,
-/// far -28.9 % against the closed form, 50 % points at 0.08 % and 0.10 % of the full width from
-/// the edge. Bounds: the band within 45 % of the closed form (a penumbra from the wrong blocker
-/// depth, e.g. the plate's other edge or the ground, is off by 80 % or more: the near and far
-/// widths differ 11-fold) and the 50 % point within 1 % of the full width.
-constexpr double kVssmBandTolerance = 0.45;
+/// VSSM reads its blocker depth and its filter from its summed-area table (a square whose
+/// variance matches the disk's), not from taps over a disk: its average blocker depth is exact
+/// for two plane depths. Measured by the same command as PCSS's: near band -0.94 %, far -2.06 %
+/// against the closed form, 50 % points at 0.12 % and 0.13 % of the full width from the edge
+/// (from mip levels, one trilinear fetch each: -36.5 %, -28.9 %, 0.08 %, 0.10 %). Bounds: the
+/// band within 7 % of the closed form (three times the larger deviation; a penumbra from the
+/// wrong blocker depth, e.g. the plate's other edge or the ground, is off by 80 % or more: the
+/// near and far widths differ 11-fold) and the 50 % point within 1 % of the full width.
+constexpr double kVssmBandTolerance = 0.07;
 constexpr double kVssmMidpointFraction = 0.01;
 
-/// The moment techniques' contact hardening within the bounds above.
-void expectMomentContactHardening(ShadowTechnique technique) {
+/// The moment techniques' contact hardening: the 5-95 % band within `bandTolerance` of the
+/// closed form, the 50 % point within `midpointFraction` of the full width from the edge.
+void expectMomentContactHardening(ShadowTechnique technique, double bandTolerance, double midpointFraction) {
     const ContactHardening c = measureContactHardening(technique);
     for (const EdgeMeasurement& e : {c.nearEdge, c.farEdge}) {
-        EXPECT_NEAR(e.measured, e.expected, kVssmBandTolerance * e.expected) << techniqueName(technique);
-        EXPECT_NEAR(e.midpoint, 0.0, kVssmMidpointFraction * e.fullWidth) << techniqueName(technique);
+        EXPECT_NEAR(e.measured, e.expected, bandTolerance * e.expected) << techniqueName(technique);
+        EXPECT_NEAR(e.midpoint, 0.0, midpointFraction * e.fullWidth) << techniqueName(technique);
     }
 }
 
-TEST(SoftShadow, VssmContactHardeningMatchesGeometry) { expectMomentContactHardening(ShadowTechnique::Vssm); }
+TEST(SoftShadow, VssmContactHardeningMatchesGeometry) {
+    expectMomentContactHardening(ShadowTechnique::Vssm, kVssmBandTolerance, kVssmMidpointFraction);
+}
 
-/// MSM-soft: VSSM's blocker depth and penumbra, the 4MSM bound over it (its receiver-plane
-/// reach moves the edge towards the lit side by up to the plane's spread over the region).
-/// Measured by the same command: near band -37.6 %, far -28.6 %, 50 % points at 0.55 % and
-/// 0.14 % of the full width from the edge; bounds as VSSM's.
-TEST(SoftShadow, MsmSoftContactHardeningMatchesGeometry) { expectMomentContactHardening(ShadowTechnique::MsmSoft); }
+/// MSM-soft: VSSM's blocker depth and penumbra, the 4MSM bound over it, from four fetches of
+/// its mip chain at the quadrants of the square VSSM reads from its table. Measured by the same
+/// command: near band -14.3 %, far -12.0 %, 50 % points at 2.06 % and 2.14 % of the full width
+/// from the edge, on the lit side: its receiver-plane reach (kMsmPlaneReach) compares the
+/// plane's nearest depth over the region, up to the plane's spread nearer than the receiver.
+/// (With one fetch at log2(r): -37.6 %, -28.6 %, 0.55 % and 0.14 %.) Bounds: the band within
+/// 25 % (below the one-fetch figures, above twice the four fetches'), the 50 % point within 3 %
+/// of the full width (the far plate's 12.8 mm is 3.5 texels).
+constexpr double kMsmSoftBandTolerance = 0.25;
+constexpr double kMsmSoftMidpointFraction = 0.03;
+
+TEST(SoftShadow, MsmSoftContactHardeningMatchesGeometry) {
+    expectMomentContactHardening(ShadowTechnique::MsmSoft, kMsmSoftBandTolerance, kMsmSoftMidpointFraction);
+}
 
 // ---------------------------------------------------------------------------------------------
 // No acne: an open plane lit at any elevation must not shadow itself.
