@@ -321,21 +321,8 @@ void planLayers(const ShadowLightPlan& plan, const LightPose& pose, const Camera
         planDirectional(plan, pose, camera, geometry, layers);
         return;
     }
-    // Two texels of margin on each side keep bilinear taps at the edge inside the map. A point
-    // light's soft moment techniques read a region about the receiver, as wide as the penumbra,
-    // from the receiver's own face alone (PCF and PCSS route each tap to its face): its faces
-    // reach past 90 degrees by the widest region's reach, twice maxFilterTexels (MSM-soft's
-    // quadrant fetches reach about that far, VSSM's square 0.87 of it), so that a region
-    // crossing into the next face finds it in its own face's band instead of being cut at the
-    // edge. At most a quarter of the map a side. (VSM's fixed filter and MSM's texel are a few
-    // texels wide: the two-texel margin.)
-    double marginTexels = 2.0;
-    const ShadowTechnique technique = plan.settings.technique;  // plan.technique() needs the layers
-    if (plan.light.type == LightType::Point &&
-        (technique == ShadowTechnique::Vssm || technique == ShadowTechnique::MsmSoft)) {
-        marginTexels = std::min(2.0 + 2.0 * plan.settings.maxFilterTexels, 0.25 * plan.mapSize);
-    }
-    const double margin = 1.0 + 2.0 * marginTexels / plan.mapSize;
+    // Two texels of margin on each side keep bilinear taps at the edge inside the map.
+    const double margin = 1.0 + 4.0 / plan.mapSize;
     const double tanHalf =
         plan.light.type == LightType::Spot ? std::tan(static_cast<double>(plan.light.outerConeAngle)) * margin : margin;
     const double far = perspectiveFar(plan, pose.wsPosition, geometry);
