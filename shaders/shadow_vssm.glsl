@@ -3,7 +3,8 @@
 // (`msm-soft`, Hamburger 4MSM). The blocker search and the filter both read region moments whose
 // cost does not depend on the region's width: VSSM from the light's summed-area table
 // (shadow_summed_area.glsl, 16 fetches of exact integer sums), MSM-soft from its mip chain of
-// four moments (shadow_moments.comp.glsl, four trilinear fetches: quadrantMoments).
+// four moments (shadow_moments.comp.glsl: one trilinear fetch for the search, four for the
+// penumbra, quadrantMoments).
 //   1. Moments of the blocker search region, the same cone as PCSS's.
 //   2. Chebyshev's bound gives the fraction p of the region at least as far as the receiver
 //      (for both: the 4MSM bound would need the receiver plane's spread over the whole search
@@ -31,15 +32,16 @@
 // blocker depth (mean - p t) / (1 - p) is 0/0 there.
 const float kVssmLeastBlockers = 1e-3;
 
-// A region's moments: VSSM's from the summed-area table (z, z^2), MSM-soft's from the mip chain
-// of four moments.
-// MSM-soft's region moments from the mip chain: the square VSSM reads from its table (half-width
-// h = r sqrt(3) / 2) as four trilinear fetches at the centres of its quadrants, each half a
-// level finer than a quadrant's width (log2(h) - 1/2), instead of one fetch at log2(r), whose
-// box-and-tent has tails half again as long as the disk. Measured on builtin:plates, 320x240,
-// against the ray-traced truth: penumbra RMSE 0.050 with one fetch; with four at level
+// MSM-soft's penumbra region from the mip chain: the square VSSM reads from its table
+// (half-width h = r sqrt(3) / 2) as four trilinear fetches at the centres of its quadrants, each
+// half a level finer than a quadrant's width (log2(h) - 1/2), instead of one fetch at log2(r),
+// whose box-and-tent has tails half again as long as the disk. Measured on builtin:plates,
+// 320x240, against the ray-traced truth: penumbra RMSE 0.050 with one fetch; with four at level
 // log2(h) + {-1.5, -1, -0.5, -0.3, 0}: 0.066, 0.034, 0.025, 0.027, 0.038 (quadrant centres),
-// 0.059 and 0.043 with the taps at 0.4 h and 0.6 h.
+// 0.059 and 0.043 with the taps at 0.4 h and 0.6 h. The blocker search keeps the one fetch: it
+// only estimates the blockers' mean depth, and the four there cost builtin:bunny and
+// builtin:default more (RMSE summed over their six lights and the plates' one: 0.687 with four
+// in both regions, 0.677 with one in the search, 0.685 with one in both).
 vec4 quadrantMoments(int slot, Receiver r, Tap center, float radius) {
     float h = 0.8660254 * radius / max(r.texelMetres, 1e-30);
     float level = max(log2(max(h, 1e-30)) - 0.5, 0.0);
@@ -52,9 +54,12 @@ vec4 quadrantMoments(int slot, Receiver r, Tap center, float radius) {
     return 0.25 * m;
 }
 
-vec4 regionMomentsOf(int slot, GpuLight L, Receiver r, Tap center, float radius, const bool fourMoments) {
-    return fourMoments ? quadrantMoments(slot, r, center, radius)
-                       : vec4(summedRegionMoments(slot, L, r, center, radius), 0.0, 0.0);
+// A region's moments: VSSM's from its table; MSM-soft's from its mip chain, one fetch for the
+// blocker `search`, the quadrants for the penumbra.
+vec4 regionMomentsOf(int slot, GpuLight L, Receiver r, Tap center, float radius, const bool fourMoments,
+                     const bool search) {
+    if (!fourMoments) return vec4(summedRegionMoments(slot, L, r, center, radius), 0.0, 0.0);
+    return search ? regionMoments(slot, r, center, radius) : quadrantMoments(slot, r, center, radius);
 }
 
 // The least variance of a region's moments: the table's fixed point adds its own.
@@ -72,7 +77,7 @@ float softMomentsVisibility(int slot, GpuLight L, Receiver r, const bool fourMom
     float penumbra = 0.0;
     if (size > 0.0) {
         float searchRadius = clamp(blockerSearchRadius(L, r, dReceiver, size), r.texelMetres, maxRadius);
-        vec4 b = regionMomentsOf(slot, L, r, center, searchRadius, fourMoments);
+        vec4 b = regionMomentsOf(slot, L, r, center, searchRadius, fourMoments, true);
         float lit = chebyshevUpperBound(b.xy, reference, regionVarianceFloor(L, r, center, b.xy, fourMoments));
         if (1.0 - lit < kVssmLeastBlockers) return 1.0;
         float zBlocker = (b.x - lit * reference) / (1.0 - lit);
@@ -81,7 +86,7 @@ float softMomentsVisibility(int slot, GpuLight L, Receiver r, const bool fourMom
         SG_DEBUG_STORE(gDebugBlockerDepth, dBlocker);
     }
     SG_DEBUG_STORE(gDebugPenumbra, penumbra);
-    vec4 b = regionMomentsOf(slot, L, r, center, penumbra, fourMoments);
+    vec4 b = regionMomentsOf(slot, L, r, center, penumbra, fourMoments, false);
     return fourMoments ? 1.0 - msmShadowFraction(b, msmReference(r, center, penumbra))
                        : momentsVisibility(L, b.xy, reference, regionVarianceFloor(L, r, center, b.xy, false));
 }

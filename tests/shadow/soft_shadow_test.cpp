@@ -184,14 +184,14 @@ TEST(SoftShadow, VssmContactHardeningMatchesGeometry) {
     expectMomentContactHardening(ShadowTechnique::Vssm, kVssmBandTolerance, kVssmMidpointFraction);
 }
 
-/// MSM-soft: VSSM's blocker depth and penumbra, the 4MSM bound over it, from four fetches of
-/// its mip chain at the quadrants of the square VSSM reads from its table. Measured by the same
-/// command: near band -14.3 %, far -12.0 %, 50 % points at 2.06 % and 2.14 % of the full width
-/// from the edge, on the lit side: its receiver-plane reach (kMsmPlaneReach) compares the
-/// plane's nearest depth over the region, up to the plane's spread nearer than the receiver.
-/// (With one fetch at log2(r): -37.6 %, -28.6 %, 0.55 % and 0.14 %.) Bounds: the band within
-/// 25 % (below the one-fetch figures, above twice the four fetches'), the 50 % point within 3 %
-/// of the full width (the far plate's 12.8 mm is 3.5 texels).
+/// MSM-soft: VSSM's blocker depth and penumbra, the 4MSM bound over it, the penumbra region from
+/// four fetches of its mip chain at the quadrants of the square VSSM reads from its table.
+/// Measured by the same command: near band -5.0 %, far -8.8 %, 50 % points at 1.65 % and 2.15 %
+/// of the full width from the edge, on the lit side: its receiver-plane reach (kMsmPlaneReach)
+/// compares the plane's nearest depth over the region, up to the plane's spread nearer than the
+/// receiver. (With one fetch at log2(r): -37.6 %, -28.6 %, 0.55 % and 0.14 %.) Bounds: the band
+/// within 25 % (below the one-fetch figures, near three times the four fetches'), the 50 % point
+/// within 3 % of the full width (the far plate's 12.9 mm is 3.6 texels).
 constexpr double kMsmSoftBandTolerance = 0.25;
 constexpr double kMsmSoftMidpointFraction = 0.03;
 
