@@ -38,12 +38,14 @@ configuration sets every shadowed light of the scene. `pcss-textbook` is the see
 Poisson taps around the receiver's UV), kept so our PCSS is measured against it in the same run.
 `vsm` is the variance shadow map (one trilinear fetch of prefiltered depth moments over the light's
 `pcfRadius`, Chebyshev's bound, `bleed` its lightBleedReduction): a fixed-width filter like PCF.
-`vssm` reads the same moments twice, for the blocker search cone (average blocker depth from the
-region's mean and Chebyshev's lit fraction) and for the penumbra by similar triangles: PCSS's
-contact hardening for two fetches whatever the width. `msm` is the hard-edged moment shadow map
-(four moments, the Hamburger bound over one texel), `msm-soft` VSSM's blocker search and penumbra
-with the four-moment bound over it. The moment techniques' shadow column is mostly their moments
-chain, built at the map's full resolution every frame here (caching off).
+`vssm` reads two squares of its summed-area table of the moments (exact integer sums), the
+blocker search cone (average blocker depth from the region's mean and Chebyshev's lit fraction)
+and the penumbra by similar triangles: PCSS's contact hardening for the same 16 fetches per
+square whatever the width. `msm` is the hard-edged moment shadow map (four moments, the
+Hamburger bound over one texel), `msm-soft` VSSM's blocker search and penumbra on the mip chain
+of four moments (one fetch for the search, four for the penumbra) with the four-moment bound
+over it. The moment techniques' shadow column is mostly their chain (mips, or VSSM's table),
+built at the map's full resolution every frame here (caching off).
 Every configuration of a scene draws the same depth layers, so no technique's frame can be shorter
 than the scene's fastest frame of all configurations (a hard shadow from the smallest map): the
 last column, textbook time over that frame, bounds the speed-up any filter could show.

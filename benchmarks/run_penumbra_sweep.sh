@@ -3,24 +3,26 @@
 # high plate's penumbra spans 2-64 texels of its map, with PCSS, the textbook PCSS, VSSM and VSM
 # (build/bin/penumbra_sweep, interleaved rounds). Writes benchmarks/results/penumbra_sweep.md and
 # its section of BENCHMARKS.md.
-#   bash benchmarks/run_penumbra_sweep.sh        (ROUNDS=3 FRAMES=5 to override)
+#   bash benchmarks/run_penumbra_sweep.sh        (ROUNDS=5 FRAMES=5 to override)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash .ci/setup >/dev/null
 results=benchmarks/results
 mkdir -p "$results"
 {
-  ./build/bin/penumbra_sweep --size 320x240 --rounds "${ROUNDS:-3}" --frames "${FRAMES:-5}"
+  ./build/bin/penumbra_sweep --size 320x240 --rounds "${ROUNDS:-5}" --frames "${FRAMES:-5}"
   cat <<'MD'
 
 PCSS spends taps where the penumbra is (one tap per texel of its disk's area, up to
 `pcfSamples`, none where the min/max pyramid shows the region lit or in umbra); VSM reads one
-mip level of the moments for its fixed `pcfRadius`, VSSM two (search cone and penumbra) whatever
-the width, MSM-soft the same on four moments. The moment techniques pay for their moments chain,
-a full-resolution mip chain (RG32F, RGBA32F for four moments) built by compute every time the
-layer is redrawn (here every frame: caching off): that is most of their frame at a 2048² map on
-this CPU rasteriser, and it does not depend on the width (VSM's frame, whose filter is fixed,
-varies as much from run to run).
+mip level of the moments for its fixed `pcfRadius`; VSSM reads two squares (search cone and
+penumbra) of its summed-area table, 16 fetches each whatever the width; MSM-soft one trilinear
+fetch of its four-moment mip chain for the search and four for the penumbra. The moment
+techniques pay for their chain, built by compute every time the layer is redrawn (here every
+frame: caching off): a full-resolution mip chain (RG32F, RGBA32F for four moments) or VSSM's
+table (RGBA32F, one level, a pass along the rows and one along the columns). That is most of
+their frame at a 2048² map on this CPU rasteriser, and it does not depend on the width (VSM's
+frame, whose filter is fixed, varies as much from run to run).
 
 ```sh
 bash benchmarks/run_penumbra_sweep.sh
