@@ -19,7 +19,8 @@ layout(binding = SG_UNIT_SHADOW_COMPARE) uniform sampler2DArrayShadow uShadowCom
 layout(binding = SG_UNIT_SHADOW_DEPTH) uniform sampler2DArray uShadowDepth[SG_MAX_LIGHTS_PER_PASS];
 #if defined(SG_TECH_PCF_ENABLED) || defined(SG_TECH_PCSS_ENABLED) || defined(SG_TECH_VSM_ENABLED) || \
     defined(SG_TECH_VSSM_ENABLED) || defined(SG_TECH_MSM_ENABLED) || defined(SG_TECH_MSM_SOFT_ENABLED)
-// Each slot's filter chain: the min/max depth pyramid (PCF, PCSS) or the depth moments (VSM, VSSM: two; MSM, MSM-soft: four).
+// Each slot's filter chain: the min/max depth pyramid (PCF, PCSS), the depth moments (VSM: two; MSM, MSM-soft: four)
+// or the summed-area table of two (VSSM).
 layout(binding = SG_UNIT_SHADOW_MINMAX) uniform sampler2DArray uShadowMinMax[SG_MAX_LIGHTS_PER_PASS];
 #endif
 

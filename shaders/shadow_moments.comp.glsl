@@ -1,5 +1,5 @@
 // One level of a shadow layer's moment chain: each texel holds the means of the powers of the
-// stored depth over its tile of the map, 2^level texels wide: z and z^2 (VSM, VSSM), or z, z^2,
+// stored depth over its tile of the map, 2^level texels wide: z and z^2 (VSM), or z, z^2,
 // z^3 and z^4 with SG_FOUR_MOMENTS (MSM). Level 0 reads one depth texel, every further level
 // averages the 2x2 texels of the level below, so a trilinear fetch at level log2(w) gives the
 // moments of a region about w texels wide. One level per dispatch, as for the min/max pyramid

@@ -34,7 +34,8 @@ struct LightShadowStats {
     /// changed and every layer was drawn.
     bool mapAllocated = false;
     /// GPU memory of its shadow map (32-bit depth) and of its filter chain (min/max pyramid for
-    /// PCF and PCSS, depth moments for VSM, VSSM, MSM and MSM-soft; 0 for the others), in bytes.
+    /// PCF and PCSS, depth moments for VSM, MSM and MSM-soft, the summed-area table for VSSM; 0
+    /// for the others), in bytes.
     long long mapBytes = 0;
     long long filterChainBytes = 0;
 };

@@ -3,7 +3,7 @@
 //   - MinMax (PCF, PCSS): texel (level k) holds the least and greatest stored depth of a tile of
 //     SG_MINMAX_TILE * 2^k map texels; the lookups decide "no blocker" or "only blockers" for a
 //     whole filter region from four fetches.
-//   - Moments (VSM, VSSM): texel (level k) holds the mean stored depth and mean squared depth of
+//   - Moments (VSM): texel (level k) holds the mean stored depth and mean squared depth of
 //     a tile of 2^k map texels; a trilinear fetch gives a filter region's mean and variance.
 //   - FourMoments (MSM, MSM-soft): the same with the means of z, z^2, z^3 and z^4.
 //   - SummedMoments (VSSM): one level, a summed-area table of z and z^2 in 24-bit fixed point,
