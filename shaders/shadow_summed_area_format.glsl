@@ -1,11 +1,12 @@
 // The summed-area table's number format (shadow_summed_area.comp.glsl builds it,
-// shadow_summed_area.glsl reads it): moments in 24-bit fixed point, sums modulo 2^48 as two
-// 24-bit limbs per moment, (z lo, z hi, z^2 lo, z^2 hi).
+// shadow_summed_area.glsl reads it): moments of the scaled depth w in 24-bit fixed point, sums
+// modulo 2^48 as two 24-bit limbs per moment, (w lo, w hi, w^2 lo, w^2 hi).
 #ifndef SG_SHADOW_SUMMED_AREA_FORMAT
 #define SG_SHADOW_SUMMED_AREA_FORMAT
 
-// Units of the fixed point per stored depth unit (one unit is 2^-24 of the light's depth range:
-// 0.6 um at a 10 m range, 6 cm at 10^6 m), and the limb's mask.
+// Units of the fixed point per scaled depth unit: one unit is 2^-24 / s of the layer's depth
+// range, s its moment scale (the farthest caster at 1/4 to 1/2 of the fixed point's range), and
+// the limb's mask.
 const float kSatUnit = 16777216.0;
 const uint kSatLimbMask = 0xFFFFFFu;
 

@@ -142,11 +142,16 @@ TEST(Planner, MomentScalePutsTheFarthestCasterInTheUpperHalfOfTheFixedPoint) {
             TestScene t;
             Light light = lightOf(type);
             light.range = type == LightType::Directional ? 0.0f : static_cast<float>(range);
-            addLight(t.scene, "light", light, hard(), {0.5, 6, 0.2}, glm::normalize(glm::dvec3(0.1, -1, 0.05)));
+            Shadow vssm = hard();
+            vssm.technique = ShadowTechnique::Vssm;
+            addLight(t.scene, "light", light, vssm, {0.5, 6, 0.2}, glm::normalize(glm::dvec3(0.1, -1, 0.05)));
+            // The same light with hard shadows: no table, no scale (the planner skips the corners).
+            addLight(t.scene, "hard light", light, hard(), {0.5, 6, 0.2}, glm::normalize(glm::dvec3(0.1, -1, 0.05)));
             const CameraView view = t.update();
             ShadowPlanner planner;
             const ShadowFrame& frame = planner.prepare(t.scene.world, view, t.scene.lights);
-            ASSERT_EQ(frame.lights.size(), 1u);
+            ASSERT_EQ(frame.lights.size(), 2u);
+            for (const ShadowLayerPlan& layer : frame.lights[1].layers) EXPECT_EQ(layer.momentScale, 1.0f);
             const std::string what = std::string(type == LightType::Spot    ? "spot"
                                                  : type == LightType::Point ? "point"
                                                                             : "sun") +

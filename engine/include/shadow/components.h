@@ -136,7 +136,8 @@ enum class ShadowTechnique : std::uint8_t {
     /// moments antialias.
     Msm,
     /// Moment soft shadows: Vssm's blocker search and penumbra on Msm's mip chain of four
-    /// moments (one trilinear fetch per region), and the 4MSM bound over the penumbra.
+    /// moments (one trilinear fetch for the search, four for the penumbra), and the 4MSM bound
+    /// over the penumbra.
     MsmSoft,
 };
 

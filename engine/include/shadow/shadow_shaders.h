@@ -41,8 +41,8 @@ struct ShadowBindingPoints {
     int kernelBlock = SG_BINDING_KERNELS;      ///< the filters' Poisson disk
     int compareUnit = SG_UNIT_SHADOW_COMPARE;  ///< depth arrays with the comparison sampler
     int depthUnit = SG_UNIT_SHADOW_DEPTH;      ///< the same arrays with the raw-depth sampler
-    int minMaxUnit =
-        SG_UNIT_SHADOW_MINMAX;  ///< filter chains: min/max pyramids (PCF, PCSS), moments (VSM, MSM), summed-area tables (VSSM)
+    /// Filter chains: min/max pyramids (PCF, PCSS), moments (VSM, MSM), summed-area tables (VSSM).
+    int minMaxUnit = SG_UNIT_SHADOW_MINMAX;
 };
 
 /// Bit `1 << t` for technique t (`ShadowTechnique`).

@@ -28,8 +28,11 @@ DAabb toLightSpace(const glm::dmat4& lightFromWorld, const DAabb& box) {
     return out;
 }
 
-/// Sets `out` to the casters whose bounds meet the frustum of `clipFromWorld`, in entity order,
-/// with room for every caster: one moving into the layer later costs no allocation.
+/// Whether `plan`'s light reads a summed-area table (VSSM: FilterChainKind::SummedMoments in
+/// filter_chain.h), whose fixed point needs the layers' moment scale. (plan.technique() is None
+/// until the layers exist.)
+bool readsSummedMoments(const ShadowLightPlan& plan) { return plan.settings.technique == ShadowTechnique::Vssm; }
+
 /// The stored depth (lsDepth, m) of the point of `box` farthest from the light of `layer`: the
 /// greatest of its corners' (axial for orthographic layers, the distance from the light for
 /// perspective ones, as shadow_depth.frag.glsl stores).
@@ -44,10 +47,12 @@ double farthestDepth(const ShadowLayerPlan& layer, const DAabb& box) {
     return farthest;
 }
 
-/// Fills `layer.casters` with the casters whose bounds meet the layer's frustum, and
-/// `layer.momentScale` from the farthest of them (ShadowLayerPlan::momentScale). Call once the
+/// Sets `layer.casters` to the casters whose bounds meet the layer's frustum, in entity order,
+/// with room for every caster: one moving into the layer later costs no allocation. With
+/// `summedMoments` (a VSSM light) also `layer.momentScale` from the farthest of them
+/// (ShadowLayerPlan::momentScale); other lights keep 1 and skip the corners. Call once the
 /// layer's matrices and depth scale are set.
-void castersIn(const SceneGeometry& g, ShadowLayerPlan& layer) {
+void castersIn(const SceneGeometry& g, bool summedMoments, ShadowLayerPlan& layer) {
     const Frustum f = Frustum::fromMatrix(layer.clipFromLight * layer.lightFromWorld);
     layer.casters.clear();
     layer.casters.reserve(g.casters.size());
@@ -55,8 +60,9 @@ void castersIn(const SceneGeometry& g, ShadowLayerPlan& layer) {
     for (const BoundedEntity& c : g.casters) {
         if (!f.intersects(c.bounds)) continue;
         layer.casters.push_back(c.entity);
-        farthest = std::max(farthest, farthestDepth(layer, c.bounds));
+        if (summedMoments) farthest = std::max(farthest, farthestDepth(layer, c.bounds));
     }
+    if (!summedMoments) return;
     // The power of two putting the farthest caster's stored depth in (1/4, 1/2]; at most 2^40
     // (a caster 10^-12 of the range away), at least 1.
     const double stored = std::clamp(farthest / std::max(static_cast<double>(layer.depthScale), 1e-30), 1e-12, 1.0);
@@ -198,7 +204,7 @@ void planDirectional(const ShadowLightPlan& plan, const LightPose& pose, const C
         layer.depthScale = static_cast<float>(depthRange);
         layer.depthNear = 0.0f;
         layer.splitFar = static_cast<float>(splits[k + 1]);
-        castersIn(g, layer);
+        castersIn(g, readsSummedMoments(plan), layer);
     }
 }
 
@@ -218,7 +224,7 @@ double powerOfTwoBelow(double x) { return std::exp2(std::floor(std::log2(x))); }
 /// One perspective layer looking along `direction`, into `layer`. With `fixedNear` 0 the near
 /// plane is fitted just before the nearest caster in this layer's frustum.
 void perspectiveLayer(const glm::dvec3& position, const glm::dvec3& direction, double tanHalf, double fixedNear,
-                      double far, const SceneGeometry& g, ShadowLayerPlan& layer) {
+                      double far, const SceneGeometry& g, bool summedMoments, ShadowLayerPlan& layer) {
     const double minNear = far * 1e-6;
     resetLayer(layer);
     layer.orthographic = false;
@@ -242,7 +248,7 @@ void perspectiveLayer(const glm::dvec3& position, const glm::dvec3& direction, d
     // far-plane corner.
     layer.depthScale = static_cast<float>(far * std::sqrt(1.0 + 2.0 * tanHalf * tanHalf));
     layer.depthNear = static_cast<float>(near);
-    castersIn(g, layer);
+    castersIn(g, summedMoments, layer);
 }
 
 }  // namespace
@@ -329,14 +335,15 @@ void planLayers(const ShadowLightPlan& plan, const LightPose& pose, const Camera
     const double near = plan.settings.nearPlane;  // 0: fitted per layer
     if (plan.light.type == LightType::Spot) {
         layers.resize(1);
-        perspectiveLayer(pose.wsPosition, pose.wsDirection, tanHalf, near, far, geometry, layers[0]);
+        perspectiveLayer(pose.wsPosition, pose.wsDirection, tanHalf, near, far, geometry, readsSummedMoments(plan),
+                         layers[0]);
         return;
     }
     // Point: cube faces +X, -X, +Y, -Y, +Z, -Z, the order the shader's cubeFace() uses.
     static const glm::dvec3 kFaces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     layers.resize(6);
     for (std::size_t k = 0; k < 6; ++k) {
-        perspectiveLayer(pose.wsPosition, kFaces[k], tanHalf, near, far, geometry, layers[k]);
+        perspectiveLayer(pose.wsPosition, kFaces[k], tanHalf, near, far, geometry, readsSummedMoments(plan), layers[k]);
     }
 }
 

@@ -35,8 +35,6 @@ struct ShadowMapGpu {
     /// chain matches its map.
     std::optional<FilterChain> chain;
     std::vector<bool> chainCurrent;
-    /// The moment scale each layer's summed-area table was built with (ShadowLayerPlan::momentScale).
-    std::vector<float> chainMomentScale;
     /// Made this frame (a new light, or a new map size or layer count): its texture name changed.
     bool allocatedThisFrame = true;
 };
@@ -174,7 +172,6 @@ void ShadowGpu::syncMaps(const ShadowFrame& frame) {
                    !map->chain || map->chain->kind != *kind || map->chain->levels != levels) {
             map->chain = FilterChain::allocate("Shadow/" + plan.name, *kind, map->mapSize, map->layers, levels);
             map->chainCurrent.assign(static_cast<std::size_t>(map->layers), false);
-            map->chainMomentScale.assign(static_cast<std::size_t>(map->layers), 1.0f);
         }
         maps[i].second = std::move(map);
     }
@@ -185,19 +182,17 @@ void ShadowGpu::updateChains(const ShadowLightPlan& plan) {
     ShadowMapGpu& map = *maps[static_cast<std::size_t>(plan.sceneIndex)].second;
     if (!map.chain) return;
     for (std::size_t k = 0; k < plan.layers.size(); ++k) {
-        const float momentScale = plan.layers[k].momentScale;
-        if (!plan.layers[k].dirty && map.chainCurrent[k] &&
-            (map.chain->kind != FilterChainKind::SummedMoments || map.chainMomentScale[k] == momentScale))
-            continue;
+        // A layer's moment scale follows its matrices and its casters' bounds, whose changes
+        // mark it dirty: a clean layer's table holds the scale of this frame's plan.
+        if (!plan.layers[k].dirty && map.chainCurrent[k]) continue;
         if (plan.layers[k].casters.empty() && map.chain->clearable()) {
             map.chain->clearLayer(map.mapSize, static_cast<int>(k));
         } else {
             formatPassName(passName, plan, map.chain->kind == FilterChainKind::MinMax ? "minmax" : "moments", k);
             const gpu::ScopedPass pass(timer, passName);
-            chains.build(map.array.get(), *map.chain, map.mapSize, static_cast<int>(k), momentScale);
+            chains.build(map.array.get(), *map.chain, map.mapSize, static_cast<int>(k), plan.layers[k].momentScale);
         }
         map.chainCurrent[k] = true;
-        map.chainMomentScale[k] = momentScale;
     }
 }
 
