@@ -59,8 +59,8 @@ constexpr int kMaskR8Unit = 8;
 constexpr int kMaskR16fUnit = 9;
 
 // ---- GLSL of the probes ------------------------------------------------------------------------
-// Every fragment shader is prefixed with the engine's glsl_types.glsl (shared constants and the
-// GpuLight struct) and the probe's defines.
+// Every fragment shader is prefixed with the engine's shadow_types.glsl (shared constants and the
+// sg_GpuLight struct) and the probe's defines.
 
 // A triangle covering the viewport; vUv is [0,1) over the visible pixels.
 constexpr const char* kFullScreenVs = R"(#version 450 core
@@ -143,7 +143,7 @@ vec3 spotBlinnPhong(vec3 csPosition, vec3 n, vec3 csLight, vec3 direction, vec3 
     return radiance * (cone * window * max(dot(n, l), 0.0) / max(distance2, 1e-4)) *
            (vec3(0.8) + vec3(0.04) * specular);
 }
-vec3 shade(GpuLight L) {
+vec3 shade(sg_GpuLight L) {
     return spotBlinnPhong(csReceiver(), csNormal(), L.csPosition, L.wsDirection, L.radiance, L.range,
                           L.cosOuter, L.cosInner);
 }
@@ -166,9 +166,9 @@ void main() {
 // defined, is the loop head over the slots; without it one light is shaded in straight code.
 constexpr const char* kLightRecordsFs = R"(
 #ifdef LIGHTS_UBO
-layout(std140, binding = SG_BINDING_LIGHTS) uniform LightBlock { GpuLight uSlots[SG_MAX_LIGHTS_PER_PASS]; };
+layout(std140, binding = SG_BINDING_LIGHTS) uniform LightBlock { sg_GpuLight uSlots[SG_MAX_LIGHTS_PER_PASS]; };
 #else
-layout(std430, binding = SG_BINDING_LIGHTS) readonly buffer LightBuffer { GpuLight uLights[]; };
+layout(std430, binding = SG_BINDING_LIGHTS) readonly buffer LightBuffer { sg_GpuLight uLights[]; };
 #endif
 uniform int uLightCount;
 uniform int uFirstLight;
@@ -236,10 +236,10 @@ void main() {}
 
 // ---- GL helpers --------------------------------------------------------------------------------
 
-/// Links `vertex` with the fragment `parts` below the engine's glsl_types.glsl and `defines`.
+/// Links `vertex` with the fragment `parts` below the engine's shadow_types.glsl and `defines`.
 gpu::Program buildProbe(const std::string& label, const char* vertex, const std::vector<const char*>& parts,
                         const std::vector<std::string>& defines) {
-    gpu::ExpandedSource fragment = gpu::expandShader("glsl_types.glsl", defines);
+    gpu::ExpandedSource fragment = gpu::expandShader("shadow_types.glsl", defines);
     // The probe's own lines get a file number of their own, so compiler messages name the probe.
     fragment.text += "#line 1 " + std::to_string(fragment.files.size()) + "\n";
     fragment.files.push_back(label);

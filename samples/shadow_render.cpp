@@ -1,7 +1,7 @@
 // shadow_render: renders a scene headless (OSMesa) and writes images, AOVs and stats.json.
 //
 //   shadow_render SCENE [--out DIR] [--size WxH] [--camera N] [--time T] [--frames N --dt S]
-//                 [--technique none|hard|pcf|pcss|pcss-textbook|vsm|vssm|msm|msm-soft] [--aov color,visibility,position,depth]
+//                 [--technique NAME] [--aov color,visibility,position,depth]
 //                 [--debug NAME] [--debug-light I] [--frame-images] [--no-cache] [--exposure E]
 //
 // SCENE is a .gltf/.glb path or builtin:NAME. With --frames N the scene is animated from
@@ -190,8 +190,7 @@ int main(int argc, char** argv) {
     app.add_option("--time", o.time, "animation time of the first frame (s)");
     app.add_option("--frames", o.frames, "frames to render");
     app.add_option("--dt", o.dt, "time step between frames (s)");
-    app.add_option("--technique", o.technique,
-                   "override every shadowed light: none|hard|pcf|pcss|pcss-textbook|vsm|vssm|msm|msm-soft");
+    app.add_option("--technique", o.technique, "override every shadowed light: " + techniqueNameList());
     app.add_option("--aov", o.aov, "outputs: color,visibility,position,depth");
     app.add_option("--debug", o.debug, "debug view: shadowmap|cascade|blocker|penumbra|visibility");
     app.add_option("--debug-light", o.debugLight, "scene light index the debug view shows");

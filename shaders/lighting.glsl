@@ -22,7 +22,7 @@ float rangeWindow(float distance, float range) {
 }
 
 // Radiance reflected towards the viewer from light L (visibility not included).
-vec3 shadeBlinnPhong(GpuLight L, Surface s) {
+vec3 shadeBlinnPhong(sg_GpuLight L, Surface s) {
     vec3 toLight;
     float attenuation = 1.0;
     if (L.type == SG_LIGHT_DIRECTIONAL) {

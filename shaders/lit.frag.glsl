@@ -1,11 +1,12 @@
 // Main pass: the sum over this pass's lights of Blinn-Phong shading times the light's visibility.
 //
 // The renderer compiles one variant per light configuration of a pass (render/lit_programs.h):
-// SG_PASS_LIGHTS lights, and for every slot i < SG_MAX_LIGHTS_PER_PASS the constants
-// SG_SLOT<i>_TYPE (SG_LIGHT_*), SG_SLOT<i>_TECH (SG_TECH_*) and SG_SLOT<i>_KERNEL (SG_KERNEL_*). Each slot's code is straight-line
-// with its type, technique and layers known when compiling: no light loop, no per-pixel index
-// into the sampler array or the light records, no branch for a type or technique the light does
-// not have (the fragment-cost table in BENCHMARKS.md measures what each of those costs).
+// SG_PASS_LIGHTS lights, its slots grouped by equal configuration (SG_PASS_GROUPS; per group g
+// the SG_GROUP<g>_* constants of gl/technique_glsl.h). A light's type, technique and kernel are
+// known when compiling: no branch for a type or technique the light does not have, and a light
+// unlike the others of its pass is straight-line code with no per-pixel index into the sampler
+// array or the light records (the fragment-cost table in BENCHMARKS.md measures what each of
+// those costs).
 // Depth comes from the depth pre-pass (depth test EQUAL), so each visible pixel is shaded once;
 // further passes (more lights) add with blending.
 #include "shadow_visibility.glsl"
@@ -13,7 +14,7 @@
 #include "lighting.glsl"
 
 #if SG_MAX_LIGHTS_PER_PASS != 8
-#error "main() below shades slots 0-7: one SG_SHADE_SLOT line per slot"
+#error "main() below shades groups 0-7: one SG_SHADE_GROUP line per possible group"
 #endif
 
 in vec3 vCsPosition;
@@ -34,23 +35,16 @@ layout(location = SG_OUT_VISIBILITY0) out vec4 outVisibility0;
 layout(location = SG_OUT_VISIBILITY1) out vec4 outVisibility1;
 #endif
 
-// Radiance from pass slot `slot` and its visibility. Without AOVs or debug views the shadow
-// lookup is skipped where the light's shading is zero (facing away, outside the cone, beyond
-// the range); the visibility AOV keeps its meaning everywhere on geometry.
-vec3 shadeSlot(const int slot, const int type, const int technique, const int kernel, Surface s, float viewDistance,
-               out float visibility) {
-    GpuLight L = shadowSlotLight(slot, type, technique, kernel);
-    vec3 shading = shadeBlinnPhong(L, s);
-    visibility = 1.0;
+// Whether pass slot `technique`'s shadow lookup is needed where its shading is `shading`. Without
+// AOVs or debug views it is skipped where the light's shading is zero (facing away, outside the
+// cone, beyond the range); the visibility AOV keeps its meaning everywhere on geometry.
+bool shadowWanted(const int technique, vec3 shading) {
 #if defined(SG_WRITE_AOVS) || defined(SG_DEBUG_VIEWS)
     bool wanted = true;
 #else
     bool wanted = max(shading.r, max(shading.g, shading.b)) > 0.0;
 #endif
-    if (technique != SG_TECH_NONE && uReceiveShadows != 0 && wanted) {
-        visibility = shadowVisibility(slot, L, s.csPosition, s.normal, s.geoNormal, s.curvature, viewDistance);
-    }
-    return visibility * shading;
+    return technique != SG_TECH_NONE && uReceiveShadows != 0 && wanted;
 }
 
 #ifdef SG_DEBUG_VIEWS
@@ -59,27 +53,48 @@ vec3 debugColor = vec3(0.0);
 #define SG_DEBUG_CAPTURE(i, v)                                                                    \
     if (i == SG_DEBUG_SLOT) {                                                                     \
         if (SG_DEBUG_VIEW == SG_DEBUG_CASCADE)                                                    \
-            debugColor = vec3(gDebugCascade == 0, gDebugCascade == 1, gDebugCascade >= 2) * 0.8 + 0.2 * v; \
-        if (SG_DEBUG_VIEW == SG_DEBUG_BLOCKER_DEPTH) debugColor = vec3(gDebugBlockerDepth);       \
-        if (SG_DEBUG_VIEW == SG_DEBUG_PENUMBRA) debugColor = vec3(gDebugPenumbra);                \
+            debugColor = vec3(sg_debugCascade == 0, sg_debugCascade == 1, sg_debugCascade >= 2) * 0.8 + 0.2 * v; \
+        if (SG_DEBUG_VIEW == SG_DEBUG_BLOCKER_DEPTH) debugColor = vec3(sg_debugBlockerDepth);       \
+        if (SG_DEBUG_VIEW == SG_DEBUG_PENUMBRA) debugColor = vec3(sg_debugPenumbra);                \
         if (SG_DEBUG_VIEW == SG_DEBUG_VISIBILITY) debugColor = vec3(v);                           \
     }
 #else
 #define SG_DEBUG_CAPTURE(i, v)
 #endif
 
-// Slot i of the pass: folded away for i >= SG_PASS_LIGHTS.
-#define SG_SHADE_SLOT(i)                                                                          \
-    if (i < SG_PASS_LIGHTS) {                                                                     \
-        color += shadeSlot(i, SG_SLOT##i##_TYPE, SG_SLOT##i##_TECH, SG_SLOT##i##_KERNEL, s, viewDistance, visibility[i]); \
-        SG_DEBUG_CAPTURE(i, visibility[i])                                                        \
+// Group g of the pass's slots (folded away for g >= SG_PASS_GROUPS): its lights' type, technique
+// and kernel are compile-time constants (SG_GROUP<g>_*), SG_GROUP<g>_VISIBILITY its technique's
+// function (shadow_techniques.glsl), and its code is compiled once for all its slots, in a loop
+// over them. A group of one is unrolled to straight-line code with constant indices (sampler,
+// records); a larger one stays a loop (sg_runtimeZero), whose slot indexes the samplers
+// dynamically but whose code the driver compiles once.
+#define SG_SHADE_GROUP(g)                                                                         \
+    if (g < SG_PASS_GROUPS) {                                                                     \
+        const int slots[SG_GROUP##g##_COUNT] = SG_GROUP##g##_SLOTS;                               \
+        for (int k = 0; k < SG_GROUP##g##_COUNT + (SG_GROUP##g##_COUNT > 1 ? sg_runtimeZero() : 0); ++k) { \
+            int slot = slots[k];                                                                  \
+            sg_GpuLight L = sg_slotLight(slot, SG_GROUP##g##_TYPE, SG_GROUP##g##_TECH, SG_GROUP##g##_KERNEL); \
+            vec3 shading = shadeBlinnPhong(L, s);                                                 \
+            float v = 1.0;                                                                        \
+            if (shadowWanted(SG_GROUP##g##_TECH, shading))                                        \
+                v = SG_GROUP##g##_VISIBILITY(slot, L, s.csPosition, s.normal, s.geoNormal, s.curvature, viewDistance); \
+            color += v * shading;                                                                 \
+            SG_STORE_VISIBILITY(slot, v)                                                          \
+            SG_DEBUG_CAPTURE(slot, v)                                                             \
+        }                                                                                         \
     }
+
+#ifdef SG_WRITE_AOVS
+#define SG_STORE_VISIBILITY(slot, v) visibility[slot] = v;
+#else
+#define SG_STORE_VISIBILITY(slot, v)
+#endif
 
 void main() {
     Surface s;
     s.csPosition = vCsPosition;
     s.toViewer = normalize(-vCsPosition);  // never zero: the near plane clips the camera's point
-    ShadowSurface shadowSide = shadowSurface(vCsPosition, vWsNormal);
+    sg_Surface shadowSide = sg_surface(vCsPosition, vWsNormal);
     s.geoNormal = shadowSide.geoNormal;
     s.curvature = shadowSide.curvature;
     s.normal = shadowSide.normal;  // two-sided: the side facing the camera
@@ -89,15 +104,17 @@ void main() {
 
     float viewDistance = dot(vCsPosition, uCameraForward);
     vec3 color = uAmbient * uAlbedo;
+#ifdef SG_WRITE_AOVS
     float visibility[SG_MAX_LIGHTS_PER_PASS] = float[](1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0);
-    SG_SHADE_SLOT(0)
-    SG_SHADE_SLOT(1)
-    SG_SHADE_SLOT(2)
-    SG_SHADE_SLOT(3)
-    SG_SHADE_SLOT(4)
-    SG_SHADE_SLOT(5)
-    SG_SHADE_SLOT(6)
-    SG_SHADE_SLOT(7)
+#endif
+    SG_SHADE_GROUP(0)
+    SG_SHADE_GROUP(1)
+    SG_SHADE_GROUP(2)
+    SG_SHADE_GROUP(3)
+    SG_SHADE_GROUP(4)
+    SG_SHADE_GROUP(5)
+    SG_SHADE_GROUP(6)
+    SG_SHADE_GROUP(7)
 #ifdef SG_DEBUG_VIEWS
     outColor = vec4(debugColor, 1.0);
 #else

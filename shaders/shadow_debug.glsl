@@ -3,9 +3,9 @@
 #ifndef SG_SHADOW_DEBUG
 #define SG_SHADOW_DEBUG
 #ifdef SG_DEBUG_VIEWS
-float gDebugBlockerDepth = 0.0;  // m, last PCSS evaluation
-float gDebugPenumbra = 0.0;      // m, last PCSS evaluation
-int gDebugCascade = 0;
+float sg_debugBlockerDepth = 0.0;  // m, last soft-shadow evaluation
+float sg_debugPenumbra = 0.0;      // m, last soft-shadow evaluation
+int sg_debugCascade = 0;
 #define SG_DEBUG_STORE(variable, value) variable = (value)
 #else
 #define SG_DEBUG_STORE(variable, value)

@@ -10,5 +10,5 @@ uniform float uDepthScale;
 uniform int uOrthographic;
 
 void main() {
-    gl_FragDepth = lightSpaceDepth(vLsPosition, uOrthographic != 0) / uDepthScale;
+    gl_FragDepth = sg_lightSpaceDepth(vLsPosition, uOrthographic != 0) / uDepthScale;
 }

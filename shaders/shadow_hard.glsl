@@ -1,10 +1,12 @@
-// Hard shadows: one bilinear comparison tap at the receiver (2x2 PCF from the sampler).
+// Hard shadows: one bilinear comparison tap at the receiver (2x2 PCF from the gathered texels).
 #ifndef SG_SHADOW_HARD
 #define SG_SHADOW_HARD
-#include "shadow_receiver.glsl"
+#include "shadow_taps.glsl"
 
-float hardVisibility(int slot, GpuLight L, Receiver r) {
-    return compareTap(slot, L, r, lateralTap(L, r, vec2(0.0)));
+sg_ReceiverPolicy sg_hardPolicy() { return sg_planePolicy(); }
+
+float sg_hardVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
+    return sg_compareTap(slot, L, r, sg_lateralTap(L, r, vec2(0.0)));
 }
 
 #endif

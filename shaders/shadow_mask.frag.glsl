@@ -6,7 +6,8 @@
 // centre, the triangle's plane from the neighbour on each axis whose depth is closer (so a
 // silhouette does not tilt the plane of the surface in front of it), the shading normal from the
 // game's normal texture when it gives one (SG_MASK_NORMALS) and the curvature from its change.
-// Slots are specialised like the lit passes' (SG_MASK_LIGHTS, SG_SLOT<i>_TYPE/_TECH/_KERNEL).
+// Slots are specialised and grouped like the lit passes' (SG_MASK_LIGHTS, SG_PASS_GROUPS,
+// SG_GROUP<g>_*).
 #include "shadow_visibility.glsl"
 
 layout(binding = SG_UNIT_MASK_DEPTH) uniform sampler2D uSceneDepth;
@@ -43,11 +44,16 @@ vec3 surfaceStep(ivec2 p, vec3 c, ivec2 axis, out ivec2 q) {
     return useAhead ? a - c : c - b;
 }
 
-#define SG_MASK_SLOT(i)                                                                             \
-    if (i < SG_MASK_LIGHTS) {                                                                       \
-        GpuLight L = shadowSlotLight(i, SG_SLOT##i##_TYPE, SG_SLOT##i##_TECH, SG_SLOT##i##_KERNEL); \
-        if (SG_SLOT##i##_TECH != SG_TECH_NONE)                                                      \
-            mask[i] = shadowVisibility(i, L, c, normal, geoNormal, curvature, viewDistance);        \
+// Group g of the mask's lights, as lit.frag.glsl's SG_SHADE_GROUP.
+#define SG_MASK_GROUP(g)                                                                            \
+    if (g < SG_PASS_GROUPS) {                                                                       \
+        const int slots[SG_GROUP##g##_COUNT] = SG_GROUP##g##_SLOTS;                                 \
+        for (int k = 0; k < SG_GROUP##g##_COUNT + (SG_GROUP##g##_COUNT > 1 ? sg_runtimeZero() : 0); ++k) { \
+            int slot = slots[k];                                                                    \
+            sg_GpuLight L = sg_slotLight(slot, SG_GROUP##g##_TYPE, SG_GROUP##g##_TECH, SG_GROUP##g##_KERNEL); \
+            if (SG_GROUP##g##_TECH != SG_TECH_NONE)                                                 \
+                mask[slot] = SG_GROUP##g##_VISIBILITY(slot, L, c, normal, geoNormal, curvature, viewDistance); \
+        }                                                                                           \
     }
 
 void main() {
@@ -60,22 +66,22 @@ void main() {
         ivec2 qx, qy;
         vec3 dx = surfaceStep(p, c, ivec2(1, 0), qx);
         vec3 dy = surfaceStep(p, c, ivec2(0, 1), qy);
-        vec3 geoNormal = safeNormalize(cross(dx, dy), toViewer);
+        vec3 geoNormal = sg_safeNormalize(cross(dx, dy), toViewer);
         float curvature = 0.0;
 #ifdef SG_MASK_NORMALS
-        vec3 n = safeNormalize(texelFetch(uSceneNormal, p, 0).xyz, geoNormal);
-        vec3 nx = safeNormalize(texelFetch(uSceneNormal, qx, 0).xyz, n);
-        vec3 ny = safeNormalize(texelFetch(uSceneNormal, qy, 0).xyz, n);
+        vec3 n = sg_safeNormalize(texelFetch(uSceneNormal, p, 0).xyz, geoNormal);
+        vec3 nx = sg_safeNormalize(texelFetch(uSceneNormal, qx, 0).xyz, n);
+        vec3 ny = sg_safeNormalize(texelFetch(uSceneNormal, qy, 0).xyz, n);
         curvature = max(length(nx - n) / max(length(dx), 1e-20), length(ny - n) / max(length(dy), 1e-20));
 #else
         vec3 n = geoNormal;
 #endif
         vec3 normal = dot(n, toViewer) < 0.0 ? -n : n;
         float viewDistance = dot(c, uCameraForward);
-        SG_MASK_SLOT(0)
-        SG_MASK_SLOT(1)
-        SG_MASK_SLOT(2)
-        SG_MASK_SLOT(3)
+        SG_MASK_GROUP(0)
+        SG_MASK_GROUP(1)
+        SG_MASK_GROUP(2)
+        SG_MASK_GROUP(3)
     }
     outMask = mask;
 }

@@ -7,15 +7,15 @@
 
 // Blocker search region: the cone from the receiver to the emitter, widest at the nearest depth
 // a blocker can have.
-float blockerSearchRadius(GpuLight L, Receiver r, float dReceiver, float size) {
+float sg_blockerSearchRadius(sg_GpuLight L, sg_Receiver r, float dReceiver, float size) {
     if (L.type == SG_LIGHT_DIRECTIONAL) return dReceiver * tan(size);
-    float near = max(uLayers[L.firstLayer + r.layer].depthNear, 1e-6);
+    float near = max(sg_layers[L.firstLayer + r.layer].depthNear, 1e-6);
     return size * max(dReceiver - near, 0.0) / near;
 }
 
 // Penumbra half-width at a receiver `dReceiver` from the light behind a blocker at `dBlocker`
 // (both metres along the light's depth), by similar triangles.
-float penumbraRadius(GpuLight L, float dReceiver, float dBlocker, float size) {
+float sg_penumbraRadius(sg_GpuLight L, float dReceiver, float dBlocker, float size) {
     return L.type == SG_LIGHT_DIRECTIONAL ? (dReceiver - dBlocker) * tan(size)
                                           : (dReceiver - dBlocker) * size / max(dBlocker, 1e-6);
 }

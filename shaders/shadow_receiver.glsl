@@ -22,7 +22,7 @@
 
 // Steepest receiver slope (tan of the angle between normal and light) the bias follows;
 // beyond it, at grazing light, the normal offset does the work.
-const float kMaxSlope = 16.0;
+const float sg_kMaxSlope = 16.0;
 // Steepest slope the tangent-plane taps follow exactly: tan(89.9 deg), so the filters see the
 // receiver's own plane down to 0.1 degree of elevation. A tap at lateral offset o moves o * slope
 // along the ray, and a plane flattened to a lesser slope puts the taps towards the light behind
@@ -30,11 +30,11 @@ const float kMaxSlope = 16.0;
 // degrees). The clamp only keeps the stretch finite where cos(theta) loses its precision: n.L
 // carries ~1e-6 of float error, so a slope of 573 errs by 573^2 * 1e-6 * 32 = 10 texels of depth
 // at the widest filter (32 texels), inside the 24 texels the slope bias gives.
-const float kMaxPlaneSlope = 573.0;
+const float sg_kMaxPlaneSlope = 573.0;
 // Relative float error allowed for the two depths a tap compares, 2^-18 (32 ulps of a float:
 // matrix products and interpolation each add a few). Measured: one ulp already clears the
 // open-plane acne of a light straight above with no constant bias; 32 is the margin.
-const float kDepthPrecision = 1.0 / 262144.0;
+const float sg_kDepthPrecision = 1.0 / 262144.0;
 // Each of the 2x2 texels a tap compares is compared with the receiver plane's depth at its own
 // centre, so a plane needs no slope bias at all: what is left of `slopeBias` at the receiver,
 // this fraction, covers the surface bending away from its triangle's plane within a texel or
@@ -42,10 +42,24 @@ const float kDepthPrecision = 1.0 / 262144.0;
 // light in true umbra 3.8/0.45/0.5 % of umbra pixels (sun/spot/bulb) against 19.6/3.1/2.2 % with
 // the whole slope bias and a one-texel normal offset; false shadow in lit pixels 0.04 % (a
 // fraction of 0.1 gave 0.08 %, none 0.5 %).
-const float kNearSlopeBias = 0.2;
+const float sg_kNearSlopeBias = 0.2;
+
+// What a technique asks of its receiver: the part of the bias and of the normal offset that is
+// its own (each technique's include defines its policy, e.g. sg_pcfPolicy()).
+struct sg_ReceiverPolicy {
+    float extraNormalOffset;  // texel footprints added to the light's normalOffset
+    float slopeBiasShare;     // fraction of the light's slopeBias applied at the receiver
+    float bendPerCurvature;   // taps follow the surface's bend by this x curvature x reach^2
+};
+
+// The receiver policy of the filters that compare each texel with the receiver's own plane:
+// only sg_kNearSlopeBias of the slope bias at the receiver, no extra offset, no bend.
+sg_ReceiverPolicy sg_planePolicy() {
+    return sg_ReceiverPolicy(0.0, sg_kNearSlopeBias, 0.0);
+}
 
 // The receiver as seen from one light.
-struct Receiver {
+struct sg_Receiver {
     vec3 csPosition;  // camera-relative, after the normal offset
     vec3 toLight;     // unit direction from the receiver towards the light
     vec3 csTangent1;  // lateral axes (perpendicular to the light ray), stretched onto the
@@ -72,7 +86,7 @@ struct Receiver {
     float texelPerAxial;  // perspective: texel footprint per metre of axial distance
     float depthSlope;     // |change of a tap's depth| per lateral metre along the tangent plane
     // The receiver's geometric plane (its triangle's) in the receiver's layer: the change of
-    // planeLinearDepth per texel step in s and t, so that each of the 2x2 texels a tap compares
+    // sg_planeLinearDepth per texel step in s and t, so that each of the 2x2 texels a tap compares
     // is compared with the plane's depth at that texel's own centre.
     vec2 refPerTexel;
     float bendPerReach2;  // 1/m: curvature / 2 where a technique's taps follow the surface's bend
@@ -83,32 +97,32 @@ struct Receiver {
 };
 
 // Where a world point falls in a layer.
-struct Tap {
+struct sg_Tap {
     int layer;
     vec2 uv;
     float depth;  // lsDepth (m) of the point
     float reach;  // lateral distance (m) from the receiver
     float axial;  // distance (m) along the layer's axis (perspective layers)
     vec2 rayTan;  // perspective layers: the tap's ray, lateral metres per axial metre
-    vec2 refPerTexel;  // change of the receiver plane's planeLinearDepth per texel step
+    vec2 refPerTexel;  // change of the receiver plane's sg_planeLinearDepth per texel step
 };
 
 // Cube face (+X,-X,+Y,-Y,+Z,-Z) containing the direction `d`.
-int cubeFace(vec3 d) {
+int sg_cubeFace(vec3 d) {
     vec3 a = abs(d);
     if (a.x >= a.y && a.x >= a.z) return d.x >= 0.0 ? 0 : 1;
     if (a.y >= a.z) return d.y >= 0.0 ? 2 : 3;
     return d.z >= 0.0 ? 4 : 5;
 }
 
-Tap projectTap(GpuLight L, int layer, vec3 csPoint) {
-    GpuShadowLayer S = uLayers[L.firstLayer + layer];
+sg_Tap sg_projectTap(sg_GpuLight L, int layer, vec3 csPoint) {
+    sg_GpuShadowLayer S = sg_layers[L.firstLayer + layer];
     vec3 ls = (S.lightFromCs * vec4(csPoint, 1.0)).xyz;
     vec4 clip = S.clipFromLight * vec4(ls, 1.0);
-    Tap t;
+    sg_Tap t;
     t.layer = layer;
     t.uv = clip.xy / max(clip.w, 1e-20) * 0.5 + 0.5;
-    t.depth = lightSpaceDepth(ls, L.type == SG_LIGHT_DIRECTIONAL);
+    t.depth = sg_lightSpaceDepth(ls, L.type == SG_LIGHT_DIRECTIONAL);
     t.axial = max(-ls.z, 1e-30);
     t.rayTan = ls.xy / t.axial;
     t.reach = 0.0;
@@ -116,44 +130,46 @@ Tap projectTap(GpuLight L, int layer, vec3 csPoint) {
     return t;
 }
 
-// Layer of a directional light's cascades for a receiver at camera distance `viewDistance`.
-int selectCascade(GpuLight L, float viewDistance) {
-    for (int k = 0; k < L.layerCount - 1; ++k) {
-        if (viewDistance < uLayers[L.firstLayer + k].splitFar) return k;
+// Layer of a directional light's cascades for a receiver at camera distance `viewDistance`: the
+// first cascade whose split lies beyond it. A loop of constant length, which the compiler
+// unrolls: a loop of the light's own cascade count would be one more loop in sequence in the
+// driver's code (see sg_shadowVisibility).
+int sg_selectCascade(sg_GpuLight L, float viewDistance) {
+    int layer = L.layerCount - 1;
+    for (int k = SG_MAX_CASCADES - 2; k >= 0; --k) {
+        if (k < L.layerCount - 1 && viewDistance < sg_layers[L.firstLayer + k].splitFar) layer = k;
     }
-    return L.layerCount - 1;
+    return layer;
 }
 
-int selectLayer(GpuLight L, vec3 csPosition, float viewDistance) {
-    if (L.type == SG_LIGHT_POINT) return cubeFace(csPosition - L.csPosition);
-    if (L.type == SG_LIGHT_DIRECTIONAL) return selectCascade(L, viewDistance);
+int sg_selectLayer(sg_GpuLight L, vec3 csPosition, float viewDistance) {
+    if (L.type == SG_LIGHT_POINT) return sg_cubeFace(csPosition - L.csPosition);
+    if (L.type == SG_LIGHT_DIRECTIONAL) return sg_selectCascade(L, viewDistance);
     return 0;
 }
 
 // World size of one texel of `layer` at the point `csPoint`.
-float texelMetresAt(GpuLight L, int layer, vec3 csPoint) {
-    GpuShadowLayer S = uLayers[L.firstLayer + layer];
+float sg_texelMetresAt(sg_GpuLight L, int layer, vec3 csPoint) {
+    sg_GpuShadowLayer S = sg_layers[L.firstLayer + layer];
     float scale = 2.0 / (S.clipFromLight[0][0] * L.mapSize);
     if (L.type == SG_LIGHT_DIRECTIONAL) return scale;
     float axial = -(S.lightFromCs * vec4(csPoint, 1.0)).z;
     return scale * max(axial, 0.0);
 }
 
-// The receiver for `layer` of a directional light's cascades, or, with layer < 0, for the
-// layer the position selects (cube face, or the cascade of `viewDistance`).
 // The quantity that changes linearly across the map's texels on a plane: the depth itself for
 // orthographic layers, the inverse of the axial distance for perspective ones (1/z is affine in
 // screen coordinates; the depth is not, and at grazing light a linear extrapolation of it over
 // one texel errs by more than the bias).
-float planeLinearDepth(vec3 ls, bool orthographic) {
+float sg_planeLinearDepth(vec3 ls, bool orthographic) {
     return orthographic ? -ls.z : 1.0 / max(-ls.z, 1e-30);
 }
 
-// The change per texel step (s, t) of `layer` of planeLinearDepth over the plane through
+// The change per texel step (s, t) of `layer` of sg_planeLinearDepth over the plane through
 // `csPoint` spanned by the steps `a` and `b` (m): three points of the plane projected, exact for
 // a plane. Zero where the plane holds the light ray (no depth to compare across it).
-vec2 planeDepthPerTexel(GpuLight L, int layer, vec3 csPoint, vec3 a, vec3 b) {
-    GpuShadowLayer S = uLayers[L.firstLayer + layer];
+vec2 sg_planeDepthPerTexel(sg_GpuLight L, int layer, vec3 csPoint, vec3 a, vec3 b) {
+    sg_GpuShadowLayer S = sg_layers[L.firstLayer + layer];
     vec3 ls0 = (S.lightFromCs * vec4(csPoint, 1.0)).xyz;
     mat3 linear = mat3(S.lightFromCs);
     vec3 lsA = ls0 + linear * a, lsB = ls0 + linear * b;
@@ -161,48 +177,49 @@ vec2 planeDepthPerTexel(GpuLight L, int layer, vec3 csPoint, vec3 a, vec3 b) {
     vec2 st0 = c0.xy / c0.w;
     mat2 J = mat2(cA.xy / cA.w - st0, cB.xy / cB.w - st0) * (0.5 * float(L.mapSize));  // texels per step
     bool ortho = L.type == SG_LIGHT_DIRECTIONAL;
-    float q0 = planeLinearDepth(ls0, ortho);
-    vec2 dq = vec2(planeLinearDepth(lsA, ortho) - q0, planeLinearDepth(lsB, ortho) - q0);
+    float q0 = sg_planeLinearDepth(ls0, ortho);
+    vec2 dq = vec2(sg_planeLinearDepth(lsA, ortho) - q0, sg_planeLinearDepth(lsB, ortho) - q0);
     if (!(abs(determinant(J)) > 1e-12)) return vec2(0.0);
     return dq * inverse(J);
 }
 
 // Two steps of one texel footprint across the plane with unit normal `plane`, perpendicular to
 // the light ray before being slid along it onto the plane (steepness clamped as for the taps).
-void planeSteps(vec3 plane, vec3 toLight, vec3 t1, vec3 t2, float texel, out vec3 a, out vec3 b) {
+void sg_planeSteps(vec3 plane, vec3 toLight, vec3 t1, vec3 t2, float texel, out vec3 a, out vec3 b) {
     float nDotL = dot(plane, toLight);
-    float denom = sign(nDotL) * max(abs(nDotL), 1.0 / sqrt(1.0 + kMaxPlaneSlope * kMaxPlaneSlope));
+    float denom = sign(nDotL) * max(abs(nDotL), 1.0 / sqrt(1.0 + sg_kMaxPlaneSlope * sg_kMaxPlaneSlope));
     if (denom == 0.0) denom = 1.0;
     a = (t1 - toLight * (dot(plane, t1) / denom)) * texel;
     b = (t2 - toLight * (dot(plane, t2) / denom)) * texel;
 }
 
-Receiver makeReceiver(GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 geoNormal, float curvature, float viewDistance, int layer) {
-    Receiver r;
-    r.bendPerReach2 = L.technique == SG_TECH_PCF ? 0.5 * curvature : 0.0;
+// The receiver for `layer` of a directional light's cascades, or, with layer < 0, for the
+// layer the position selects (cube face, or the cascade of `viewDistance`).
+// `policy` is the technique's share of bias and offset.
+sg_Receiver sg_makeReceiver(sg_GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 geoNormal, float curvature, float viewDistance, int layer,
+                            sg_ReceiverPolicy policy) {
+    sg_Receiver r;
+    r.bendPerReach2 = policy.bendPerCurvature * curvature;
     vec3 toLight = L.type == SG_LIGHT_DIRECTIONAL ? -L.wsDirection
-                                                  : safeNormalize(L.csPosition - csPosition, -L.wsDirection);
+                                                  : sg_safeNormalize(L.csPosition - csPosition, -L.wsDirection);
     float cosTheta = clamp(dot(wsNormal, toLight), -1.0, 1.0);
     float sinTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0));
-    r.slope = min(sinTheta / max(abs(cosTheta), 1e-4), kMaxSlope);
+    r.slope = min(sinTheta / max(abs(cosTheta), 1e-4), sg_kMaxSlope);
 
     bool chosen = layer >= 0;
-    if (!chosen) layer = selectLayer(L, csPosition, viewDistance);
-    float texel = texelMetresAt(L, layer, csPosition);
+    if (!chosen) layer = sg_selectLayer(L, csPosition, viewDistance);
+    float texel = sg_texelMetresAt(L, layer, csPosition);
     // Normal offset: move along the normal by whole texel footprints, more as the light grazes.
-    // The textbook PCSS compares its whole filter against one reference depth in the map's UV, so
-    // it keeps the classic remedy: a one-texel normal offset and the whole slope bias.
-    bool classic = L.technique == SG_TECH_PCSS_TEXTBOOK;
-    r.offsetPerTexel = wsNormal * ((classic ? 1.0 + L.normalOffset : L.normalOffset) * sinTheta);
+    r.offsetPerTexel = wsNormal * ((policy.extraNormalOffset + L.normalOffset) * sinTheta);
     r.csPosition = csPosition + r.offsetPerTexel * texel;
-    r.toLight = L.type == SG_LIGHT_DIRECTIONAL ? toLight : safeNormalize(L.csPosition - r.csPosition, toLight);
-    r.layer = chosen ? layer : selectLayer(L, r.csPosition, viewDistance);
-    r.texelMetres = texelMetresAt(L, r.layer, r.csPosition);
+    r.toLight = L.type == SG_LIGHT_DIRECTIONAL ? toLight : sg_safeNormalize(L.csPosition - r.csPosition, toLight);
+    r.layer = chosen ? layer : sg_selectLayer(L, r.csPosition, viewDistance);
+    r.texelMetres = sg_texelMetresAt(L, r.layer, r.csPosition);
     // Float error of the depths compared: both come from float positions of magnitude |cs| (the
     // receiver from the camera) and |ls| (the point from the layer's origin), good to a few ulps.
-    vec3 ls = (uLayers[L.firstLayer + r.layer].lightFromCs * vec4(r.csPosition, 1.0)).xyz;
-    float floatError = kDepthPrecision * (length(ls) + length(r.csPosition));
-    r.depthBias = L.constantBias + (classic ? 1.0 : kNearSlopeBias) * L.slopeBias * r.texelMetres * r.slope + floatError;
+    vec3 ls = (sg_layers[L.firstLayer + r.layer].lightFromCs * vec4(r.csPosition, 1.0)).xyz;
+    float floatError = sg_kDepthPrecision * (length(ls) + length(r.csPosition));
+    r.depthBias = L.constantBias + policy.slopeBiasShare * L.slopeBias * r.texelMetres * r.slope + floatError;
 
     // Lateral axes perpendicular to the ray, then slid along the ray onto the tangent plane.
     vec3 a = abs(r.toLight);
@@ -210,14 +227,14 @@ Receiver makeReceiver(GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 geoNormal
     vec3 t1 = normalize(cross(r.toLight, helper));
     vec3 t2 = cross(r.toLight, t1);
     float nDotL = dot(wsNormal, r.toLight);
-    // Keep the stretch finite at grazing light: beyond kMaxPlaneSlope the plane is treated as that steep.
-    float denom = sign(nDotL) * max(abs(nDotL), 1.0 / sqrt(1.0 + kMaxPlaneSlope * kMaxPlaneSlope));
+    // Keep the stretch finite at grazing light: beyond sg_kMaxPlaneSlope the plane is treated as that steep.
+    float denom = sign(nDotL) * max(abs(nDotL), 1.0 / sqrt(1.0 + sg_kMaxPlaneSlope * sg_kMaxPlaneSlope));
     if (denom == 0.0) denom = 1.0;
     r.csTangent1 = t1 - r.toLight * (dot(wsNormal, t1) / denom);
     r.csTangent2 = t2 - r.toLight * (dot(wsNormal, t2) / denom);
     r.depthSlope = length(vec2(dot(wsNormal, t1), dot(wsNormal, t2))) / abs(denom);
 
-    GpuShadowLayer S = uLayers[L.firstLayer + r.layer];
+    sg_GpuShadowLayer S = sg_layers[L.firstLayer + r.layer];
     mat3 linear = mat3(S.lightFromCs);
     r.lsPosition = ls;
     r.lsTangent1 = linear * r.csTangent1;
@@ -232,8 +249,8 @@ Receiver makeReceiver(GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 geoNormal
     r.texelPerAxial = 2.0 / (S.clipFromLight[0][0] * L.mapSize);
     // Every perspective layer of a light has the same symmetric projection (spot, cube faces).
     r.texelTan = 2.0 / (vec2(S.clipFromLight[0][0], S.clipFromLight[1][1]) * float(L.mapSize));
-    planeSteps(geoNormal, r.toLight, t1, t2, r.texelMetres, r.geoStep1, r.geoStep2);
-    r.refPerTexel = planeDepthPerTexel(L, r.layer, r.csPosition, r.geoStep1, r.geoStep2);
+    sg_planeSteps(geoNormal, r.toLight, t1, t2, r.texelMetres, r.geoStep1, r.geoStep2);
+    r.refPerTexel = sg_planeDepthPerTexel(L, r.layer, r.csPosition, r.geoStep1, r.geoStep2);
     return r;
 }
 
@@ -243,107 +260,36 @@ Receiver makeReceiver(GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 geoNormal
 // far along the ray (offset x slope): a tap beyond the receiver takes the normal offset of its
 // own, larger texel, or the bilinear neighbours of a steep receiver reach above it (measured:
 // a spot at 0.5 degrees read down to 0.95 on an open plane without this).
-Tap lateralTap(GpuLight L, Receiver r, vec2 offset) {
+sg_Tap sg_lateralTap(sg_GpuLight L, sg_Receiver r, vec2 offset) {
     vec3 p = r.csPosition + r.csTangent1 * offset.x + r.csTangent2 * offset.y;
-    int layer = L.type == SG_LIGHT_POINT ? cubeFace(p - L.csPosition) : r.layer;
-    if (layer == r.layer) {
-        // Fast path, every tap of directional and spot lights and most of a point light's:
-        // the receiver's cached layer, one projection per tap.
-        vec3 ls = r.lsPosition + r.lsTangent1 * offset.x + r.lsTangent2 * offset.y;
-        vec4 clip = r.clipPosition + r.clipTangent1 * offset.x + r.clipTangent2 * offset.y;
-        if (!r.orthographic) {
-            float texels = max(r.texelPerAxial * max(-ls.z, 0.0) - r.texelMetres, 0.0);
-            ls += r.lsOffsetPerTexel * texels;
-            clip += r.clipOffsetPerTexel * texels;
-        }
-        Tap t;
-        t.layer = layer;
-        t.uv = clip.xy / max(clip.w, 1e-20) * 0.5 + 0.5;
-        t.depth = lightSpaceDepth(ls, r.orthographic);
-        t.axial = max(-ls.z, 1e-30);
-        t.rayTan = ls.xy / t.axial;
-        t.reach = length(offset);
-        t.refPerTexel = r.refPerTexel;
-        return t;
+    int layer = L.type == SG_LIGHT_POINT ? sg_cubeFace(p - L.csPosition) : r.layer;
+    // Every tap of directional and spot lights and most of a point light's lie in the receiver's
+    // cached layer: one projection per tap.
+    vec3 ls = r.lsPosition + r.lsTangent1 * offset.x + r.lsTangent2 * offset.y;
+    vec4 clip = r.clipPosition + r.clipTangent1 * offset.x + r.clipTangent2 * offset.y;
+    if (!r.orthographic) {
+        float texels = max(r.texelPerAxial * max(-ls.z, 0.0) - r.texelMetres, 0.0);
+        ls += r.lsOffsetPerTexel * texels;
+        clip += r.clipOffsetPerTexel * texels;
     }
-    // A point light's tap that crossed into another cube face.
-    p += r.offsetPerTexel * max(texelMetresAt(L, layer, p) - r.texelMetres, 0.0);
-    Tap t = projectTap(L, layer, p);
+    sg_Tap t;
+    t.layer = layer;
+    t.uv = clip.xy / max(clip.w, 1e-20) * 0.5 + 0.5;
+    t.depth = sg_lightSpaceDepth(ls, r.orthographic);
+    t.axial = max(-ls.z, 1e-30);
+    t.rayTan = ls.xy / t.axial;
     t.reach = length(offset);
-    t.refPerTexel = planeDepthPerTexel(L, layer, p, r.geoStep1, r.geoStep2);
-    return t;
-}
-
-// The 2x2 texels around a tap, each compared with the receiver plane's depth at its own centre
-// (1 = lit), in textureGather's order, and the tap's bilinear weights in the same order.
-struct TexelQuad {
-    vec4 lit;
-    vec2 f;  // the tap's position inside the quad
-};
-
-// The reference depths (stored units) of the 2x2 texels around tap `t`, in textureGather's
-// order ((0,1), (1,1), (1,0), (0,0) from the lower-left texel): the receiver plane's depth at each
-// texel's own centre, less the bias. `f` is the tap's position inside the quad.
-vec4 quadReferences(GpuLight L, Receiver r, Tap t, out vec2 f, out vec2 quadUv) {
-    float depthScale = t.layer == r.layer ? r.depthScale : uLayers[L.firstLayer + t.layer].depthScale;
-    // A tap away from the receiver lies on its tangent plane, which a curved surface leaves by
-    // curvature * reach^2 / 2 along the normal (more along a slanted ray); capped by the classic
-    // slope bias. PCF only: its fixed radius reaches far beyond the penumbra (5 cm on the bunny,
-    // where this took its RMSE from 0.073/0.081/0.092 to 0.067/0.068/0.066, sun/spot/bulb); in
-    // PCSS the reach is the penumbra's, and there the same term measured more light in umbra
-    // (sun 4.0 -> 9.5 %) for no lower error.
-    float secant = sqrt(1.0 + r.slope * r.slope);
-    float bend = r.bendPerReach2 * t.reach * t.reach * secant * secant * secant;
-    float bias = r.depthBias + min(bend, (1.0 - kNearSlopeBias) * L.slopeBias * r.texelMetres * r.slope);
-    vec2 st = t.uv * float(L.mapSize) - 0.5;
-    vec2 base = floor(st);
-    f = st - base;
-    // The quad's own centre, so that the gather reads exactly these four texels whatever the
-    // sampler's sub-texel rounding (a quad one texel off is a whole gradient step off).
-    quadUv = (base + 1.0) / float(L.mapSize);
-    vec4 steps = t.refPerTexel.x * vec4(-f.x, 1.0 - f.x, 1.0 - f.x, -f.x) +
-                 t.refPerTexel.y * vec4(1.0 - f.y, 1.0 - f.y, -f.y, -f.y);
-    vec4 depths;
-    if (r.orthographic) {
-        depths = t.depth + steps;
-    } else {
-        // 1/axial at each texel centre, back to a distance from the light; a plane that leaves
-        // the light's view within the quad is held at twice the tap's distance.
-        float inverseAxial = 1.0 / t.axial;
-        // The distance along each texel centre's own ray: the map stores distances from the
-        // light, and their ratio to the axial distance, sqrt(1 + tan^2), changes by up to 0.6 %
-        // per texel at the edge of a 512^2 cube face (11 mm at 2 m), more than the bias. Taken
-        // to first order (the second-order term is ~1e-5 of it per texel).
-        float ratio = t.depth / t.axial;
-        vec2 ratioPerTexel = t.rayTan * r.texelTan / ratio;
-        vec4 ratios = ratio + ratioPerTexel.x * vec4(-f.x, 1.0 - f.x, 1.0 - f.x, -f.x) +
-                      ratioPerTexel.y * vec4(1.0 - f.y, 1.0 - f.y, -f.y, -f.y);
-        depths = ratios / max(inverseAxial + steps, vec4(0.5 * inverseAxial));
+    t.refPerTexel = r.refPerTexel;
+    // A point light's tap that crossed into another cube face, projected into that face. A loop
+    // of 0 or 1 trips rather than an `if`: a CPU rasteriser runs both sides of an `if`, but skips
+    // a loop that no pixel of its SIMD group enters (BENCHMARKS.md, fragment costs).
+    for (int crossed = 0; crossed < int(layer != r.layer); ++crossed) {
+        p += r.offsetPerTexel * max(sg_texelMetresAt(L, layer, p) - r.texelMetres, 0.0);
+        t = sg_projectTap(L, layer, p);
+        t.reach = length(offset);
+        t.refPerTexel = sg_planeDepthPerTexel(L, layer, p, r.geoStep1, r.geoStep2);
     }
-    return (depths - bias) / depthScale;
-}
-
-// Bilinear blend of a quad's four values in textureGather's order; exact where all four agree.
-float bilinearQuad(vec4 v, vec2 f) {
-    float bottom = v.w + (v.z - v.w) * f.x;
-    float top = v.x + (v.y - v.x) * f.x;
-    return bottom + (top - bottom) * f.y;
-}
-
-TexelQuad compareQuad(int slot, GpuLight L, Receiver r, Tap t) {
-    vec2 f, quadUv;
-    vec4 refs = min(quadReferences(L, r, t, f, quadUv), vec4(1.0));
-    vec4 stored = textureGather(uShadowDepth[slot], vec3(quadUv, float(t.layer)));
-    TexelQuad q;
-    q.lit = vec4(lessThanEqual(refs, stored));
-    q.f = f;
-    return q;
-}
-
-// 1 where the tap's point is lit, bilinearly filtered over the 2x2 texels around it.
-float compareTap(int slot, GpuLight L, Receiver r, Tap t) {
-    TexelQuad q = compareQuad(slot, L, r, t);
-    return bilinearQuad(q.lit, q.f);
+    return t;
 }
 
 #endif

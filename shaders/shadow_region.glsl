@@ -13,19 +13,19 @@
 // The least and greatest stored depth (x, y; in stored units) of the square of map texels of
 // half-width `radiusTexels` centred on `uv` in `layer`: four texels of the pyramid level whose
 // tiles are at least as wide as the square. Map texels outside the map count as the far plane.
-vec2 regionDepthRange(int slot, GpuLight L, vec2 uv, int layer, float radiusTexels) {
-    int levels = textureQueryLevels(uShadowMinMax[slot]);
+vec2 sg_regionDepthRange(int slot, sg_GpuLight L, vec2 uv, int layer, float radiusTexels) {
+    int levels = textureQueryLevels(sg_shadowChain[slot]);
     int level = clamp(int(ceil(log2(max(2.0 * radiusTexels / float(SG_MINMAX_TILE), 1.0)))), 0, levels - 1);
     // Level sizes from level 0 (uniform across pixels): llvmpipe answers a per-pixel level with
     // one pixel's level for the whole SIMD group.
-    ivec2 size = max(textureSize(uShadowMinMax[slot], 0).xy >> level, ivec2(1));
+    ivec2 size = max(textureSize(sg_shadowChain[slot], 0).xy >> level, ivec2(1));
     float tile = float(SG_MINMAX_TILE) * exp2(float(level));  // map texels per texel of the level
     ivec2 first = ivec2(floor(uv * L.mapSize / tile - 0.5));
     vec2 range = vec2(1.0, 0.0);
     for (int k = 0; k < 4; ++k) {
         ivec2 texel = clamp(first + ivec2(k & 1, k >> 1), ivec2(0), size - 1);
         // textureLod at the texel's centre, not texelFetch, for the same reason.
-        vec2 mm = textureLod(uShadowMinMax[slot], vec3((vec2(texel) + 0.5) / vec2(size), float(layer)), float(level)).rg;
+        vec2 mm = textureLod(sg_shadowChain[slot], vec3((vec2(texel) + 0.5) / vec2(size), float(layer)), float(level)).rg;
         range = vec2(min(range.x, mm.x), max(range.y, mm.y));
     }
     vec2 reach = vec2(radiusTexels / L.mapSize);
@@ -37,14 +37,14 @@ vec2 regionDepthRange(int slot, GpuLight L, vec2 uv, int layer, float radiusTexe
 
 // 1 when no texel within `radius` lateral metres of the receiver can shadow a tap on its tangent
 // plane, 0 when every texel does, -1 otherwise. `center` is the receiver's own tap.
-float regionVisibility(int slot, GpuLight L, Receiver r, Tap center, float radius) {
+float sg_regionVisibility(int slot, sg_GpuLight L, sg_Receiver r, sg_Tap center, float radius) {
     // A tap compares the 2x2 texels around it: one more texel and a half of reach.
     float radiusTexels = radius / max(r.texelMetres, 1e-30) + 1.5;
     vec2 uvReach = vec2(radiusTexels / L.mapSize);
     // A point light's region that leaves its face continues on another face: not known here.
     bool crossesFace = L.type == SG_LIGHT_POINT &&
                        (any(lessThan(center.uv - uvReach, vec2(0.0))) || any(greaterThan(center.uv + uvReach, vec2(1.0))));
-    vec2 range = regionDepthRange(slot, L, center.uv, center.layer, radiusTexels) * r.depthScale;
+    vec2 range = sg_regionDepthRange(slot, L, center.uv, center.layer, radiusTexels) * r.depthScale;
     // The taps' reference depths: the tangent plane's depth over the region, less the bias, with
     // two texels of margin for the normal offset's growth with distance.
     float spread = radius * r.depthSlope + 2.0 * r.texelMetres * (1.0 + r.depthSlope);

@@ -39,11 +39,11 @@ void main() {
 #ifdef SG_CHAIN_FROM_DEPTH
         ivec2 texel = ivec2(i, line);
         float w = clamp(texelFetch(uDepth, ivec3(texel, uLayer), 0).r * uMomentScale, 0.0, 1.0);
-        uvec2 q = uvec2(vec2(w, w * w) * kSatUnit + 0.5);  // at most 2^24, carried below
-        sum = satAdd(sum, uvec4(q.x, 0u, q.y, 0u));
+        uvec2 q = uvec2(vec2(w, w * w) * sg_kSatUnit + 0.5);  // at most 2^24, carried below
+        sum = sg_satAdd(sum, uvec4(q.x, 0u, q.y, 0u));
 #else
         ivec2 texel = ivec2(line, i);
-        sum = satAdd(sum, uvec4(imageLoad(uTable, texel)));
+        sum = sg_satAdd(sum, uvec4(imageLoad(uTable, texel)));
 #endif
         imageStore(uTable, texel, vec4(sum));
     }

@@ -7,14 +7,14 @@
 // Units of the fixed point per scaled depth unit: one unit is 2^-24 / s of the layer's depth
 // range, s its moment scale (the farthest caster at 1/4 to 1/2 of the fixed point's range), and
 // the limb's mask.
-const float kSatUnit = 16777216.0;
-const uint kSatLimbMask = 0xFFFFFFu;
+const float sg_kSatUnit = 16777216.0;
+const uint sg_kSatLimbMask = 0xFFFFFFu;
 
 // a + b modulo 2^48, limb by limb with the carry: limbs of `a` below 2^24, of `b` at most 2^24.
-uvec4 satAdd(uvec4 a, uvec4 b) {
+uvec4 sg_satAdd(uvec4 a, uvec4 b) {
     uvec4 s = a + b;
     uvec2 carry = s.xz >> 24u;
-    return uvec4(s.x & kSatLimbMask, (s.y + carry.x) & kSatLimbMask, s.z & kSatLimbMask, (s.w + carry.y) & kSatLimbMask);
+    return uvec4(s.x & sg_kSatLimbMask, (s.y + carry.x) & sg_kSatLimbMask, s.z & sg_kSatLimbMask, (s.w + carry.y) & sg_kSatLimbMask);
 }
 
 #endif

@@ -5,7 +5,7 @@
 #define SG_SHADOW_SURFACE
 #include "shadow_common.glsl"
 
-struct ShadowSurface {
+struct sg_Surface {
     vec3 normal;      // unit shading normal, turned to face the viewer (two-sided)
     vec3 geoNormal;   // unit normal of the triangle itself (either side)
     float curvature;  // 1/m: how fast the shading normal turns per metre of surface (0 when flat)
@@ -13,13 +13,13 @@ struct ShadowSurface {
 
 // The surface at camera-relative position `csPosition` (interpolated) with interpolated normal
 // `normal`. Takes derivatives: call it in uniform control flow, once per fragment.
-ShadowSurface shadowSurface(vec3 csPosition, vec3 normal) {
-    ShadowSurface s;
+sg_Surface sg_surface(vec3 csPosition, vec3 normal) {
+    sg_Surface s;
     vec3 toViewer = normalize(-csPosition);  // never zero: the near plane clips the camera's point
     vec3 dpx = dFdx(csPosition), dpy = dFdy(csPosition);
     // A zero normal (a file's, or opposite normals interpolated) takes the triangle's own.
-    s.geoNormal = safeNormalize(cross(dpx, dpy), toViewer);
-    vec3 n = safeNormalize(normal, s.geoNormal);
+    s.geoNormal = sg_safeNormalize(cross(dpx, dpy), toViewer);
+    vec3 n = sg_safeNormalize(normal, s.geoNormal);
     vec3 dnx = dFdx(n), dny = dFdy(n);
     s.curvature = max(length(dnx) / max(length(dpx), 1e-20), length(dny) / max(length(dpy), 1e-20));
     s.normal = dot(n, toViewer) < 0.0 ? -n : n;

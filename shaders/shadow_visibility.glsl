@@ -1,70 +1,20 @@
-// Shadow visibility of one light at one receiver point: the technique of the light, and the
-// blend between cascades. Each technique's code is compiled only when its define is set
-// (SG_TECH_HARD_ENABLED, SG_TECH_PCF_ENABLED, SG_TECH_PCSS_ENABLED,
-// SG_TECH_PCSS_TEXTBOOK_ENABLED, SG_TECH_VSM_ENABLED, SG_TECH_VSSM_ENABLED, SG_TECH_MSM_ENABLED,
-// SG_TECH_MSM_SOFT_ENABLED); the renderer sets exactly the ones its
-// lights use.
+// Shadow visibility of one light at one receiver point: the light's technique and the blend
+// between cascades. The techniques come from shadow_techniques.glsl: `sg_techniquePolicy` (the
+// technique's share of bias and offset), `sg_techniqueVisibility` and one
+// `sg_<technique>LightVisibility` per technique, with the code of the techniques compiled in and
+// no other (the engine writes that file for each program from its technique table; the
+// installed copy selects them by SG_TECH_*_ENABLED).
 #ifndef SG_SHADOW_VISIBILITY
 #define SG_SHADOW_VISIBILITY
 #include "shadow_receiver.glsl"
 #include "shadow_debug.glsl"
-#if defined(SG_TECH_HARD_ENABLED)
-#include "shadow_hard.glsl"
-#endif
-#if defined(SG_TECH_PCF_ENABLED)
-#include "shadow_pcf.glsl"
-#endif
-#if defined(SG_TECH_PCSS_ENABLED)
-#include "shadow_pcss.glsl"
-#endif
-#if defined(SG_TECH_PCSS_TEXTBOOK_ENABLED)
-#include "shadow_pcss_textbook.glsl"
-#endif
-#if defined(SG_TECH_VSM_ENABLED)
-#include "shadow_vsm.glsl"
-#endif
-#if defined(SG_TECH_MSM_ENABLED)
-#include "shadow_msm.glsl"
-#endif
-#if defined(SG_TECH_VSSM_ENABLED) || defined(SG_TECH_MSM_SOFT_ENABLED)
-#include "shadow_vssm.glsl"
-#endif
-
-float techniqueVisibility(int slot, GpuLight L, Receiver r) {
-    float v = 1.0;
-#ifdef SG_TECH_HARD_ENABLED
-    if (L.technique == SG_TECH_HARD) v = hardVisibility(slot, L, r);
-#endif
-#ifdef SG_TECH_PCF_ENABLED
-    if (L.technique == SG_TECH_PCF) v = pcfVisibility(slot, L, r);
-#endif
-#ifdef SG_TECH_PCSS_ENABLED
-    if (L.technique == SG_TECH_PCSS) v = pcssVisibility(slot, L, r);
-#endif
-#ifdef SG_TECH_PCSS_TEXTBOOK_ENABLED
-    if (L.technique == SG_TECH_PCSS_TEXTBOOK) v = pcssTextbookVisibility(slot, L, r);
-#endif
-#ifdef SG_TECH_VSM_ENABLED
-    if (L.technique == SG_TECH_VSM) v = vsmVisibility(slot, L, r);
-#endif
-#ifdef SG_TECH_VSSM_ENABLED
-    if (L.technique == SG_TECH_VSSM) v = vssmVisibility(slot, L, r);
-#endif
-#ifdef SG_TECH_MSM_ENABLED
-    if (L.technique == SG_TECH_MSM) v = msmVisibility(slot, L, r);
-#endif
-#ifdef SG_TECH_MSM_SOFT_ENABLED
-    if (L.technique == SG_TECH_MSM_SOFT) v = msmSoftVisibility(slot, L, r);
-#endif
-    return v;
-}
 
 // The light of pass slot `slot` with its type, technique and kernel replaced by the
 // compile-time constants given, so that the compiler folds every test on them: a shader
 // specialised per light configuration (the renderer's lit passes, the shadow mask) runs no code
 // for a type or technique the light does not have.
-GpuLight shadowSlotLight(const int slot, const int type, const int technique, const int kernel) {
-    GpuLight L = uLights[slot];
+sg_GpuLight sg_slotLight(const int slot, const int type, const int technique, const int kernel) {
+    sg_GpuLight L = sg_lights[slot];
     L.type = type;
     L.technique = technique;
     L.kernel = kernel;
@@ -72,24 +22,53 @@ GpuLight shadowSlotLight(const int slot, const int type, const int technique, co
     return L;
 }
 
-// Visibility in [0, 1] of light `L` (bound to pass slot `slot`) at a receiver point. Near the
-// far end of a cascade the next cascade is blended in over the last `cascadeBlend` fraction
-// of its range, so cascade borders do not show as seams.
-float shadowVisibility(int slot, GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 geoNormal, float curvature, float viewDistance) {
-    if (L.technique == SG_TECH_NONE) return 1.0;
-    Receiver r = makeReceiver(L, csPosition, wsNormal, geoNormal, curvature, viewDistance, -1);
-    SG_DEBUG_STORE(gDebugCascade, r.layer);
-    float v = techniqueVisibility(slot, L, r);
-    if (L.type == SG_LIGHT_DIRECTIONAL && r.layer + 1 < L.layerCount && L.cascadeBlend > 0.0) {
-        float end = uLayers[L.firstLayer + r.layer].splitFar;
-        float begin = r.layer > 0 ? uLayers[L.firstLayer + r.layer - 1].splitFar : 0.0;
-        float band = L.cascadeBlend * (end - begin);
-        float w = clamp((viewDistance - (end - band)) / max(band, 1e-6), 0.0, 1.0);
-        if (w > 0.0) {
-            Receiver next = makeReceiver(L, csPosition, wsNormal, geoNormal, curvature, viewDistance, r.layer + 1);
-            v = mix(v, techniqueVisibility(slot, L, next), w);
-        }
-    }
+// The body of a light's visibility in [0, 1] at a receiver point, for a technique whose receiver
+// policy is POLICY and whose visibility is VISIBILITY(slot, L, receiver); the parameters are those
+// of sg_shadowVisibility below. Near the far end of a cascade the next cascade is blended in over
+// the last `cascadeBlend` fraction of its range, so cascade borders do not show as seams.
+//
+// The evaluations (one, or two in a blend band) are the trips of one loop whose trip count the
+// compiler cannot fold, for two reasons measured on llvmpipe: the technique's code is compiled
+// once for both cascades, and every light's code stands inside a loop of its own. llvmpipe's
+// JIT counts the trips of all of a shader's loops on one counter, and LLVM's analysis of loops
+// in sequence on that counter grows exponentially with their number (12 loops in a row: 0.9 s,
+// 16: 44 s); a loop around each light resets the chain (32 such lights: 0.3 s).
+//
+// A macro, so that the function of each technique (sg_<technique>LightVisibility, written by
+// shadow_techniques.glsl) calls its technique directly: a pass whose slots have techniques
+// known when compiling need not compile (and then discard) the dispatch over all of them.
+#define SG_SHADOW_VISIBILITY_BODY(POLICY, VISIBILITY)                                                         \
+    if (L.technique == SG_TECH_NONE) return 1.0;                                                              \
+    int cascade = -1; /* the layer of a directional light; the others choose by position */                  \
+    float blend = 0.0;                                                                                        \
+    if (L.type == SG_LIGHT_DIRECTIONAL) {                                                                     \
+        cascade = sg_selectCascade(L, viewDistance);                                                          \
+        if (cascade + 1 < L.layerCount && L.cascadeBlend > 0.0) {                                             \
+            float end = sg_layers[L.firstLayer + cascade].splitFar;                                           \
+            float begin = cascade > 0 ? sg_layers[L.firstLayer + cascade - 1].splitFar : 0.0;                 \
+            float band = L.cascadeBlend * (end - begin);                                                      \
+            blend = clamp((viewDistance - (end - band)) / max(band, 1e-6), 0.0, 1.0);                         \
+        }                                                                                                     \
+    }                                                                                                         \
+    sg_ReceiverPolicy policy = POLICY;                                                                        \
+    int evaluations = min(L.layerCount, 1) + (blend > 0.0 ? 1 : 0);                                           \
+    float v = 1.0;                                                                                            \
+    for (int e = 0; e < evaluations; ++e) {                                                                   \
+        sg_Receiver r = sg_makeReceiver(L, csPosition, wsNormal, geoNormal, curvature, viewDistance,          \
+                                        cascade < 0 ? -1 : cascade + e, policy);                              \
+        if (e == 0) SG_DEBUG_STORE(sg_debugCascade, r.layer);                                                 \
+        float next = VISIBILITY(slot, L, r);                                                                  \
+        v = e == 0 ? next : mix(v, next, blend);                                                              \
+    }                                                                                                         \
     return clamp(v, 0.0, 1.0);
+
+#include "shadow_techniques.glsl"
+
+// Visibility in [0, 1] of light `L` (bound to pass slot `slot`) at a receiver point at
+// `csPosition` (camera-relative) with shading normal `wsNormal`, triangle normal `geoNormal` and
+// `curvature` (sg_Surface), `viewDistance` along the camera's axis, by the light's technique.
+float sg_shadowVisibility(int slot, sg_GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 geoNormal, float curvature,
+                          float viewDistance) {
+    SG_SHADOW_VISIBILITY_BODY(sg_techniquePolicy(L.technique), sg_techniqueVisibility)
 }
 #endif

@@ -1,78 +1,20 @@
-// Variance shadow maps: the moments chain (shadow_moments.comp.glsl) holds the mean stored depth
-// and mean squared stored depth of every tile of the map, so one trilinear fetch gives a filter
-// region's mean and variance, whatever its width. Chebyshev's one-sided inequality bounds the
-// fraction of the region at least as far as the receiver, P(z >= t) <= var / (var + (t - mean)^2)
-// for t > mean, and the bound is taken as the visibility. Where casters overlap at different
-// depths the bound is loose and light leaks (the seeds' VSSM notes): bounds below
-// `lightBleedReduction` read as shadow and the rest is stretched back to [0, 1].
-//
-// Reference: W. Donnelly, A. Lauritzen, "Variance Shadow Maps", I3D 2006; A. Lauritzen,
-// "Summed-Area Variance Shadow Maps", GPU Gems 3, 2007 (light-bleeding reduction).
+// Variance shadow maps: Chebyshev's bound over the two moments of a region of the light's
+// `pcfRadius`, one trilinear fetch of the moments chain whatever its width, taken as the
+// visibility. Where casters overlap at different depths the bound is loose and light leaks (the
+// seeds' VSSM notes): bounds below `lightBleedReduction` read as shadow and the rest is
+// stretched back to [0, 1].
 #ifndef SG_SHADOW_VSM
 #define SG_SHADOW_VSM
-#include "shadow_receiver.glsl"
+#include "shadow_moments.glsl"
 
-// Relative float error of a stored second moment, in units of its value: a few ulps of the mean
-// of squares, which E[z^2] - E[z]^2 cancels down to.
-const float kVsmMomentUlps = 4.0 * 1.1920929e-7;
+sg_ReceiverPolicy sg_vsmPolicy() { return sg_planePolicy(); }
 
-// Chebyshev's bound for a receiver at `reference` (stored units) and a region of moments `m`,
-// with the variance at least `minVariance`.
-float chebyshevUpperBound(vec2 m, float reference, float minVariance) {
-    float variance = max(m.y - m.x * m.x, minVariance);
-    float d = reference - m.x;
-    return d <= 0.0 ? 1.0 : variance / (variance + d * d);
-}
-
-// The moments of the stored depths (VSM: mean and mean square; MSM: the first four) over a region of radius `radius` metres around
-// `center`, one fetch whatever the radius: the trilinear fetch at mip level L = log2(radius in
-// texels) filters with a box of 2^L texels convolved with a tent of half-width 2^L, whose
-// variance along each axis, 4^L / 4, is that of a disk of the same radius, r^2 / 4 (PCF's).
-// Measured on builtin:plates, 320x240, against the ray-traced truth, when VSSM read these mips:
-// its penumbra RMSE 0.055 at this level, 0.11 one level up (a box as wide as the disk: tails
-// twice as long); VSM against PCF of the same radius 0.018 RMSE here, 0.023 one level up. (VSSM
-// now reads a summed-area table, MSM-soft's penumbra four finer fetches: shadow_vssm.glsl.)
-vec4 regionMoments(int slot, Receiver r, Tap center, float radius) {
-    float level = log2(max(radius / max(r.texelMetres, 1e-30), 1.0));
-    return textureLod(uShadowMinMax[slot], vec3(center.uv, float(center.layer)), level);
-}
-
-// The least variance a region's moments are given: the spread of depths within one texel of the
-// receiver's own plane (a plane's texels are not one depth), and never below the moments' float
-// resolution.
-float varianceFloor(Receiver r, vec2 m) {
-    float texelSpread = r.depthSlope * r.texelMetres / r.depthScale;
-    return max(texelSpread * texelSpread / 12.0, kVsmMomentUlps * m.y);
-}
-
-// The receiver's depth in stored units, the bias taken off. Clamped to the far plane as the
-// comparing taps clamp theirs (compareQuad): a receiver beyond it, where only cleared texels (1)
-// lie, is lit.
-float momentsReference(Receiver r, Tap center) {
-    return min((center.depth - r.depthBias) / r.depthScale, 1.0);
-}
-
-// Visibility of the receiver at `reference` (stored units) behind a region of moments `m`:
-// Chebyshev's bound with the variance at least `minVariance`, then the light-bleeding reduction.
-float momentsVisibility(GpuLight L, vec2 m, float reference, float minVariance) {
-    float p = chebyshevUpperBound(m, reference, minVariance);
-    float cut = clamp(L.lightBleedReduction, 0.0, 0.95);
-    return clamp((p - cut) / (1.0 - cut), 0.0, 1.0);
-}
-
-// Whether a receiver lies outside its layer's map: lit, as the comparing taps read outside
-// texels (their sampler's border is the far plane). The chain itself clamps to its edge, so that
-// a region reaching past a cube face's edge reads the texels along it rather than a far plane.
-bool outsideMap(Tap center) {
-    return any(lessThan(center.uv, vec2(0.0))) || any(greaterThan(center.uv, vec2(1.0)));
-}
-
-float vsmVisibility(int slot, GpuLight L, Receiver r) {
-    Tap center = lateralTap(L, r, vec2(0.0));
-    if (outsideMap(center)) return 1.0;
+float sg_vsmVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
+    sg_Tap center = sg_lateralTap(L, r, vec2(0.0));
+    if (sg_outsideMap(center)) return 1.0;
     // PCF's disk of pcfRadius at the receiver, at most maxFilterTexels.
-    vec2 m = regionMoments(slot, r, center, min(L.pcfRadius, L.maxFilterTexels * r.texelMetres)).xy;
-    return momentsVisibility(L, m, momentsReference(r, center), varianceFloor(r, m));
+    vec2 m = sg_regionMoments(slot, r, center, min(L.pcfRadius, L.maxFilterTexels * r.texelMetres)).xy;
+    return sg_momentsVisibility(L, m, sg_momentsReference(r, center), sg_varianceFloor(r, m));
 }
 
 #endif

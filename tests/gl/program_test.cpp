@@ -2,6 +2,7 @@
 // logs rewritten to file names, errors that name the file, and every variant the engine builds
 // compiling on the test context.
 #include "gl/program.h"
+#include "gl/technique_glsl.h"
 #include "render/lit_programs.h"
 
 #include <gtest/gtest.h>
@@ -50,25 +51,46 @@ TEST(Program, ExpandShaderPutsVersionAndDefinesFirst) {
 }
 
 TEST(Program, ExpandShaderInlinesEveryInclude) {
-    const gpu::ExpandedSource src = gpu::expandShader("lit.frag.glsl", {"SG_TECH_PCSS_ENABLED"});
+    const gpu::ExpandedSource src =
+        gpu::expandShader("lit.frag.glsl", {"SG_TECH_PCSS_ENABLED"}, techniqueBit(ShadowTechnique::Pcss));
     for (const std::string& line : linesOf(src.text)) {
         EXPECT_EQ(line.find("#include"), std::string::npos) << "left unexpanded: " << line;
     }
-    for (const char* f : {"shadow_visibility.glsl", "shadow_receiver.glsl", "shadow_bindings.glsl",
-                          "shadow_kernels.glsl", "shadow_pcf.glsl", "shadow_pcss.glsl", "glsl_types.glsl",
-                          "shared_constants.h", "gpu_structs.h", "shadow_common.glsl", "lighting.glsl"}) {
+    for (const char* f :
+         {"shadow_visibility.glsl", "shadow_receiver.glsl", "shadow_bindings.glsl", "shadow_kernels.glsl",
+          "shadow_filter.glsl", "shadow_pcss.glsl", "shadow_types.glsl", "shared_constants.h", "gpu_structs.h",
+          "shadow_common.glsl", "lighting.glsl", "shadow_techniques.glsl (generated)"}) {
         EXPECT_NE(std::find(src.files.begin(), src.files.end(), f), src.files.end()) << f << " not in the file table";
     }
-    // The text of an included file is there.
-    EXPECT_NE(src.text.find("float shadowVisibility("), std::string::npos);
+    // The text of an included file is there, and only the techniques asked for.
+    EXPECT_NE(src.text.find("float sg_shadowVisibility("), std::string::npos);
+    EXPECT_NE(src.text.find("float sg_pcssVisibility("), std::string::npos);
+    EXPECT_EQ(src.text.find("float sg_vssmVisibility("), std::string::npos);
+    EXPECT_EQ(src.text.find("float sg_pcfVisibility("), std::string::npos);
     EXPECT_NE(src.text.find("#define SG_MAX_LIGHTS_PER_PASS 8"), std::string::npos);
+}
+
+// Each file is expanded once, wherever it is included from (as if every file had #pragma once):
+// the text a game gets grows with the files it needs, not with the include graph's paths.
+TEST(Program, ExpandShaderExpandsEachFileOnce) {
+    const gpu::ExpandedSource src = gpu::expandShader("lit.frag.glsl", {}, kAllShadowTechniques);
+    for (std::size_t i = 0; i < src.files.size(); ++i) {
+        EXPECT_EQ(std::count(src.files.begin(), src.files.end(), src.files[i]), 1) << src.files[i];
+        const std::string start = "#line 1 " + std::to_string(i) + "\n";
+        std::size_t starts = 0;
+        for (std::size_t at = src.text.find(start); at != std::string::npos; at = src.text.find(start, at + 1))
+            ++starts;
+        EXPECT_EQ(starts, 1u) << src.files[i];
+    }
+    EXPECT_EQ(std::count(src.files.begin(), src.files.end(), "shadow_receiver.glsl"), 1);
 }
 
 // Every line of the expansion must be the line of the file its #line directive says: a compiler
 // message at F:N then points at the right source line.
 TEST(Program, ExpandShaderLineDirectivesMapEveryLineToItsSource) {
+    const unsigned techniques = techniqueBit(ShadowTechnique::Hard) | techniqueBit(ShadowTechnique::Vssm);
     for (const char* file : {"lit.frag.glsl", "lit.vert.glsl", "shadow_depth.frag.glsl", "shadow_depth.vert.glsl"}) {
-        const gpu::ExpandedSource src = gpu::expandShader(file, {"SG_TECH_HARD_ENABLED"});
+        const gpu::ExpandedSource src = gpu::expandShader(file, {"SG_TECH_HARD_ENABLED"}, techniques);
         int currentFile = -1;
         int currentLine = 0;
         int checked = 0;
@@ -85,8 +107,10 @@ TEST(Program, ExpandShaderLineDirectivesMapEveryLineToItsSource) {
                 continue;
             }
             if (currentFile < 0) continue;  // #version and the defines
+            const std::string& name = src.files[static_cast<std::size_t>(currentFile)];
             const std::vector<std::string> source =
-                linesOf(gpu::findShaderSource(src.files[static_cast<std::size_t>(currentFile)]));
+                linesOf(name == "shadow_techniques.glsl (generated)" ? gpu::techniquesGlsl(techniques).c_str()
+                                                                     : gpu::findShaderSource(name));
             ASSERT_GE(currentLine, 1);
             ASSERT_LE(static_cast<std::size_t>(currentLine), source.size())
                 << file << ": line " << currentLine << " past the end of "
@@ -140,15 +164,16 @@ TEST(Program, BuildProgramWithMissingFileThrowsNamingIt) {
 // A compile error inside an included file is reported with that file's name and line.
 TEST(Program, CompileErrorNamesTheIncludedFileAndLine) {
     test::glContext();
-    const int line = lineContaining("shadow_kernels.glsl", "const float kGoldenAngle");
+    const int line = lineContaining("shadow_kernels.glsl", "const float sg_kGoldenAngle");
     ASSERT_GT(line, 0);
     render::LitVariant pcf;
     pcf.lights = 1;
     pcf.technique[0] = SG_TECH_PCF;
     std::vector<std::string> defines = render::variantDefines(pcf);
-    defines.emplace_back("kGoldenAngle )");  // turns "const float kGoldenAngle = ..." into a syntax error
+    defines.emplace_back("sg_kGoldenAngle )");  // turns "const float sg_kGoldenAngle = ..." into a syntax error
     try {
-        (void)gpu::buildProgram({"Test/broken", "lit.vert.glsl", "lit.frag.glsl", defines});
+        (void)gpu::buildProgram(
+            {"Test/broken", "lit.vert.glsl", "lit.frag.glsl", defines, render::variantTechniques(pcf)});
         FAIL() << "expected GlError";
     } catch (const GlError& e) {
         const std::string what = e.what();
@@ -182,8 +207,8 @@ TEST(Program, EveryLitVariantAndTheDepthProgramCompile) {
     for (const render::LitVariant& v : variants) {
         const std::string label = render::variantLabel(v);
         try {
-            const gpu::Program program =
-                gpu::buildProgram({label, "lit.vert.glsl", "lit.frag.glsl", render::variantDefines(v)});
+            const gpu::Program program = gpu::buildProgram(
+                {label, "lit.vert.glsl", "lit.frag.glsl", render::variantDefines(v), render::variantTechniques(v)});
             EXPECT_NE(program.get(), 0u) << label;
         } catch (const GlError& e) {
             ADD_FAILURE() << label << ": " << e.what();

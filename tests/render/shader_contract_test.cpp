@@ -62,10 +62,10 @@ in vec3 vNormal;
 uniform vec3 uCameraForward;
 layout(location = 0) out vec4 outVisibility;
 void main() {
-    ShadowSurface s = shadowSurface(vCsPosition, vNormal);
+    sg_Surface s = sg_surface(vCsPosition, vNormal);
     float viewDistance = dot(vCsPosition, uCameraForward);
     vec3 v;
-    for (int slot = 0; slot < 3; ++slot) v[slot] = shadowLightVisibility(slot, vCsPosition, s, viewDistance);
+    for (int slot = 0; slot < 3; ++slot) v[slot] = sg_lightVisibility(slot, vCsPosition, s, viewDistance);
     outVisibility = vec4(v, 1.0);
 }
 )";

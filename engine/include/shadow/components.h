@@ -6,6 +6,7 @@
 
 #include <shadow/ecs.h>
 #include <shadow/math.h>
+#include <shadow/techniques.h>
 
 #include <cstdint>
 #include <memory>
@@ -109,44 +110,18 @@ struct Light {
 /// A light type's name as stats.json spells it ("directional", "spot", "point").
 [[nodiscard]] const char* lightTypeName(LightType t);
 
-/// How a light's visibility is computed from its shadow map.
-enum class ShadowTechnique : std::uint8_t {
-    None,  ///< no shadow map; visibility 1
-    Hard,  ///< one depth comparison (with hardware 2x2 bilinear PCF)
-    Pcf,   ///< fixed-radius percentage-closer filtering
-    Pcss,  ///< blocker search, penumbra estimate, then PCF
-    /// The seeds' textbook PCSS, kept as a baseline for the benchmarks: fixed-count Poisson
-    /// blocker search and PCF in the receiver's shadow-map UV, no receiver-plane taps, no
-    /// early-outs. Same physical units as Pcss.
-    PcssTextbook,
-    /// Variance shadow map: depth and depth^2 per texel, prefiltered by a mip chain; the
-    /// filter region's mean and variance give Chebyshev's bound on the lit fraction. A filter of
-    /// `pcfRadius` for the cost of one trilinear fetch; light leaks where casters overlap
-    /// (`lightBleedReduction`).
-    Vsm,
-    /// Variance soft shadow map (the seeds' VSSM): a summed-area table of depth and depth^2 per
-    /// layer (exact integer sums), read for two squares: the blocker search region (the average
-    /// blocker depth from the region's mean and Chebyshev's bound, assuming a planar receiver)
-    /// and the penumbra by similar triangles, in the same physical units as Pcss. The same 16
-    /// fetches per square whatever the penumbra's width.
-    Vssm,
-    /// Moment shadow map, hard-edged: z, z^2, z^3, z^4 per texel in a mip chain like VSM's; the
-    /// Hamburger 4MSM bound on the occluded fraction of a one-texel region, tighter than
-    /// Chebyshev's (less light leaks where casters overlap): hard shadows whose edges the
-    /// moments antialias.
-    Msm,
-    /// Moment soft shadows: Vssm's blocker search and penumbra on Msm's mip chain of four
-    /// moments (one trilinear fetch for the search, four for the penumbra), and the 4MSM bound
-    /// over the penumbra.
-    MsmSoft,
-};
-
-/// A technique's name as glTF `extras.shadow.technique` and the CLI spell it ("none", "hard",
-/// "pcf", "pcss", "pcss-textbook", "vsm", "vssm", "msm", "msm-soft").
+/// A technique's name as glTF `extras.shadow.technique` and the CLI spell it (the table's
+/// "name" column: "none", "hard", "pcf", ...).
 [[nodiscard]] const char* techniqueName(ShadowTechnique t);
-/// The technique named `name`, or nullopt for an unknown name.
+/// The table's one-line description of technique `t`.
+[[nodiscard]] const char* techniqueDescription(ShadowTechnique t);
+/// Whether this build offers technique `t`: every Public row; the Baseline rows only in builds
+/// with SHADOW_BASELINE_TECHNIQUES (the benchmarks').
+[[nodiscard]] bool techniqueAvailable(ShadowTechnique t);
+/// The technique named `name` if this build offers it, or nullopt.
 [[nodiscard]] std::optional<ShadowTechnique> techniqueFromName(std::string_view name);
-/// Every technique's name, comma-separated ("none, hard, ..."), for messages.
+/// The names of the techniques this build offers, comma-separated ("none, hard, ..."), for
+/// messages and help.
 [[nodiscard]] std::string techniqueNameList();
 
 /// Sample pattern of the PCF filter and the PCSS blocker search, all over the unit disk.

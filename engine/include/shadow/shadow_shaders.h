@@ -45,14 +45,6 @@ struct ShadowBindingPoints {
     int minMaxUnit = SG_UNIT_SHADOW_MINMAX;
 };
 
-/// Bit `1 << t` for technique t (`ShadowTechnique`).
-constexpr unsigned techniqueBit(ShadowTechnique t) { return 1u << static_cast<unsigned>(t); }
-/// Every technique with a shadow map.
-constexpr unsigned kAllShadowTechniques =
-    techniqueBit(ShadowTechnique::Hard) | techniqueBit(ShadowTechnique::Pcf) | techniqueBit(ShadowTechnique::Pcss) |
-    techniqueBit(ShadowTechnique::PcssTextbook) | techniqueBit(ShadowTechnique::Vsm) |
-    techniqueBit(ShadowTechnique::Vssm) | techniqueBit(ShadowTechnique::Msm) | techniqueBit(ShadowTechnique::MsmSoft);
-
 /// The public shadow GLSL as one text for a game's fragment shader, to stand after its
 /// `#version 450 core` line: the `#define`s of `points` and of the techniques whose bits are set
 /// in `techniques` (code of the others is left out; a light whose technique is left out reads as

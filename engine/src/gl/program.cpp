@@ -1,6 +1,7 @@
 #include "gl/program.h"
 
 #include "gl/shader_sources.h"
+#include "gl/technique_glsl.h"
 
 #include <algorithm>
 #include <regex>
@@ -19,38 +20,85 @@ namespace {
 
 constexpr const char* kVersion = "#version 450 core\n";
 
-/// Appends `file` to `out`, replacing each `#include "x"` line by x's expansion.
+/// An expansion in progress: the technique set of shadow_techniques.glsl, the files already
+/// expanded (each file is expanded once, as if every file had `#pragma once`), the include
+/// stack, and the generated texts (kept alive while expanded).
+struct Expansion {
+    unsigned techniques = 0;
+    bool dropComments = false;  ///< comment-only lines become empty (line numbers stay)
+    std::vector<std::string> expanded;
+    std::vector<std::string> stack;
+};
+
+bool isConditional(const std::string& line) {
+    static const std::regex kIf(R"(^\s*#\s*if(n?def)?\b.*)");
+    return std::regex_match(line, kIf);
+}
+bool isEndif(const std::string& line) {
+    static const std::regex kEndif(R"(^\s*#\s*endif\b.*)");
+    return std::regex_match(line, kEndif);
+}
+
+/// Appends `file` to `out`, replacing each `#include "x"` line by x's expansion. Since a file is
+/// expanded once, an `#include` under a condition (other than the file's own include guard)
+/// could leave a file out that a later, unconditional include needs: it throws instead.
 // NOLINTNEXTLINE(misc-no-recursion): as deep as the engine's own shader includes; a cycle throws.
-void expandInto(const std::string& file, ExpandedSource& out, std::vector<std::string>& stack) {
-    const char* text = findShaderSource(file);
-    if (text == nullptr) {
-        throw GlError("shader file '" + file + "' not found" +
-                      (stack.empty() ? std::string() : " (included from " + stack.back() + ")"));
-    }
-    if (std::find(stack.begin(), stack.end(), file) != stack.end()) {
+void expandInto(const std::string& file, ExpandedSource& out, Expansion& expansion) {
+    if (std::find(expansion.stack.begin(), expansion.stack.end(), file) != expansion.stack.end()) {
         throw GlError("shader include cycle through '" + file + "'");
     }
-    stack.push_back(file);
+    if (std::find(expansion.expanded.begin(), expansion.expanded.end(), file) != expansion.expanded.end()) return;
+    std::string generated;
+    const char* text = nullptr;
+    if (file == kTechniquesFile) {
+        generated = techniquesGlsl(expansion.techniques);
+        text = generated.c_str();
+    } else {
+        text = findShaderSource(file);
+    }
+    if (text == nullptr) {
+        throw GlError("shader file '" + file + "' not found" +
+                      (expansion.stack.empty() ? std::string() : " (included from " + expansion.stack.back() + ")"));
+    }
+    expansion.expanded.push_back(file);
+    expansion.stack.push_back(file);
     const auto fileIndex = static_cast<int>(out.files.size());
-    out.files.push_back(file);
+    out.files.push_back(file == kTechniquesFile ? file + " (generated)" : file);
     out.text += "#line 1 " + std::to_string(fileIndex) + "\n";
 
     std::istringstream lines(text);
     std::string line;
     int lineNo = 0;
+    int depth = 0;         // open #if/#ifdef/#ifndef blocks
+    bool guarded = false;  // the first of them is the file's include guard (#ifndef at the top)
+    bool sawCode = false;  // a line other than a comment or a blank came before it
     static const std::regex kInclude(R"re(^\s*#\s*include\s*"([^"]+)"\s*$)re");
+    static const std::regex kBlankOrComment(R"(^\s*(//.*)?$)");
     std::smatch m;
     while (std::getline(lines, line)) {
         ++lineNo;
         if (std::regex_match(line, m, kInclude)) {
-            expandInto(m[1].str(), out, stack);
+            if (depth > (guarded ? 1 : 0)) {
+                throw GlError("shader file '" + file + "' line " + std::to_string(lineNo) +
+                              ": #include under a condition (each file is included once, so a "
+                              "conditional include could leave out a file a later include needs)");
+            }
+            expandInto(m[1].str(), out, expansion);
             out.text += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(fileIndex) + "\n";
-        } else {
-            out.text += line;
-            out.text += '\n';
+            continue;
         }
+        if (isConditional(line)) {
+            if (depth == 0 && !sawCode && line.find("ifndef") != std::string::npos) guarded = true;
+            ++depth;
+        } else if (isEndif(line)) {
+            --depth;
+        }
+        const bool blankOrComment = std::regex_match(line, kBlankOrComment);
+        if (!blankOrComment) sawCode = true;
+        if (!(blankOrComment && expansion.dropComments)) out.text += line;
+        out.text += '\n';
     }
-    stack.pop_back();
+    expansion.stack.pop_back();
 }
 
 GLuint compileStage(GLenum stage, const ExpandedSource& src, const std::string& label) {
@@ -73,22 +121,22 @@ GLuint compileStage(GLenum stage, const ExpandedSource& src, const std::string& 
 
 }  // namespace
 
-ExpandedSource expandShader(const std::string& file, const std::vector<std::string>& defines) {
+ExpandedSource expandShader(const std::string& file, const std::vector<std::string>& defines, unsigned techniques) {
     ExpandedSource out;
     out.text = kVersion;
     for (const std::string& d : defines) out.text += "#define " + d + "\n";
-    std::vector<std::string> stack;
-    expandInto(file, out, stack);
+    Expansion expansion{techniques, false, {}, {}};
+    expandInto(file, out, expansion);
     return out;
 }
 
 ExpandedSource expandShaderBody(const std::string& file, const std::vector<std::string>& defines,
-                                const std::string& hostName) {
+                                const std::string& hostName, unsigned techniques) {
     ExpandedSource out;
     out.files.push_back(hostName);
     for (const std::string& d : defines) out.text += "#define " + d + "\n";
-    std::vector<std::string> stack;
-    expandInto(file, out, stack);
+    Expansion expansion{techniques, true, {}, {}};
+    expandInto(file, out, expansion);
     return out;
 }
 
@@ -153,7 +201,7 @@ Program linkProgram(const std::string& label, const ExpandedSource& vertex, cons
 
 Program buildComputeProgram(const std::string& label, const std::string& file,
                             const std::vector<std::string>& defines) {
-    const ExpandedSource source = expandShader(file, defines);
+    const ExpandedSource source = expandShader(file, defines, 0);
     const GLuint c = compileStage(GL_COMPUTE_SHADER, source, label + " (" + source.files.front() + ")");
     Program program(gl.CreateProgram());
     gl.AttachShader(program.get(), c);
@@ -164,8 +212,8 @@ Program buildComputeProgram(const std::string& label, const std::string& file,
 }
 
 Program buildProgram(const ProgramDesc& desc) {
-    return linkProgram(desc.label, expandShader(desc.vertexFile, desc.defines),
-                       expandShader(desc.fragmentFile, desc.defines));
+    return linkProgram(desc.label, expandShader(desc.vertexFile, desc.defines, desc.techniques),
+                       expandShader(desc.fragmentFile, desc.defines, desc.techniques));
 }
 
 }  // namespace shadow::gpu

@@ -2,7 +2,7 @@
 //
 // Sources may `#include "file"` other files of shaders/. The builder expands includes and
 // emits `#line N F` directives, F indexing the file table, so that a compiler message such as
-// `0:12(5): error` is reported as `shadow_sampling.glsl:12(5): error`.
+// `0:12(5): error` is reported as `shadow_receiver.glsl:12(5): error`.
 #pragma once
 
 #include "gl/objects.h"
@@ -18,6 +18,8 @@ struct ProgramDesc {
     std::string vertexFile;            ///< e.g. "lit.vert.glsl"
     std::string fragmentFile;          ///< e.g. "lit.frag.glsl"
     std::vector<std::string> defines;  ///< "NAME" or "NAME VALUE"
+    /// `techniqueBit`s of the techniques shadow_techniques.glsl compiles in, when a file includes it.
+    unsigned techniques = 0;
 };
 
 /// Compiles and links; throws `GlError` naming the file and line of the first error.
@@ -36,15 +38,18 @@ struct ExpandedSource {
 /// the program `label`; throws `GlError` naming the file and line of the first error.
 Program linkProgram(const std::string& label, const ExpandedSource& vertex, const ExpandedSource& fragment);
 
-/// Expands `#include`s of `file` below a `#version` line and the defines. Throws `GlError` for a
-/// missing file or an include cycle.
-ExpandedSource expandShader(const std::string& file, const std::vector<std::string>& defines);
+/// Expands `#include`s of `file` below a `#version` line and the defines, each file once (as if
+/// every file had `#pragma once`); `#include "shadow_techniques.glsl"` expands to the dispatch
+/// over `techniques` (gl/technique_glsl.h). Throws `GlError` for a missing file, an include
+/// cycle or an `#include` under a condition other than its file's include guard.
+ExpandedSource expandShader(const std::string& file, const std::vector<std::string>& defines, unsigned techniques = 0);
 
 /// The same without the `#version` line, for a text that goes into another shader (the public
 /// shadow GLSL): file number 0 is the host's own source, named `hostName` in the file table, and
-/// the expanded files count from 1.
+/// the expanded files count from 1. Comment-only lines are left empty (the files in the
+/// repository and the installed package have them; line numbers stay those of the files).
 ExpandedSource expandShaderBody(const std::string& file, const std::vector<std::string>& defines,
-                                const std::string& hostName);
+                                const std::string& hostName, unsigned techniques = 0);
 
 /// Rewrites `F:LINE(COL)` prefixes of a compiler log into `name:LINE(COL)`.
 std::string mapShaderLog(const std::string& log, const std::vector<std::string>& files);

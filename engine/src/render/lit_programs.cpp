@@ -3,11 +3,13 @@
 #include <shadow/components.h>
 
 #include "gl/program.h"
-#include "shadow/light_records.h"
+#include "gl/technique_glsl.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <array>
+#include <span>
 #include <cmath>
 
 namespace shadow::render {
@@ -25,7 +27,8 @@ MeshUniforms meshUniforms(GLuint program) {
 
 LitProgram buildLit(const LitVariant& variant) {
     LitProgram p;
-    p.program = gpu::buildProgram({variantLabel(variant), "lit.vert.glsl", "lit.frag.glsl", variantDefines(variant)});
+    p.program = gpu::buildProgram(
+        {variantLabel(variant), "lit.vert.glsl", "lit.frag.glsl", variantDefines(variant), variantTechniques(variant)});
     const GLuint id = p.program.get();
     auto loc = [id](const char* n) { return gl.GetUniformLocation(id, n); };
     p.mesh = meshUniforms(id);
@@ -53,21 +56,24 @@ std::string variantLabel(const LitVariant& v) {
     return "Main/Lit[" + name + "]";
 }
 
+unsigned variantTechniques(const LitVariant& v) {
+    unsigned used = 0;
+    for (int i = 0; i < v.lights; ++i) used |= 1u << static_cast<unsigned>(v.technique[static_cast<std::size_t>(i)]);
+    return used;
+}
+
 std::vector<std::string> variantDefines(const LitVariant& v) {
     std::vector<std::string> defines;
     defines.push_back("SG_PASS_LIGHTS " + std::to_string(v.lights));
-    unsigned used = 0;
-    for (int i = 0; i < SG_MAX_LIGHTS_PER_PASS; ++i) {
-        const bool inUse = i < v.lights;
-        const int type = inUse ? v.type[static_cast<std::size_t>(i)] : SG_LIGHT_POINT;
-        const int technique = inUse ? v.technique[static_cast<std::size_t>(i)] : SG_TECH_NONE;
-        const int kernel = inUse ? v.kernel[static_cast<std::size_t>(i)] : SG_KERNEL_VOGEL;
-        defines.push_back("SG_SLOT" + std::to_string(i) + "_TYPE " + std::to_string(type));
-        defines.push_back("SG_SLOT" + std::to_string(i) + "_TECH " + std::to_string(technique));
-        defines.push_back("SG_SLOT" + std::to_string(i) + "_KERNEL " + std::to_string(kernel));
-        used |= 1u << technique;
+    std::array<gpu::SlotConfig, SG_MAX_LIGHTS_PER_PASS> slots{};
+    for (int i = 0; i < v.lights; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        slots[k] = {v.type[k], v.technique[k], v.kernel[k]};
     }
-    gpu::appendTechniqueDefines(used, defines);
+    gpu::appendSlotGroupDefines(
+        std::span(slots).first(static_cast<std::size_t>(std::clamp(v.lights, 0, SG_MAX_LIGHTS_PER_PASS))),
+        SG_MAX_LIGHTS_PER_PASS, defines);
+    gpu::appendTechniqueDefines(variantTechniques(v), defines);
     if (v.aovs) defines.emplace_back("SG_WRITE_AOVS");
     if (v.debugView != SG_DEBUG_NONE) {
         defines.emplace_back("SG_DEBUG_VIEWS");

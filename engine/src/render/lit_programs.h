@@ -31,6 +31,9 @@ struct DepthPrepassProgram {
 /// The GL label of a variant, e.g. "Main/Lit[spot:pcss,point:hard,AOV]".
 std::string variantLabel(const LitVariant& variant);
 
+/// `techniqueBit`s of the techniques a variant's lights use: the code its program compiles.
+unsigned variantTechniques(const LitVariant& variant);
+
 /// The `#define`s of a variant (see lit.frag.glsl).
 std::vector<std::string> variantDefines(const LitVariant& variant);
 

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <string>
+#include <string_view>
 
 namespace shadow {
 
@@ -14,39 +15,54 @@ const char* lightTypeName(LightType t) {
     return "point";
 }
 
-const char* techniqueName(ShadowTechnique t) {
-    switch (t) {
-        case ShadowTechnique::None: return "none";
-        case ShadowTechnique::Hard: return "hard";
-        case ShadowTechnique::Pcf: return "pcf";
-        case ShadowTechnique::Pcss: return "pcss";
-        case ShadowTechnique::PcssTextbook: return "pcss-textbook";
-        case ShadowTechnique::Vsm: return "vsm";
-        case ShadowTechnique::Vssm: return "vssm";
-        case ShadowTechnique::Msm: return "msm";
-        case ShadowTechnique::MsmSoft: return "msm-soft";
-    }
-    return "none";
-}
-
 namespace {
 
-constexpr std::array kTechniques{ShadowTechnique::None, ShadowTechnique::Hard,         ShadowTechnique::Pcf,
-                                 ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook, ShadowTechnique::Vsm,
-                                 ShadowTechnique::Vssm, ShadowTechnique::Msm,          ShadowTechnique::MsmSoft};
+/// One row of the technique table as the names need it.
+struct TechniqueRow {
+    ShadowTechnique technique;
+    const char* name;
+    const char* description;
+    bool baseline;
+};
+
+constexpr std::array<TechniqueRow, kShadowTechniqueCount> kTechniques{{
+#define SHADOW_TECHNIQUE_ROW(Enum, C, Name, I, G, Chain, Reach, Availability, Description) \
+    {ShadowTechnique::Enum, Name, Description, std::string_view(#Availability) == "Baseline"},
+    SHADOW_TECHNIQUE_TABLE(SHADOW_TECHNIQUE_ROW)
+#undef SHADOW_TECHNIQUE_ROW
+}};
+
+const TechniqueRow& rowOf(ShadowTechnique t) {
+    const auto i = static_cast<std::size_t>(t);
+    return i < kTechniques.size() ? kTechniques[i] : kTechniques[0];
+}
 
 }  // namespace
 
+const char* techniqueName(ShadowTechnique t) { return rowOf(t).name; }
+
+const char* techniqueDescription(ShadowTechnique t) { return rowOf(t).description; }
+
+bool techniqueAvailable(ShadowTechnique t) {
+#ifdef SHADOW_BASELINE_TECHNIQUES
+    return static_cast<std::size_t>(t) < kTechniques.size();
+#else
+    return static_cast<std::size_t>(t) < kTechniques.size() && !rowOf(t).baseline;
+#endif
+}
+
 std::optional<ShadowTechnique> techniqueFromName(std::string_view name) {
-    for (ShadowTechnique t : kTechniques) {
-        if (name == techniqueName(t)) return t;
+    for (const TechniqueRow& row : kTechniques) {
+        if (name == row.name && techniqueAvailable(row.technique)) return row.technique;
     }
     return std::nullopt;
 }
 
 std::string techniqueNameList() {
     std::string list;
-    for (ShadowTechnique t : kTechniques) list += (list.empty() ? "" : ", ") + std::string(techniqueName(t));
+    for (const TechniqueRow& row : kTechniques) {
+        if (techniqueAvailable(row.technique)) list += (list.empty() ? "" : ", ") + std::string(row.name);
+    }
     return list;
 }
 

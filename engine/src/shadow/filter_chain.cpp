@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <string_view>
 
 namespace shadow {
 
@@ -18,17 +19,42 @@ bool fourChannels(FilterChainKind kind) {
 GLenum formatOf(FilterChainKind kind) { return fourChannels(kind) ? GL_RGBA32F : GL_RG32F; }
 int texelBytes(FilterChainKind kind) { return fourChannels(kind) ? 16 : 8; }
 
+/// The table's Chain column: None, or a kind of chain.
+enum class TableChain : std::uint8_t { None, MinMax, Moments, FourMoments, SummedMoments };
+std::optional<FilterChainKind> chainOf(TableChain c) {
+    switch (c) {
+        case TableChain::None: return std::nullopt;
+        case TableChain::MinMax: return FilterChainKind::MinMax;
+        case TableChain::Moments: return FilterChainKind::Moments;
+        case TableChain::FourMoments: return FilterChainKind::FourMoments;
+        case TableChain::SummedMoments: return FilterChainKind::SummedMoments;
+    }
+    return std::nullopt;
+}
+
 /// Summed-area table passes: one invocation per row (or column) of the layer.
 constexpr int kSatGroupSize = 64;
 
 }  // namespace
 
 std::optional<FilterChainKind> filterChainOf(ShadowTechnique t) {
-    if (t == ShadowTechnique::Pcf || t == ShadowTechnique::Pcss) return FilterChainKind::MinMax;
-    if (t == ShadowTechnique::Vsm) return FilterChainKind::Moments;
-    if (t == ShadowTechnique::Vssm) return FilterChainKind::SummedMoments;
-    if (t == ShadowTechnique::Msm || t == ShadowTechnique::MsmSoft) return FilterChainKind::FourMoments;
+    switch (t) {
+#define SHADOW_TECHNIQUE_CHAIN(Enum, Constant, Name, File, Glsl, Chain, ...) \
+    case ShadowTechnique::Enum: return chainOf(TableChain::Chain);
+        SHADOW_TECHNIQUE_TABLE(SHADOW_TECHNIQUE_CHAIN)
+#undef SHADOW_TECHNIQUE_CHAIN
+    }
     return std::nullopt;
+}
+
+bool FilterChain::readsOneTexel(ShadowTechnique t) {
+    switch (t) {
+#define SHADOW_TECHNIQUE_REACH(Enum, Constant, Name, File, Glsl, Chain, Reach, ...) \
+    case ShadowTechnique::Enum: return std::string_view(#Reach) == "Texel";
+        SHADOW_TECHNIQUE_TABLE(SHADOW_TECHNIQUE_REACH)
+#undef SHADOW_TECHNIQUE_REACH
+    }
+    return false;
 }
 
 int FilterChain::baseSize(FilterChainKind kind, int mapSize) {
@@ -54,8 +80,8 @@ int FilterChain::levelsFor(ShadowTechnique t, int mapSize, float maxFilterTexels
         for (double tile = SG_MINMAX_TILE; tile < widest; tile *= 2.0) ++needed;
     } else {
         // A trilinear fetch at level log2(radius in texels) reads that level's floor and ceiling;
-        // hard-edged MSM reads a one-texel region, level 0 only.
-        const double radius = t == ShadowTechnique::Msm ? 1.0 : static_cast<double>(maxFilterTexels);
+        // a technique whose regions are one texel (hard-edged MSM) reads level 0 only.
+        const double radius = readsOneTexel(t) ? 1.0 : static_cast<double>(maxFilterTexels);
         for (double tile = 1.0; tile < radius; tile *= 2.0) ++needed;
     }
     return std::clamp(needed, 1, all);

@@ -31,6 +31,9 @@ enum class FilterChainKind : std::uint8_t { MinMax, Moments, FourMoments, Summed
 /// One light's chain texture (an RG32F array, RGBA32F for four moments and the summed-area
 /// table; one mip chain per layer, one level for the table).
 struct FilterChain {
+    /// Whether technique `t`'s regions are one texel wide (the table's Reach column), so that its
+    /// chain keeps level 0 only.
+    [[nodiscard]] static bool readsOneTexel(ShadowTechnique t);
     gpu::Texture texture;
     FilterChainKind kind = FilterChainKind::MinMax;
     int levels = 0;

@@ -3,8 +3,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
-#include <array>
-#include <utility>
 #include <cmath>
 #include <cstdint>
 
@@ -19,12 +17,6 @@ int lightTypeId(LightType t) {
     }
     return SG_LIGHT_POINT;
 }
-
-// ShadowTechnique and SG_TECH_* list the techniques in the same order (shared_constants.h).
-static_assert(static_cast<int>(ShadowTechnique::PcssTextbook) == SG_TECH_PCSS_TEXTBOOK);
-static_assert(static_cast<int>(ShadowTechnique::Vsm) == SG_TECH_VSM);
-static_assert(static_cast<int>(ShadowTechnique::Vssm) == SG_TECH_VSSM);
-static_assert(static_cast<int>(ShadowTechnique::MsmSoft) == SG_TECH_MSM_SOFT);
 
 /// Adds the shadow of `plan` to `g`, its layers at `slotLayers`, layer 0 at `firstLayer`.
 void packShadow(const ShadowLightPlan& plan, const glm::dvec3& wsCamera, int firstLayer, GpuLight& g,
@@ -76,22 +68,6 @@ GpuShadowLayer packLayer(const ShadowLayerPlan& layer, const glm::dvec3& wsCamer
     l.orthographic = layer.orthographic ? 1 : 0;
     l.momentScale = layer.momentScale;
     return l;
-}
-
-void appendTechniqueDefines(unsigned techniques, std::vector<std::string>& defines) {
-    static constexpr std::array<std::pair<ShadowTechnique, const char*>, 8> kEnabled{{
-        {ShadowTechnique::Hard, "SG_TECH_HARD_ENABLED"},
-        {ShadowTechnique::Pcf, "SG_TECH_PCF_ENABLED"},
-        {ShadowTechnique::Pcss, "SG_TECH_PCSS_ENABLED"},
-        {ShadowTechnique::PcssTextbook, "SG_TECH_PCSS_TEXTBOOK_ENABLED"},
-        {ShadowTechnique::Vsm, "SG_TECH_VSM_ENABLED"},
-        {ShadowTechnique::Vssm, "SG_TECH_VSSM_ENABLED"},
-        {ShadowTechnique::Msm, "SG_TECH_MSM_ENABLED"},
-        {ShadowTechnique::MsmSoft, "SG_TECH_MSM_SOFT_ENABLED"},
-    }};
-    for (const auto& [technique, define] : kEnabled) {
-        if ((techniques & techniqueBit(technique)) != 0) defines.emplace_back(define);
-    }
 }
 
 std::vector<glm::vec2> poissonDisk(int count) {

@@ -24,8 +24,4 @@ GpuShadowLayer packLayer(const ShadowLayerPlan& layer, const glm::dvec3& wsCamer
 /// candidate farthest from those before it, so every prefix is well spread. Deterministic.
 std::vector<glm::vec2> poissonDisk(int count);
 
-/// Appends the `SG_TECH_*_ENABLED` define of every technique whose bit (`techniqueBit`) is set
-/// in `techniques`: the shadow GLSL compiles the code of those techniques only.
-void appendTechniqueDefines(unsigned techniques, std::vector<std::string>& defines);
-
 }  // namespace shadow::gpu

@@ -157,6 +157,17 @@ void clampLight(Light& light, std::string_view who, std::vector<Warning>& warnin
 
 void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, const std::string& who,
                          std::vector<Warning>& warnings) {
+    if (!techniqueAvailable(s.technique)) {
+        // A value outside the enum, or a benchmarks' baseline in a build without them.
+        const bool known = static_cast<int>(s.technique) < kShadowTechniqueCount;
+        const ShadowTechnique replacement = known ? ShadowTechnique::Pcss : ShadowTechnique::Hard;
+        std::ostringstream msg;
+        msg << who << ": technique "
+            << (known ? std::string(techniqueName(s.technique)) : std::to_string(static_cast<int>(s.technique)))
+            << " is not in this build, replaced by " << techniqueName(replacement);
+        warnings.push_back({WarningCode::SettingClamped, who, msg.str()});
+        s.technique = replacement;
+    }
     clampField(s.mapSize, 1, std::max(1, limits.maxTextureSize), who, "mapSize", warnings);
     clampField(s.constantBias, 0.0f, 10.0f, who, "constantBias", warnings);
     clampField(s.slopeBias, 0.0f, 16.0f, who, "slopeBias", warnings);

@@ -6,6 +6,7 @@
 
 #include "gl/no_throw.h"
 #include "gl/program.h"
+#include "gl/technique_glsl.h"
 #include "shadow/light_records.h"
 
 #include <stdexcept>
@@ -74,8 +75,10 @@ std::string shadowShaderSource(const ShadowBindingPoints& points, unsigned techn
         "SG_UNIT_SHADOW_DEPTH " + std::to_string(points.depthUnit),
         "SG_UNIT_SHADOW_MINMAX " + std::to_string(points.minMaxUnit),
     };
+    // A game's shader never gets the benchmarks' baselines.
+    techniques &= kAllShadowTechniques;
     gpu::appendTechniqueDefines(techniques, defines);
-    return gpu::expandShaderBody("shadow.glsl", defines, "host shader").text;
+    return gpu::expandShaderBody("shadow.glsl", defines, "host shader", techniques).text;
 }
 
 Result<std::string> tryShadowShaderSource(const ShadowBindingPoints& points, unsigned techniques) noexcept {

@@ -6,6 +6,7 @@
 #include "gl/no_throw.h"
 #include "gl/objects.h"
 #include "gl/program.h"
+#include "gl/technique_glsl.h"
 #include "shadow/light_projection.h"
 #include "shadow/light_records.h"
 #include "shadow/screen_bounds.h"
@@ -39,22 +40,20 @@ MaskKey maskKey(const ShadowShaderInputs& in, bool normals) {
 MaskProgram buildMask(const ShadowShaderInputs& in, bool normals) {
     std::vector<std::string> defines{"SG_MASK_LIGHTS " + std::to_string(in.lights)};
     std::string label;
-    for (int i = 0; i < SG_MAX_MASK_LIGHTS; ++i) {
+    std::array<gpu::SlotConfig, SG_MAX_MASK_LIGHTS> slots{};
+    for (int i = 0; i < in.lights; ++i) {
         const auto s = static_cast<std::size_t>(i);
-        const std::string slot = "SG_SLOT" + std::to_string(i);
-        defines.push_back(slot + "_TYPE " + std::to_string(in.type[s]));
-        defines.push_back(slot + "_TECH " + std::to_string(in.technique[s]));
-        defines.push_back(slot + "_KERNEL " + std::to_string(in.kernel[s]));
-        if (i < in.lights) {
-            if (!label.empty()) label += ',';
-            label += techniqueName(static_cast<ShadowTechnique>(in.technique[s]));
-        }
+        slots[s] = {in.type[s], in.technique[s], in.kernel[s]};
+        if (!label.empty()) label += ',';
+        label += techniqueName(static_cast<ShadowTechnique>(in.technique[s]));
     }
+    gpu::appendSlotGroupDefines(std::span(slots).first(static_cast<std::size_t>(in.lights)), SG_MAX_MASK_LIGHTS,
+                                defines);
     gpu::appendTechniqueDefines(in.techniques, defines);
     if (normals) defines.emplace_back("SG_MASK_NORMALS");
     MaskProgram p;
     p.program = gpu::buildProgram({"Shadow/Mask[" + label + (normals ? ",normals]" : "]"), "fullscreen.vert.glsl",
-                                   "shadow_mask.frag.glsl", defines});
+                                   "shadow_mask.frag.glsl", defines, in.techniques});
     const GLuint id = p.program.get();
     p.csFromClip = gl.GetUniformLocation(id, "uCsFromClip");
     p.cameraForward = gl.GetUniformLocation(id, "uCameraForward");

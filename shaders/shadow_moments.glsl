@@ -1,0 +1,68 @@
+// What every moment technique shares: region moments from a prefiltered chain, Chebyshev's
+// one-sided bound, the variance floor and the receiver's reference depth in stored units.
+//
+// The moments chain (shadow_moments.comp.glsl) holds the means of powers of the stored depth
+// over every tile of the map, so one trilinear fetch gives a filter region's moments, whatever
+// its width. Chebyshev's one-sided inequality bounds the fraction of the region at least as far
+// as the receiver, P(z >= t) <= var / (var + (t - mean)^2) for t > mean.
+//
+// Reference: W. Donnelly, A. Lauritzen, "Variance Shadow Maps", I3D 2006; A. Lauritzen,
+// "Summed-Area Variance Shadow Maps", GPU Gems 3, 2007 (light-bleeding reduction).
+#ifndef SG_SHADOW_MOMENTS
+#define SG_SHADOW_MOMENTS
+#include "shadow_receiver.glsl"
+
+// Relative float error of a stored second moment, in units of its value: a few ulps of the mean
+// of squares, which E[z^2] - E[z]^2 cancels down to.
+const float sg_kVsmMomentUlps = 4.0 * 1.1920929e-7;
+
+// Chebyshev's bound for a receiver at `reference` (stored units) and a region of moments `m`,
+// with the variance at least `minVariance`.
+float sg_chebyshevUpperBound(vec2 m, float reference, float minVariance) {
+    float variance = max(m.y - m.x * m.x, minVariance);
+    float d = reference - m.x;
+    return d <= 0.0 ? 1.0 : variance / (variance + d * d);
+}
+
+// The moments of the stored depths (two or four, as the chain holds) over a region of radius
+// `radius` metres around `center`, one fetch whatever the radius: the trilinear fetch at mip level L = log2(radius in
+// texels) filters with a box of 2^L texels convolved with a tent of half-width 2^L, whose
+// variance along each axis, 4^L / 4, is that of a disk of the same radius, r^2 / 4 (PCF's).
+// One level up, a box as wide as the disk, has tails twice as long (tests/shadow/vsm_test.cpp
+// compares VSM with PCF of the same radius).
+vec4 sg_regionMoments(int slot, sg_Receiver r, sg_Tap center, float radius) {
+    float level = log2(max(radius / max(r.texelMetres, 1e-30), 1.0));
+    return textureLod(sg_shadowChain[slot], vec3(center.uv, float(center.layer)), level);
+}
+
+// The least variance a region's moments are given: the spread of depths within one texel of the
+// receiver's own plane (a plane's texels are not one depth), and never below the moments' float
+// resolution.
+float sg_varianceFloor(sg_Receiver r, vec2 m) {
+    float texelSpread = r.depthSlope * r.texelMetres / r.depthScale;
+    return max(texelSpread * texelSpread / 12.0, sg_kVsmMomentUlps * m.y);
+}
+
+// The receiver's depth in stored units, the bias taken off. Clamped to the far plane as the
+// comparing taps clamp theirs (sg_compareQuad): a receiver beyond it, where only cleared texels (1)
+// lie, is lit.
+float sg_momentsReference(sg_Receiver r, sg_Tap center) {
+    return min((center.depth - r.depthBias) / r.depthScale, 1.0);
+}
+
+// Visibility of the receiver at `reference` (stored units) behind a region of moments `m`:
+// Chebyshev's bound with the variance at least `minVariance`, then the light-bleeding reduction.
+float sg_momentsVisibility(sg_GpuLight L, vec2 m, float reference, float minVariance) {
+    float p = sg_chebyshevUpperBound(m, reference, minVariance);
+    float cut = clamp(L.lightBleedReduction, 0.0, 0.95);
+    return clamp((p - cut) / (1.0 - cut), 0.0, 1.0);
+}
+
+// Whether a receiver lies outside its layer's map: lit, as the comparing taps read outside
+// texels (their sampler's border is the far plane). The chain itself clamps to its edge, so that
+// a region reaching past a cube face's edge reads the texels along it rather than a far plane.
+bool sg_outsideMap(sg_Tap center) {
+    return any(lessThan(center.uv, vec2(0.0))) || any(greaterThan(center.uv, vec2(1.0)));
+}
+
+#endif

@@ -1,0 +1,52 @@
+// Moment soft shadows (msm-soft): VSSM's blocker search and penumbra (shadow_soft_moments.glsl)
+// on the four-moment mip chain, one trilinear fetch for the search and four for the penumbra,
+// and the Hamburger 4MSM bound (shadow_hamburger.glsl) over the penumbra.
+#ifndef SG_SHADOW_MSM_SOFT
+#define SG_SHADOW_MSM_SOFT
+#include "shadow_soft_moments.glsl"
+#include "shadow_hamburger.glsl"
+
+sg_ReceiverPolicy sg_msmSoftPolicy() { return sg_planePolicy(); }
+
+// MSM-soft's penumbra region from the mip chain: the square VSSM reads from its table
+// (half-width h = r sqrt(3) / 2) as four trilinear fetches at the centres of its quadrants, each
+// half a level finer than a quadrant's width (log2(h) - 1/2), instead of one fetch at log2(r),
+// whose box-and-tent has tails half again as long as the disk. Measured on builtin:plates,
+// 320x240, against the ray-traced truth: penumbra RMSE 0.050 with one fetch; with four at level
+// log2(h) + {-1.5, -1, -0.5, -0.3, 0}: 0.066, 0.034, 0.025, 0.027, 0.038 (quadrant centres),
+// 0.059 and 0.043 with the taps at 0.4 h and 0.6 h. The blocker search keeps the one fetch: it
+// only estimates the blockers' mean depth, and the four there cost builtin:bunny and
+// builtin:default more (RMSE summed over their six lights and the plates' one: 0.687 with four
+// in both regions, 0.677 with one in the search, 0.685 with one in both).
+vec4 sg_quadrantMoments(int slot, sg_Receiver r, sg_Tap center, float radius) {
+    float h = 0.8660254 * radius / max(r.texelMetres, 1e-30);
+    float level = max(log2(max(h, 1e-30)) - 0.5, 0.0);
+    vec2 offset = vec2(0.5 * h) / vec2(textureSize(sg_shadowChain[slot], 0).xy);
+    vec4 m = vec4(0.0);
+    for (int k = 0; k < 4; ++k) {
+        vec2 quadrant = vec2((k & 1) == 1 ? 1.0 : -1.0, (k & 2) == 2 ? 1.0 : -1.0);
+        m += textureLod(sg_shadowChain[slot], vec3(center.uv + quadrant * offset, float(center.layer)), level);
+    }
+    return 0.25 * m;
+}
+
+float sg_msmSoftVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
+    sg_Tap center = sg_lateralTap(L, r, vec2(0.0));
+    if (sg_outsideMap(center)) return 1.0;
+    float maxRadius = L.maxFilterTexels * r.texelMetres;
+    float dReceiver = center.depth;
+    float reference = sg_momentsReference(r, center);
+    float size = max(L.emitterSize, 0.0);
+    float penumbra = 0.0;
+    if (size > 0.0) {
+        float searchRadius = sg_softMomentsSearchRadius(L, r, dReceiver, size, maxRadius);
+        vec2 m = sg_regionMoments(slot, r, center, searchRadius).xy;
+        penumbra = sg_softMomentsPenumbra(L, r, m, reference, sg_varianceFloor(r, m), dReceiver, size, maxRadius);
+        if (penumbra < 0.0) return 1.0;  // no blocker: lit
+    }
+    SG_DEBUG_STORE(sg_debugPenumbra, penumbra);
+    vec4 b = sg_quadrantMoments(slot, r, center, penumbra);
+    return 1.0 - sg_msmShadowFraction(b, sg_msmReference(r, center, penumbra));
+}
+
+#endif

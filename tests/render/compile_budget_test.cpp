@@ -1,0 +1,288 @@
+// Compile time as a budget: the first frame of the worst light configurations a pass can hold,
+// and every form of a game's shader the README shows, compile within a stated CPU time with the
+// driver's shader cache off (test::glContext sets MESA_SHADER_CACHE_DISABLE before it makes the
+// context, and this test checks it: a cached program would pass unmeasured).
+//
+// On llvmpipe the fragment program is compiled to machine code at its first draw, so each case
+// times the whole first frame (or the host program's first draw) by the CPU time of the calling
+// thread, where the compilation runs; rasterisation runs on llvmpipe's own threads. What this
+// guards against is not a few percent: before the shaders were restructured three cascaded suns
+// with PCF took 170 s, and the README's two straight-line calls did not finish in 17 minutes
+// (LLVM's analysis of loops in sequence grew exponentially with their number).
+#include <shadow/frame_runner.h>
+#include <shadow/scene.h>
+#include <shadow/shadow_shaders.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "gl/gl_api.h"
+#include "render/render_test_support.h"
+
+namespace shadow {
+namespace {
+
+/// CPU seconds a first frame (every program of its passes) may take. Measured on the
+/// development machine (llvmpipe, LLVM 15, two shared cores): 0.3-0.9 s for one light, 0.6-4.0 s
+/// for the eight-light passes below. The budgets leave room for a slower or busier machine.
+constexpr double kOneLightBudget = 2.0;
+constexpr double kPassBudget = 10.0;
+
+double threadSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+bool shaderCacheOff() {
+    const char* v = std::getenv("MESA_SHADER_CACHE_DISABLE");
+    return v != nullptr && (std::string(v) == "true" || std::string(v) == "1");
+}
+
+/// One light of a configuration.
+struct LightSpec {
+    LightType type = LightType::Spot;
+    ShadowTechnique technique = ShadowTechnique::Hard;
+    FilterKernel kernel = FilterKernel::Vogel;
+    int cascades = 1;
+};
+
+std::string describe(const std::vector<LightSpec>& lights) {
+    std::string s;
+    for (const LightSpec& l : lights) {
+        s += std::string(s.empty() ? "" : ",") + lightTypeName(l.type) + ":" + techniqueName(l.technique) + ":" +
+             filterKernelName(l.kernel);
+    }
+    return s;
+}
+
+/// A ground plane and a box lit by `lights`, placed in a ring above it so that every light
+/// reaches the view (one pass holds them all).
+Scene sceneWith(const std::vector<LightSpec>& lights) {
+    Scene scene;
+    test::addGround(scene, 6.0f);
+    test::addBox(scene, "box", {0.0, 0.6, 0.0}, {0.5, 0.6, 0.5});
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        const double angle = 6.2831853 * static_cast<double>(i) / static_cast<double>(lights.size());
+        const glm::dvec3 position(3.0 * std::cos(angle), 5.0, 3.0 * std::sin(angle));
+        Light light;
+        light.type = lights[i].type;
+        light.intensity = light.type == LightType::Directional ? 2.0f : 40.0f;
+        light.radius = 0.1f;
+        light.angularRadius = 0.02f;
+        light.outerConeAngle = 0.8f;
+        Shadow shadow;
+        shadow.technique = lights[i].technique;
+        shadow.kernel = lights[i].kernel;
+        shadow.cascades = lights[i].cascades;
+        shadow.mapSize = 256;
+        addLight(scene, "light " + std::to_string(i), light, shadow, position, glm::normalize(-position));
+    }
+    addCamera(scene, "camera", Camera{}, {0.0, 4.0, 8.0}, {0.0, 0.0, 0.0});
+    return scene;
+}
+
+/// CPU seconds of the calling thread for the first frame of `lights` (every program compiled).
+double firstFrameSeconds(const std::vector<LightSpec>& lights, int& programs) {
+    Scene scene = sceneWith(lights);
+    test::glContext();
+    FrameRunner runner;
+    RenderOptions options;
+    options.width = 64;
+    options.height = 36;
+    const double start = threadSeconds();
+    const FrameStats stats = runner.runFrame(scene, 0.0, scene.cameras.at(0), options);
+    gl.Finish();
+    programs = stats.programsCompiled;
+    return threadSeconds() - start;
+}
+
+void expectWithin(const std::vector<LightSpec>& lights, double budget) {
+    int programs = 0;
+    const double seconds = firstFrameSeconds(lights, programs);
+    std::printf("[ compile  ] %-60s %5.2f s, %d programs\n", describe(lights).c_str(), seconds, programs);
+    EXPECT_GT(programs, 0) << describe(lights);
+    EXPECT_LT(seconds, budget) << describe(lights);
+}
+
+std::vector<LightSpec> repeated(int count, LightSpec light) { return std::vector<LightSpec>(count, light); }
+
+class CompileBudget : public ::testing::Test {
+protected:
+    void SetUp() override {
+        test::glContext();
+        if (!shaderCacheOff())
+            GTEST_FAIL() << "MESA_SHADER_CACHE_DISABLE must be true: a cached program is not measured";
+    }
+};
+
+TEST_F(CompileBudget, OneLightOfEachTypeWithItsHeaviestTechnique) {
+    expectWithin({{LightType::Point, ShadowTechnique::Pcss}}, kOneLightBudget);
+    expectWithin({{LightType::Directional, ShadowTechnique::Vssm, FilterKernel::Vogel, 4}}, kOneLightBudget);
+    expectWithin({{LightType::Spot, ShadowTechnique::Vssm}}, kOneLightBudget);
+}
+
+TEST_F(CompileBudget, CascadedSunsWithPcss) {
+    for (int suns : {3, 8}) {
+        expectWithin(repeated(suns, {LightType::Directional, ShadowTechnique::Pcss, FilterKernel::Vogel, 4}),
+                     kPassBudget);
+    }
+    expectWithin(repeated(3, {LightType::Directional, ShadowTechnique::Pcf, FilterKernel::Vogel, 3}), kPassBudget);
+}
+
+// Eight lights of one technique, the three types in turn.
+TEST_F(CompileBudget, EightSlotsOfEachTechnique) {
+    for (ShadowTechnique t : {ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss, ShadowTechnique::Vsm,
+                              ShadowTechnique::Vssm, ShadowTechnique::Msm, ShadowTechnique::MsmSoft}) {
+        std::vector<LightSpec> lights;
+        for (int i = 0; i < SG_MAX_LIGHTS_PER_PASS; ++i) {
+            lights.push_back({static_cast<LightType>(i % 3), t, FilterKernel::Vogel, 2});
+        }
+        expectWithin(lights, kPassBudget);
+    }
+}
+
+// Eight lights, no two alike, the heaviest configurations: every slot compiles its own code.
+TEST_F(CompileBudget, EightUnlikeHeavySlots) {
+    expectWithin({{LightType::Point, ShadowTechnique::Pcss, FilterKernel::Vogel},
+                  {LightType::Point, ShadowTechnique::Pcss, FilterKernel::Poisson},
+                  {LightType::Point, ShadowTechnique::Vssm},
+                  {LightType::Point, ShadowTechnique::Pcf, FilterKernel::Uniform},
+                  {LightType::Directional, ShadowTechnique::Vssm, FilterKernel::Vogel, 4},
+                  {LightType::Directional, ShadowTechnique::Pcss, FilterKernel::Poisson, 4},
+                  {LightType::Spot, ShadowTechnique::Vssm},
+                  {LightType::Spot, ShadowTechnique::MsmSoft}},
+                 kPassBudget);
+}
+
+/// CPU seconds to compile, link and first draw a game's program: its own vertex shader, and a
+/// fragment shader of `shadowShaderSource(techniques)` followed by `main`.
+double hostProgramSeconds(unsigned techniques, const std::string& main) {
+    test::glContext();
+    const char* vertex = R"(#version 450 core
+out vec3 vCsPosition;
+out vec3 vNormal;
+void main() {
+    vec2 p = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1)) * 4.0 - 1.0;
+    vCsPosition = vec3(p, -2.0);
+    vNormal = vec3(0.0, 0.0, 1.0);
+    gl_Position = vec4(p, 0.0, 1.0);
+}
+)";
+    const std::string fragment = "#version 450 core\n" + shadowShaderSource({}, techniques) + main;
+    const double start = threadSeconds();
+    GLuint stages[2] = {gl.CreateShader(GL_VERTEX_SHADER), gl.CreateShader(GL_FRAGMENT_SHADER)};
+    const char* texts[2] = {vertex, fragment.c_str()};
+    const GLuint program = gl.CreateProgram();
+    for (int i = 0; i < 2; ++i) {
+        gl.ShaderSource(stages[i], 1, &texts[i], nullptr);
+        gl.CompileShader(stages[i]);
+        GLint ok = GL_FALSE;
+        gl.GetShaderiv(stages[i], GL_COMPILE_STATUS, &ok);
+        if (ok != GL_TRUE) {
+            std::string log(8192, '\0');
+            gl.GetShaderInfoLog(stages[i], static_cast<GLsizei>(log.size()), nullptr, log.data());
+            ADD_FAILURE() << log;
+        }
+        gl.AttachShader(program, stages[i]);
+    }
+    gl.LinkProgram(program);
+    GLint linked = GL_FALSE;
+    gl.GetProgramiv(program, GL_LINK_STATUS, &linked);
+    EXPECT_EQ(linked, GL_TRUE);
+    GLuint target = 0, framebuffer = 0, vertexArray = 0;
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &target);
+    gl.TextureStorage2D(target, 1, GL_RGBA8, 16, 16);
+    gl.CreateFramebuffers(1, &framebuffer);
+    gl.NamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, target, 0);
+    gl.CreateVertexArrays(1, &vertexArray);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    gl.Viewport(0, 0, 16, 16);
+    gl.UseProgram(program);
+    gl.BindVertexArray(vertexArray);
+    gl.DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    gl.Finish();
+    const double seconds = threadSeconds() - start;
+    gl.BindVertexArray(0);
+    gl.UseProgram(0);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl.DeleteVertexArrays(1, &vertexArray);
+    gl.DeleteFramebuffers(1, &framebuffer);
+    gl.DeleteTextures(1, &target);
+    for (GLuint s : stages) gl.DeleteShader(s);
+    gl.DeleteProgram(program);
+    return seconds;
+}
+
+const char* kHostInputs = R"(
+in vec3 vCsPosition;
+in vec3 vNormal;
+layout(location = 0) out vec4 outColor;
+)";
+
+// The README's forms of a game's shader, with every technique compiled in (the default): one
+// call, two calls in straight-line code, and a loop over the slots.
+TEST_F(CompileBudget, EveryFormOfTheReadmesGameShader) {
+    std::vector<std::pair<const char*, std::string>> forms{
+        {"one call", std::string(kHostInputs) + R"(
+void main() {
+    sg_Surface s = sg_surface(vCsPosition, vNormal);
+    outColor = vec4(sg_lightVisibility(0, vCsPosition, s, -vCsPosition.z));
+})"},
+        {"two straight-line calls", std::string(kHostInputs) + R"(
+void main() {
+    sg_Surface s = sg_surface(vCsPosition, vNormal);
+    float a = sg_lightVisibility(0, vCsPosition, s, -vCsPosition.z);
+    float b = sg_lightVisibility(1, vCsPosition, s, -vCsPosition.z);
+    outColor = vec4(a, b, 0.0, 1.0);
+})"},
+        {"a loop over eight slots", std::string(kHostInputs) + R"(
+void main() {
+    sg_Surface s = sg_surface(vCsPosition, vNormal);
+    float sum = 0.0;
+    for (int slot = 0; slot < 8; ++slot) sum += sg_lightVisibility(slot, vCsPosition, s, -vCsPosition.z);
+    outColor = vec4(sum / 8.0);
+})"},
+    };
+    // The README's own snippet, as written there.
+    std::ifstream readme(std::string(SHADOW_SOURCE_DIR) + "/README.md");
+    std::stringstream text;
+    text << readme.rdbuf();
+    const std::string all = text.str();
+    const std::size_t begin = all.find("```glsl\n", all.find("<!-- game-shader:begin -->"));
+    const std::size_t end = all.find("```\n", begin + 8);
+    ASSERT_NE(begin, std::string::npos);
+    ASSERT_NE(end, std::string::npos);
+    forms.emplace_back("the README's snippet", all.substr(begin + 8, end - begin - 8));
+    for (const auto& [name, main] : forms) {
+        const double seconds = hostProgramSeconds(kAllShadowTechniques, main);
+        std::printf("[ compile  ] game shader, %-40s %5.2f s\n", name, seconds);
+        EXPECT_LT(seconds, kPassBudget) << name;
+    }
+    // Straight-line calls compile one after another: four cost about four times one, where
+    // the driver's analysis of loops in sequence used to grow exponentially with their number.
+    const unsigned pcf = techniqueBit(ShadowTechnique::Pcf);
+    auto calls = [](int count) {
+        std::string text = std::string(kHostInputs) +
+                           "void main() {\n    sg_Surface s = sg_surface(vCsPosition, vNormal);\n"
+                           "    float sum = 0.0;\n";
+        for (int slot = 0; slot < count; ++slot) {
+            text += "    sum += sg_lightVisibility(" + std::to_string(slot) + ", vCsPosition, s, -vCsPosition.z);\n";
+        }
+        return text + "    outColor = vec4(sum);\n}\n";
+    };
+    const double one = hostProgramSeconds(pcf, calls(1));
+    const double four = hostProgramSeconds(pcf, calls(4));
+    std::printf("[ compile  ] game shader, pcf only: one call %.2f s, four straight-line calls %.2f s\n", one, four);
+    EXPECT_LT(four, kPassBudget);
+    EXPECT_LT(four, 6.0 * one);
+}
+
+}  // namespace
+}  // namespace shadow
