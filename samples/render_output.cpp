@@ -1,6 +1,7 @@
 #include "render_output.h"
 
 #include <nlohmann/json.hpp>
+#include <shadow/program_cache.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -216,6 +217,9 @@ std::string statsJson(const Scene& scene, const std::vector<FrameStats>& frames,
                             {"mainMs", f.passMs("Main/")}});
     }
     j["perFrame"] = perFrame;
+    // The program binary cache (--shader-cache): programs taken from it, written to it, refused.
+    const ProgramCacheStats cache = programCacheStats();
+    j["programCache"] = {{"loaded", cache.loaded}, {"stored", cache.stored}, {"rejected", cache.rejected}};
     // One object per warning; "message" is the line the CLI prints on stderr.
     nlohmann::json warnings = nlohmann::json::array();
     for (const Warning& w : last.warnings) {

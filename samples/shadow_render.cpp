@@ -3,6 +3,7 @@
 //   shadow_render SCENE [--out DIR] [--size WxH] [--camera N] [--time T] [--frames N --dt S]
 //                 [--technique NAME] [--aov color,visibility,position,depth]
 //                 [--debug NAME] [--debug-light I] [--frame-images] [--no-cache] [--exposure E]
+//                 [--shader-cache DIR]
 //
 // SCENE is a .gltf/.glb path or builtin:NAME. With --frames N the scene is animated from
 // --time T in steps of --dt S; the images are those of the last frame and the timings in
@@ -10,6 +11,7 @@
 // frame's colour as frames/color_<k>.png. Bad input: one message, exit code 2.
 #include <shadow/context.h>
 #include <shadow/frame_runner.h>
+#include <shadow/program_cache.h>
 #include <shadow/scene.h>
 
 #include "render_output.h"
@@ -44,6 +46,7 @@ struct Options {
     int debugLight = 0;
     bool frameImages = false;
     bool noCache = false;
+    std::string shaderCache;
     std::optional<float> exposure;  ///< absent: from the first frame read back (autoExposure)
 };
 
@@ -134,6 +137,10 @@ int run(const Options& o) {
 
     auto context = createOsMesaContext();
     if (!context) return fail(kExitFailure, context.error().message);
+    if (!o.shaderCache.empty()) {
+        if (Status s = setProgramBinaryCache(o.shaderCache); !s)
+            return fail(kExitBadInput, "--shader-cache: " + s.error().message);
+    }
 
     RenderOptions options;
     options.width = size->first;
@@ -197,6 +204,8 @@ int main(int argc, char** argv) {
     app.add_option("--exposure", o.exposure, "exposure of color.png (default: log-average luminance to 0.18)");
     app.add_flag("--frame-images", o.frameImages, "write every frame as frames/color_<k>.png");
     app.add_flag("--no-cache", o.noCache, "redraw every shadow layer every frame");
+    app.add_option("--shader-cache", o.shaderCache,
+                   "folder of linked program binaries, read and written (the driver's own cache aside)");
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -300,5 +300,36 @@ TEST(ShadowRenderCli, FramesAndDtRenderTheLastFrameAndReportThem) {
     }
 }
 
+// --shader-cache: the second run takes every program from the folder. Run with the driver's own
+// cache on (Mesa makes program binaries only then) in a folder of the test's, so that neither
+// run reads what another process left.
+TEST(ShadowRenderCli, ShaderCacheFolderServesTheSecondRun) {
+    const TempDir tmp("cli_shader_cache");
+    const std::string env = "env -u MESA_SHADER_CACHE_DISABLE MESA_SHADER_CACHE_DIR=" + quoted(tmp / "mesa") + " ";
+    const std::string cache = tmp / "programs";
+    auto run = [&](const std::string& out) {
+        const std::string command = env + test::shellQuoted(SHADOW_BIN_DIR "/shadow_render") +
+                                    " builtin:default --size 32x18 --aov color --shader-cache " + quoted(cache) +
+                                    " --out " + quoted(out) + " > " + quoted(tmp / "cli.log") + " 2>&1";
+        EXPECT_EQ(std::system(command.c_str()), 0) << command;
+        return readJson(out + "/stats.json");
+    };
+    const nlohmann::json first = run(tmp / "first");
+    const nlohmann::json second = run(tmp / "second");
+    const int compiled = first["counters"]["programsCompiled"].get<int>();
+    EXPECT_GT(compiled, 0);
+    EXPECT_GE(first["programCache"]["stored"].get<int>(), compiled);
+    EXPECT_EQ(first["programCache"]["loaded"].get<int>(), 0);
+    EXPECT_EQ(second["programCache"]["stored"].get<int>(), 0);
+    EXPECT_EQ(second["programCache"]["loaded"].get<int>(), first["programCache"]["stored"].get<int>());
+    EXPECT_EQ(second["programCache"]["rejected"].get<int>(), 0);
+    // A file where the folder should be is bad input.
+    std::ofstream(tmp / "file") << "x";
+    const CliRun bad = runCli(
+        tmp, "builtin:default --size 32x18 --shader-cache " + quoted(tmp / "file") + " --out " + quoted(tmp / "bad"));
+    EXPECT_EQ(bad.exitCode, kExitBadInput) << bad.output;
+    EXPECT_NE(bad.output.find("--shader-cache"), std::string::npos) << bad.output;
+}
+
 }  // namespace
 }  // namespace shadow

@@ -28,6 +28,9 @@ namespace shadow::gpu {
     X(PFNGLBINDBUFFERPROC, BindBuffer)                                     \
     X(PFNGLBLENDFUNCSEPARATEPROC, BlendFuncSeparate)                       \
     X(PFNGLGETSTRINGPROC, GetString)                                       \
+    X(PFNGLGETPROGRAMBINARYPROC, GetProgramBinary)                         \
+    X(PFNGLPROGRAMBINARYPROC, ProgramBinary)                               \
+    X(PFNGLPROGRAMPARAMETERIPROC, ProgramParameteri)                       \
     X(PFNGLENABLEPROC, Enable)                                             \
     X(PFNGLDISABLEPROC, Disable)                                           \
     X(PFNGLENABLEIPROC, Enablei)                                           \

@@ -1,9 +1,11 @@
 #include "gl/program.h"
 
+#include "gl/program_cache.h"
 #include "gl/shader_sources.h"
 #include "gl/technique_glsl.h"
 
 #include <algorithm>
+#include <optional>
 #include <regex>
 #include <sstream>
 
@@ -181,6 +183,11 @@ void requireLinked(const Program& program, const std::string& label, const std::
 }  // namespace
 
 Program linkProgram(const std::string& label, const ExpandedSource& vertex, const ExpandedSource& fragment) {
+    const std::string key = programKey(label, {&vertex.text, &fragment.text});
+    if (std::optional<Program> cached = loadCachedProgram(key)) {
+        cached->label(label);
+        return std::move(*cached);
+    }
     const GLuint v = compileStage(GL_VERTEX_SHADER, vertex, label + " (" + vertex.files.front() + ")");
     GLuint f = 0;
     try {
@@ -192,22 +199,31 @@ Program linkProgram(const std::string& label, const ExpandedSource& vertex, cons
     Program program(gl.CreateProgram());
     gl.AttachShader(program.get(), v);
     gl.AttachShader(program.get(), f);
+    markRetrievable(program);
     gl.LinkProgram(program.get());
     gl.DeleteShader(v);
     gl.DeleteShader(f);
     requireLinked(program, label, fragment.files);
+    storeCachedProgram(key, program);
     return program;
 }
 
 Program buildComputeProgram(const std::string& label, const std::string& file,
                             const std::vector<std::string>& defines) {
     const ExpandedSource source = expandShader(file, defines, 0);
+    const std::string key = programKey(label, {&source.text});
+    if (std::optional<Program> cached = loadCachedProgram(key)) {
+        cached->label(label);
+        return std::move(*cached);
+    }
     const GLuint c = compileStage(GL_COMPUTE_SHADER, source, label + " (" + source.files.front() + ")");
     Program program(gl.CreateProgram());
     gl.AttachShader(program.get(), c);
+    markRetrievable(program);
     gl.LinkProgram(program.get());
     gl.DeleteShader(c);
     requireLinked(program, label, source.files);
+    storeCachedProgram(key, program);
     return program;
 }
 
