@@ -1,7 +1,7 @@
 // Constants shared by the C++ engine and the GLSL shaders: the one source of truth for both.
 // Only preprocessor lines and comments may stand here, since C++ and GLSL both include this file.
-#ifndef SHADOW_SHARED_CONSTANTS_H
-#define SHADOW_SHARED_CONSTANTS_H
+#ifndef SG_SHARED_CONSTANTS_H
+#define SG_SHARED_CONSTANTS_H
 
 // Light types (LightType in components.h, in the same order).
 #define SG_LIGHT_DIRECTIONAL 0
