@@ -15,6 +15,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <ctime>
 #include <fstream>
@@ -159,6 +161,56 @@ TEST_F(CompileBudget, EightUnlikeHeavySlots) {
                   {LightType::Spot, ShadowTechnique::Vssm},
                   {LightType::Spot, ShadowTechnique::MsmSoft}},
                  kPassBudget);
+}
+
+// The space of shader variants, sampled: random light configurations (1 to 8 lights of any
+// type, technique, kernel and cascade count, with and without emitters), each compiled and
+// rendered within the budget with finite visibility in [0, 1] everywhere. The seed is fixed so a
+// failure reproduces; SHADOW_VARIANT_SEED and SHADOW_VARIANT_CASES sample other parts of the space.
+TEST_F(CompileBudget, RandomLightConfigurationsRenderFiniteWithinTheBudget) {
+    const char* seedText = std::getenv("SHADOW_VARIANT_SEED");
+    const char* casesText = std::getenv("SHADOW_VARIANT_CASES");
+    std::uint32_t state =
+        seedText != nullptr ? static_cast<std::uint32_t>(std::strtoul(seedText, nullptr, 10)) : 20261202u;
+    const int cases = casesText != nullptr ? std::atoi(casesText) : 4;
+    auto next = [&state](int n) {  // xorshift32, uniform in [0, n)
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        return static_cast<int>(state % static_cast<std::uint32_t>(n));
+    };
+    std::vector<ShadowTechnique> techniques;
+    for (int t = 0; t < kShadowTechniqueCount; ++t) {
+        if (techniqueAvailable(static_cast<ShadowTechnique>(t))) techniques.push_back(static_cast<ShadowTechnique>(t));
+    }
+    for (int c = 0; c < cases; ++c) {
+        std::printf("[ variant  ] case %d, seed state %u\n", c, state);
+        std::vector<LightSpec> lights(static_cast<std::size_t>(1 + next(SG_MAX_LIGHTS_PER_PASS)));
+        for (LightSpec& l : lights) {
+            l.type = static_cast<LightType>(next(3));
+            l.technique = techniques[static_cast<std::size_t>(next(static_cast<int>(techniques.size())))];
+            l.kernel = static_cast<FilterKernel>(next(3));
+            l.cascades = 1 + next(SG_MAX_CASCADES);
+        }
+        Scene scene = sceneWith(lights);
+        scene.world.view<Light>().each([&](Entity, Light& light) {
+            if (next(3) == 0) light.radius = light.angularRadius = 0.0f;  // a hard-edged emitter
+        });
+        FrameRunner runner;
+        const double start = threadSeconds();
+        const test::RenderedFrame frame = test::renderFrame(runner, scene, 48, 27);
+        const double seconds = threadSeconds() - start;
+        std::printf("[ compile  ] %-60s %5.2f s\n", describe(lights).c_str(), seconds);
+        EXPECT_LT(seconds, kPassBudget) << describe(lights);
+        ASSERT_EQ(frame.images.visibility.size(), lights.size()) << describe(lights);
+        for (std::size_t l = 0; l < lights.size(); ++l) {
+            for (float v : frame.images.visibility[l].pixels) {
+                ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f)
+                    << describe(lights) << " light " << l << ": " << v;
+            }
+        }
+        EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
+    }
 }
 
 /// CPU seconds to compile, link and first draw a game's program: its own vertex shader, and a
