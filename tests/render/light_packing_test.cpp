@@ -40,7 +40,9 @@ ShadowLightPlan spotPlan(int index, bool withMap) {
     return p;
 }
 
-TEST(LightPacking, SkipsLightsThatCannotShadeAndFillsPassesInSceneOrder) {
+// Over several passes, wide lights alike (type, technique, kernel) share passes, in scene order
+// among them: passes then share programs, each compiling a configuration once.
+TEST(LightPacking, SkipsLightsThatCannotShadeAndFillsPassesWithLightsAlikeTogether) {
     ShadowFrame frame;
     for (int i = 0; i < 12; ++i) frame.lights.push_back(spotPlan(i, i % 3 == 0));
     frame.lights[1].shaded = false;       // no Light, or a non-finite transform
@@ -52,20 +54,29 @@ TEST(LightPacking, SkipsLightsThatCannotShadeAndFillsPassesInSceneOrder) {
     ASSERT_EQ(passes.size(), 2u) << "10 lights shade the view: 8 + 2";
     EXPECT_EQ(passes[0].variant.lights, 8);
     EXPECT_EQ(passes[1].variant.lights, 2);
-    const std::vector<int> expected = {0, 3, 4, 5, 6, 7, 8, 9};
+    // The unshadowed lights (technique None) first, then the PCSS ones (0, 3, 6, 9).
+    const std::vector<int> expected = {4, 5, 7, 8, 10, 11, 0, 3};
     for (int s = 0; s < 8; ++s)
         EXPECT_EQ(passes[0].sceneLight[static_cast<std::size_t>(s)], expected[static_cast<std::size_t>(s)]);
-    EXPECT_EQ(passes[1].sceneLight[0], 10);
-    EXPECT_EQ(passes[1].sceneLight[1], 11);
+    EXPECT_EQ(passes[1].sceneLight[0], 6);
+    EXPECT_EQ(passes[1].sceneLight[1], 9);
     EXPECT_EQ(passes[1].sceneLight[2], -1) << "unused slots name no light";
 
-    // Slot 1 of pass 0 is light 3 (shadowed); slot 2 is light 4 (no map).
-    EXPECT_EQ(passes[0].variant.type[1], SG_LIGHT_SPOT);
-    EXPECT_EQ(passes[0].variant.technique[1], SG_TECH_PCSS);
-    EXPECT_EQ(passes[0].variant.kernel[1], SG_KERNEL_POISSON);
+    // Slot 7 of pass 0 is light 3 (shadowed); slot 2 is light 7 (no map).
+    EXPECT_EQ(passes[0].variant.type[7], SG_LIGHT_SPOT);
+    EXPECT_EQ(passes[0].variant.technique[7], SG_TECH_PCSS);
+    EXPECT_EQ(passes[0].variant.kernel[7], SG_KERNEL_POISSON);
     EXPECT_EQ(passes[0].variant.technique[2], SG_TECH_NONE) << "a light without a map is drawn unshadowed";
-    EXPECT_EQ(passes[0].lights[1].firstLayer, 1 * SG_MAX_LAYERS_PER_LIGHT);
-    EXPECT_EQ(passes[0].lights[1].layerCount, 1);
+    EXPECT_EQ(passes[0].lights[7].firstLayer, 7 * SG_MAX_LAYERS_PER_LIGHT);
+    EXPECT_EQ(passes[0].lights[7].layerCount, 1);
+
+    // Lights that fit in one pass keep the scene's order.
+    frame.lights.resize(8);
+    pack(frame, camera, passes);
+    ASSERT_EQ(passes.size(), 1u);
+    const std::vector<int> inOrder = {0, 3, 4, 5, 6, 7};
+    for (int s = 0; s < 6; ++s)
+        EXPECT_EQ(passes[0].sceneLight[static_cast<std::size_t>(s)], inOrder[static_cast<std::size_t>(s)]);
 }
 
 TEST(LightPacking, RecordsAreCameraRelative) {

@@ -59,17 +59,23 @@ void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const Scre
         // while it has room: another pass over the scene's triangles would cost more than the
         // pixels they leave out.
         const bool wide = 4 * b.area() >= whole.area();
-        order.push_back({wide, plan.sceneIndex, b});
+        const std::uint32_t config = static_cast<std::uint32_t>(plan.light.type) << 16 |
+                                     static_cast<std::uint32_t>(plan.technique()) << 8 |
+                                     static_cast<std::uint32_t>(plan.settings.kernel);
+        order.push_back({wide, plan.sceneIndex, b, config});
     }
-    // Wide lights first, in scene order; the local ones after them. Scene order is spelled out
-    // rather than left to std::stable_sort, which allocates a buffer every call.
-    std::sort(order.begin(), order.end(), [](const PackingEntry& a, const PackingEntry& b) {
-        return a.wide != b.wide ? a.wide : a.sceneLight < b.sceneLight;
-    });
-
     // When every light fits in one pass, one pass it is (another pass over the triangles costs
     // more than the pixels it would spare); otherwise local lights start passes of their own.
     const bool onePass = order.size() <= SG_MAX_LIGHTS_PER_PASS;
+    // Wide lights first, in scene order (over several passes, those alike together); the local
+    // ones after them. Scene order is spelled out rather than left to std::stable_sort, which
+    // allocates a buffer every call.
+    std::sort(order.begin(), order.end(), [onePass](const PackingEntry& a, const PackingEntry& b) {
+        if (a.wide != b.wide) return a.wide;
+        if (!onePass && a.wide && a.config != b.config) return a.config < b.config;
+        return a.sceneLight < b.sceneLight;
+    });
+
     std::size_t used = 0;
     PassLights* pass = &openPass(passes, used, whole);
     for (const PackingEntry& entry : order) {

@@ -34,6 +34,8 @@ struct PackingEntry {
     bool wide = false;
     int sceneLight = -1;
     PixelRect bounds;
+    /// Type, technique and kernel of its slot, as one number: wide lights alike share passes.
+    std::uint32_t config = 0;
 };
 
 /// One main pass: its lights' records, the scene light of each slot, and its variant.
@@ -54,8 +56,10 @@ struct PassLights {
 
 /// Packs the lights of `frame` that can shade the view (`shaded` and `affectsView`) into
 /// `passes`, positions relative to `wsCamera`. When they all fit (SG_MAX_LIGHTS_PER_PASS), one
-/// whole-screen pass holds them. Otherwise lights that reach a quarter of the screen or more fill
-/// whole-screen passes of up to SG_MAX_LIGHTS_PER_PASS, in scene order, and every other light gets
+/// whole-screen pass holds them, in scene order. Otherwise lights that reach a quarter of the
+/// screen or more fill whole-screen passes of up to SG_MAX_LIGHTS_PER_PASS, lights of the same
+/// type, technique and kernel together (in scene order among them), so that passes share
+/// programs and a program compiles each configuration once; and every other light gets
 /// a pass of its own, bounded on screen and in the world by its range: a pixel then pays for the
 /// lights that can reach it, since a CPU rasteriser runs every light of a pass at every pixel of
 /// it (both sides of an `if` run; BENCHMARKS.md, fragment costs). There is always at least one
