@@ -14,7 +14,7 @@
 #include "lighting.glsl"
 
 #if SG_MAX_LIGHTS_PER_PASS != 8
-#error "main() below shades groups 0-7: one SG_SHADE_GROUP line per possible group"
+#error "main() below shades groups 0-7: one SG_SHADE_ONE/SG_SHADE_MANY choice per possible group"
 #endif
 
 in vec3 vCsPosition;
@@ -62,26 +62,32 @@ vec3 debugColor = vec3(0.0);
 #define SG_DEBUG_CAPTURE(i, v)
 #endif
 
-// Group g of the pass's slots (folded away for g >= SG_PASS_GROUPS): its lights' type, technique
-// and kernel are compile-time constants (SG_GROUP<g>_*), SG_GROUP<g>_VISIBILITY its technique's
-// function (shadow_techniques.glsl), and its code is compiled once for all its slots, in a loop
-// over them. A group of one is unrolled to straight-line code with constant indices (sampler,
-// records); a larger one stays a loop (sg_runtimeZero), whose slot indexes the samplers
-// dynamically but whose code the driver compiles once.
-#define SG_SHADE_GROUP(g)                                                                         \
+// Light `slot` of the pass, of group g: its type, technique and kernel are compile-time constants
+// (SG_GROUP<g>_*), SG_GROUP<g>_VISIBILITY its technique's function (shadow_techniques.glsl).
+#define SG_SHADE_LIGHT(g, slot)                                                                   \
+    {                                                                                             \
+        sg_GpuLight L = sg_slotLight(slot, SG_GROUP##g##_TYPE, SG_GROUP##g##_TECH, SG_GROUP##g##_KERNEL); \
+        vec3 shading = shadeBlinnPhong(L, s);                                                     \
+        float v = 1.0;                                                                            \
+        if (shadowWanted(SG_GROUP##g##_TECH, shading))                                            \
+            v = SG_GROUP##g##_VISIBILITY(slot, L, s.csPosition, s.normal, s.geoNormal, s.curvature, viewDistance); \
+        color += v * shading;                                                                     \
+        SG_STORE_VISIBILITY(slot, v)                                                              \
+        SG_DEBUG_CAPTURE(slot, v)                                                                 \
+    }
+
+// Group g of the pass's slots, a light of its own: straight-line code, constant indices (sampler,
+// records). Folded away for g >= SG_PASS_GROUPS.
+#define SG_SHADE_ONE(g)                                                                           \
+    if (g < SG_PASS_GROUPS) SG_SHADE_LIGHT(g, SG_GROUP##g##_FIRST)
+
+// Group g of several lights alike: its code compiled once, in a loop over its slots
+// (sg_runtimeZero keeps the compiler from unrolling it), whose slot indexes the samplers
+// dynamically.
+#define SG_SHADE_MANY(g)                                                                          \
     if (g < SG_PASS_GROUPS) {                                                                     \
         const int slots[SG_GROUP##g##_COUNT] = SG_GROUP##g##_SLOTS;                               \
-        for (int k = 0; k < SG_GROUP##g##_COUNT + (SG_GROUP##g##_COUNT > 1 ? sg_runtimeZero() : 0); ++k) { \
-            int slot = slots[k];                                                                  \
-            sg_GpuLight L = sg_slotLight(slot, SG_GROUP##g##_TYPE, SG_GROUP##g##_TECH, SG_GROUP##g##_KERNEL); \
-            vec3 shading = shadeBlinnPhong(L, s);                                                 \
-            float v = 1.0;                                                                        \
-            if (shadowWanted(SG_GROUP##g##_TECH, shading))                                        \
-                v = SG_GROUP##g##_VISIBILITY(slot, L, s.csPosition, s.normal, s.geoNormal, s.curvature, viewDistance); \
-            color += v * shading;                                                                 \
-            SG_STORE_VISIBILITY(slot, v)                                                          \
-            SG_DEBUG_CAPTURE(slot, v)                                                             \
-        }                                                                                         \
+        for (int k = 0; k < SG_GROUP##g##_COUNT + sg_runtimeZero(); ++k) SG_SHADE_LIGHT(g, slots[k]) \
     }
 
 #ifdef SG_WRITE_AOVS
@@ -107,14 +113,46 @@ void main() {
 #ifdef SG_WRITE_AOVS
     float visibility[SG_MAX_LIGHTS_PER_PASS] = float[](1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0);
 #endif
-    SG_SHADE_GROUP(0)
-    SG_SHADE_GROUP(1)
-    SG_SHADE_GROUP(2)
-    SG_SHADE_GROUP(3)
-    SG_SHADE_GROUP(4)
-    SG_SHADE_GROUP(5)
-    SG_SHADE_GROUP(6)
-    SG_SHADE_GROUP(7)
+#if SG_GROUP0_COUNT == 1
+    SG_SHADE_ONE(0)
+#else
+    SG_SHADE_MANY(0)
+#endif
+#if SG_GROUP1_COUNT == 1
+    SG_SHADE_ONE(1)
+#else
+    SG_SHADE_MANY(1)
+#endif
+#if SG_GROUP2_COUNT == 1
+    SG_SHADE_ONE(2)
+#else
+    SG_SHADE_MANY(2)
+#endif
+#if SG_GROUP3_COUNT == 1
+    SG_SHADE_ONE(3)
+#else
+    SG_SHADE_MANY(3)
+#endif
+#if SG_GROUP4_COUNT == 1
+    SG_SHADE_ONE(4)
+#else
+    SG_SHADE_MANY(4)
+#endif
+#if SG_GROUP5_COUNT == 1
+    SG_SHADE_ONE(5)
+#else
+    SG_SHADE_MANY(5)
+#endif
+#if SG_GROUP6_COUNT == 1
+    SG_SHADE_ONE(6)
+#else
+    SG_SHADE_MANY(6)
+#endif
+#if SG_GROUP7_COUNT == 1
+    SG_SHADE_ONE(7)
+#else
+    SG_SHADE_MANY(7)
+#endif
 #ifdef SG_DEBUG_VIEWS
     outColor = vec4(debugColor, 1.0);
 #else

@@ -10,6 +10,11 @@
 // includes, with only the code of the techniques asked for.
 #ifndef SG_SHADOW_PUBLIC
 #define SG_SHADOW_PUBLIC
+// A game's calls cannot be counted: every loop of the shadow code stands in a loop of its own
+// (shadow_bindings.glsl, SG_ISOLATED), so that any number of calls compiles in linear time.
+#ifndef SG_ISOLATE_LOOPS
+#define SG_ISOLATE_LOOPS
+#endif
 #include "shadow_visibility.glsl"
 #include "shadow_surface.glsl"
 

@@ -29,6 +29,7 @@ float sg_pcfTaps(int slot, sg_GpuLight L, sg_Receiver r, float radius, int taps,
     int fetches = gathers && taps > 1 ? (taps * 3 + 3) / 4 : taps;
     sg_DiskWalk disk = sg_beginDisk(sg_pixelRotation(), fetches);
     float sum = 0.0;
+    SG_ISOLATED
     for (int i = 0; i < fetches; ++i) {
         sg_Tap t = sg_lateralTap(L, r, sg_nextDiskSample(L.kernel, disk, i) * (taps > 1 ? radius : 0.0));
         sum += gathers && taps > 1 ? sg_gatherTap(slot, L, r, t) : sg_compareTap(slot, L, r, t);

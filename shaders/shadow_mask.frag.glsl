@@ -44,16 +44,19 @@ vec3 surfaceStep(ivec2 p, vec3 c, ivec2 axis, out ivec2 q) {
     return useAhead ? a - c : c - b;
 }
 
-// Group g of the mask's lights, as lit.frag.glsl's SG_SHADE_GROUP.
-#define SG_MASK_GROUP(g)                                                                            \
+// Light `slot` of the mask, of group g (as lit.frag.glsl's SG_SHADE_LIGHT).
+#define SG_MASK_LIGHT(g, slot)                                                                      \
+    {                                                                                               \
+        sg_GpuLight L = sg_slotLight(slot, SG_GROUP##g##_TYPE, SG_GROUP##g##_TECH, SG_GROUP##g##_KERNEL); \
+        if (SG_GROUP##g##_TECH != SG_TECH_NONE)                                                     \
+            mask[slot] = SG_GROUP##g##_VISIBILITY(slot, L, c, normal, geoNormal, curvature, viewDistance); \
+    }
+#define SG_MASK_ONE(g) \
+    if (g < SG_PASS_GROUPS) SG_MASK_LIGHT(g, SG_GROUP##g##_FIRST)
+#define SG_MASK_MANY(g)                                                                             \
     if (g < SG_PASS_GROUPS) {                                                                       \
         const int slots[SG_GROUP##g##_COUNT] = SG_GROUP##g##_SLOTS;                                 \
-        for (int k = 0; k < SG_GROUP##g##_COUNT + (SG_GROUP##g##_COUNT > 1 ? sg_runtimeZero() : 0); ++k) { \
-            int slot = slots[k];                                                                    \
-            sg_GpuLight L = sg_slotLight(slot, SG_GROUP##g##_TYPE, SG_GROUP##g##_TECH, SG_GROUP##g##_KERNEL); \
-            if (SG_GROUP##g##_TECH != SG_TECH_NONE)                                                 \
-                mask[slot] = SG_GROUP##g##_VISIBILITY(slot, L, c, normal, geoNormal, curvature, viewDistance); \
-        }                                                                                           \
+        for (int k = 0; k < SG_GROUP##g##_COUNT + sg_runtimeZero(); ++k) SG_MASK_LIGHT(g, slots[k]) \
     }
 
 void main() {
@@ -78,10 +81,26 @@ void main() {
 #endif
         vec3 normal = dot(n, toViewer) < 0.0 ? -n : n;
         float viewDistance = dot(c, uCameraForward);
-        SG_MASK_GROUP(0)
-        SG_MASK_GROUP(1)
-        SG_MASK_GROUP(2)
-        SG_MASK_GROUP(3)
+#if SG_GROUP0_COUNT == 1
+        SG_MASK_ONE(0)
+#else
+        SG_MASK_MANY(0)
+#endif
+#if SG_GROUP1_COUNT == 1
+        SG_MASK_ONE(1)
+#else
+        SG_MASK_MANY(1)
+#endif
+#if SG_GROUP2_COUNT == 1
+        SG_MASK_ONE(2)
+#else
+        SG_MASK_MANY(2)
+#endif
+#if SG_GROUP3_COUNT == 1
+        SG_MASK_ONE(3)
+#else
+        SG_MASK_MANY(3)
+#endif
     }
     outMask = mask;
 }

@@ -30,6 +30,7 @@ float sg_pcssVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
     int searchGathers = known >= 0.0 || pointEmitter ? 0 : gathers;
     float blockerSum = 0.0;
     float blockers = 0.0;
+    SG_ISOLATED
     for (int i = 0; i < searchGathers; ++i) {
         sg_Tap t = sg_lateralTap(L, r, sg_nextDiskSample(L.kernel, disk, i) * searchRadius);
         float scale = t.layer == r.layer ? r.depthScale : sg_layers[L.firstLayer + t.layer].depthScale;

@@ -28,6 +28,7 @@ float sg_pcssTextbookVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
 
     float blockerSum = 0.0;
     int blockers = 0;
+    SG_ISOLATED
     for (int i = 0; i < L.blockerSamples; ++i) {
         vec2 uv = center.uv + sg_nextDiskSample(SG_KERNEL_POISSON, disk, i) * searchRadius * uvPerMetre;
         float stored = texture(sg_shadowDepth[slot], vec3(uv, float(center.layer))).r * S.depthScale;
@@ -42,6 +43,7 @@ float sg_pcssTextbookVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
     SG_DEBUG_STORE(sg_debugPenumbra, penumbra);
     float reference = min((dReceiver - r.depthBias) / S.depthScale, 1.0);
     float sum = 0.0;
+    SG_ISOLATED
     for (int i = 0; i < L.pcfSamples; ++i) {
         vec2 uv = center.uv + sg_nextDiskSample(SG_KERNEL_POISSON, disk, i) * penumbra * uvPerMetre;
         sum += texture(sg_shadowCompare[slot], vec4(uv, float(center.layer), reference));

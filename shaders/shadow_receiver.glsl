@@ -283,6 +283,7 @@ sg_Tap sg_lateralTap(sg_GpuLight L, sg_Receiver r, vec2 offset) {
     // A point light's tap that crossed into another cube face, projected into that face. A loop
     // of 0 or 1 trips rather than an `if`: a CPU rasteriser runs both sides of an `if`, but skips
     // a loop that no pixel of its SIMD group enters (BENCHMARKS.md, fragment costs).
+    SG_ISOLATED
     for (int crossed = 0; crossed < int(layer != r.layer); ++crossed) {
         p += r.offsetPerTexel * max(sg_texelMetresAt(L, layer, p) - r.texelMetres, 0.0);
         t = sg_projectTap(L, layer, p);

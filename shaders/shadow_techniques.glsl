@@ -71,25 +71,25 @@ sg_ReceiverPolicy sg_techniquePolicy(int technique) {
 float sg_techniqueVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
     float v = 1.0;
 #ifdef SG_TECH_HARD_ENABLED
-    for (int k = 0; k < int(L.technique == SG_TECH_HARD); ++k) v = sg_hardVisibility(slot, L, r);
+    SG_ISOLATED for (int k = 0; k < int(L.technique == SG_TECH_HARD); ++k) v = sg_hardVisibility(slot, L, r);
 #endif
 #ifdef SG_TECH_PCF_ENABLED
-    for (int k = 0; k < int(L.technique == SG_TECH_PCF); ++k) v = sg_pcfVisibility(slot, L, r);
+    SG_ISOLATED for (int k = 0; k < int(L.technique == SG_TECH_PCF); ++k) v = sg_pcfVisibility(slot, L, r);
 #endif
 #ifdef SG_TECH_PCSS_ENABLED
-    for (int k = 0; k < int(L.technique == SG_TECH_PCSS); ++k) v = sg_pcssVisibility(slot, L, r);
+    SG_ISOLATED for (int k = 0; k < int(L.technique == SG_TECH_PCSS); ++k) v = sg_pcssVisibility(slot, L, r);
 #endif
 #ifdef SG_TECH_VSM_ENABLED
-    for (int k = 0; k < int(L.technique == SG_TECH_VSM); ++k) v = sg_vsmVisibility(slot, L, r);
+    SG_ISOLATED for (int k = 0; k < int(L.technique == SG_TECH_VSM); ++k) v = sg_vsmVisibility(slot, L, r);
 #endif
 #ifdef SG_TECH_VSSM_ENABLED
-    for (int k = 0; k < int(L.technique == SG_TECH_VSSM); ++k) v = sg_vssmVisibility(slot, L, r);
+    SG_ISOLATED for (int k = 0; k < int(L.technique == SG_TECH_VSSM); ++k) v = sg_vssmVisibility(slot, L, r);
 #endif
 #ifdef SG_TECH_MSM_ENABLED
-    for (int k = 0; k < int(L.technique == SG_TECH_MSM); ++k) v = sg_msmVisibility(slot, L, r);
+    SG_ISOLATED for (int k = 0; k < int(L.technique == SG_TECH_MSM); ++k) v = sg_msmVisibility(slot, L, r);
 #endif
 #ifdef SG_TECH_MSM_SOFT_ENABLED
-    for (int k = 0; k < int(L.technique == SG_TECH_MSM_SOFT); ++k) v = sg_msmSoftVisibility(slot, L, r);
+    SG_ISOLATED for (int k = 0; k < int(L.technique == SG_TECH_MSM_SOFT); ++k) v = sg_msmSoftVisibility(slot, L, r);
 #endif
     return v;
 }

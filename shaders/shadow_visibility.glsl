@@ -25,15 +25,38 @@ sg_GpuLight sg_slotLight(const int slot, const int type, const int technique, co
 // The body of a light's visibility in [0, 1] at a receiver point, for a technique whose receiver
 // policy is POLICY and whose visibility is VISIBILITY(slot, L, receiver); the parameters are those
 // of sg_shadowVisibility below. Near the far end of a cascade the next cascade is blended in over
-// the last `cascadeBlend` fraction of its range, so cascade borders do not show as seams.
+// the last `cascadeBlend` fraction of its range, so cascade borders do not show as seams; that
+// second evaluation is a loop trip, which a CPU rasteriser skips where no pixel of its SIMD group
+// lies in a blend band (it runs both sides of an `if`).
 //
-// The evaluations (one, or two in a blend band) are the trips of one loop whose trip count the
-// compiler cannot fold, for two reasons measured on llvmpipe: the technique's code is compiled
-// once for both cascades, and every light's code stands inside a loop of its own. llvmpipe's
-// JIT counts the trips of all of a shader's loops on one counter, and LLVM's analysis of loops
-// in sequence on that counter grows exponentially with their number (12 loops in a row: 0.9 s,
-// 16: 44 s); a loop around each light resets the chain (32 such lights: 0.3 s).
-//
+// The evaluations, in one of two shapes. Straight-line (the default): the first evaluation
+// unmasked at full speed, the blend's second one in a loop of 0 or 1 trips. With
+// SG_ISOLATE_LOOPS (a program too large to compile its lights straight-line: a game's shader, or
+// a pass of many unlike lights) both are trips of one loop, which compiles the technique once
+// for both cascades and keeps the light's code off the chain of loops in sequence, at a quarter
+// of the speed of straight-line code lost to the loop's masks on a CPU rasteriser.
+#ifdef SG_ISOLATE_LOOPS
+#define SG_EVALUATE_CASCADES(VISIBILITY)                                                                      \
+    float v = 1.0;                                                                                            \
+    for (int e = 0; e < min(L.layerCount, 1) + (blend > 0.0 ? 1 : 0); ++e) {                                  \
+        sg_Receiver r = sg_makeReceiver(L, csPosition, wsNormal, geoNormal, curvature, viewDistance,          \
+                                        cascade < 0 ? -1 : cascade + e, policy);                              \
+        if (e == 0) SG_DEBUG_STORE(sg_debugCascade, r.layer);                                                 \
+        float next = VISIBILITY(slot, L, r);                                                                  \
+        v = e == 0 ? next : mix(v, next, blend);                                                              \
+    }
+#else
+#define SG_EVALUATE_CASCADES(VISIBILITY)                                                                      \
+    sg_Receiver r = sg_makeReceiver(L, csPosition, wsNormal, geoNormal, curvature, viewDistance, cascade, policy); \
+    SG_DEBUG_STORE(sg_debugCascade, r.layer);                                                                 \
+    float v = VISIBILITY(slot, L, r);                                                                         \
+    for (int next = 0; next < int(blend > 0.0); ++next) {                                                     \
+        sg_Receiver n = sg_makeReceiver(L, csPosition, wsNormal, geoNormal, curvature, viewDistance,          \
+                                        cascade + 1, policy);                                                 \
+        v = mix(v, VISIBILITY(slot, L, n), blend);                                                            \
+    }
+#endif
+
 // A macro, so that the function of each technique (sg_<technique>LightVisibility, written by
 // shadow_techniques.glsl) calls its technique directly: a pass whose slots have techniques
 // known when compiling need not compile (and then discard) the dispatch over all of them.
@@ -51,15 +74,7 @@ sg_GpuLight sg_slotLight(const int slot, const int type, const int technique, co
         }                                                                                                     \
     }                                                                                                         \
     sg_ReceiverPolicy policy = POLICY;                                                                        \
-    int evaluations = min(L.layerCount, 1) + (blend > 0.0 ? 1 : 0);                                           \
-    float v = 1.0;                                                                                            \
-    for (int e = 0; e < evaluations; ++e) {                                                                   \
-        sg_Receiver r = sg_makeReceiver(L, csPosition, wsNormal, geoNormal, curvature, viewDistance,          \
-                                        cascade < 0 ? -1 : cascade + e, policy);                              \
-        if (e == 0) SG_DEBUG_STORE(sg_debugCascade, r.layer);                                                 \
-        float next = VISIBILITY(slot, L, r);                                                                  \
-        v = e == 0 ? next : mix(v, next, blend);                                                              \
-    }                                                                                                         \
+    SG_EVALUATE_CASCADES(VISIBILITY)                                                                          \
     return clamp(v, 0.0, 1.0);
 
 #include "shadow_techniques.glsl"

@@ -22,6 +22,7 @@ float sg_vssmVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
     int reads = size > 0.0 ? 2 : 1;
     float radius = size > 0.0 ? sg_softMomentsSearchRadius(L, r, dReceiver, size, maxRadius) : 0.0;
     float visibility = 1.0;
+    SG_ISOLATED
     for (int k = 0; k < reads; ++k) {
         vec2 m = sg_summedRegionMoments(slot, L, r, center, radius);
         float minVariance = sg_summedVarianceFloor(L, r, center, m);

@@ -23,12 +23,13 @@ struct GlslRow {
     std::string_view constant;  ///< CONSTANT: SG_TECH_<CONSTANT>
     std::string_view file;
     std::string_view glsl;
+    int loops;
     bool baseline;
 };
 
 constexpr std::array<GlslRow, kShadowTechniqueCount> kRows{{
-#define SHADOW_TECHNIQUE_GLSL_ROW(Enum, Constant, Name, File, Glsl, Chain, Reach, Availability, Description) \
-    {ShadowTechnique::Enum, #Constant, File, #Glsl, std::string_view(#Availability) == "Baseline"},
+#define SHADOW_TECHNIQUE_GLSL_ROW(Enum, Constant, Name, File, Glsl, Chain, Reach, Loops, Availability, Description) \
+    {ShadowTechnique::Enum, #Constant, File, #Glsl, Loops, std::string_view(#Availability) == "Baseline"},
     SHADOW_TECHNIQUE_TABLE(SHADOW_TECHNIQUE_GLSL_ROW)
 #undef SHADOW_TECHNIQUE_GLSL_ROW
 }};
@@ -70,8 +71,8 @@ std::string dispatch(unsigned techniques, bool conditional) {
         if (!selected(techniques, row)) continue;
         const std::string glsl(row.glsl);
         policy += guarded(row, "    if (technique == " + constantOf(row) + ") policy = sg_" + glsl + "Policy();\n");
-        visibility += guarded(row, "    for (int k = 0; k < int(L.technique == " + constantOf(row) + "); ++k) v = sg_" +
-                                       glsl + "Visibility(slot, L, r);\n");
+        visibility += guarded(row, "    SG_ISOLATED for (int k = 0; k < int(L.technique == " + constantOf(row) +
+                                       "); ++k) v = sg_" + glsl + "Visibility(slot, L, r);\n");
         perTechnique += guarded(row, std::string(kLightVisibilitySignature) + "sg_" + glsl + "LightVisibility" +
                                          kLightVisibilityParameters + " {\n    SG_SHADOW_VISIBILITY_BODY(sg_" + glsl +
                                          "Policy(), sg_" + glsl + "Visibility)\n}\n");
@@ -185,6 +186,20 @@ void appendSlotGroupDefines(std::span<const SlotConfig> slots, int capacity, std
         }
     }
     defines.push_back("SG_PASS_GROUPS " + std::to_string(configs.size()));
+    // Loops in sequence: a light of its own runs its technique's loops, a point light's centre
+    // tap may cross into another face (one more), a sun's cascade blend is one; a group of
+    // several is one loop around them.
+    int loops = 0;
+    for (std::size_t g = 0; g < configs.size(); ++g) {
+        const SlotConfig& c = configs[g];
+        if (members[g].size() > 1) {
+            ++loops;
+        } else if (c.technique != SG_TECH_NONE) {
+            loops += kRows[static_cast<std::size_t>(c.technique)].loops + (c.type == SG_LIGHT_POINT ? 1 : 0) +
+                     (c.type == SG_LIGHT_DIRECTIONAL ? 1 : 0);
+        }
+    }
+    if (loops > kMaxLoopsInSequence) defines.emplace_back("SG_ISOLATE_LOOPS");
     for (int g = 0; g < capacity; ++g) {
         const auto k = static_cast<std::size_t>(g);
         const SlotConfig c = k < configs.size() ? configs[k] : SlotConfig{};
@@ -196,6 +211,7 @@ void appendSlotGroupDefines(std::span<const SlotConfig> slots, int capacity, std
         const std::size_t count = k < members.size() ? members[k].size() : 1;
         defines.push_back(group + "_COUNT " + std::to_string(count));
         defines.push_back(group + "_SLOTS int[](" + list + ")");
+        defines.push_back(group + "_FIRST " + std::to_string(k < members.size() ? members[k].front() : 0));
         defines.push_back(group + "_TYPE " + std::to_string(c.type));
         defines.push_back(group + "_TECH " + std::to_string(c.technique));
         defines.push_back(group + "_KERNEL " + std::to_string(c.kernel));

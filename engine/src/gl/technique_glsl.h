@@ -51,8 +51,14 @@ struct SlotConfig {
 /// equal configuration as one group (below).
 inline constexpr int kMaxStraightLineSlots = 4;
 
+/// Loops with run-time trip counts a program may run in sequence before its loops are isolated
+/// (SG_ISOLATE_LOOPS, shadow_bindings.glsl): up to here LLVM's analysis of them costs llvmpipe
+/// under a quarter of a second (measured: 12 loops 0.9 s, 16 loops 44 s).
+inline constexpr int kMaxLoopsInSequence = 8;
+
 /// Appends the defines of a pass's slots, grouped: SG_PASS_GROUPS, and for every group g <
-/// `capacity` SG_GROUP<g>_COUNT, _SLOTS (a GLSL int[] of its slots), _TYPE, _TECH, _KERNEL and
+/// `capacity` SG_GROUP<g>_COUNT, _SLOTS (a GLSL int[] of its slots), _FIRST (its first slot, a
+/// constant the compiler folds where a constant array's element may not be), _TYPE, _TECH, _KERNEL and
 /// _VISIBILITY (`slotVisibilityFunction`); groups beyond the pass's are inert (no technique).
 /// A group's code is compiled once, in a loop over its slots when it has more than one
 /// (lit.frag.glsl). Up to kMaxStraightLineSlots shadowed slots each make a group of their own:
@@ -60,7 +66,9 @@ inline constexpr int kMaxStraightLineSlots = 4;
 /// equal configuration share one, so eight lights alike compile like one: a slot's code in a
 /// loop indexes the samplers dynamically, which costs a CPU rasteriser its taps' time again
 /// (measured: +10-28 % for PCSS and PCF lights), where eight straight-line copies of a filter cost
-/// seconds of compilation (tests/render/lit_programs_compile_test.cpp).
+/// seconds of compilation (tests/render/lit_programs_compile_test.cpp). SG_ISOLATE_LOOPS when the
+/// straight-line lights' loops (the technique table's Loops column, one more for a point light's
+/// face crossing and for a sun's cascade blend) exceed kMaxLoopsInSequence.
 void appendSlotGroupDefines(std::span<const SlotConfig> slots, int capacity, std::vector<std::string>& defines);
 
 /// The technique's GLSL file, "" for None.
