@@ -21,10 +21,9 @@ float sg_gatherTap(int slot, sg_GpuLight L, sg_Receiver r, sg_Tap t) {
 }
 
 // The mean of `taps` samples over a disk of `radius` metres; a single sample is one bilinear tap
-// at the receiver. With `gathers`, 3 taps / 4 fetches of 2x2 comparisons each (three times the
-// samples for three quarters of the fetches; on the bunny scene the same error as bilinear taps
-// within 1.2 %, half as many gathers measured up to 2.8 % more). A loop, not a branch: with
-// taps = 0 in a whole SIMD group it costs one empty trip.
+// at the receiver. With `gathers`, 3 taps / 4 fetches of 2x2 comparisons each: three times the
+// samples for three quarters of the fetches, at the error of bilinear taps (docs/tuning.md). A
+// loop, not a branch: with taps = 0 in a whole SIMD group it costs one empty trip.
 float sg_pcfTaps(int slot, sg_GpuLight L, sg_Receiver r, float radius, int taps, const bool gathers) {
     int fetches = gathers && taps > 1 ? (taps * 3 + 3) / 4 : taps;
     sg_DiskWalk disk = sg_beginDisk(sg_pixelRotation(), fetches);

@@ -16,10 +16,8 @@
 #define SG_SHADOW_HAMBURGER
 #include "shadow_moments.glsl"
 
-// Moment bias alpha for single-precision moments. Measured with msm-soft against the ray-traced
-// truth (320x240): 3e-7 took the bunny's RMSE to 0.100/0.105/0.051 (sun/spot/bulb) but put acne
-// on 0.06 % of the sun's lit pixels; 3e-6 gives 0.109/0.117/0.053 and no acne; 3e-5 leaks more
-// (0.118/0.148/0.060). Plates' penumbra RMSE 0.051-0.055 for all three.
+// Moment bias alpha for single-precision moments: the least that leaves no acne; less puts acne
+// on lit surfaces, more lets light into umbrae (docs/tuning.md).
 const float sg_kMsmMomentBias = 3e-6;
 
 // The fraction of a region's depths in front of `z` (stored units), bounded from the region's
@@ -59,16 +57,13 @@ float sg_msmShadowFraction(vec4 b, float z) {
 
 // Where the filter region of radius `radius` (m) spans, the receiver's own plane holds depths
 // from t - slope x reach to t + slope x reach, and the 4MSM bound, sharp as it is, reads the
-// near half of them as occluders (acne at grazing light: 91 % of an open plane darkened under a
-// sun at 2 degrees with a 5 cm region). VSM escapes this through Chebyshev's one-sided rule (a
-// mean at or beyond the receiver is lit); MSM compares the plane's nearest depth in the region
-// instead, this many radii away. Measured (tests/stability/grazing_light_test.cpp): 0.25 left
-// acne below 5 degrees, 0.5 at 2 degrees, 0.75 with msm's one-texel region at 0.5 degrees (8 %
-// of the plane); 1 clears it everywhere. The price is light in umbrae on curved receivers, where
-// the plane's spread is not the surface's (the bunny against the ray-traced truth, 320x240,
-// RMSE sun/spot/bulb: msm-soft 0.158/0.180/0.075 with it, 0.109/0.117/0.053 without; VSSM
-// 0.154/0.174/0.073), and contact only as wide as the region (msm: one texel; msm-soft: the
-// penumbra, which closes at contact).
+// near half of them as occluders (acne at grazing light). VSM escapes this through Chebyshev's
+// one-sided rule (a mean at or beyond the receiver is lit); MSM compares the plane's nearest
+// depth in the region instead, this many radii away: the least reach that clears acne down to
+// 0.5 degrees (tests/stability/grazing_light_test.cpp holds it there). The price is light in
+// umbrae on curved receivers, where the plane's spread is not the surface's, and contact only as
+// wide as the region (msm: one texel; msm-soft: the penumbra, which closes at contact); figures
+// in docs/tuning.md.
 const float sg_kMsmPlaneReach = 1.0;
 
 float sg_msmReference(sg_Receiver r, sg_Tap center, float radius) {

@@ -11,13 +11,9 @@ sg_ReceiverPolicy sg_msmSoftPolicy() { return sg_planePolicy(); }
 // MSM-soft's penumbra region from the mip chain: the square VSSM reads from its table
 // (half-width h = r sqrt(3) / 2) as four trilinear fetches at the centres of its quadrants, each
 // half a level finer than a quadrant's width (log2(h) - 1/2), instead of one fetch at log2(r),
-// whose box-and-tent has tails half again as long as the disk. Measured on builtin:plates,
-// 320x240, against the ray-traced truth: penumbra RMSE 0.050 with one fetch; with four at level
-// log2(h) + {-1.5, -1, -0.5, -0.3, 0}: 0.066, 0.034, 0.025, 0.027, 0.038 (quadrant centres),
-// 0.059 and 0.043 with the taps at 0.4 h and 0.6 h. The blocker search keeps the one fetch: it
-// only estimates the blockers' mean depth, and the four there cost builtin:bunny and
-// builtin:default more (RMSE summed over their six lights and the plates' one: 0.687 with four
-// in both regions, 0.677 with one in the search, 0.685 with one in both).
+// whose box-and-tent has tails half again as long as the disk: the level and the positions of
+// least penumbra error against the ray-traced truth. The blocker search keeps one fetch: it only
+// estimates the blockers' mean depth, and four there measured more error (docs/tuning.md).
 vec4 sg_quadrantMoments(int slot, sg_Receiver r, sg_Tap center, float radius) {
     float h = 0.8660254 * radius / max(r.texelMetres, 1e-30);
     float level = max(log2(max(h, 1e-30)) - 0.5, 0.0);

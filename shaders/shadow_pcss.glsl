@@ -23,8 +23,8 @@ float sg_pcssVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
     float known = pointEmitter ? -1.0 : sg_regionVisibility(slot, L, r, center, searchRadius);
 
     // The search gathers 2x2 depth texels at blockerSamples / 2 points of the disk (textureGather,
-    // GL 4.0): twice the depths of single taps for half the fetches. A quarter as many points
-    // measured 5-20 % more error on the bunny scene (clustered samples), half as many the same.
+    // GL 4.0): twice the depths of single taps for half the fetches, at the same error (fewer
+    // points cluster; docs/tuning.md).
     int gathers = (L.blockerSamples + 1) / 2;
     sg_DiskWalk disk = sg_beginDisk(sg_pixelRotation(), gathers);
     int searchGathers = known >= 0.0 || pointEmitter ? 0 : gathers;

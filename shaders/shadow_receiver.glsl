@@ -32,16 +32,13 @@ const float sg_kMaxSlope = 16.0;
 // at the widest filter (32 texels), inside the 24 texels the slope bias gives.
 const float sg_kMaxPlaneSlope = 573.0;
 // Relative float error allowed for the two depths a tap compares, 2^-18 (32 ulps of a float:
-// matrix products and interpolation each add a few). Measured: one ulp already clears the
-// open-plane acne of a light straight above with no constant bias; 32 is the margin.
+// matrix products and interpolation each add a few; docs/tuning.md has the measurement).
 const float sg_kDepthPrecision = 1.0 / 262144.0;
 // Each of the 2x2 texels a tap compares is compared with the receiver plane's depth at its own
 // centre, so a plane needs no slope bias at all: what is left of `slopeBias` at the receiver,
 // this fraction, covers the surface bending away from its triangle's plane within a texel or
-// two. Measured on the bunny against the ray-traced truth (480x360, 256 rays): hard-shadow
-// light in true umbra 3.8/0.45/0.5 % of umbra pixels (sun/spot/bulb) against 19.6/3.1/2.2 % with
-// the whole slope bias and a one-texel normal offset; false shadow in lit pixels 0.04 % (a
-// fraction of 0.1 gave 0.08 %, none 0.5 %).
+// two: less leaves false shadow on curved receivers, more lets light into umbrae
+// (docs/tuning.md; BENCHMARKS.md's umbra-leak table measures the result).
 const float sg_kNearSlopeBias = 0.2;
 
 // What a technique asks of its receiver: the part of the bias and of the normal offset that is
@@ -258,8 +255,8 @@ sg_Receiver sg_makeReceiver(sg_GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 
 //
 // Perspective texels grow with the distance from the light, and at grazing light a tap slides
 // far along the ray (offset x slope): a tap beyond the receiver takes the normal offset of its
-// own, larger texel, or the bilinear neighbours of a steep receiver reach above it (measured:
-// a spot at 0.5 degrees read down to 0.95 on an open plane without this).
+// own, larger texel, or the bilinear neighbours of a steep receiver reach above it
+// (tests/stability/grazing_light_test.cpp: a spot at 0.5 degrees on an open plane).
 sg_Tap sg_lateralTap(sg_GpuLight L, sg_Receiver r, vec2 offset) {
     vec3 p = r.csPosition + r.csTangent1 * offset.x + r.csTangent2 * offset.y;
     int layer = L.type == SG_LIGHT_POINT ? sg_cubeFace(p - L.csPosition) : r.layer;

@@ -7,8 +7,8 @@
 // integer rectangles its corners' lattice neighbours span, each summed exactly in integers
 // modulo 2^48 (limb by limb) before it becomes a float. The region's moments are then exact to
 // one float rounding per rectangle, whatever the map's size: no cancellation of large sums.
-// (Rounding the blocker search's corners to texels, 4 fetches, saved 18 % of the lit pass on
-// builtin:plates at the same error, for penumbra widths that step from texel to texel.)
+// (Rounding the blocker search's corners to texels, 4 fetches, would save time at the same
+// error, for penumbra widths that step from texel to texel; docs/tuning.md.)
 #ifndef SG_SHADOW_SUMMED_AREA
 #define SG_SHADOW_SUMMED_AREA
 #include "shadow_bindings.glsl"

@@ -18,10 +18,9 @@ vec4 sg_quadReferences(sg_GpuLight L, sg_Receiver r, sg_Tap t, out vec2 f, out v
     float depthScale = t.layer == r.layer ? r.depthScale : sg_layers[L.firstLayer + t.layer].depthScale;
     // A tap away from the receiver lies on its tangent plane, which a curved surface leaves by
     // curvature * reach^2 / 2 along the normal (more along a slanted ray); capped by the classic
-    // slope bias. PCF only: its fixed radius reaches far beyond the penumbra (5 cm on the bunny,
-    // where this took its RMSE from 0.073/0.081/0.092 to 0.067/0.068/0.066, sun/spot/bulb); in
-    // PCSS the reach is the penumbra's, and there the same term measured more light in umbra
-    // (sun 4.0 -> 9.5 %) for no lower error.
+    // slope bias. PCF's policy only (bendPerCurvature): its fixed radius reaches far beyond the
+    // penumbra; in PCSS the reach is the penumbra's, and there the same term let more light into
+    // umbrae for no lower error (docs/tuning.md).
     float secant = sqrt(1.0 + r.slope * r.slope);
     float bend = r.bendPerReach2 * t.reach * t.reach * secant * secant * secant;
     float bias = r.depthBias + min(bend, (1.0 - sg_kNearSlopeBias) * L.slopeBias * r.texelMetres * r.slope);
