@@ -142,10 +142,10 @@ std::string installedTechniquesGlsl() {
     std::vector<std::string> known;
     collectIncludes("shadow_receiver.glsl", known);
     known.emplace_back("shadow_receiver.glsl");
-    std::vector<std::string> shared = known;
-    for (const std::string& file : techniqueFiles) collectIncludes(file, shared);
-    shared.erase(shared.begin(), shared.begin() + static_cast<std::ptrdiff_t>(known.size()));
-    shared.insert(shared.begin(), "shadow_receiver.glsl");
+    std::vector<std::string> seen = known;
+    for (const std::string& file : techniqueFiles) collectIncludes(file, seen);
+    std::vector<std::string> shared{"shadow_receiver.glsl"};
+    shared.insert(shared.end(), seen.begin() + static_cast<std::ptrdiff_t>(known.size()), seen.end());
     std::string text = kHeader;
     text +=
         "// A game's shader defines SG_TECH_<NAME>_ENABLED for the techniques it wants (one per\n"
