@@ -9,7 +9,7 @@
 //   OUT/error_vs_time.md                            the tables BENCHMARKS.md shows
 //   OUT/plot/*.dat, OUT/error_vs_time.gp            data and script for gnuplot
 // Run through benchmarks/run_error_vs_time.sh, which makes the references and the plot.
-#include <shadow/context.h>
+#include <shadow/context_osmesa.h>
 #include <shadow/metrics.h>
 #include <shadow/frame_runner.h>
 #include <shadow/scene.h>

@@ -16,7 +16,7 @@
 //
 //   fragment_costs [--frames N] [--scene SPEC] [--out FILE.md]
 
-#include <shadow/context.h>
+#include <shadow/context_osmesa.h>
 #include <shadow/mesh_cache.h>
 #include <shadow/scene.h>
 #include <shadow/gpu_records.h>

@@ -9,7 +9,7 @@
 // Shadow maps are redrawn every frame (caching off), so the frame holds the chain builds too.
 // The rounds interleave the techniques and widths; each figure is the median over the rounds of
 // the per-round medians.
-#include <shadow/context.h>
+#include <shadow/context_osmesa.h>
 #include <shadow/frame_runner.h>
 #include <shadow/scene.h>
 

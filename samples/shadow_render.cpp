@@ -9,7 +9,7 @@
 // --time T in steps of --dt S; the images are those of the last frame and the timings in
 // stats.json are medians over the frames after the first. --frame-images also writes every
 // frame's colour as frames/color_<k>.png. Bad input: one message, exit code 2.
-#include <shadow/context.h>
+#include <shadow/context_osmesa.h>
 #include <shadow/frame_runner.h>
 #include <shadow/program_cache.h>
 #include <shadow/scene.h>
@@ -71,7 +71,7 @@ Status writeShadowMaps(const std::string& dir, const ShadowSystem& shadows) {
     for (std::size_t i = 0; i < frame.lights.size(); ++i) {
         const ShadowLightPlan& plan = frame.lights[i];
         for (std::size_t k = 0; k < plan.layers.size(); ++k) {
-            const std::vector<float> depth = shadows.readLayerDepth(i, static_cast<int>(k));
+            const std::vector<float> depth = shadows.maps().readLayerDepth(i, static_cast<int>(k));
             ImageF img = makeImage(plan.mapSize, plan.mapSize, 1);
             const float scale = plan.layers[k].depthScale;
             std::vector<std::uint8_t> grey(depth.size());
@@ -131,10 +131,6 @@ int run(const Options& o) {
     if (!chosen) return fail(kExitBadInput, chosen.error().message);
     const Entity camera = *chosen;
 
-    // Input is valid: now the output folder, checked before any rendering so a bad one costs
-    // nothing, and created only for input that will be rendered.
-    if (Status s = samples::prepareOutputDir(o.out); !s) return fail(kExitBadInput, s.error().message);
-
     auto context = createOsMesaContext();
     if (!context) return fail(kExitFailure, context.error().message);
     if (!o.shaderCache.empty()) {
@@ -148,6 +144,15 @@ int run(const Options& o) {
     options.aovs = selection->anyAov() || *debug == DebugView::Visibility;
     options.debugView = *debug;
     options.debugLight = o.debugLight;
+    // The size against the context's limits and the renderer's memory cap, before anything is
+    // allocated (an over-large size would otherwise end in an incomplete framebuffer).
+    if (Status s = checkRenderSize(options, static_cast<int>(scene.lights.size())); !s) {
+        return fail(kExitBadInput, "--size " + o.size + ": " + s.error().message);
+    }
+
+    // Input is valid: now the output folder, checked before any rendering so a bad one costs
+    // nothing, and created only for input that will be rendered.
+    if (Status s = samples::prepareOutputDir(o.out); !s) return fail(kExitBadInput, s.error().message);
 
     FrameRunner runner;
     runner.shadows().planner().setCaching(!o.noCache);

@@ -10,6 +10,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -290,6 +291,31 @@ TEST(World, ViewWritesReachTheWorld) {
     const auto bySubset = populateSubsets(world);
     world.view<Position, Velocity>().each([](Entity, Position& p, Velocity& v) { p.y = v.dx * 2; });
     for (Entity e : withAll(bySubset, 3)) EXPECT_EQ(world.get<Position>(e).y, world.get<Velocity>(e).dx * 2);
+}
+
+TEST(World, AConstWorldGivesConstViewsOfTheSameEntities) {
+    World world;
+    const auto bySubset = populateSubsets(world);
+    const World& reader = world;
+    // A const world's view hands out const references only: a reader cannot write through it.
+    using ReaderView = decltype(reader.view<Position, Velocity>());
+    static_assert(std::is_same_v<ReaderView, View<const Position, const Velocity>>);
+    std::map<std::uint32_t, int> visits;
+    reader.view<Position, Velocity>().each([&](Entity e, const Position& p, const Velocity& v) {
+        ++visits[e.bits()];
+        EXPECT_EQ(&p, reader.tryGet<Position>(e));
+        EXPECT_EQ(p.x, v.dx);
+    });
+    EXPECT_EQ(visits, onceEach(withAll(bySubset, 3)));
+    EXPECT_EQ((reader.view<Position, Velocity>().count()), withAll(bySubset, 3).size());
+    // A mutable world may ask for const components too, mixed with writable ones.
+    int visited = 0;
+    world.view<const Position, Velocity>().each([&](Entity, const Position& p, Velocity& v) {
+        v.dx = p.x;
+        ++visited;
+    });
+    EXPECT_EQ(static_cast<std::size_t>(visited), withAll(bySubset, 3).size());
+    EXPECT_TRUE((reader.view<Label>().count() == 0));
 }
 
 TEST(World, ViewOfATypeNeverEmplacedVisitsNothing) {

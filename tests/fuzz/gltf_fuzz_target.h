@@ -72,12 +72,12 @@ inline bool finiteAsFloat(const glm::dmat4& m) {
 
 /// The CPU half of a few frames of `scene`, checking what the shadow planner promises: layer
 /// matrices finite even as the floats the GPU gets (made relative to the camera), finite
-/// positive depth ranges, sizes inside the limits and the texel budget.
+/// positive depth ranges, sizes inside the limits and the memory budget.
 inline void runCpuFrames(Scene& scene) {
     (void)updateTransforms(scene.world);
     const Entity camera = scene.cameras.empty() ? addDefaultCamera(scene) : scene.cameras.front();
     ShadowPlanner planner;
-    const ShadowLimits limits{4096, 2048, std::int64_t{1} << 24};
+    const ShadowLimits limits{4096, 2048, std::int64_t{1} << 26};
     planner.setLimits(limits);
     for (double t : {0.0, 0.37, 1e7}) {
         animate(scene.world, t);
@@ -85,7 +85,7 @@ inline void runCpuFrames(Scene& scene) {
         const CameraView view = makeCameraView(scene.world, camera, 16.0f / 9.0f);
         const glm::dmat4 worldFromCs = glm::translate(glm::dmat4(1.0), view.wsPosition);
         const ShadowFrame& frame = planner.prepare(scene.world, view, scene.lights);
-        std::int64_t texels = 0;
+        std::int64_t bytes = 0;
         check(frame.lights.size() == scene.lights.size(), "one plan per scene light");
         for (const ShadowLightPlan& plan : frame.lights) {
             check(plan.hasMap() ? plan.mapSize >= 1 && plan.mapSize <= limits.maxTextureSize : plan.mapSize == 0,
@@ -95,10 +95,11 @@ inline void runCpuFrames(Scene& scene) {
                       "layer matrices finite as the GPU's floats");
                 check(std::isfinite(layer.depthScale) && layer.depthScale > 0.0f, "positive finite depth scale");
                 check(std::isfinite(layer.depthNear) && layer.depthNear >= 0.0f, "finite depth near");
-                texels += static_cast<std::int64_t>(plan.mapSize) * plan.mapSize;
             }
+            bytes += shadowMapBytes(plan.technique(), plan.mapSize, static_cast<int>(plan.layers.size()),
+                                    plan.settings.maxFilterTexels);
         }
-        check(texels <= limits.maxShadowTexels, "maps inside the texel budget");
+        check(bytes <= limits.maxShadowBytes, "maps inside the memory budget");
     }
 }
 

@@ -109,7 +109,9 @@ TEST(TechniqueGlsl, NamesAndDefinesFollowTheTable) {
     EXPECT_EQ(defines.size(), static_cast<std::size_t>(kShadowTechniqueCount - 1));  // None has none
     for (ShadowTechnique t : allTechniques()) {
         EXPECT_EQ(techniqueFromName(techniqueName(t)), techniqueAvailable(t) ? std::optional(t) : std::nullopt);
-        if (techniqueAvailable(t)) EXPECT_NE(techniqueNameList().find(techniqueName(t)), std::string::npos);
+        if (techniqueAvailable(t)) {
+            EXPECT_NE(techniqueNameList().find(techniqueName(t)), std::string::npos);
+        }
     }
     // A game's techniques are the public ones: the baseline is never among them.
     EXPECT_EQ(kAllShadowTechniques & techniqueBit(ShadowTechnique::PcssTextbook), 0u);

@@ -322,13 +322,13 @@ void main() {
     // the driver's analysis of loops in sequence used to grow exponentially with their number.
     const unsigned pcf = techniqueBit(ShadowTechnique::Pcf);
     auto calls = [](int count) {
-        std::string text = std::string(kHostInputs) +
+        std::string body = std::string(kHostInputs) +
                            "void main() {\n    sg_Surface s = sg_surface(vCsPosition, vNormal);\n"
                            "    float sum = 0.0;\n";
         for (int slot = 0; slot < count; ++slot) {
-            text += "    sum += sg_lightVisibility(" + std::to_string(slot) + ", vCsPosition, s, -vCsPosition.z);\n";
+            body += "    sum += sg_lightVisibility(" + std::to_string(slot) + ", vCsPosition, s, -vCsPosition.z);\n";
         }
-        return text + "    outColor = vec4(sum);\n}\n";
+        return body + "    outColor = vec4(sum);\n}\n";
     };
     const double one = hostProgramSeconds(pcf, calls(1));
     const double four = hostProgramSeconds(pcf, calls(4));

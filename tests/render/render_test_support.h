@@ -6,9 +6,12 @@
 
 #include <gtest/gtest.h>
 #include <shadow/context.h>
+#include <shadow/context_osmesa.h>
 #include <shadow/frame_runner.h>
 #include <shadow/scene.h>
 #include <shadow/shadow_system.h>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <array>
@@ -18,6 +21,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace shadow::test {
 
@@ -280,6 +284,27 @@ inline Scene threeLightScene() {
              glm::normalize(glm::dvec3(0.3, -1.0, 0.2)));
     addCamera(scene, "camera", Camera{}, {0.0, 3.0, 5.0}, {0.0, 0.0, 0.0});
     return scene;
+}
+
+/// Window depth (GL's default depth range and clip control) of the surfaces of `position`, a
+/// position AOV seen by `camera`, rows bottom first; 1 on the background. The mask's input, made
+/// the same for every run.
+inline std::vector<float> windowDepth(const ImageF& position, const CameraView& camera) {
+    const glm::dmat4 clipFromWorld =
+        glm::perspective(static_cast<double>(camera.yfov), static_cast<double>(camera.aspect),
+                         static_cast<double>(camera.znear), static_cast<double>(camera.zfar)) *
+        camera.viewFromWorld;
+    std::vector<float> depth(static_cast<std::size_t>(position.width) * position.height, 1.0f);
+    for (int y = 0; y < position.height; ++y) {
+        for (int x = 0; x < position.width; ++x) {
+            if (position.at(x, y, 3) < 0.5f) continue;
+            const glm::dvec4 clip =
+                clipFromWorld * glm::dvec4(position.at(x, y, 0), position.at(x, y, 1), position.at(x, y, 2), 1.0);
+            depth[static_cast<std::size_t>(position.height - 1 - y) * position.width + x] =
+                static_cast<float>(0.5 * clip.z / clip.w + 0.5);
+        }
+    }
+    return depth;
 }
 
 }  // namespace shadow::test

@@ -239,6 +239,22 @@ TEST(Renderer, CompilesOnlyTheTechniquesInUse) {
     std::printf("[ measured ] labels: '%s', '%s'\n", pcfLabel.c_str(), bothLabel.c_str());
 }
 
+// The renderer owns its mesh cache and collects it: the shadow maps draw from the same cache
+// (FrameRunner hands it to them) and never collect it.
+TEST(Renderer, CollectsTheMeshCacheItOwns) {
+    test::glContext();
+    Scene scene = boxOverGround();
+    ringOfLights(scene, 1, 256);
+    const Entity extra = test::addBox(scene, "extra", {2.0, 0.5, 0.0}, {0.2, 0.5, 0.2});
+    FrameRunner runner;
+    (void)test::renderFrame(runner, scene, kWidth, kHeight);
+    EXPECT_EQ(runner.renderer().meshes().size(), 3u);  // ground, box, extra
+    scene.world.destroy(extra);                        // its MeshData dies with its only instance
+    (void)test::renderFrame(runner, scene, kWidth, kHeight);
+    EXPECT_EQ(runner.renderer().meshes().size(), 2u);
+    EXPECT_EQ(runner.shadows().meshes().size(), 0u) << "the system's own cache is not the one drawn from";
+}
+
 /// Camera ray through the centre of pixel (x, y), (0, 0) the top-left, in world space.
 glm::dvec3 pixelRay(const CameraView& view, int x, int y, int width, int height) {
     const double ndcX = 2.0 * (x + 0.5) / width - 1.0;

@@ -186,6 +186,10 @@ TEST(ShadowRenderCli, BadInputExitsWithCode2AndWritesNothing) {
         {"size without a height", "--size 100x", "builtin:default", "--size"},
         {"negative size", "--size -5x5", "builtin:default", "--size"},
         {"size beyond 16384", "--size 20000x10", "builtin:default", "--size"},
+        // Within the GL limit, beyond the renderer's memory cap (kMaxRenderTargetBytes): refused
+        // before anything is allocated, not an incomplete framebuffer (exit 1).
+        {"size over the targets' memory cap", "--size 16384x16384", "builtin:default", "--size"},
+        {"AOVs over the targets' memory cap", "--size 8192x8192 --aov color,visibility", "builtin:default", "--size"},
         {"--camera without a value", "--camera", "builtin:default", "--camera"},
         {"camera not a number", "--camera abc", "builtin:default", "--camera"},
         {"camera not an integer", "--camera 1.5", "builtin:default", "--camera"},

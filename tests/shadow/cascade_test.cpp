@@ -69,7 +69,7 @@ CascadeState renderCascades(FrameRunner& runner, CascadeScene& s) {
         return state;
     }
     state.layers = frame.lights[0].layers;
-    for (int k = 0; k < kCascades; ++k) state.depth.push_back(runner.shadows().readLayerDepth(0, k));
+    for (int k = 0; k < kCascades; ++k) state.depth.push_back(runner.shadows().maps().readLayerDepth(0, k));
     return state;
 }
 

@@ -66,15 +66,15 @@ Scene baseScene() {
 
 struct Shadows {
     ShadowSystem system;
-    MeshCache meshes;
 
-    /// Prepares and draws the maps of `scene`; the stats of the frame.
+    /// Prepares and draws the maps of `scene` (the meshes from the system's own cache, which it
+    /// collects); the stats of the frame.
     FrameStats frame(Scene& scene) {
         updateTransforms(scene.world);
         const CameraView camera = makeCameraView(scene.world, scene.cameras.at(0), 4.0f / 3.0f);
         system.prepare(scene.world, camera, scene.lights);
         FrameStats stats;
-        system.render(scene.world, meshes, stats);
+        system.render(scene.world, stats);
         return stats;
     }
 };
@@ -98,15 +98,15 @@ TEST(CasterDraw, TheGamesVertexArrayCastsTheSameShadowAsTheMirroredMesh) {
     Scene own = baseScene();
     ShadowCasterDraw draw;
     draw.localBounds = game.bounds;
-    draw.vertexArray = game.vertexArray;
+    draw.vertexArray = GlVertexArray{game.vertexArray};
     draw.indexCount = game.indexCount;
     addOwnCaster(own, kBoxAt, draw);
     Shadows shadows;
     const FrameStats stats = shadows.frame(own);
     EXPECT_EQ(stats.shadowDrawCalls, 2);  // the ground and the game's box
-    const std::vector<float> expected = reference.system.readLayerDepth(0, 0);
+    const std::vector<float> expected = reference.system.maps().readLayerDepth(0, 0);
     ASSERT_FALSE(expected.empty());
-    EXPECT_EQ(shadows.system.readLayerDepth(0, 0), expected);
+    EXPECT_EQ(shadows.system.maps().readLayerDepth(0, 0), expected);
     EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
@@ -140,7 +140,7 @@ TEST(CasterDraw, ADrawCallbackDrawsItsOwnInstances) {
     Shadows shadows;
     shadows.frame(own);
     EXPECT_EQ(calls, 1);
-    EXPECT_EQ(shadows.system.readLayerDepth(0, 0), reference.system.readLayerDepth(0, 0));
+    EXPECT_EQ(shadows.system.maps().readLayerDepth(0, 0), reference.system.maps().readLayerDepth(0, 0));
 
     // Unchanged: the layer is reused and the callback not called; changed in place: redrawn.
     FrameStats still = shadows.frame(own);
@@ -165,16 +165,24 @@ TEST(CasterDraw, ACasterThatDrawsNothingIsLeftOut) {
     EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
-TEST(MeshCache, TheCopiesOfMeshesGoneAreFreed) {
+TEST(MeshCache, TheCopiesOfMeshesGoneAreFreedByTheCachesOwner) {
     test::glContext();
     Scene scene = baseScene();
     const Entity box = addMeshInstance(scene.world, "box", boxMesh(), test::placed(kBoxAt));
     Shadows shadows;
     shadows.frame(scene);
-    EXPECT_EQ(shadows.meshes.size(), 2u);  // ground and box
-    scene.world.destroy(box);              // the box's MeshData dies with its only instance
+    EXPECT_EQ(shadows.system.meshes().size(), 2u);  // ground and box
+    // A cache of the game's, handed to the system: drawn from, not collected.
+    MeshCache games;
+    FrameStats stats;
+    shadows.system.render(scene.world, games, stats);
+    EXPECT_EQ(games.size(), 2u);
+    scene.world.destroy(box);  // the box's MeshData dies with its only instance
     shadows.frame(scene);
-    EXPECT_EQ(shadows.meshes.size(), 1u);
+    EXPECT_EQ(shadows.system.meshes().size(), 1u) << "the system collects the cache it owns";
+    shadows.system.render(scene.world, games, stats);
+    EXPECT_EQ(games.size(), 2u) << "the cache's owner collects it, not the system";
+    EXPECT_EQ(games.collect(), 1u);
 }
 
 TEST(ShadowSystem, ALightsTextureStaysWithTheLightWhateverTheOrder) {
@@ -188,12 +196,12 @@ TEST(ShadowSystem, ALightsTextureStaysWithTheLightWhateverTheOrder) {
     ASSERT_EQ(first.lights.size(), 2u);
     EXPECT_TRUE(first.lights[0].mapAllocated);
     EXPECT_TRUE(first.lights[1].mapAllocated);
-    const unsigned bulbTexture = shadows.system.textureOfLight(second);
-    ASSERT_NE(bulbTexture, 0u);
+    const GlTexture bulbTexture = shadows.system.textureOfLight(second);
+    ASSERT_TRUE(bulbTexture);
     std::swap(scene.lights[0], scene.lights[1]);  // the bulb is now scene light 0
     FrameStats swapped = shadows.frame(scene);
     EXPECT_EQ(shadows.system.textureOfLight(second), bulbTexture);
-    EXPECT_EQ(shadows.system.textureOf(0), bulbTexture);
+    EXPECT_EQ(shadows.system.maps().textureOf(0), bulbTexture);
     EXPECT_FALSE(swapped.lights[0].mapAllocated);
     EXPECT_FALSE(swapped.lights[1].mapAllocated);
     scene.world.get<Shadow>(second).mapSize = 256;  // a new size: a new map, reported

@@ -55,11 +55,11 @@ std::vector<float> readLevel(GLuint texture, int level, int layer, int size, int
 
 void expectPyramidMatchesMap(FrameRunner& runner, int mapSize, const std::string& what) {
     const ShadowSystem& shadows = runner.shadows();
-    const GLuint pyramid = shadows.minMaxOf(0);
+    const GLuint pyramid = shadows.maps().filterChainOf(0).name;
     ASSERT_NE(pyramid, 0u) << what;
     const float scale = shadows.frame().lights[0].layers[0].depthScale;
-    std::vector<float> depth = shadows.readLayerDepth(0, 0);  // metres, rows bottom first
-    for (float& d : depth) d /= scale;                        // back to stored units
+    std::vector<float> depth = shadows.maps().readLayerDepth(0, 0);  // metres, rows bottom first
+    for (float& d : depth) d /= scale;                               // back to stored units
     int size = 1;  // level 0: the power of two of at least mapSize / SG_MINMAX_TILE texels
     while (size * SG_MINMAX_TILE < mapSize) size *= 2;
     // Levels up to the first whose tiles span the widest region the lookup asks for.
@@ -113,7 +113,7 @@ TEST(MinMaxPyramid, OnlyForTechniquesThatReadItAndRebuiltWhenTheMapChanges) {
     Scene scene = tiltedScene(ShadowTechnique::Hard, 256);
     FrameRunner runner;
     (void)test::renderFrame(runner, scene, 64, 48);
-    EXPECT_EQ(runner.shadows().minMaxOf(0), 0u) << "hard shadows read no pyramid";
+    EXPECT_FALSE(runner.shadows().maps().filterChainOf(0)) << "hard shadows read no pyramid";
 
     scene.world.get<Shadow>(scene.lights[0]).technique = ShadowTechnique::Pcf;
     (void)test::renderFrame(runner, scene, 64, 48);
@@ -151,10 +151,10 @@ constexpr double kMomentTolerance = 1e-6;
 
 void expectMomentsMatchMap(FrameRunner& runner, int mapSize, const std::string& what) {
     const ShadowSystem& shadows = runner.shadows();
-    const GLuint chain = shadows.minMaxOf(0);
+    const GLuint chain = shadows.maps().filterChainOf(0).name;
     ASSERT_NE(chain, 0u) << what;
     const float scale = shadows.frame().lights[0].layers[0].depthScale;
-    std::vector<float> depth = shadows.readLayerDepth(0, 0);  // metres, rows bottom first
+    std::vector<float> depth = shadows.maps().readLayerDepth(0, 0);  // metres, rows bottom first
     const std::optional<FilterChainKind> kind = filterChainOf(shadows.frame().lights[0].technique());
     ASSERT_TRUE(kind && *kind != FilterChainKind::MinMax) << what;
     const int channels = *kind == FilterChainKind::FourMoments ? 4 : 2;
@@ -217,11 +217,11 @@ double tableRectSum(const std::vector<float>& t, int size, int x0, int x1, int y
 /// the stored depths, beside the same from a float table (what the table's integers avoid).
 void expectSummedAreaMatchesMap(FrameRunner& runner, int mapSize, const std::string& what) {
     const ShadowSystem& shadows = runner.shadows();
-    const GLuint table = shadows.minMaxOf(0);
+    const GLuint table = shadows.maps().filterChainOf(0).name;
     ASSERT_NE(table, 0u) << what;
     std::vector<float> stored(static_cast<std::size_t>(mapSize) * mapSize);  // bit for bit
-    gl.GetTextureSubImage(shadows.textureOf(0), 0, 0, 0, 0, mapSize, mapSize, 1, GL_DEPTH_COMPONENT, GL_FLOAT,
-                          static_cast<GLsizei>(stored.size() * sizeof(float)), stored.data());
+    gl.GetTextureSubImage(shadows.maps().textureOf(0).name, 0, 0, 0, 0, mapSize, mapSize, 1, GL_DEPTH_COMPONENT,
+                          GL_FLOAT, static_cast<GLsizei>(stored.size() * sizeof(float)), stored.data());
     const std::vector<float> got = readLevel(table, 0, 0, mapSize, 4);
     const auto n = static_cast<std::size_t>(mapSize);
     // The table holds the moments of w = min(z s, 1) (ShadowLayerPlan::momentScale).
@@ -340,7 +340,7 @@ TEST(FilterChain, TheChainFollowsTheTechnique) {
     expectPyramidMatchesMap(runner, 256, "after switching from VSM to PCSS");
     scene.world.get<Shadow>(scene.lights[0]).technique = ShadowTechnique::Hard;
     (void)test::renderFrame(runner, scene, 64, 48);
-    EXPECT_EQ(runner.shadows().minMaxOf(0), 0u) << "hard shadows read no chain";
+    EXPECT_FALSE(runner.shadows().maps().filterChainOf(0)) << "hard shadows read no chain";
 }
 
 }  // namespace

@@ -1,13 +1,15 @@
 // ShadowPlanner, the CPU "decide" phase of the shadow system (engine/src/shadow/planner.cpp):
 // which layers are dirty from frame to frame (caching), the clamping of settings with its
-// warnings, and which lights get a plan at all. The layers' geometry is tested in
+// warnings, which lights get a plan at all, the memory budget in bytes, and a world it reads only. The layers' geometry is tested in
 // planner_layers_cpu_test.cpp. No GL: these run in shadow_planner_tests.
 #include <gtest/gtest.h>
 #include <shadow/scene.h>
-#include <shadow/shadow_system.h>
+#include <shadow/shadow_planner.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -234,6 +236,78 @@ TEST(Planner, LightsWithoutShadowOrWithTechniqueNoneGetNoPlan) {
     EXPECT_EQ(frame.lights[1].name, "shadowed");
     EXPECT_EQ(frame.techniquesInUse, (1u << static_cast<unsigned>(ShadowTechnique::None)) |
                                          (1u << static_cast<unsigned>(ShadowTechnique::Hard)));
+}
+
+TEST(Planner, ReadsAConstWorldAndLeavesItAsItWas) {
+    // The decide phase takes the world as const: what it remembers between frames (which layers
+    // are dirty) is its own. A caster the game marked changed stays marked (the game resets it).
+    CachingScene t;
+    ShadowCasterDraw own;
+    own.localBounds.extend(glm::vec3(-0.3f));
+    own.localBounds.extend(glm::vec3(0.3f));
+    own.vertexArray = GlVertexArray{7};
+    own.indexCount = 36;
+    own.changedThisFrame = true;
+    const Entity skinned = t.scene.world.create();
+    t.scene.world.emplace<Transform>(skinned, at({2.0, 3.0, 0.0}));
+    t.scene.world.emplace<ShadowCasterDraw>(skinned, own);
+    (void)t.update();
+    const CameraView view = t.update();  // a settled frame: nothing moved since the last
+    const World& world = t.scene.world;
+    const std::vector<bool> moved = [&] {
+        std::vector<bool> out;
+        world.view<WorldTransform>().each([&](Entity, const WorldTransform& wt) { out.push_back(wt.movedThisFrame); });
+        return out;
+    }();
+    ShadowPlanner planner;
+    (void)planner.prepare(world, view, t.scene.lights);
+    const ShadowFrame& second = planner.prepare(world, view, t.scene.lights);
+    EXPECT_TRUE(world.get<ShadowCasterDraw>(skinned).changedThisFrame);
+    std::vector<bool> after;
+    world.view<WorldTransform>().each([&](Entity, const WorldTransform& wt) { after.push_back(wt.movedThisFrame); });
+    EXPECT_EQ(after, moved);
+    // Its layers are redrawn every frame while it says it changed; the others are reused.
+    const ShadowLightPlan& bulb = second.lights[0];
+    int holding = 0;
+    for (const ShadowLayerPlan& layer : bulb.layers) {
+        const bool holds = contains(layer.casters, skinned);
+        holding += holds ? 1 : 0;
+        EXPECT_EQ(layer.dirty, holds);
+    }
+    EXPECT_GT(holding, 0);
+}
+
+TEST(Planner, MemoryBudgetCountsEachTechniquesFilterChain) {
+    // One spot asking for 16384^2 (the GL limit) under the default 1 GiB: a hard map (1 GiB of
+    // depth) fits as asked; every technique that adds a filter chain is halved until depth and
+    // chain fit, so that it renders instead of running out of memory.
+    for (const ShadowTechnique technique :
+         {ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook,
+          ShadowTechnique::Vsm, ShadowTechnique::Vssm, ShadowTechnique::Msm, ShadowTechnique::MsmSoft}) {
+        TestScene t;
+        Shadow s = hard();
+        s.technique = technique;
+        s.mapSize = 16384;
+        addLight(t.scene, "lamp", lightOf(LightType::Spot), s, {0, 5, 0}, {0, -1, 0});
+        ShadowPlanner planner;
+        const ShadowFrame& frame = planner.prepare(t.scene.world, t.update(), t.scene.lights);
+        const ShadowLightPlan& plan = frame.lights.at(0);
+        const std::string name = techniqueName(technique);
+        ASSERT_TRUE(plan.hasMap()) << name;
+        const std::int64_t bytes = shadowMapBytes(technique, plan.mapSize, 1, plan.settings.maxFilterTexels);
+        EXPECT_LE(bytes, ShadowLimits{}.maxShadowBytes) << name;
+        // Halving once more would waste room: the budget keeps the largest map that fits.
+        EXPECT_GT(shadowMapBytes(technique, plan.mapSize * 2, 1, plan.settings.maxFilterTexels),
+                  ShadowLimits{}.maxShadowBytes)
+            << name;
+        const bool chain = technique != ShadowTechnique::Hard && technique != ShadowTechnique::PcssTextbook;
+        EXPECT_EQ(plan.mapSize < 16384, chain) << name << ": " << plan.mapSize;
+        EXPECT_EQ(test::countWarnings(frame.warnings, WarningCode::MapSizeReduced, "lamp"), chain ? 1 : 0)
+            << name << ":\n"
+            << test::describe(frame.warnings);
+        std::printf("%s at 16384^2 under 1 GiB: %d^2, %.0f MiB\n", name.c_str(), plan.mapSize,
+                    static_cast<double>(bytes) / (1 << 20));
+    }
 }
 
 }  // namespace

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 #include <shadow/scene.h>
-#include <shadow/shadow_system.h>
+#include <shadow/shadow_planner.h>
 
 #include <algorithm>
 #include <cmath>

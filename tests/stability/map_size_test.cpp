@@ -1,7 +1,7 @@
 // Shadow-map sizes at the extremes: 1 and 3 texels, the GL limit (16384 on llvmpipe: 1 GiB of
 // float depth for one layer), and sizes beyond the limit (clamped with a warning), plus the
-// planner's texel budget, which keeps the maps of all lights together inside a memory budget
-// by a documented, deterministic policy (ShadowLimits::maxShadowTexels).
+// planner's memory budget, which keeps the maps of all lights together (depth and filter chains)
+// by a documented, deterministic policy (ShadowLimits::maxShadowBytes).
 #include <gtest/gtest.h>
 #include <shadow/context.h>
 
@@ -69,7 +69,7 @@ TEST(Stability, MapSizeBeyondTheGlLimitIsClampedWithAWarning) {
         Scene scene = boxScene(type, INT_MAX);
         test::glContext();
         FrameRunner runner;
-        runner.shadows().planner().setLimits({2048, 2048, ShadowLimits{}.maxShadowTexels});
+        runner.shadows().planner().setLimits({2048, 2048, ShadowLimits{}.maxShadowBytes});
         const test::RenderedFrame frame = test::renderFrame(runner, scene, 96, 72);
         test::expectSaneFrame(frame.images, runner.shadows(), "INT_MAX map");
         const ShadowLightPlan& plan = runner.shadows().frame().lights.at(0);
@@ -117,13 +117,48 @@ TEST(Stability, MapAtTheGlLimitRendersWhenMemoryAllows) {
         test::expectSaneAovs(frame.images);
         const ShadowLightPlan& plan = runner.shadows().frame().lights.at(0);
         test::reportFigure("point asking for INT_MAX: map edge after the budget", plan.mapSize);
-        EXPECT_LE(static_cast<std::int64_t>(plan.mapSize) * plan.mapSize * 6, ShadowLimits{}.maxShadowTexels);
+        EXPECT_LE(std::int64_t{4} * plan.mapSize * plan.mapSize * 6, ShadowLimits{}.maxShadowBytes);
         EXPECT_TRUE(test::hasWarning(frame.stats.warnings, WarningCode::MapSizeReduced, "light"))
             << test::describe(frame.stats.warnings);
     }
 }
 
-// ---- The texel budget's policy, on the planner alone ----
+/// Every technique that adds a filter chain asking for the GL limit (16384^2): reduced by the
+/// memory budget until depth and chain fit, warned, and drawn, where counting depth texels alone
+/// let them run out of memory (GL_OUT_OF_MEMORY).
+TEST(Stability, EveryTechniqueAtTheGlLimitRendersReducedToTheMemoryBudget) {
+    test::glContext();
+    const GlInfo info = queryGlInfo();
+    // The maps (at most the 1 GiB budget), llvmpipe's staging copies and the readbacks.
+    if (availableGiB() < 4.0) GTEST_SKIP() << "needs 4 GiB free";
+    for (const ShadowTechnique technique :
+         {ShadowTechnique::Vsm, ShadowTechnique::Vssm, ShadowTechnique::Msm, ShadowTechnique::MsmSoft}) {
+        const std::string name = techniqueName(technique);
+        Scene scene = boxScene(LightType::Spot, info.maxTextureSize);
+        scene.world.get<Shadow>(scene.lights[0]).technique = technique;
+        FrameRunner runner;
+        const auto t0 = std::chrono::steady_clock::now();
+        test::RenderedFrame frame;
+        ASSERT_NO_THROW(frame = test::renderFrame(runner, scene, 96, 72)) << name;
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        const ShadowLightPlan& plan = runner.shadows().frame().lights.at(0);
+        const LightShadowStats& ls = frame.stats.lights.at(0);
+        test::reportFigure(
+            name + " asking for " + std::to_string(info.maxTextureSize) + "^2: map edge after the budget",
+            plan.mapSize);
+        test::reportFigure(name + ": map and chain (MiB)",
+                           static_cast<double>(ls.mapBytes + ls.filterChainBytes) / (1 << 20));
+        test::reportFigure(name + ": first frame", ms, " ms");
+        EXPECT_LT(plan.mapSize, info.maxTextureSize) << name;
+        EXPECT_LE(ls.mapBytes + ls.filterChainBytes, ShadowLimits{}.maxShadowBytes) << name;
+        EXPECT_TRUE(test::hasWarning(frame.stats.warnings, WarningCode::MapSizeReduced, "light"))
+            << name << ":\n"
+            << test::describe(frame.stats.warnings);
+        EXPECT_GT(test::countGround(frame.images, 0).dark, 100) << name << ": the box casts its shadow";
+    }
+}
+
+// ---- The memory budget's policy, on the planner alone ----
 
 /// Four spot lights at increasing distance from the camera (scene order deliberately not
 /// distance order), a sun, and a spot behind the camera whose range cannot reach the view.
@@ -155,12 +190,12 @@ int mapSizeOf(const ShadowFrame& frame, const std::string& name) {
     return 0;  // no shadow
 }
 
-TEST(Stability, TexelBudgetHalvesTheFarthestLightsFirst) {
+TEST(Stability, MemoryBudgetHalvesTheFarthestLightsFirst) {
     BudgetScene b;
     ShadowPlanner planner;
-    // Room for three 1024^2 maps and a bit: halving the farthest (spot2) is not enough, halving
-    // the next farthest (spot3) is.
-    planner.setLimits({16384, 2048, 3 * 1024 * 1024 + 1000});
+    // Room for three hard 1024^2 maps (4 bytes a texel) and a bit: halving the farthest (spot2)
+    // is not enough, halving the next farthest (spot3) is.
+    planner.setLimits({16384, 2048, 4 * (3 * 1024 * 1024 + 1000)});
     const ShadowFrame& frame = b.prepare(planner);
     EXPECT_EQ(mapSizeOf(frame, "spot0"), 1024);
     EXPECT_EQ(mapSizeOf(frame, "spot1"), 1024);
@@ -175,7 +210,7 @@ TEST(Stability, TexelBudgetHalvesTheFarthestLightsFirst) {
     EXPECT_EQ(mapSizeOf(again, "spot0"), 1024);
 }
 
-TEST(Stability, TexelBudgetDropsTheFarthestShadowsWhenHalvingIsNotEnough) {
+TEST(Stability, MemoryBudgetDropsTheFarthestShadowsWhenHalvingIsNotEnough) {
     BudgetScene b;
     // A sun (distance 0: the nearest) with two cascades.
     Shadow sunShadow = test::shadowWith(ShadowTechnique::Hard, 1024);
@@ -185,7 +220,7 @@ TEST(Stability, TexelBudgetDropsTheFarthestShadowsWhenHalvingIsNotEnough) {
     // Two layers of the floor size (256^2) fit, and nothing more: every map is halved to 256,
     // then the farthest lose their shadow until only the two nearest layers are left (the sun's
     // two cascades); every decision is one warning.
-    planner.setLimits({16384, 2048, 2 * 256 * 256});
+    planner.setLimits({16384, 2048, 4 * 2 * 256 * 256});
     const ShadowFrame& frame = b.prepare(planner);
     const auto withMap =
         std::count_if(frame.lights.begin(), frame.lights.end(), [](const ShadowLightPlan& p) { return p.hasMap(); });
@@ -201,14 +236,14 @@ TEST(Stability, TexelBudgetDropsTheFarthestShadowsWhenHalvingIsNotEnough) {
     EXPECT_EQ(frame.warnings.size(), 5u) << test::describe(frame.warnings);
 }
 
-TEST(Stability, TexelBudgetRanksLightsThatCannotReachTheViewAsFarthest) {
+TEST(Stability, MemoryBudgetRanksLightsThatCannotReachTheViewAsFarthest) {
     BudgetScene b;
     // Near the camera but behind it, with a range that ends before the view begins.
     Light unseen = test::pointSizedLight(LightType::Spot);
     unseen.range = 1.0f;
     addLight(b.scene, "behind", unseen, test::shadowWith(ShadowTechnique::Hard, 1024), {0.0, 5.0, 12.0}, {0, 0, 1});
     ShadowPlanner planner;
-    planner.setLimits({16384, 2048, 4 * 1024 * 1024 + 512 * 512});
+    planner.setLimits({16384, 2048, 4 * (4 * 1024 * 1024 + 512 * 512)});
     const ShadowFrame& frame = b.prepare(planner);
     EXPECT_EQ(mapSizeOf(frame, "behind"), 512);
     for (int i = 0; i < 4; ++i) EXPECT_EQ(mapSizeOf(frame, "spot" + std::to_string(i)), 1024);

@@ -45,7 +45,7 @@ inline ShadowMapCheck checkShadowMaps(const ShadowSystem& shadows) {
         const ShadowLightPlan& plan = frame.lights[i];
         for (std::size_t k = 0; k < plan.layers.size(); ++k) {
             const float scale = plan.layers[k].depthScale;
-            for (float d : shadows.readLayerDepth(i, static_cast<int>(k))) {
+            for (float d : shadows.maps().readLayerDepth(i, static_cast<int>(k))) {
                 ++c.texels;
                 if (!std::isfinite(d)) {
                     ++c.nonFinite;
@@ -96,7 +96,7 @@ StoredDepthError storedGroundDepthError(const ShadowSystem& shadows, std::size_t
     const int n = plan.mapSize;
     for (std::size_t k = 0; k < plan.layers.size(); ++k) {
         const ShadowLayerPlan& layer = plan.layers[k];
-        const std::vector<float> stored = shadows.readLayerDepth(light, static_cast<int>(k));
+        const std::vector<float> stored = shadows.maps().readLayerDepth(light, static_cast<int>(k));
         const glm::dmat4 worldFromClip = glm::inverse(layer.clipFromLight * layer.lightFromWorld);
         const glm::dvec3 lightPosition(glm::inverse(layer.lightFromWorld)[3]);
         for (int y = 0; y < n; ++y) {

@@ -2,11 +2,13 @@
 //
 // A game that owns its context calls `loadGl` once with its own getProcAddress after making the
 // context current (OpenGL 4.5 core). The samples use one of the backends below, each in its
-// own library so that a binary links exactly one GL provider (libOSMesa and libGL must not
-// share a process):
+// own library with its own header, so that a binary links exactly one GL provider (libOSMesa
+// and libGL must not share a process) and a header is installed only with the library that
+// defines what it declares:
 //   shadow_osmesa  headless, software (Mesa llvmpipe); the default of the samples and tests
-//   shadow_glfw    a window (the viewer)
-//   shadow_egl     headless on a GPU through EGL (optional)
+//                  (shadow/context_osmesa.h; installed as the component shadow::osmesa)
+//   shadow_glfw    a window (the viewer; shadow/window.h; not installed)
+//   shadow_egl     headless on a GPU through EGL (optional; shadow/context_egl.h; not installed)
 #pragma once
 
 #include <shadow/result.h>
@@ -59,13 +61,5 @@ public:
     /// Which backend made it ("osmesa", "glfw", "egl").
     [[nodiscard]] virtual const char* backend() const = 0;
 };
-
-/// A headless OSMesa OpenGL 4.5 core context, current and loaded on return
-/// (link `shadow_osmesa`).
-[[nodiscard]] Result<std::unique_ptr<GlContext>> createOsMesaContext();
-
-/// A headless EGL (surfaceless/pbuffer) OpenGL 4.5 core context, current and loaded on return
-/// (link `shadow_egl`).
-[[nodiscard]] Result<std::unique_ptr<GlContext>> createEglContext();
 
 }  // namespace shadow

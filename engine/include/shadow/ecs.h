@@ -10,6 +10,10 @@
 // owners, plus a sparse index from entity slot to dense position. Iteration walks the dense
 // arrays; lookup is two array reads.
 //
+// A `const World` gives views of `const` components only (`view<Ts...>() const` is a
+// `View<const Ts...>`): a system that takes the world as `const World&` (the shadow planner, the
+// passes that draw) reads it and cannot change it.
+//
 // Rules during `view<...>().each(f)`:
 //   - `f` may read and write the components it receives;
 //   - `f` may remove components from, or destroy, the entity it is visiting;
@@ -155,11 +159,17 @@ private:
     std::vector<T> components_;
 };
 
+/// The pool of component type `T`, const when `T` is (a view of a const world).
+template <typename T>
+using PoolOf = std::conditional_t<std::is_const_v<T>, const Pool<std::remove_const_t<T>>, Pool<T>>;
+
 }  // namespace detail
 
 class World;
 
 /// Entities that own every component in `Ts...`. Cheap to make; holds pointers into the world.
+/// A `const` type in `Ts` is visited as a const reference (the view of a const world has only
+/// those).
 template <typename... Ts>
 class View {
 public:
@@ -184,8 +194,8 @@ public:
 
 private:
     friend class World;
-    explicit View(std::tuple<detail::Pool<Ts>*...> pools)
-        : typed_(pools), pools_{static_cast<detail::PoolBase*>(std::get<detail::Pool<Ts>*>(pools))...} {}
+    explicit View(std::tuple<detail::PoolOf<Ts>*...> pools)
+        : typed_(pools), pools_{static_cast<const detail::PoolBase*>(std::get<detail::PoolOf<Ts>*>(pools))...} {}
 
     [[nodiscard]] bool allPresent() const {
         for (const detail::PoolBase* p : pools_) {
@@ -196,7 +206,7 @@ private:
 
     template <typename F, std::size_t... I>
     void visit(F& f, std::size_t driver, std::index_sequence<I...>) {
-        detail::PoolBase* drive = pools_[driver];
+        const detail::PoolBase* drive = pools_[driver];
         for (std::size_t i = drive->size(); i-- > 0;) {
             // The pool may have shrunk by more than one if `f` broke the rules; clamp.
             if (i >= drive->size()) continue;
@@ -214,8 +224,8 @@ private:
         return e;
     }
 
-    std::tuple<detail::Pool<Ts>*...> typed_;
-    detail::PoolBase* pools_[sizeof...(Ts)];
+    std::tuple<detail::PoolOf<Ts>*...> typed_;
+    const detail::PoolBase* pools_[sizeof...(Ts)];
 };
 
 /// Owns entities and their components.
@@ -319,11 +329,17 @@ public:
         return (p != nullptr && alive(e)) ? p->find(e) : nullptr;
     }
 
-    /// Entities owning every component in `Ts`.
+    /// Entities owning every component in `Ts` (a `const` one visited as a const reference).
     template <typename... Ts>
     [[nodiscard]] View<Ts...> view() {
         static_assert(sizeof...(Ts) > 0);
-        return View<Ts...>(std::make_tuple(findPool<Ts>()...));
+        return View<Ts...>(std::make_tuple(static_cast<detail::PoolOf<Ts>*>(findPool<std::remove_const_t<Ts>>())...));
+    }
+    /// The same in a const world: every component visited as a const reference.
+    template <typename... Ts>
+    [[nodiscard]] View<const Ts...> view() const {
+        static_assert(sizeof...(Ts) > 0);
+        return View<const Ts...>(std::make_tuple(findPool<std::remove_const_t<Ts>>()...));
     }
 
     /// Number of `T` components in the world.

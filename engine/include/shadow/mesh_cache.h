@@ -1,20 +1,31 @@
-// GPU copies of the scene's meshes, shared by the shadow passes and the main pass. It sits below
-// both: the shadow subsystem and the renderer use it, neither owns it.
+// GPU copies of the scene's meshes, shared by the shadow passes and the main pass. One owner
+// collects it: the module's `Renderer` owns one (`Renderer::meshes`) and collects it in
+// `Renderer::render`; a game without the renderer uses `ShadowSystem`'s own, which
+// `ShadowSystem::render(world, stats)` collects, or makes one and calls `collect` once a frame
+// itself. The shadow maps only draw from the cache they are handed.
 #pragma once
 
 #include <shadow/result.h>
 #include <shadow/scene.h>
+#include <shadow/warnings.h>
 
 #include <cstddef>
 #include <memory>
+#include <vector>
 
 namespace shadow {
 
+namespace gpu {
+struct MeshCacheAccess;
+}
+
 /// Each `MeshData` is uploaded once, on first use, and kept while its `MeshData` lives: the
-/// GPU copies of meshes no longer alive are freed by `collect`, which `ShadowSystem::render`
-/// calls once a frame (once: a cache shared with the renderer is not walked twice).
-/// Requires a current OpenGL 4.5 context with `loadGl` done; `bind` throws `GlError` when an
-/// upload fails.
+/// GPU copies of meshes no longer alive are freed by `collect`, which the cache's owner calls once
+/// a frame (see the header comment). Requires a current OpenGL 4.5 context with `loadGl` done;
+/// `bind` throws `GlError` when an upload fails. An error the host left pending in the context
+/// before the constructor, `bind` or `collect` (calls without a `FrameStats`) is read, cleared
+/// and kept as a `HostGlError` warning in `warnings()` (at most 16 until cleared), never thrown;
+/// the next shadow-map or renderer `render` drawing from the cache moves them into its stats.
 class MeshCache {
 public:
     /// Throws `GlError` when `loadGl` has not run.
@@ -31,8 +42,21 @@ public:
     [[nodiscard]] std::size_t size() const;
     /// Frees the GPU copies of the meshes whose `MeshData` no longer exists; returns how many.
     std::size_t collect();
+    /// `HostGlError` warnings of the calls without a `FrameStats`, oldest first, until
+    /// `clearWarnings` (or a `ShadowSystem::render` that moves them into its stats).
+    [[nodiscard]] const std::vector<Warning>& warnings() const;
+    /// Forgets the warnings read.
+    void clearWarnings();
 
 private:
+    friend struct gpu::MeshCacheAccess;
+    /// `bind` inside an engine pass, which has read the host's errors already.
+    int bindInPass(const std::shared_ptr<const MeshData>& mesh);
+    /// `collect` inside an engine call, which has read the host's errors already.
+    std::size_t collectInPass();
+    /// The warnings `warnings` returns, for an engine call to move into its `FrameStats`.
+    std::vector<Warning>& pending();
+
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -11,14 +11,18 @@
 #include <shadow/image_io.h>
 #include <shadow/mesh_cache.h>
 #include <shadow/scene.h>
-#include <shadow/shadow_system.h>
+#include <shadow/shadow_maps.h>
+#include <shadow/shadow_planner.h>
 #include <shadow/stats.h>
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace shadow {
+
+class ShadowSystem;
 
 /// Debug views of the main pass (`--debug NAME`).
 enum class DebugView {
@@ -45,6 +49,20 @@ struct RenderOptions {
     bool depthPrepass = false;
 };
 
+/// Most GPU memory the renderer's targets may take (bytes): colour and depth (20 bytes a pixel),
+/// and with AOVs position, distance and per pass two visibility textures (52 more, + 32 a pass
+/// beyond the first). 2 GiB: 8192x8192 without AOVs, 4096x4096 with them for up to 8 lights.
+inline constexpr std::int64_t kMaxRenderTargetBytes = std::int64_t{2} << 30;
+
+/// Whether frames of `options`' size can be rendered for a scene of `lights` lights: within the
+/// current context's GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE and GL_MAX_FRAMEBUFFER_WIDTH
+/// and _HEIGHT, and inside `kMaxRenderTargetBytes` (with AOVs for the passes of `lights` lights,
+/// eight a pass). An `Error` naming the limit otherwise (the caller names the size): what
+/// `Renderer::render` would throw as a `GlError` before allocating, for a program to refuse the
+/// size up front.
+/// Requires a current context with `loadGl` done.
+[[nodiscard]] Status checkRenderSize(const RenderOptions& options, int lights = 0);
+
 /// Images read back after a frame. Rows top first. Empty when not requested.
 struct FrameImages {
     ImageF color;     ///< linear RGB
@@ -56,8 +74,9 @@ struct FrameImages {
 
 /// The forward renderer. Requires a current OpenGL 4.5 context with `loadGl` done.
 /// `render` and `readback` put back the GL state they change (as `ShadowSystem::render` does;
-/// here also texture units 0-23 with their samplers and uniform-buffer bindings 0-2) and report
-/// an error the host left pending as a `HostGlError` warning instead of throwing it.
+/// here also every texture target of units 0-23 with their samplers and uniform-buffer bindings
+/// 0-2) and report an error the host left pending as a `HostGlError` warning instead of throwing
+/// it; the constructor and `present`, which have no `FrameStats`, keep theirs in `warnings()`.
 class Renderer {
 public:
     /// Throws `GlError` when `loadGl` has not run.
@@ -67,10 +86,14 @@ public:
     Renderer& operator=(const Renderer&) = delete;
 
     /// Renders one frame seen by `camera` (optionally after a depth pre-pass), lighting every
-    /// light of `shadows.frame()` (prepared and rendered this frame; its lights are the scene's,
-    /// in scene order) with its own technique. Adds timings and counters. Throws `GlError` when
-    /// a program or the framebuffer cannot be made.
-    void render(World& world, const CameraView& camera, const ShadowSystem& shadows, const RenderOptions& options,
+    /// light of `frame` (prepared this frame; its lights are the scene's, in scene order) with
+    /// its own technique and its maps in `maps` (rendered from `frame`). Draws its meshes from
+    /// `meshes()`, which it owns and collects here, once a frame. Adds timings and counters.
+    /// Throws `GlError` when a program or the framebuffer cannot be made.
+    void render(const World& world, const CameraView& camera, const ShadowFrame& frame, const ShadowMaps& maps,
+                const RenderOptions& options, FrameStats& stats);
+    /// `render` with the last frame and the maps of `shadows`.
+    void render(const World& world, const CameraView& camera, const ShadowSystem& shadows, const RenderOptions& options,
                 FrameStats& stats);
 
     /// Reads back the last frame. `camera` turns camera-relative positions back into world ones.
@@ -80,7 +103,15 @@ public:
     /// `height` (windowed viewers), scaled to fit.
     void present(int width, int height) const;
 
+    /// The GPU copies of the scene's meshes: owned by the renderer, which collects them in
+    /// `render`; the shadow maps draw from the same cache (`ShadowSystem::render(world, meshes,
+    /// stats)`) without collecting it.
     [[nodiscard]] MeshCache& meshes();
+    /// `HostGlError` warnings of the calls without a `FrameStats` (the constructor, `present`),
+    /// at most 16 until cleared; the next `render` or `readback` moves them into its stats.
+    [[nodiscard]] const std::vector<Warning>& warnings() const;
+    /// Forgets the warnings read.
+    void clearWarnings();
     /// Per-pass timing of `render` and `readback`, as `ShadowSystem::setTiming` (default off).
     void setTiming(bool enabled);
 

@@ -9,11 +9,12 @@
 //     float v = shadowLightVisibility(slot, csPosition, s, viewDistance);
 //
 // where `csPosition` is the shaded point minus the camera's world position (the `wsCamera` given
-// to `ShadowSystem::shaderInputs`), `wsNormal` its interpolated world normal and `viewDistance`
+// to `ShadowShaderContract::inputs`), `wsNormal` its interpolated world normal and `viewDistance`
 // its distance along the camera's forward axis (the cascades' split measure). `slot` indexes the
-// lights handed to `shaderInputs`; it must be dynamically uniform (a loop counter or constant).
-// Each frame, after `ShadowSystem::render`, the game calls `shaderInputs` and binds what it
-// returns (`bindShaderInputs`, or the names itself at the binding points).
+// lights handed to `inputs`; it must be dynamically uniform (a loop counter or constant).
+// Each frame, after the shadow maps' `render`, the game calls `ShadowShaderContract::inputs`
+// (shadow/shader_contract.h; `ShadowSystem::shaderInputs` on the facade) and binds what it
+// returns (`bind`, or the names itself at the binding points).
 //
 // The same files stand under share/shadow_engine/shaders/ of an installed package for a game
 // that expands `#include`s itself: `shadow.glsl` is the entry point, and the `SG_BINDING_*` and
@@ -21,6 +22,7 @@
 #pragma once
 
 #include <shadow/components.h>
+#include <shadow/gl_handles.h>
 #include <shadow/result.h>
 #include <shadow/scene.h>
 #include <shadow/shared_constants.h>
@@ -59,53 +61,24 @@ std::string shadowShaderSource(const ShadowBindingPoints& points = {}, unsigned 
                                                         unsigned techniques = kAllShadowTechniques) noexcept;
 
 /// What a game's shader reads for up to SG_MAX_LIGHTS_PER_PASS lights (slots), from
-/// `ShadowSystem::shaderInputs`. Names are GL object names, valid until the next `shaderInputs`
-/// or `render` call (a light's arrays can be reallocated when its map size changes).
+/// `ShadowShaderContract::inputs` (or `ShadowSystem::shaderInputs`). Names are GL object names,
+/// valid until the next `inputs` or shadow-map `render` call (a light's arrays can be
+/// reallocated when its map size changes).
 struct ShadowShaderInputs {
-    int lights = 0;                                             ///< slots in use
-    std::array<int, SG_MAX_LIGHTS_PER_PASS> sceneLight{};       ///< scene light of each slot, -1 none
-    unsigned lightBuffer = 0;                                   ///< uniform buffer: the light block (bind whole)
-    unsigned layerBuffer = 0;                                   ///< uniform buffer: the layer block
-    unsigned kernelBuffer = 0;                                  ///< uniform buffer: the kernel block
-    std::array<unsigned, SG_MAX_LIGHTS_PER_PASS> depthArray{};  ///< per slot, 0 without a map
-    std::array<unsigned, SG_MAX_LIGHTS_PER_PASS> minMax{};      ///< per slot: its filter chain, 0 without one
-    unsigned compareSampler = 0;  ///< sampler object for the compare units (hardware comparison)
-    unsigned depthSampler = 0;    ///< sampler object for the raw-depth units
-    unsigned techniques = 0;      ///< `techniqueBit`s of the slots' techniques
+    int lights = 0;                                              ///< slots in use, [0, SG_MAX_LIGHTS_PER_PASS]
+    std::array<int, SG_MAX_LIGHTS_PER_PASS> sceneLight{};        ///< scene light of each slot, -1 none
+    GlBuffer lightBuffer;                                        ///< uniform buffer: the light block (bind whole)
+    GlBuffer layerBuffer;                                        ///< uniform buffer: the layer block
+    GlBuffer kernelBuffer;                                       ///< uniform buffer: the kernel block
+    std::array<GlTexture, SG_MAX_LIGHTS_PER_PASS> depthArray{};  ///< per slot, none without a map
+    std::array<GlTexture, SG_MAX_LIGHTS_PER_PASS> minMax{};      ///< per slot: its filter chain, none without one
+    GlSampler compareSampler;                                    ///< for the compare units (hardware comparison)
+    GlSampler depthSampler;                                      ///< for the raw-depth units
+    unsigned techniques = 0;                                     ///< `techniqueBit`s of the slots' techniques
     /// Per slot: the light's SG_LIGHT_*, SG_TECH_* and SG_KERNEL_*, for a shader specialised per
     /// light configuration (`shadowVisibility(slot, shadowSlotLight(slot, type, technique,
     /// kernel), ...)` with compile-time constants, as the module's own passes do).
     std::array<int, SG_MAX_LIGHTS_PER_PASS> type{}, technique{}, kernel{};
-};
-
-/// A screen-space shadow mask (`ShadowSystem::renderMask`): the visibility of up to
-/// SG_MAX_MASK_LIGHTS lights at every pixel of the game's depth buffer, light i in channel i, for
-/// a game that multiplies it into its lighting without any shader of the module. The receiver is
-/// rebuilt from depth (and the normals when given), so it matches the module's forward
-/// visibility on surfaces and can differ at silhouettes, where depth has no plane.
-struct ShadowMaskRequest {
-    /// GL_TEXTURE_2D with the game's window depth (a depth format, or R32F), `width` x `height`.
-    unsigned depthTexture = 0;
-    /// Optional GL_TEXTURE_2D of world-space shading normals in xyz (any length; turned to face
-    /// the camera); 0: the normal of the surface rebuilt from depth.
-    unsigned normalTexture = 0;
-    /// GL_TEXTURE_2D the mask is written to (colour-renderable: RGBA8, RGBA16F, RG16, R8, ...;
-    /// channels beyond the format's are dropped, channels of no light are 1), `width` x `height`.
-    unsigned target = 0;
-    int width = 0;
-    int height = 0;
-    /// The camera the depth was drawn with; the lights' records are made relative to its position.
-    CameraView camera;
-    /// The projection the depth was drawn with (view -> clip). All zero (the default): the
-    /// perspective of `camera` with GL's [-1, 1] depth, as the module's renderer draws.
-    glm::dmat4 clipFromView{0.0};
-    /// True when the game set glClipControl(..., GL_ZERO_TO_ONE): window depth is NDC z.
-    bool zeroToOneDepth = false;
-    /// Window depth of pixels without geometry: 1 with GL's default clear, 0 for reversed Z.
-    float backgroundDepth = 1.0f;
-    /// Evaluate each light only within its screen bounds (its range); the rest of the target is
-    /// written 1 by a clear. Off: every pixel runs every light.
-    bool scissorToLights = true;
 };
 
 }  // namespace shadow

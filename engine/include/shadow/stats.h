@@ -72,7 +72,7 @@ struct FrameStats {
     /// (`TransformStats::nonFinite`); each is also a `NonFiniteTransform` warning.
     int entitiesSkippedNonFinite = 0;
     /// The frame's warnings: non-finite transforms first, then the shadow planner's
-    /// (`ShadowFrame::warnings`: clamped settings, the texel budget's decisions).
+    /// (`ShadowFrame::warnings`: clamped settings, the memory budget's decisions).
     std::vector<Warning> warnings;
 
     /// Total time of the passes whose name starts with `prefix`.

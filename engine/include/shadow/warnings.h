@@ -1,7 +1,7 @@
 // Warnings: what the engine let pass, and how it carried on (after sokol's named log items).
 //
 // A warning never stops a load or a frame. Settings out of their documented range are clamped,
-// lights over the shadow texel budget get a smaller map or none, an entity whose transform is
+// lights over the shadow memory budget get a smaller map or none, an entity whose transform is
 // not finite is skipped, and under lenient `GltfLoadOptions` a glTF `extras.shadow` that does
 // not parse is ignored. Each such decision is one `Warning`: a code for programs and tests to
 // branch on, the element at fault, and the line a person reads (what the CLI prints and
@@ -22,10 +22,10 @@ enum class WarningCode {
     /// was clamped to it (a spot's cone also to what a map covers, 85 degrees). Element: the
     /// light. One warning per field.
     SettingClamped,
-    /// The shadow texel budget (`ShadowLimits::maxShadowTexels`) halved a light's map. Element:
+    /// The shadow memory budget (`ShadowLimits::maxShadowBytes`) halved a light's map. Element:
     /// the light.
     MapSizeReduced,
-    /// The shadow texel budget left a light without a shadow this frame (visibility 1).
+    /// The shadow memory budget left a light without a shadow this frame (visibility 1).
     /// Element: the light.
     ShadowDropped,
     /// An entity's world matrix (or an ancestor's) is not finite or reaches beyond
@@ -36,9 +36,11 @@ enum class WarningCode {
     /// place. Element: the object, e.g. `KHR_lights_punctual.lights[1].extras.shadow` or
     /// `nodes[0].extras.shadow` (the message names the file and the member at fault).
     ShadowSettingsIgnored,
-    /// The host's GL context held an error before a call into the engine (`ShadowSystem::render`,
-    /// `Renderer::render`): it was read and cleared so that it is not blamed on the engine, and
-    /// reported here. Element: the engine call. The message lists the codes.
+    /// The host's GL context held an error before a call into the engine (any public call that
+    /// talks to GL: `ShadowSystem::render`, `shaderInputs`, `Renderer::render`, ...): it was read
+    /// and cleared so that it is not blamed on the engine, and reported here (a call without a
+    /// `FrameStats` keeps it in its object's `warnings()`). Element: the engine call. The message
+    /// lists the codes.
     HostGlError,
 };
 

@@ -2,7 +2,7 @@
 // context current; the engine renders into its own framebuffers.
 #include <EGL/egl.h>
 
-#include <shadow/context.h>
+#include <shadow/context_egl.h>
 
 #include <cstdio>
 #include <memory>

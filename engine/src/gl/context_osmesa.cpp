@@ -3,7 +3,7 @@
 // current.
 #include <GL/osmesa.h>
 
-#include <shadow/context.h>
+#include <shadow/context_osmesa.h>
 
 #include <array>
 #include <memory>

@@ -129,7 +129,19 @@ namespace shadow::gpu {
     X(PFNGLBEGINQUERYPROC, BeginQuery)                                     \
     X(PFNGLENDQUERYPROC, EndQuery)                                         \
     X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)                   \
-    X(PFNGLGETQUERYOBJECTUIVPROC, GetQueryObjectuiv)
+    X(PFNGLGETQUERYOBJECTUIVPROC, GetQueryObjectuiv)                       \
+    X(PFNGLGETDOUBLEVPROC, GetDoublev)                                     \
+    X(PFNGLISTEXTUREPROC, IsTexture)                                       \
+    X(PFNGLISSAMPLERPROC, IsSampler)                                       \
+    X(PFNGLISBUFFERPROC, IsBuffer)                                         \
+    X(PFNGLISFRAMEBUFFERPROC, IsFramebuffer)                               \
+    X(PFNGLISVERTEXARRAYPROC, IsVertexArray)                               \
+    X(PFNGLISPROGRAMPROC, IsProgram)                                       \
+    X(PFNGLPOLYGONMODEPROC, PolygonMode)                                   \
+    X(PFNGLCLIPCONTROLPROC, ClipControl)                                   \
+    X(PFNGLDEPTHRANGEPROC, DepthRange)                                     \
+    X(PFNGLBLENDEQUATIONSEPARATEPROC, BlendEquationSeparate)               \
+    X(PFNGLCLAMPCOLORPROC, ClampColor)
 
 /// Resolved GL entry points of the current context.
 struct Api {

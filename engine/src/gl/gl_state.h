@@ -1,17 +1,36 @@
 // Good manners towards a host that owns the GL context: the state the engine's passes change,
 // captured before a public call and put back after it; errors the host left pending, told
 // apart from the engine's own; and a clear error for a call made before `loadGl`.
+//
+// What a pass relies on and therefore sets (setPassDefaults), and the guard puts back: the
+// framebuffers, program, vertex array, viewport, scissor, depth test/function/mask/range, clip
+// control, polygon mode, culling and front face, polygon offset, blending (enables, function,
+// equation), colour mask, and every capability that would change what a pass writes when a
+// host leaves it on (kPassOffCapabilities: depth clamp, rasterizer discard, stencil test, logic
+// op, sRGB writes, primitive restart, the multisample coverage operations, polygon smoothing,
+// user clip distances). Readbacks also set and restore every pixel-pack parameter and read
+// colour clamping. Texture units (every target, and the sampler), uniform-buffer binding points
+// and image units are captured for the ones a call names. Left alone, because no pass depends
+// on them: the stencil functions and masks (no framebuffer of the engine has stencil), the
+// blend colour (no pass blends with a constant), line and point state (fill only), dithering,
+// hints, the provoking vertex (no flat inputs), and conditional rendering or transform
+// feedback a host left active (GL has no query for the former: a host must not leave either
+// active across a call).
 #pragma once
 
 #include "gl/gl_api.h"
+#include "gl/objects.h"
 
 #include <shadow/stats.h>
+#include <shadow/warnings.h>
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace shadow::gpu {
 
@@ -23,12 +42,74 @@ void requireLoaded(std::string_view who);
 /// an error the host left behind is reported as the host's and not thrown as the engine's.
 [[nodiscard]] std::string takePendingErrors();
 
-/// `takePendingErrors`, and a `HostGlError` warning in `stats` naming the engine call `call`
-/// when there was one.
+/// The one policy for an error the host left pending, applied by every public call that talks
+/// to GL before its own first GL call: read it, clear it, and append a `HostGlError` warning
+/// naming the call `call` to `warnings` (a `FrameStats::warnings`, or the pending warnings of an
+/// object whose call has no `FrameStats`); never throw it. Appends nothing when `warnings`
+/// already holds `limit` entries (an object's pending list that nobody reads stays bounded).
+void reportHostGlErrors(std::string_view call, std::vector<Warning>& warnings, std::size_t limit = SIZE_MAX);
+
+/// `reportHostGlErrors` into `stats.warnings`.
 void reportHostGlErrors(std::string_view call, FrameStats& stats);
 
-/// The pieces of GL state the shadow system and the renderer change. Texture units and
-/// uniform-buffer binding points are captured only for the ones named.
+/// Most warnings an object keeps for calls without a `FrameStats` until they are read.
+inline constexpr std::size_t kMaxPendingWarnings = 16;
+
+/// Moves `pending` to the end of `to` (a frame's warnings), leaving `pending` empty with its
+/// storage.
+void movePendingWarnings(std::vector<Warning>& pending, std::vector<Warning>& to);
+
+/// Every texture target a unit binds separately, and the query of each binding.
+inline constexpr std::array<GLenum, 11> kTextureTargets{GL_TEXTURE_1D,
+                                                        GL_TEXTURE_1D_ARRAY,
+                                                        GL_TEXTURE_2D,
+                                                        GL_TEXTURE_2D_ARRAY,
+                                                        GL_TEXTURE_3D,
+                                                        GL_TEXTURE_CUBE_MAP,
+                                                        GL_TEXTURE_CUBE_MAP_ARRAY,
+                                                        GL_TEXTURE_RECTANGLE,
+                                                        GL_TEXTURE_BUFFER,
+                                                        GL_TEXTURE_2D_MULTISAMPLE,
+                                                        GL_TEXTURE_2D_MULTISAMPLE_ARRAY};
+inline constexpr std::array<GLenum, 11> kTextureBindingQueries{GL_TEXTURE_BINDING_1D,
+                                                               GL_TEXTURE_BINDING_1D_ARRAY,
+                                                               GL_TEXTURE_BINDING_2D,
+                                                               GL_TEXTURE_BINDING_2D_ARRAY,
+                                                               GL_TEXTURE_BINDING_3D,
+                                                               GL_TEXTURE_BINDING_CUBE_MAP,
+                                                               GL_TEXTURE_BINDING_CUBE_MAP_ARRAY,
+                                                               GL_TEXTURE_BINDING_RECTANGLE,
+                                                               GL_TEXTURE_BINDING_BUFFER,
+                                                               GL_TEXTURE_BINDING_2D_MULTISAMPLE,
+                                                               GL_TEXTURE_BINDING_2D_MULTISAMPLE_ARRAY};
+
+/// Capabilities every pass wants off, whatever the host left: each would change what a pass
+/// writes (or keep it from writing at all) when on.
+inline constexpr std::array<GLenum, 21> kPassOffCapabilities{
+    GL_DEPTH_CLAMP,                    // casters beyond a layer's far plane would be drawn, clamped
+    GL_RASTERIZER_DISCARD,             // nothing would be drawn or cleared
+    GL_STENCIL_TEST,                   // a host's depth-stencil target given to the mask
+    GL_COLOR_LOGIC_OP,                 // fixed-point mask targets would be combined, not written
+    GL_FRAMEBUFFER_SRGB,               // an sRGB mask target would get encoded visibility
+    GL_PRIMITIVE_RESTART,              // a caster's index could end its strip
+    GL_PRIMITIVE_RESTART_FIXED_INDEX,  // 0xFF of a caster's 8-bit indices would
+    GL_SAMPLE_ALPHA_TO_COVERAGE,       // the coverage of a multisample mask target
+    GL_SAMPLE_ALPHA_TO_ONE,
+    GL_SAMPLE_COVERAGE,
+    GL_SAMPLE_MASK,
+    GL_SAMPLE_SHADING,
+    GL_POLYGON_SMOOTH,  // edge coverage into alpha
+    GL_CLIP_DISTANCE0,  // clip distances no engine shader writes: undefined clipping
+    GL_CLIP_DISTANCE1,
+    GL_CLIP_DISTANCE2,
+    GL_CLIP_DISTANCE3,
+    GL_CLIP_DISTANCE4,
+    GL_CLIP_DISTANCE5,
+    GL_CLIP_DISTANCE6,
+    GL_CLIP_DISTANCE7};
+
+/// The pieces of GL state the shadow system and the renderer change (see the header comment).
+/// Texture units and uniform-buffer binding points are captured only for the ones named.
 struct GlState {
     GLint drawFramebuffer = 0;
     GLint readFramebuffer = 0;
@@ -40,22 +121,34 @@ struct GlState {
     GLboolean depthTest = GL_FALSE;
     GLint depthFunc = GL_LESS;
     GLboolean depthMask = GL_TRUE;
+    std::array<GLdouble, 2> depthRange{0.0, 1.0};  ///< near, far
+    GLint clipOrigin = GL_LOWER_LEFT;
+    GLint clipDepthMode = GL_NEGATIVE_ONE_TO_ONE;
+    std::array<GLint, 2> polygonMode{GL_FILL, GL_FILL};  ///< front, back (core: always equal)
     GLboolean cullFace = GL_FALSE;
     GLint cullFaceMode = GL_BACK;
     GLint frontFace = GL_CCW;
     GLboolean polygonOffsetFill = GL_FALSE;
-    std::array<GLboolean, 8> blend{};  ///< per draw buffer
-    std::array<GLint, 4> blendFunc{};  ///< src rgb, dst rgb, src alpha, dst alpha
+    std::array<GLboolean, 8> blend{};                              ///< per draw buffer
+    std::array<GLint, 4> blendFunc{};                              ///< src rgb, dst rgb, src alpha, dst alpha
+    std::array<GLint, 2> blendEquation{GL_FUNC_ADD, GL_FUNC_ADD};  ///< rgb, alpha
     std::array<GLboolean, 4> colorMask{};
+    std::array<GLboolean, kPassOffCapabilities.size()> offCapabilities{};  ///< in that order
     GLint packAlignment = 4;
     GLint packRowLength = 0;
+    GLint packImageHeight = 0;
+    GLint packSkipPixels = 0;
+    GLint packSkipRows = 0;
+    GLint packSkipImages = 0;
+    GLboolean packSwapBytes = GL_FALSE;
+    GLboolean packLsbFirst = GL_FALSE;
+    GLint clampReadColor = GL_FIXED_ONLY;
     GLint pixelPackBuffer = 0;
     GLint activeTexture = GL_TEXTURE0;
     GLint uniformBuffer = 0;  ///< the generic GL_UNIFORM_BUFFER binding
     struct Unit {
         GLint unit = 0;
-        GLint texture2D = 0;
-        GLint texture2DArray = 0;
+        std::array<GLint, kTextureTargets.size()> textures{};  ///< per kTextureTargets entry
         GLint sampler = 0;
         bool operator==(const Unit&) const = default;
     };
@@ -92,16 +185,21 @@ struct GlState {
 /// beyond are not captured.
 [[nodiscard]] GlState captureGlState(std::span<const GLint> units, std::span<const GLint> uniformBindings,
                                      std::span<const GLint> imageUnits = {});
-/// Puts `state` back.
-void restoreGlState(const GlState& state);
+/// Puts `state` back. An object the engine deleted after deletion mark `mark` (`deletionCount`),
+/// or that is no longer an object of its kind, is left unbound rather than bound back (binding
+/// a deleted name is GL_INVALID_OPERATION; GL itself unbinds what is deleted).
+void restoreGlState(const GlState& state, std::uint64_t mark = UINT64_MAX);
 
 /// The raster state every pass of the engine assumes, whatever the host left: scissor test off,
-/// colour writes on, counter-clockwise front faces, no polygon offset, no blending. Each pass
-/// sets the rest (framebuffer, viewport, depth, culling) itself. Every piece is in `GlState`.
+/// colour writes on, counter-clockwise front faces, filled polygons, no polygon offset, no
+/// blending (additive equation for the passes that enable it), GL's clip control and depth
+/// range, and every capability of `kPassOffCapabilities` off. Each pass sets the rest
+/// (framebuffer, viewport, depth, culling) itself. Every piece is in `GlState`.
 void setPassDefaults();
 
 /// Pixel-pack state for reading back into client memory, whatever the host left: no pack buffer,
-/// rows tightly packed (alignment 1, row length 0). Every piece is in `GlState`.
+/// rows tightly packed from the first pixel (alignment 1, no row length, image height or skips,
+/// no byte swapping), float colours read unclamped. Every piece is in `GlState`.
 void setReadbackDefaults();
 
 /// Captures on construction, restores on destruction (also when the scope is left by a throw).
@@ -109,13 +207,14 @@ class GlStateGuard {
 public:
     GlStateGuard(std::span<const GLint> units, std::span<const GLint> uniformBindings,
                  std::span<const GLint> imageUnits = {})
-        : saved_(captureGlState(units, uniformBindings, imageUnits)) {}
-    ~GlStateGuard() { restoreGlState(saved_); }
+        : saved_(captureGlState(units, uniformBindings, imageUnits)), mark_(deletionCount()) {}
+    ~GlStateGuard() { restoreGlState(saved_, mark_); }
     GlStateGuard(const GlStateGuard&) = delete;
     GlStateGuard& operator=(const GlStateGuard&) = delete;
 
 private:
     GlState saved_;
+    std::uint64_t mark_ = 0;
 };
 
 }  // namespace shadow::gpu

@@ -1,6 +1,7 @@
 #include <shadow/mesh_cache.h>
 
 #include "gl/gl_state.h"
+#include "gl/mesh_cache_access.h"
 #include "gl/no_throw.h"
 #include "gl/objects.h"
 
@@ -27,9 +28,12 @@ struct GpuMesh {
 struct MeshCache::Impl {
     // Keyed by the MeshData address: MeshData is immutable and shared while instances live.
     std::unordered_map<const MeshData*, GpuMesh> meshes;
+    std::vector<Warning> pending;  ///< host errors found by calls without a FrameStats
 };
 
-MeshCache::MeshCache() : impl_((gpu::requireLoaded("MeshCache"), std::make_unique<Impl>())) {}
+MeshCache::MeshCache() : impl_((gpu::requireLoaded("MeshCache"), std::make_unique<Impl>())) {
+    gpu::reportHostGlErrors("MeshCache", impl_->pending, gpu::kMaxPendingWarnings);
+}
 MeshCache::~MeshCache() = default;
 
 Result<std::unique_ptr<MeshCache>> MeshCache::create() noexcept {
@@ -38,11 +42,27 @@ Result<std::unique_ptr<MeshCache>> MeshCache::create() noexcept {
 
 std::size_t MeshCache::size() const { return impl_->meshes.size(); }
 
+const std::vector<Warning>& MeshCache::warnings() const { return impl_->pending; }
+
+void MeshCache::clearWarnings() { impl_->pending.clear(); }
+
+std::vector<Warning>& MeshCache::pending() { return impl_->pending; }
+
 std::size_t MeshCache::collect() {
+    gpu::reportHostGlErrors("MeshCache::collect", impl_->pending, gpu::kMaxPendingWarnings);
+    return collectInPass();
+}
+
+std::size_t MeshCache::collectInPass() {
     return std::erase_if(impl_->meshes, [](const auto& entry) { return entry.second.source.expired(); });
 }
 
-int MeshCache::bind(const std::shared_ptr<const MeshData>& meshPtr) {
+int MeshCache::bind(const std::shared_ptr<const MeshData>& mesh) {
+    gpu::reportHostGlErrors("MeshCache::bind", impl_->pending, gpu::kMaxPendingWarnings);
+    return bindInPass(mesh);
+}
+
+int MeshCache::bindInPass(const std::shared_ptr<const MeshData>& meshPtr) {
     const MeshData& mesh = *meshPtr;
     auto it = impl_->meshes.find(&mesh);
     if (it != impl_->meshes.end() && it->second.source.lock() != meshPtr) {

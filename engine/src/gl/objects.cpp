@@ -2,9 +2,40 @@
 
 #include <shadow/context.h>
 
+#include <algorithm>
+#include <array>
 #include <string>
+#include <utility>
 
 namespace shadow::gpu {
+namespace {
+
+/// The last deletions of this thread (GL contexts are current per thread).
+struct Deletions {
+    std::array<std::pair<GLenum, GLuint>, kDeletionsRemembered> ring{};
+    std::uint64_t count = 0;
+};
+thread_local Deletions tDeletions;
+
+}  // namespace
+
+void noteDeleted(GLenum identifier, GLuint name) noexcept {
+    Deletions& d = tDeletions;
+    d.ring[d.count % d.ring.size()] = {identifier, name};
+    ++d.count;
+}
+
+std::uint64_t deletionCount() noexcept { return tDeletions.count; }
+
+bool deletedSince(GLenum identifier, GLuint name, std::uint64_t mark) noexcept {
+    const Deletions& d = tDeletions;
+    if (mark >= d.count) return false;
+    const std::uint64_t first = d.count - std::min<std::uint64_t>(d.count - mark, d.ring.size());
+    for (std::uint64_t i = first; i < d.count; ++i) {
+        if (d.ring[i % d.ring.size()] == std::pair{identifier, name}) return true;
+    }
+    return false;
+}
 
 Buffer makeBuffer(std::string_view label, GLsizeiptr bytes, const void* data, GLbitfield flags) {
     GLuint name = 0;

@@ -4,10 +4,27 @@
 
 #include "gl/gl_api.h"
 
+#include <cstddef>
+#include <cstdint>
 #include <string_view>
 #include <utility>
 
 namespace shadow::gpu {
+
+/// Records that the engine deleted `name`, a GL object of kind `identifier` (GL_TEXTURE,
+/// GL_BUFFER, ...), on this thread. A state guard alive across the deletion then leaves it
+/// unbound instead of binding it back: a host that had bound it (a shadow map it sampled) gets
+/// what GL itself leaves after a delete, even when the name was made anew since. Never throws,
+/// never allocates (a fixed ring of the last `kDeletionsRemembered`).
+void noteDeleted(GLenum identifier, GLuint name) noexcept;
+/// How many deletions this thread has noted so far: a guard's mark for `deletedSince`.
+[[nodiscard]] std::uint64_t deletionCount() noexcept;
+/// Whether `name` of kind `identifier` was deleted after `mark` (a `deletionCount`). False when
+/// more than `kDeletionsRemembered` deletions followed the mark and it was not among the last
+/// ones: the caller then relies on glIs* alone.
+[[nodiscard]] bool deletedSince(GLenum identifier, GLuint name, std::uint64_t mark) noexcept;
+/// Deletions the record holds.
+inline constexpr std::size_t kDeletionsRemembered = 256;
 
 /// Owns one GL name of kind `Kind`.
 template <typename Kind>
@@ -30,7 +47,10 @@ public:
     [[nodiscard]] GLuint get() const { return name_; }
     explicit operator bool() const { return name_ != 0; }
     void reset() {
-        if (name_ != 0) Kind::destroy(name_);
+        if (name_ != 0) {
+            Kind::destroy(name_);
+            noteDeleted(Kind::kIdentifier, name_);
+        }
         name_ = 0;
     }
     /// Names the object for debuggers (glObjectLabel).

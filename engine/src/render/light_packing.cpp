@@ -1,6 +1,6 @@
 #include "render/light_packing.h"
 
-#include "shadow/light_records.h"
+#include "core/light_records.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 

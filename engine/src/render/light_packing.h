@@ -2,10 +2,10 @@
 // into passes of up to SG_MAX_LIGHTS_PER_PASS lights. Pure CPU (tested without GL).
 #pragma once
 
-#include <shadow/shadow_system.h>
 #include <shadow/gpu_records.h>
+#include <shadow/shadow_planner.h>
 
-#include "shadow/screen_bounds.h"
+#include "core/screen_bounds.h"
 
 #include <array>
 #include <compare>

@@ -1,8 +1,12 @@
 #include "render/render_targets.h"
 
+#include <shadow/context.h>
+#include <shadow/renderer.h>
 #include <shadow/shared_constants.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 
 namespace shadow::render {
@@ -16,9 +20,46 @@ gpu::Texture makeTarget(const std::string& label, GLenum format, int w, int h) {
 
 }  // namespace
 
+std::string renderSizeProblem(int width, int height, bool aovs, int passes) {
+    GLint maxTexture = 0, maxWidth = 0, maxHeight = 0, maxRenderbuffer = 0;
+    gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+    gl.GetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &maxWidth);
+    gl.GetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &maxHeight);
+    gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbuffer);
+    if (width < 1 || height < 1) return "width and height must be at least 1";
+    const int maxEdge = std::min(maxTexture, maxRenderbuffer);
+    const int maxW = std::min(maxEdge, maxWidth), maxH = std::min(maxEdge, maxHeight);
+    if (width > maxW || height > maxH) {
+        return "beyond this context's limits (" + std::to_string(maxW) + "x" + std::to_string(maxH) +
+               ": GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE, GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT)";
+    }
+    const std::int64_t bytes = RenderTargets::bytesFor(width, height, aovs, passes);
+    if (bytes > kMaxRenderTargetBytes) {
+        const double mib = 1024.0 * 1024.0;
+        return "the targets would take " + std::to_string(std::llround(static_cast<double>(bytes) / mib)) + " MiB" +
+               (aovs ? " with the AOVs" : "") + ", over the renderer's cap of " +
+               std::to_string(std::llround(static_cast<double>(kMaxRenderTargetBytes) / mib)) +
+               " MiB (kMaxRenderTargetBytes)";
+    }
+    return {};
+}
+
+std::int64_t RenderTargets::bytesFor(int width, int height, bool aovs, int passes) {
+    const std::int64_t pixels = std::int64_t{width} * height;
+    // Colour RGBA32F and depth 32F; AOVs: position RGBA32F, distance R32F, two RGBA32F a pass.
+    const std::int64_t visibility = std::int64_t{32} * std::max(passes, 1);
+    const std::int64_t perPixel = std::int64_t{16 + 4} + (aovs ? std::int64_t{16 + 4} + visibility : 0);
+    return pixels * perPixel;
+}
+
 void RenderTargets::ensure(int width, int height, bool aovs, int passes) {
     const int aovPasses = aovs ? passes : 0;
     if (framebuffer_ && width_ == width && height_ == height && aovs_ == aovs && passes_ >= aovPasses) return;
+    // Refused before anything is allocated: an incomplete framebuffer or an out-of-memory error
+    // would say less, after the fact.
+    if (const std::string why = renderSizeProblem(width, height, aovs, passes); !why.empty()) {
+        throw GlError("main pass targets of " + std::to_string(width) + "x" + std::to_string(height) + ": " + why);
+    }
     *this = RenderTargets{};
     width_ = width;
     height_ = height;

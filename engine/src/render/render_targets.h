@@ -4,15 +4,28 @@
 
 #include "gl/objects.h"
 
+#include <cstdint>
+#include <string>
 #include <vector>
 
 namespace shadow::render {
 
+/// What keeps targets of `width` x `height` (with `aovs`, for `passes` passes) from being made:
+/// a size beyond the context's texture, renderbuffer or framebuffer limits, or targets over
+/// `kMaxRenderTargetBytes`, said without the size (the caller names it); empty when they can
+/// be. Reads the limits from the current context.
+[[nodiscard]] std::string renderSizeProblem(int width, int height, bool aovs, int passes);
+
 class RenderTargets {
 public:
+    /// GPU memory (bytes) of the targets for `width` x `height`: colour (RGBA32F) and depth
+    /// (32F), and with `aovs` position (RGBA32F), distance (R32F) and two RGBA32F visibility
+    /// textures per pass of `passes`.
+    [[nodiscard]] static std::int64_t bytesFor(int width, int height, bool aovs, int passes);
     /// Makes the targets fit `width` x `height`, with AOV targets for `passes` main passes when
-    /// `aovs`; keeps the current ones when they already fit. Throws `GlError` when the
-    /// framebuffer is incomplete.
+    /// `aovs`; keeps the current ones when they already fit. Throws `GlError` naming the size
+    /// before allocating anything when it is beyond the context's limits or the memory cap
+    /// (`checkRenderSize`), and when the framebuffer is incomplete.
     void ensure(int width, int height, bool aovs, int passes);
     /// Attaches what main pass `pass` writes and sets its draw buffers.
     void bindPass(int pass);

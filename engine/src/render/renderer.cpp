@@ -1,16 +1,19 @@
 // The forward renderer (see renderer.h): one lit pass per group of up to SG_MAX_LIGHTS_PER_PASS
 // lights, each with the program specialised for its lights, after an optional depth pre-pass.
 #include <shadow/context.h>
-#include <shadow/renderer.h>
 #include <shadow/gpu_records.h>
+#include <shadow/renderer.h>
+#include <shadow/shadow_system.h>
 
+#include "core/camera.h"
+#include "core/shader_resources.h"
 #include "gl/gl_state.h"
+#include "gl/mesh_cache_access.h"
 #include "gl/objects.h"
 #include "gl/pass_timer.h"
 #include "render/light_packing.h"
 #include "render/lit_programs.h"
 #include "render/render_targets.h"
-#include "shadow/light_projection.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -77,7 +80,8 @@ MainCamera mainCamera(const CameraView& cam) {
 }  // namespace
 
 struct Renderer::Impl {
-    MeshCache meshes;
+    MeshCache meshes;                ///< owned and collected here (Renderer::meshes)
+    gpu::ShaderResources resources;  ///< the samplers and kernel the lit passes bind
     render::LitProgramCache programs;
     std::optional<render::DepthPrepassProgram> prepass;  ///< built on first use
     render::RenderTargets targets;
@@ -88,7 +92,8 @@ struct Renderer::Impl {
     GLint uniformAlignment = 256;
     std::size_t lightCount = 0;  ///< scene lights of the last frame
     bool softwareRenderer = false;
-    gpu::PassTimer timer;  ///< the main passes'
+    gpu::PassTimer timer;          ///< the main passes'
+    std::vector<Warning> pending;  ///< host errors found by calls without a FrameStats
 
     Impl();
     /// Adds what the options ask of every pass's program (AOVs, debug view) to its variant and
@@ -101,11 +106,11 @@ struct Renderer::Impl {
     /// Draws every visible mesh (those whose bounds meet `reach`, unless it is null) with
     /// `uniforms`; `perMesh` sets the material uniforms.
     template <typename PerMesh>
-    void drawMeshes(World& world, const CameraView& cam, GLuint program, const render::MeshUniforms& uniforms,
+    void drawMeshes(const World& world, const CameraView& cam, GLuint program, const render::MeshUniforms& uniforms,
                     const DAabb* reach, PerMesh&& perMesh, int& draws);
-    void depthPrepass(World& world, const CameraView& cam, const MainCamera& mc, FrameStats& stats);
-    void litPass(World& world, const CameraView& cam, const MainCamera& mc, std::size_t index,
-                 const ShadowSystem& shadows, const RenderOptions& options, FrameStats& stats);
+    void depthPrepass(const World& world, const CameraView& cam, const MainCamera& mc, FrameStats& stats);
+    void litPass(const World& world, const CameraView& cam, const MainCamera& mc, std::size_t index,
+                 const ShadowMaps& maps, const RenderOptions& options, FrameStats& stats);
 };
 
 Renderer::Impl::Impl() : softwareRenderer(queryGlInfo().softwareRenderer), timer(softwareRenderer) {
@@ -135,12 +140,13 @@ void Renderer::Impl::uploadPasses() {
 }
 
 template <typename PerMesh>
-void Renderer::Impl::drawMeshes(World& world, const CameraView& cam, GLuint program,
+void Renderer::Impl::drawMeshes(const World& world, const CameraView& cam, GLuint program,
                                 const render::MeshUniforms& uniforms, const DAabb* reach, PerMesh&& perMesh,
                                 int& draws) {
     bool culling = false;
     gl.Disable(GL_CULL_FACE);
-    world.view<Mesh, WorldTransform, Material>().each([&](Entity e, Mesh& mesh, WorldTransform& wt, Material& m) {
+    world.view<Mesh, WorldTransform, Material>().each([&](Entity e, const Mesh& mesh, const WorldTransform& wt,
+                                                          const Material& m) {
         if (!wt.finite || mesh.data == nullptr || mesh.data->indices.empty()) return;
         if (reach != nullptr) {
             const WorldBounds* b = world.tryGet<WorldBounds>(e);
@@ -165,14 +171,14 @@ void Renderer::Impl::drawMeshes(World& world, const CameraView& cam, GLuint prog
         const glm::mat3 normalFromLocal(glm::transpose(glm::inverse(linear)));
         gl.ProgramUniformMatrix3fv(program, uniforms.normalFromLocal, 1, GL_FALSE, glm::value_ptr(normalFromLocal));
         perMesh(mesh, m);
-        const int indices = meshes.bind(mesh.data);
+        const int indices = gpu::MeshCacheAccess::bind(meshes, mesh.data);
         gl.DrawElements(GL_TRIANGLES, indices, GL_UNSIGNED_INT, nullptr);
         ++draws;
     });
     gl.Disable(GL_CULL_FACE);
 }
 
-void Renderer::Impl::depthPrepass(World& world, const CameraView& cam, const MainCamera& mc, FrameStats& stats) {
+void Renderer::Impl::depthPrepass(const World& world, const CameraView& cam, const MainCamera& mc, FrameStats& stats) {
     if (!prepass) {
         prepass = render::buildDepthPrepass();
         ++stats.programsCompiled;
@@ -188,8 +194,8 @@ void Renderer::Impl::depthPrepass(World& world, const CameraView& cam, const Mai
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
-void Renderer::Impl::litPass(World& world, const CameraView& cam, const MainCamera& mc, std::size_t index,
-                             const ShadowSystem& shadows, const RenderOptions& options, FrameStats& stats) {
+void Renderer::Impl::litPass(const World& world, const CameraView& cam, const MainCamera& mc, std::size_t index,
+                             const ShadowMaps& maps, const RenderOptions& options, FrameStats& stats) {
     const PassLights& pass = passes[index];
     const render::LitProgram& p = *passPrograms[index];
     // Without AOVs every pass writes colour alone: the draw buffers set by the first stay (a
@@ -197,7 +203,7 @@ void Renderer::Impl::litPass(World& world, const CameraView& cam, const MainCame
     if (index == 0 || options.aovs) targets.bindPass(static_cast<int>(index));
     lightBlocks.bind(SG_BINDING_LIGHTS, index);
     layerBlocks.bind(SG_BINDING_LAYERS, index);
-    shadows.bindShadowResources(pass.sceneLight);
+    gpu::bindShadowResources(resources, maps, pass.sceneLight, ShadowBindingPoints{});
     // The first lit pass resolves visibility itself unless a pre-pass did; the passes after it
     // shade the same surfaces (equal depth, no depth writes) and add their light.
     const bool resolvesDepth = index == 0 && !options.depthPrepass;
@@ -246,21 +252,45 @@ constexpr std::array<GLint, 3> kLitUniformBindings{SG_BINDING_LIGHTS, SG_BINDING
 
 }  // namespace
 
-Renderer::Renderer() : impl_((gpu::requireLoaded("Renderer"), std::make_unique<Impl>())) {}
+Status checkRenderSize(const RenderOptions& options, int lights) {
+    gpu::requireLoaded("checkRenderSize");
+    const int passes = std::max(1, (lights + SG_MAX_LIGHTS_PER_PASS - 1) / SG_MAX_LIGHTS_PER_PASS);
+    const std::string why = render::renderSizeProblem(options.width, options.height, options.aovs, passes);
+    if (!why.empty()) return Error{why};
+    return Ok{};
+}
+
+Renderer::Renderer() {
+    gpu::requireLoaded("Renderer");
+    // Before any member makes a GL object: the host's error is reported once, as the renderer's.
+    std::vector<Warning> pending;
+    gpu::reportHostGlErrors("Renderer", pending, gpu::kMaxPendingWarnings);
+    impl_ = std::make_unique<Impl>();
+    impl_->pending = std::move(pending);
+}
 Renderer::~Renderer() = default;
 
 MeshCache& Renderer::meshes() { return impl_->meshes; }
 
 void Renderer::setTiming(bool enabled) { impl_->timer.setEnabled(enabled); }
 
-void Renderer::render(World& world, const CameraView& camera, const ShadowSystem& shadows, const RenderOptions& options,
-                      FrameStats& stats) {
+void Renderer::render(const World& world, const CameraView& camera, const ShadowSystem& shadows,
+                      const RenderOptions& options, FrameStats& stats) {
+    render(world, camera, shadows.frame(), shadows.maps(), options, stats);
+}
+
+void Renderer::render(const World& world, const CameraView& camera, const ShadowFrame& frame, const ShadowMaps& maps,
+                      const RenderOptions& options, FrameStats& stats) {
     gpu::reportHostGlErrors("Renderer::render", stats);
+    gpu::movePendingWarnings(impl_->pending, stats.warnings);
+    gpu::movePendingWarnings(gpu::MeshCacheAccess::pending(impl_->meshes), stats.warnings);
     const gpu::GlStateGuard hostState(kLitTextureUnits, kLitUniformBindings);
     Impl& r = *impl_;
-    r.lightCount = shadows.frame().lights.size();
-    const ScreenView view{cameraClipFromWorld(camera), options.width, options.height, shadows.frame().wsGeometry};
-    render::packLights(shadows.frame(), camera.wsPosition, view, r.passes, r.packingOrder);
+    // The cache's owner collects it: the GPU copies of meshes gone since the last frame.
+    gpu::MeshCacheAccess::collect(r.meshes);
+    r.lightCount = frame.lights.size();
+    const ScreenView view{cameraClipFromWorld(camera), options.width, options.height, frame.wsGeometry};
+    render::packLights(frame, camera.wsPosition, view, r.passes, r.packingOrder);
     r.preparePrograms(options, stats);
     r.uploadPasses();
     r.targets.ensure(options.width, options.height, options.aovs, static_cast<int>(r.passes.size()));
@@ -279,13 +309,13 @@ void Renderer::render(World& world, const CameraView& camera, const ShadowSystem
     }
     {
         gpu::ScopedPass timed(timer, "Main/Lit");
-        r.litPass(world, camera, mc, 0, shadows, options, stats);
+        r.litPass(world, camera, mc, 0, maps, options, stats);
     }
     if (r.passes.size() > 1) {
         // Timed as one: a fence per small pass would cost more than many of them.
         gpu::ScopedPass timed(timer, "Main/LitMore");
         for (std::size_t pass = 1; pass < r.passes.size(); ++pass)
-            r.litPass(world, camera, mc, pass, shadows, options, stats);
+            r.litPass(world, camera, mc, pass, maps, options, stats);
     }
     stats.mainPasses += static_cast<int>(r.passes.size());
     gl.DepthMask(GL_TRUE);
@@ -296,7 +326,12 @@ void Renderer::render(World& world, const CameraView& camera, const ShadowSystem
     timer.collect(stats);
 }
 
+const std::vector<Warning>& Renderer::warnings() const { return impl_->pending; }
+
+void Renderer::clearWarnings() { impl_->pending.clear(); }
+
 void Renderer::present(int width, int height) const {
+    gpu::reportHostGlErrors("Renderer::present", impl_->pending, gpu::kMaxPendingWarnings);
     const render::RenderTargets& t = impl_->targets;
     gl.NamedFramebufferReadBuffer(t.framebuffer(), GL_COLOR_ATTACHMENT0 + SG_OUT_COLOR);
     gl.BlitNamedFramebuffer(t.framebuffer(), 0, 0, 0, t.width(), t.height(), 0, 0, width, height, GL_COLOR_BUFFER_BIT,
@@ -306,6 +341,7 @@ void Renderer::present(int width, int height) const {
 
 FrameImages Renderer::readback(const CameraView& camera, FrameStats& stats) const {
     gpu::reportHostGlErrors("Renderer::readback", stats);
+    gpu::movePendingWarnings(impl_->pending, stats.warnings);
     const gpu::GlStateGuard hostState({}, {});
     const Impl& r = *impl_;
     const render::RenderTargets& t = r.targets;

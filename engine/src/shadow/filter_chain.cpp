@@ -12,80 +12,16 @@ namespace shadow {
 
 namespace {
 
-/// The chain's texel format and its size in bytes.
+/// The chain's texel format (its size in bytes: chainTexelBytes).
 bool fourChannels(FilterChainKind kind) {
     return kind == FilterChainKind::FourMoments || kind == FilterChainKind::SummedMoments;
 }
 GLenum formatOf(FilterChainKind kind) { return fourChannels(kind) ? GL_RGBA32F : GL_RG32F; }
-int texelBytes(FilterChainKind kind) { return fourChannels(kind) ? 16 : 8; }
-
-/// The table's Chain column: None, or a kind of chain.
-enum class TableChain : std::uint8_t { None, MinMax, Moments, FourMoments, SummedMoments };
-std::optional<FilterChainKind> chainOf(TableChain c) {
-    switch (c) {
-        case TableChain::None: return std::nullopt;
-        case TableChain::MinMax: return FilterChainKind::MinMax;
-        case TableChain::Moments: return FilterChainKind::Moments;
-        case TableChain::FourMoments: return FilterChainKind::FourMoments;
-        case TableChain::SummedMoments: return FilterChainKind::SummedMoments;
-    }
-    return std::nullopt;
-}
 
 /// Summed-area table passes: one invocation per row (or column) of the layer.
 constexpr int kSatGroupSize = 64;
 
 }  // namespace
-
-std::optional<FilterChainKind> filterChainOf(ShadowTechnique t) {
-    switch (t) {
-#define SHADOW_TECHNIQUE_CHAIN(Enum, Constant, Name, File, Glsl, Chain, ...) \
-    case ShadowTechnique::Enum: return chainOf(TableChain::Chain);
-        SHADOW_TECHNIQUE_TABLE(SHADOW_TECHNIQUE_CHAIN)
-#undef SHADOW_TECHNIQUE_CHAIN
-    }
-    return std::nullopt;
-}
-
-bool FilterChain::readsOneTexel(ShadowTechnique t) {
-    switch (t) {
-#define SHADOW_TECHNIQUE_REACH(Enum, Constant, Name, File, Glsl, Chain, Reach, ...) \
-    case ShadowTechnique::Enum: return std::string_view(#Reach) == "Texel";
-        SHADOW_TECHNIQUE_TABLE(SHADOW_TECHNIQUE_REACH)
-#undef SHADOW_TECHNIQUE_REACH
-    }
-    return false;
-}
-
-int FilterChain::baseSize(FilterChainKind kind, int mapSize) {
-    if (kind != FilterChainKind::MinMax) return std::max(1, mapSize);
-    // A power of two, so that every level halves exactly: texel j of level k covers map texels
-    // [T j, T (j + 1)) with T = SG_MINMAX_TILE * 2^k (the shader's mapping); texels past the
-    // map's edge repeat the edge.
-    const int tiles = std::max(1, (mapSize + SG_MINMAX_TILE - 1) / SG_MINMAX_TILE);
-    int size = 1;
-    while (size < tiles) size *= 2;
-    return size;
-}
-
-int FilterChain::levelsFor(ShadowTechnique t, int mapSize, float maxFilterTexels) {
-    const FilterChainKind kind = filterChainOf(t).value_or(FilterChainKind::MinMax);
-    if (kind == FilterChainKind::SummedMoments) return 1;
-    int all = 0;
-    for (int size = baseSize(kind, mapSize); size > 0; size /= 2) ++all;
-    int needed = 1;
-    if (kind == FilterChainKind::MinMax) {
-        // A region test reads the first level whose tiles are as wide as the whole region.
-        const double widest = 2.0 * (static_cast<double>(maxFilterTexels) + 1.5);
-        for (double tile = SG_MINMAX_TILE; tile < widest; tile *= 2.0) ++needed;
-    } else {
-        // A trilinear fetch at level log2(radius in texels) reads that level's floor and ceiling;
-        // a technique whose regions are one texel (hard-edged MSM) reads level 0 only.
-        const double radius = readsOneTexel(t) ? 1.0 : static_cast<double>(maxFilterTexels);
-        for (double tile = 1.0; tile < radius; tile *= 2.0) ++needed;
-    }
-    return std::clamp(needed, 1, all);
-}
 
 FilterChain FilterChain::allocate(const std::string& label, FilterChainKind kind, int mapSize, int layers, int levels) {
     FilterChain c;
@@ -105,15 +41,6 @@ FilterChain FilterChain::allocate(const std::string& label, FilterChainKind kind
     gl.TextureParameteri(c.texture.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     gpu::checkGlError("allocating " + label + " filter chain");
     return c;
-}
-
-long long FilterChain::bytes(int mapSize, int layers) const {
-    long long total = 0;
-    int size = baseSize(kind, mapSize);
-    for (int level = 0; level < levels; ++level, size = std::max(1, size / 2)) {
-        total += static_cast<long long>(texelBytes(kind)) * size * size * layers;
-    }
-    return total;
 }
 
 void FilterChain::clearLayer(int mapSize, int layer) const {

@@ -15,6 +15,7 @@
 #include <shadow/components.h>
 
 #include "gl/objects.h"
+#include "shadow/map_memory.h"
 
 #include <array>
 #include <optional>
@@ -22,31 +23,19 @@
 
 namespace shadow {
 
-/// What a filter chain holds.
-enum class FilterChainKind : std::uint8_t { MinMax, Moments, FourMoments, SummedMoments };
-
-/// The chain technique `t` reads, or nullopt when it reads none (no memory is spent on one).
-[[nodiscard]] std::optional<FilterChainKind> filterChainOf(ShadowTechnique t);
-
 /// One light's chain texture (an RG32F array, RGBA32F for four moments and the summed-area
 /// table; one mip chain per layer, one level for the table).
 struct FilterChain {
-    /// Whether technique `t`'s regions are one texel wide (the table's Reach column), so that its
-    /// chain keeps level 0 only.
-    [[nodiscard]] static bool readsOneTexel(ShadowTechnique t);
     gpu::Texture texture;
     FilterChainKind kind = FilterChainKind::MinMax;
     int levels = 0;
 
-    /// Edge of level 0 for a map of `mapSize` texels: for MinMax the power of two of at least
-    /// mapSize / SG_MINMAX_TILE texels (each level halves exactly), for moments and the
-    /// summed-area table the map's own.
-    [[nodiscard]] static int baseSize(FilterChainKind kind, int mapSize);
-    /// Levels technique `t`'s lookups of at most `maxFilterTexels` texels of radius read. MinMax:
-    /// the first whose tiles are as wide as the widest region (2 * (maxFilterTexels + 1.5)
-    /// texels), and those below; moments: up to ceil(log2(radius)), the radius one texel for
-    /// hard-edged MSM (its chain is level 0 alone); the summed-area table is one level.
-    [[nodiscard]] static int levelsFor(ShadowTechnique t, int mapSize, float maxFilterTexels);
+    /// `chainBaseSize` (map_memory.h).
+    [[nodiscard]] static int baseSize(FilterChainKind kind, int mapSize) { return chainBaseSize(kind, mapSize); }
+    /// `chainLevels` (map_memory.h).
+    [[nodiscard]] static int levelsFor(ShadowTechnique t, int mapSize, float maxFilterTexels) {
+        return chainLevels(t, mapSize, maxFilterTexels);
+    }
     /// Allocates the chain of a `mapSize`^2 array of `layers` layers with `levels` levels.
     static FilterChain allocate(const std::string& label, FilterChainKind kind, int mapSize, int layers, int levels);
     /// Whether a cleared layer's chain is one value throughout, which clearLayer writes: not the
@@ -54,8 +43,8 @@ struct FilterChain {
     [[nodiscard]] bool clearable() const { return kind != FilterChainKind::SummedMoments; }
     /// Every level of `layer` as for a cleared layer, nothing in front of the far plane: all 1.
     void clearLayer(int mapSize, int layer) const;
-    /// Bytes of GPU memory the chain holds.
-    [[nodiscard]] long long bytes(int mapSize, int layers) const;
+    /// Bytes of GPU memory the chain holds (`chainBytes`, what the memory budget counts).
+    [[nodiscard]] long long bytes(int mapSize, int layers) const { return chainBytes(kind, mapSize, layers, levels); }
 };
 
 /// The programs that build chains, shared by every light; built on first use.

@@ -253,12 +253,12 @@ void perspectiveLayer(const glm::dvec3& position, const glm::dvec3& direction, d
 
 }  // namespace
 
-void gatherGeometry(World& world, SceneGeometry& out) {
+void gatherGeometry(const World& world, SceneGeometry& out) {
     out.casters.clear();
     out.receivers = DAabb{};
     out.everything = DAabb{};
     world.view<Mesh, WorldTransform, WorldBounds>().each(
-        [&](Entity e, Mesh& mesh, WorldTransform& wt, WorldBounds& wb) {
+        [&](Entity e, const Mesh& mesh, const WorldTransform& wt, const WorldBounds& wb) {
             // A mesh with no triangles draws nothing: it must not widen any layer's fit either.
             if (!wt.finite || wb.box.empty() || mesh.data == nullptr || mesh.data->indices.empty()) return;
             out.everything.extend(wb.box);
@@ -266,12 +266,13 @@ void gatherGeometry(World& world, SceneGeometry& out) {
             if (mesh.receiveShadows) out.receivers.extend(wb.box);
         });
     // The game's own casters: bounds from their object bounds, as updateTransforms does for meshes.
-    world.view<ShadowCasterDraw, WorldTransform>().each([&](Entity e, ShadowCasterDraw& c, WorldTransform& wt) {
-        if (!wt.finite || !c.drawsSomething() || c.localBounds.empty()) return;
-        const DAabb box = transformBounds(wt.worldFromLocal, c.localBounds);
-        out.everything.extend(box);
-        out.casters.push_back({e, box});
-    });
+    world.view<ShadowCasterDraw, WorldTransform>().each(
+        [&](Entity e, const ShadowCasterDraw& c, const WorldTransform& wt) {
+            if (!wt.finite || !c.drawsSomething() || c.localBounds.empty()) return;
+            const DAabb box = transformBounds(wt.worldFromLocal, c.localBounds);
+            out.everything.extend(box);
+            out.casters.push_back({e, box});
+        });
     // Views walk back to front; entity order keeps caster lists comparable frame to frame.
     std::sort(out.casters.begin(), out.casters.end(),
               [](const BoundedEntity& a, const BoundedEntity& b) { return a.entity < b.entity; });
@@ -284,21 +285,6 @@ LightPose lightPose(const WorldTransform& wt) {
     const double len = glm::length(forward);
     if (std::isfinite(len) && len > 1e-12) pose.wsDirection = forward / len;
     return pose;
-}
-
-glm::dmat4 cameraClipFromView(const CameraView& camera) {
-    return glm::perspective(static_cast<double>(camera.yfov), static_cast<double>(camera.aspect),
-                            static_cast<double>(camera.znear), static_cast<double>(camera.zfar));
-}
-
-glm::dmat4 cameraClipFromWorld(const CameraView& camera) { return cameraClipFromView(camera) * camera.viewFromWorld; }
-
-glm::dmat4 cameraClipFromCs(const CameraView& camera, const glm::dmat4& clipFromView) {
-    return clipFromView * (camera.viewFromWorld * glm::translate(glm::dmat4(1.0), camera.wsPosition));
-}
-
-glm::vec3 cameraForward(const CameraView& camera) {
-    return glm::normalize(glm::vec3(-glm::dvec3(glm::transpose(camera.viewFromWorld)[2])));
 }
 
 bool lightAffectsView(const Light& light, const LightPose& pose, const Frustum& cameraFrustum) {

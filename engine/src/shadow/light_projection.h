@@ -2,8 +2,9 @@
 // Pure CPU, in double precision.
 #pragma once
 
-#include <shadow/shadow_system.h>
+#include <shadow/shadow_planner.h>
 
+#include "core/camera.h"
 #include "shadow/frustum.h"
 
 #include <span>
@@ -35,7 +36,7 @@ struct SceneGeometry {
 
 /// Collects casters and receivers from meshes with finite world transforms and triangles into
 /// `out`, reusing its storage.
-void gatherGeometry(World& world, SceneGeometry& out);
+void gatherGeometry(const World& world, SceneGeometry& out);
 
 /// Where a light is and where it points, in world space.
 struct LightPose {
@@ -44,17 +45,6 @@ struct LightPose {
 };
 
 LightPose lightPose(const WorldTransform& wt);
-
-/// The camera's projection (view -> clip, GL's [-1, 1] depth), in double.
-glm::dmat4 cameraClipFromView(const CameraView& camera);
-/// The camera's clip-from-world matrix in double (absolute world space).
-glm::dmat4 cameraClipFromWorld(const CameraView& camera);
-/// `clipFromView` times the camera's view, made to take camera-relative positions (world minus
-/// the camera's position): what the main pass and the shadow mask draw with, float-precise far
-/// from the origin.
-glm::dmat4 cameraClipFromCs(const CameraView& camera, const glm::dmat4& clipFromView);
-/// The unit direction the camera looks along (its view's -Z), in world space.
-glm::vec3 cameraForward(const CameraView& camera);
 
 /// False when the light's range sphere misses the camera frustum (only lights with a range).
 bool lightAffectsView(const Light& light, const LightPose& pose, const Frustum& cameraFrustum);

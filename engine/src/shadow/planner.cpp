@@ -1,8 +1,10 @@
-// ShadowPlanner: the CPU "decide" phase of the shadow system (see shadow_system.h).
-#include <shadow/shadow_system.h>
+// ShadowPlanner: the CPU "decide" phase of the shadow system (see shadow_planner.h).
+#include <shadow/shadow_planner.h>
 
+#include "core/camera.h"
 #include "shadow/frustum.h"
 #include "shadow/light_projection.h"
+#include "shadow/map_memory.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -60,13 +62,13 @@ void describeLight(const World& world, Entity e, int index, ShadowLightPlan& pla
     plan.wsDirection = pose.wsDirection;
 }
 
-/// Smallest map edge the texel budget halves a light to before it drops its shadow.
+/// Smallest map edge the memory budget halves a light to before it drops its shadow.
 constexpr int kMinBudgetMapSize = 256;
 
 /// A shadowed light of the frame being planned, before its layers are.
 struct Candidate {
     ShadowLightPlan* plan = nullptr;  ///< into `ShadowFrame::lights`
-    bool dropped = false;             ///< by the shadow texel budget
+    bool dropped = false;             ///< by the shadow memory budget
 };
 
 /// Layers of a light's array: its cascades, one spot layer, or six cube faces.
@@ -79,8 +81,11 @@ std::int64_t layerCount(const ShadowLightPlan& plan) {
     return 6;
 }
 
-std::int64_t texelsOf(const ShadowLightPlan& plan) {
-    return static_cast<std::int64_t>(plan.mapSize) * plan.mapSize * layerCount(plan);
+/// Bytes of `plan`'s maps at its current `mapSize`: depth and the filter chain its technique
+/// reads, as the shadow maps allocate them.
+std::int64_t bytesOf(const ShadowLightPlan& plan) {
+    return shadowMapBytes(plan.settings.technique, plan.mapSize, static_cast<int>(layerCount(plan)),
+                          plan.settings.maxFilterTexels);
 }
 
 /// Candidates from least to most important: lights that cannot reach the view, then by
@@ -104,12 +109,12 @@ std::vector<std::size_t> budgetOrder(const std::vector<Candidate>& lights, const
     return order;
 }
 
-/// Fits the lights' maps into `budget` texels by the policy of `ShadowLimits::maxShadowTexels`.
+/// Fits the lights' maps into `budget` bytes by the policy of `ShadowLimits::maxShadowBytes`.
 /// Allocates only over budget (a frame that also allocates its warnings).
-void fitTexelBudget(std::vector<Candidate>& lights, const glm::dvec3& camera, std::int64_t budget,
-                    std::vector<Warning>& warnings) {
+void fitMemoryBudget(std::vector<Candidate>& lights, const glm::dvec3& camera, std::int64_t budget,
+                     std::vector<Warning>& warnings) {
     std::int64_t total = 0;
-    for (const Candidate& c : lights) total += texelsOf(*c.plan);
+    for (const Candidate& c : lights) total += bytesOf(*c.plan);
     if (total <= budget) return;
     const std::vector<std::size_t> order = budgetOrder(lights, camera);
     for (bool halved = true; total > budget && halved;) {
@@ -118,18 +123,18 @@ void fitTexelBudget(std::vector<Candidate>& lights, const glm::dvec3& camera, st
             ShadowLightPlan& p = *lights[i].plan;
             if (total <= budget) break;
             if (p.mapSize <= kMinBudgetMapSize) continue;
-            total -= texelsOf(p);
+            total -= bytesOf(p);
             p.mapSize = std::max(p.mapSize / 2, kMinBudgetMapSize);
-            total += texelsOf(p);
+            total += bytesOf(p);
             halved = true;
         }
     }
     for (std::size_t i : order) {
         if (total <= budget) break;
-        total -= texelsOf(*lights[i].plan);
+        total -= bytesOf(*lights[i].plan);
         lights[i].dropped = true;
     }
-    const std::string why = " to fit the shadow texel budget (" + std::to_string(budget) + " texels)";
+    const std::string why = " to fit the shadow memory budget (" + std::to_string(budget) + " bytes)";
     for (const Candidate& c : lights) {
         const ShadowLightPlan& p = *c.plan;
         if (c.dropped) {
@@ -196,7 +201,8 @@ struct ShadowPlanner::Scratch {
 ShadowPlanner::ShadowPlanner() : scratch_(std::make_unique<Scratch>()) {}
 ShadowPlanner::~ShadowPlanner() = default;
 
-const ShadowFrame& ShadowPlanner::prepare(World& world, const CameraView& camera, const std::vector<Entity>& lights) {
+const ShadowFrame& ShadowPlanner::prepare(const World& world, const CameraView& camera,
+                                          const std::vector<Entity>& lights) {
     frame_.warnings.clear();
     frame_.techniquesInUse = 0;
     frame_.lights.resize(lights.size());
@@ -226,7 +232,7 @@ const ShadowFrame& ShadowPlanner::prepare(World& world, const CameraView& camera
         candidates.push_back({&plan});
     }
     // Sizes first: the layers' texel snapping and margins depend on them.
-    fitTexelBudget(candidates, camera.wsPosition, limits_.maxShadowTexels, frame_.warnings);
+    fitMemoryBudget(candidates, camera.wsPosition, limits_.maxShadowBytes, frame_.warnings);
     for (const Candidate& c : candidates) {
         ShadowLightPlan& plan = *c.plan;
         if (c.dropped) {
@@ -248,7 +254,7 @@ const ShadowFrame& ShadowPlanner::prepare(World& world, const CameraView& camera
     return frame_;
 }
 
-void ShadowPlanner::markDirty(World& world, ShadowLightPlan& plan) {
+void ShadowPlanner::markDirty(const World& world, ShadowLightPlan& plan) {
     auto it = std::find_if(memory_.begin(), memory_.end(), [&](const auto& m) { return m.first == plan.entity; });
     if (it == memory_.end()) {
         memory_.emplace_back(plan.entity, LightMemory{});

@@ -1,21 +1,23 @@
-// The screen-space shadow mask (ShadowSystem::renderMask): a full-screen pass over a game's
-// depth buffer that writes each light's visibility into one channel of the game's texture.
-#include <shadow/shadow_system.h>
+// The screen-space shadow mask (shadow_mask.h): a full-screen pass over a game's depth buffer
+// that writes each light's visibility into one channel of the game's texture.
+#include <shadow/shadow_mask.h>
 
+#include "core/camera.h"
+#include "core/light_records.h"
+#include "core/screen_bounds.h"
+#include "core/shader_resources.h"
 #include "gl/gl_state.h"
 #include "gl/no_throw.h"
 #include "gl/objects.h"
 #include "gl/program.h"
 #include "gl/technique_glsl.h"
-#include "shadow/light_projection.h"
-#include "shadow/light_records.h"
-#include "shadow/screen_bounds.h"
-#include "shadow/shader_inputs.h"
+#include "shadow/shader_records.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -24,6 +26,19 @@
 namespace shadow {
 
 namespace {
+
+/// What a mask program is specialised for: the lights in use, the normal texture, and per slot
+/// the light's type, technique and kernel.
+using MaskKey = std::array<std::uint8_t, 2 + 3 * SG_MAX_MASK_LIGHTS>;
+
+/// One specialisation of the mask pass and its uniform locations.
+struct MaskProgram {
+    gpu::Program program;
+    GLint csFromClip = -1;
+    GLint cameraForward = -1;
+    GLint zeroToOne = -1;
+    GLint backgroundDepth = -1;
+};
 
 MaskKey maskKey(const ShadowShaderInputs& in, bool normals) {
     MaskKey key{};
@@ -78,8 +93,8 @@ void validateMask(std::span<const int> sceneLights, const ShadowMaskRequest& r) 
         throw std::invalid_argument("renderMask: " + std::to_string(sceneLights.size()) + " lights, a mask holds " +
                                     std::to_string(SG_MAX_MASK_LIGHTS));
     }
-    if (r.depthTexture == 0) throw std::invalid_argument("renderMask: no depth texture");
-    if (r.target == 0) throw std::invalid_argument("renderMask: no target texture");
+    if (!r.depthTexture) throw std::invalid_argument("renderMask: no depth texture");
+    if (!r.target) throw std::invalid_argument("renderMask: no target texture");
     if (r.width < 1 || r.height < 1) {
         throw std::invalid_argument("renderMask: size " + std::to_string(r.width) + " x " + std::to_string(r.height));
     }
@@ -115,7 +130,21 @@ void setMaskUniforms(const MaskProgram& p, const ShadowMaskRequest& r, const glm
 
 }  // namespace
 
-ShadowSystem::MaskGpu::MaskGpu() {
+struct ShadowMask::Impl {
+    gpu::ShaderResources resources;
+    /// The mask's own records and buffers: the game's shader inputs (`ShadowShaderContract`),
+    /// bound for its own passes, stay as they were.
+    gpu::ShaderRecords records{resources, "Shadow/Mask"};
+    std::map<MaskKey, MaskProgram> programs;
+    gpu::VertexArray empty;
+    gpu::Framebuffer framebuffer;
+    gpu::Sampler point;            ///< nearest, no comparison: the game's textures read as values
+    std::vector<Warning> pending;  ///< host errors the constructor found, for the next render
+
+    Impl();
+};
+
+ShadowMask::Impl::Impl() {
     GLuint vao = 0;
     gl.CreateVertexArrays(1, &vao);
     empty = gpu::VertexArray(vao);
@@ -127,20 +156,38 @@ ShadowSystem::MaskGpu::MaskGpu() {
     gl.SamplerParameteri(s, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     gl.SamplerParameteri(s, GL_TEXTURE_COMPARE_MODE, GL_NONE);
     point.label("Shadow/Mask/pointSampler");
+    gpu::checkGlError("creating the shadow mask");
 }
 
-void ShadowSystem::renderMask(std::span<const int> sceneLights, const ShadowMaskRequest& r, FrameStats& stats) {
-    validateMask(sceneLights, r);
-    gpu::reportHostGlErrors("ShadowSystem::renderMask", stats);
-    const gpu::GlStateGuard hostState(kMaskUnits, kMaskBindings);
-    if (!mask_) mask_ = std::make_unique<MaskGpu>();
-    MaskGpu& m = *mask_;
-    const ShadowShaderInputs& in = shaderInputs(sceneLights, r.camera.wsPosition);
-    bindShaderInputs(in);
+ShadowMask::ShadowMask() {
+    gpu::requireLoaded("ShadowMask");
+    std::vector<Warning> pending;
+    gpu::reportHostGlErrors("ShadowMask", pending, gpu::kMaxPendingWarnings);
+    impl_ = std::make_unique<Impl>();
+    impl_->pending = std::move(pending);
+}
 
-    gl.NamedFramebufferTexture(m.framebuffer.get(), GL_COLOR_ATTACHMENT0, r.target, 0);
+ShadowMask::~ShadowMask() = default;
+
+Result<std::unique_ptr<ShadowMask>> ShadowMask::create() noexcept {
+    return gpu::noThrow<std::unique_ptr<ShadowMask>>("ShadowMask", [] { return std::make_unique<ShadowMask>(); });
+}
+
+void ShadowMask::render(const ShadowFrame& frame, const ShadowMaps& maps, std::span<const int> sceneLights,
+                        const ShadowMaskRequest& r, FrameStats& stats) {
+    validateMask(sceneLights, r);
+    gpu::reportHostGlErrors("ShadowMask::render", stats);
+    gpu::movePendingWarnings(impl_->pending, stats.warnings);
+    const gpu::GlStateGuard hostState(kMaskUnits, kMaskBindings);
+    Impl& m = *impl_;
+    const ShadowShaderInputs& in =
+        gpu::uploadShaderInputs(m.records, frame, maps, sceneLights, r.camera.wsPosition, "renderMask");
+    gpu::bindShaderInputs(m.resources, maps, in, ShadowBindingPoints{});
+
+    gl.NamedFramebufferTexture(m.framebuffer.get(), GL_COLOR_ATTACHMENT0, r.target.name, 0);
     if (gl.CheckNamedFramebufferStatus(m.framebuffer.get(), GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
         const std::string pending = gpu::takePendingErrors();
+        gl.NamedFramebufferTexture(m.framebuffer.get(), GL_COLOR_ATTACHMENT0, 0, 0);
         throw GlError("renderMask: the target texture cannot be drawn to (not a colour-renderable 2D texture?)" +
                       (pending.empty() ? std::string() : " (" + pending + ")"));
     }
@@ -154,18 +201,18 @@ void ShadowSystem::renderMask(std::span<const int> sceneLights, const ShadowMask
 
     // Only the lights' screen bounds run the lights; the clear wrote 1 everywhere else.
     const glm::dmat4 projection = clipFromView(r);
-    const PixelRect bounds = maskBounds(frame(), sceneLights, r, projection);
+    const PixelRect bounds = maskBounds(frame, sceneLights, r, projection);
     if (!bounds.empty() && in.techniques != 0) {
-        const bool normals = r.normalTexture != 0;
+        const bool normals = static_cast<bool>(r.normalTexture);
         const MaskKey key = maskKey(in, normals);
         auto it = m.programs.find(key);
         if (it == m.programs.end()) it = m.programs.emplace(key, buildMask(in, normals)).first;
         const MaskProgram& p = it->second;
         const GLuint id = p.program.get();
         setMaskUniforms(p, r, projection);
-        gl.BindTextureUnit(SG_UNIT_MASK_DEPTH, r.depthTexture);
+        gl.BindTextureUnit(SG_UNIT_MASK_DEPTH, r.depthTexture.name);
         gl.BindSampler(SG_UNIT_MASK_DEPTH, m.point.get());
-        gl.BindTextureUnit(SG_UNIT_MASK_NORMAL, r.normalTexture);
+        gl.BindTextureUnit(SG_UNIT_MASK_NORMAL, r.normalTexture.name);
         gl.BindSampler(SG_UNIT_MASK_NORMAL, m.point.get());
         gl.Enable(GL_SCISSOR_TEST);
         gl.Scissor(bounds.x0, bounds.y0, bounds.x1 - bounds.x0, bounds.y1 - bounds.y0);
@@ -177,9 +224,9 @@ void ShadowSystem::renderMask(std::span<const int> sceneLights, const ShadowMask
     gpu::checkGlError("renderMask");
 }
 
-Status ShadowSystem::tryRenderMask(std::span<const int> sceneLights, const ShadowMaskRequest& request,
-                                   FrameStats& stats) noexcept {
-    return gpu::noThrowStatus("renderMask", [&] { renderMask(sceneLights, request, stats); });
+Status ShadowMask::tryRender(const ShadowFrame& frame, const ShadowMaps& maps, std::span<const int> sceneLights,
+                             const ShadowMaskRequest& request, FrameStats& stats) noexcept {
+    return gpu::noThrowStatus("renderMask", [&] { render(frame, maps, sceneLights, request, stats); });
 }
 
 }  // namespace shadow

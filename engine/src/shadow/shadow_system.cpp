@@ -1,256 +1,46 @@
-// ShadowSystem: the GPU "do" phase. Each shadowed light owns one GL_TEXTURE_2D_ARRAY of
-// GL_DEPTH_COMPONENT32F layers holding linear depth (see shaders/shadow_depth.frag.glsl).
+// ShadowSystem: the facade over the planner, the maps, the shader contract and the mask
+// (shadow_system.h). It owns them and passes each the planner's last frame; the work is theirs.
 #include <shadow/context.h>
-#include <shadow/mesh_cache.h>
 #include <shadow/shadow_system.h>
-#include <shadow/shared_constants.h>
 
 #include "gl/gl_state.h"
+#include "gl/mesh_cache_access.h"
 #include "gl/no_throw.h"
-#include "gl/objects.h"
-#include "gl/pass_timer.h"
-#include "gl/program.h"
-#include "shadow/filter_chain.h"
-#include "shadow/shader_inputs.h"
 
-#include <glm/gtc/type_ptr.hpp>
-
-#include <algorithm>
-#include <array>
-#include <charconv>
 #include <optional>
-#include <string_view>
 
 namespace shadow {
 
+struct ShadowSystem::Impl {
+    ShadowPlanner planner;
+    ShadowMaps maps;
+    ShadowShaderContract contract;
+    MeshCache meshes;                ///< for `render` without a cache: the system owns and collects it
+    std::optional<ShadowMask> mask;  ///< made on the first `renderMask`
+    std::vector<Warning> pending;    ///< see `warnings`
+};
+
 namespace {
 
-/// One shadowed light's depth texture array and the framebuffer its layers are drawn through.
-struct ShadowMapGpu {
-    gpu::Texture array;
-    gpu::Framebuffer framebuffer;
-    int mapSize = 0;
-    int layers = 0;
-    /// For the techniques that read one only (filterChainOf); `chainCurrent[k]` once layer k's
-    /// chain matches its map.
-    std::optional<FilterChain> chain;
-    std::vector<bool> chainCurrent;
-    /// Made this frame (a new light, or a new map size or layer count): its texture name changed.
-    bool allocatedThisFrame = true;
-};
-
-/// The depth-only program shared by every light type.
-struct DepthProgram {
-    gpu::Program program;
-    GLint lightFromLocal = -1;
-    GLint clipFromLight = -1;
-    GLint depthScale = -1;
-    GLint orthographic = -1;
-
-    DepthProgram() {
-        program = gpu::buildProgram({"Shadow/Depth", "shadow_depth.vert.glsl", "shadow_depth.frag.glsl", {}});
-        lightFromLocal = gl.GetUniformLocation(program.get(), "uLightFromLocal");
-        clipFromLight = gl.GetUniformLocation(program.get(), "uClipFromLight");
-        depthScale = gl.GetUniformLocation(program.get(), "uDepthScale");
-        orthographic = gl.GetUniformLocation(program.get(), "uOrthographic");
-    }
-};
-
-std::unique_ptr<ShadowMapGpu> allocate(const ShadowLightPlan& plan) {
-    auto map = std::make_unique<ShadowMapGpu>();
-    const std::string label = "Shadow/" + plan.name;
-    map->mapSize = plan.mapSize;
-    map->layers = static_cast<int>(plan.layers.size());
-    map->array = gpu::makeTexture(label + "/array", GL_TEXTURE_2D_ARRAY);
-    gl.TextureStorage3D(map->array.get(), 1, GL_DEPTH_COMPONENT32F, map->mapSize, map->mapSize, map->layers);
-    gl.TextureParameteri(map->array.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl.TextureParameteri(map->array.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl.TextureParameteri(map->array.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);  // the pyramid's gathers
-    gl.TextureParameteri(map->array.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    map->framebuffer = gpu::makeFramebuffer(label + "/framebuffer");
-    gl.NamedFramebufferDrawBuffer(map->framebuffer.get(), GL_NONE);
-    gl.NamedFramebufferReadBuffer(map->framebuffer.get(), GL_NONE);
-    gpu::checkGlError("allocating " + label);
-    return map;
-}
-
-/// Sets `out` to the name of pass `what`<k> of `plan`'s map, e.g. "Shadow/sun/layer0". Into a
-/// string kept from frame to frame: building names anew would allocate every frame.
-void formatPassName(std::string& out, const ShadowLightPlan& plan, std::string_view what, std::size_t k) {
-    char index[24];
-    char* end = std::to_chars(index, index + sizeof(index), k).ptr;
-    out.assign("Shadow/").append(plan.name).append("/").append(what).append(index, end);
-}
-
-/// Draws a caster of the game's own (`ShadowCasterDraw`) into the layer of `context`.
-void drawOwnCaster(const ShadowCasterDraw& own, const WorldTransform& wt, const CasterDrawContext& context) {
-    if (own.draw) {
-        own.draw(context);
-        gl.UseProgram(context.program);  // the callback may have used its own
-        return;
-    }
-    context.setWorldFromLocal(wt.worldFromLocal);
-    gl.BindVertexArray(own.vertexArray);
-    gl.DrawElementsBaseVertex(
-        GL_TRIANGLES, own.indexCount, own.indexType,
-        reinterpret_cast<const void*>(own.indexOffset),  // NOLINT(performance-no-int-to-ptr): GL's offset
-        own.baseVertex);
-}
-
-/// Depth-only state of the shadow passes.
-void beginDepthOnly() {
-    gpu::setPassDefaults();
-    gl.Enable(GL_DEPTH_TEST);
-    gl.DepthFunc(GL_LESS);
-    gl.DepthMask(GL_TRUE);
-    gl.Disable(GL_CULL_FACE);  // open meshes (planes) cast from both sides
-    gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-}
-
-void endDepthOnly() {
-    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    gl.BindVertexArray(0);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
-}
-
-/// Fills what `ls` says of `plan` before any layer is drawn (its strings keep their storage).
-void describe(const ShadowLightPlan& plan, LightShadowStats& ls) {
-    ls.sceneIndex = plan.sceneIndex;
-    ls.name.assign(plan.name);
-    ls.type.assign(lightTypeName(plan.light.type));
-    ls.technique.assign(techniqueName(plan.technique()));
-    ls.mapSize = plan.mapSize;
-    ls.requestedMapSize = plan.settings.technique != ShadowTechnique::None ? plan.settings.mapSize : 0;
-    ls.layers = static_cast<int>(plan.layers.size());
-    ls.affectsView = plan.affectsView;
+/// Copies `from` to the end of `to`: a part's pending warnings into a frame's (the caller clears them).
+void drain(const std::vector<Warning>& from, std::vector<Warning>& to) {
+    to.insert(to.end(), from.begin(), from.end());
 }
 
 }  // namespace
 
-struct ShadowGpu {
-    DepthProgram depth;
-    FilterChainBuilder chains;
-    gpu::PassTimer timer;
-    std::string passName;  ///< the name of the pass being timed (see `formatPassName`)
-    /// Per scene light (index = `ShadowFrame::lights`): its map, or null without one.
-    std::vector<std::pair<Entity, std::unique_ptr<ShadowMapGpu>>> maps;
-    /// Last frame's `maps` while `syncMaps` moves them to this frame's slots; empty otherwise.
-    std::vector<std::pair<Entity, std::unique_ptr<ShadowMapGpu>>> lastMaps;
-
-    explicit ShadowGpu(bool softwareRenderer) : timer(softwareRenderer) {}
-
-    /// Gives every light of `frame` with a map an array of its size, reusing last frame's.
-    void syncMaps(const ShadowFrame& frame);
-    /// Draws layer `k` of `plan`'s map: its casters, depth only.
-    void drawLayer(World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k, LightShadowStats& ls);
-    /// Brings the filter chain of every layer of `plan` whose map changed up to date.
-    void updateChains(const ShadowLightPlan& plan);
-};
-
-void ShadowGpu::syncMaps(const ShadowFrame& frame) {
-    // The two lists trade places every frame, so their storage is reused: only maps move.
-    std::swap(maps, lastMaps);
-    maps.clear();
-    maps.resize(frame.lights.size());
-    for (std::size_t i = 0; i < frame.lights.size(); ++i) {
-        const ShadowLightPlan& plan = frame.lights[i];
-        maps[i].first = plan.entity;
-        if (!plan.hasMap()) continue;
-        auto it = std::find_if(lastMaps.begin(), lastMaps.end(),
-                               [&](const auto& m) { return m.second && m.first == plan.entity; });
-        std::unique_ptr<ShadowMapGpu> map = it != lastMaps.end() ? std::move(it->second) : nullptr;
-        if (!map || map->mapSize != plan.mapSize || map->layers != static_cast<int>(plan.layers.size())) {
-            map = allocate(plan);
-        } else {
-            map->allocatedThisFrame = false;
-        }
-        const std::optional<FilterChainKind> kind = filterChainOf(plan.technique());
-        if (!kind) {
-            map->chain.reset();  // no technique of the light reads one: no memory for it
-        } else if (const int levels =
-                       FilterChain::levelsFor(plan.technique(), map->mapSize, plan.settings.maxFilterTexels);
-                   !map->chain || map->chain->kind != *kind || map->chain->levels != levels) {
-            map->chain = FilterChain::allocate("Shadow/" + plan.name, *kind, map->mapSize, map->layers, levels);
-            map->chainCurrent.assign(static_cast<std::size_t>(map->layers), false);
-        }
-        maps[i].second = std::move(map);
-    }
-    lastMaps.clear();  // the maps of lights gone or without a map this frame
-}
-
-void ShadowGpu::updateChains(const ShadowLightPlan& plan) {
-    ShadowMapGpu& map = *maps[static_cast<std::size_t>(plan.sceneIndex)].second;
-    if (!map.chain) return;
-    for (std::size_t k = 0; k < plan.layers.size(); ++k) {
-        // A layer's moment scale follows its matrices and its casters' bounds, whose changes
-        // mark it dirty: a clean layer's table holds the scale of this frame's plan.
-        if (!plan.layers[k].dirty && map.chainCurrent[k]) continue;
-        if (plan.layers[k].casters.empty() && map.chain->clearable()) {
-            map.chain->clearLayer(map.mapSize, static_cast<int>(k));
-        } else {
-            formatPassName(passName, plan, map.chain->kind == FilterChainKind::MinMax ? "minmax" : "moments", k);
-            const gpu::ScopedPass pass(timer, passName);
-            chains.build(map.array.get(), *map.chain, map.mapSize, static_cast<int>(k), plan.layers[k].momentScale);
-        }
-        map.chainCurrent[k] = true;
-    }
-}
-
-void ShadowGpu::drawLayer(World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k,
-                          LightShadowStats& ls) {
-    const ShadowLayerPlan& layer = plan.layers[k];
-    const ShadowMapGpu& map = *maps[static_cast<std::size_t>(plan.sceneIndex)].second;
-    const float far = 1.0f;
-    if (layer.casters.empty()) {
-        // Nothing casts into this layer: clear it to the far depth, draw nothing.
-        gl.ClearTexSubImage(map.array.get(), 0, 0, 0, static_cast<GLint>(k), map.mapSize, map.mapSize, 1,
-                            GL_DEPTH_COMPONENT, GL_FLOAT, &far);
-        ++ls.layersCleared;
-        return;
-    }
-    const GLuint program = depth.program.get();
-    gl.NamedFramebufferTextureLayer(map.framebuffer.get(), GL_DEPTH_ATTACHMENT, map.array.get(), 0,
-                                    static_cast<GLint>(k));
-    gl.BindFramebuffer(GL_FRAMEBUFFER, map.framebuffer.get());
-    gl.Viewport(0, 0, map.mapSize, map.mapSize);
-    gl.ClearNamedFramebufferfv(map.framebuffer.get(), GL_DEPTH, 0, &far);
-    gl.UseProgram(program);
-    gl.ProgramUniformMatrix4fv(program, depth.clipFromLight, 1, GL_FALSE,
-                               glm::value_ptr(glm::mat4(layer.clipFromLight)));
-    gl.ProgramUniform1f(program, depth.depthScale, layer.depthScale);
-    gl.ProgramUniform1i(program, depth.orthographic, layer.orthographic ? 1 : 0);
-    const CasterDrawContext context{
-        layer.lightFromWorld, layer.clipFromLight, layer.depthScale, layer.orthographic, program, depth.lightFromLocal};
-    for (Entity caster : layer.casters) {
-        const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
-        if (wt == nullptr || !wt->finite) continue;
-        if (const Mesh* mesh = world.tryGet<Mesh>(caster); mesh != nullptr && mesh->data != nullptr) {
-            context.setWorldFromLocal(wt->worldFromLocal);
-            const int count = meshes.bind(mesh->data);
-            gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
-        } else if (const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(caster); own != nullptr) {
-            drawOwnCaster(*own, *wt, context);
-        } else {
-            continue;
-        }
-        ++ls.castersDrawn;
-    }
-    ++ls.layersDrawn;
-}
-
-void CasterDrawContext::setWorldFromLocal(const glm::dmat4& worldFromLocal) const {
-    // Composed in double: light-relative float values stay precise far from the origin.
-    const glm::mat4 lightFromLocal(lightFromWorld * worldFromLocal);
-    gl.ProgramUniformMatrix4fv(program, lightFromLocalLocation, 1, GL_FALSE, glm::value_ptr(lightFromLocal));
-}
-
 ShadowSystem::ShadowSystem() {
     gpu::requireLoaded("ShadowSystem");
+    // Before the parts make their objects: the host's error is reported once, as the system's.
+    std::vector<Warning> pending;
+    gpu::reportHostGlErrors("ShadowSystem", pending, gpu::kMaxPendingWarnings);
+    impl_ = std::make_unique<Impl>();
+    impl_->pending = std::move(pending);
     const GlInfo info = queryGlInfo();
-    planner_.setLimits({info.maxTextureSize, info.maxArrayLayers});
-    gpu_ = std::make_unique<ShadowGpu>(info.softwareRenderer);
-    gpu_->timer.setEnabled(false);
-    inputs_ = std::make_unique<ShaderInputsGpu>();
+    ShadowLimits limits;
+    limits.maxTextureSize = info.maxTextureSize;
+    limits.maxArrayLayers = info.maxArrayLayers;
+    impl_->planner.setLimits(limits);
 }
 
 ShadowSystem::~ShadowSystem() = default;
@@ -259,91 +49,74 @@ Result<std::unique_ptr<ShadowSystem>> ShadowSystem::create() noexcept {
     return gpu::noThrow<std::unique_ptr<ShadowSystem>>("ShadowSystem", [] { return std::make_unique<ShadowSystem>(); });
 }
 
-Status ShadowSystem::tryRender(World& world, MeshCache& meshes, FrameStats& stats) noexcept {
+const ShadowFrame& ShadowSystem::prepare(const World& world, const CameraView& camera,
+                                         const std::vector<Entity>& lights) {
+    return impl_->planner.prepare(world, camera, lights);
+}
+
+void ShadowSystem::render(const World& world, FrameStats& stats) {
+    render(world, impl_->meshes, stats);
+    gpu::MeshCacheAccess::collect(impl_->meshes);  // its owner: the GPU copies of meshes gone
+}
+
+void ShadowSystem::render(const World& world, MeshCache& meshes, FrameStats& stats) {
+    Impl& s = *impl_;
+    gpu::reportHostGlErrors("ShadowSystem::render", stats);
+    gpu::movePendingWarnings(s.pending, stats.warnings);
+    drain(s.contract.warnings(), stats.warnings);
+    s.contract.clearWarnings();
+    s.maps.render(s.planner.frame(), world, meshes, stats);
+}
+
+Status ShadowSystem::tryRender(const World& world, FrameStats& stats) noexcept {
+    return gpu::noThrowStatus("ShadowSystem::render", [&] { render(world, stats); });
+}
+
+Status ShadowSystem::tryRender(const World& world, MeshCache& meshes, FrameStats& stats) noexcept {
     return gpu::noThrowStatus("ShadowSystem::render", [&] { render(world, meshes, stats); });
 }
 
-const ShadowFrame& ShadowSystem::prepare(World& world, const CameraView& camera, const std::vector<Entity>& lights) {
-    return planner_.prepare(world, camera, lights);
+void ShadowSystem::setTiming(bool enabled) { impl_->maps.setTiming(enabled); }
+
+const ShadowShaderInputs& ShadowSystem::shaderInputs(std::span<const int> sceneLights, const glm::dvec3& wsCamera) {
+    gpu::reportHostGlErrors("ShadowSystem::shaderInputs", impl_->pending, gpu::kMaxPendingWarnings);
+    return impl_->contract.inputs(impl_->planner.frame(), impl_->maps, sceneLights, wsCamera);
 }
 
-void ShadowSystem::render(World& world, MeshCache& meshes, FrameStats& stats) {
-    gpu::reportHostGlErrors("ShadowSystem::render", stats);
-    static constexpr std::array<GLint, 1> kUnits{SG_UNIT_MINMAX_SOURCE};
-    static constexpr std::array<GLint, 1> kImageUnits{SG_IMAGE_MINMAX};
-    const gpu::GlStateGuard hostState(kUnits, {}, kImageUnits);
-    meshes.collect();  // the GPU copies of meshes gone since the last frame
-    const ShadowFrame& frame = planner_.frame();
-    gpu_->syncMaps(frame);
-    stats.warnings.insert(stats.warnings.end(), frame.warnings.begin(), frame.warnings.end());
-    ShadowGpu& g = *gpu_;
-    beginDepthOnly();
-    for (const ShadowLightPlan& plan : frame.lights) {
-        LightShadowStats& ls = stats.addLight();
-        describe(plan, ls);
-        const auto& map = g.maps[static_cast<std::size_t>(plan.sceneIndex)].second;
-        ls.mapAllocated = map != nullptr && map->allocatedThisFrame;
-        ls.mapBytes = map != nullptr ? 4LL * map->mapSize * map->mapSize * map->layers : 0;
-        ls.filterChainBytes = map != nullptr && map->chain ? map->chain->bytes(map->mapSize, map->layers) : 0;
-        for (std::size_t k = 0; k < plan.layers.size(); ++k) {
-            if (!plan.layers[k].dirty) {
-                ++ls.layersReused;
-                continue;
-            }
-            const bool drawn = !plan.layers[k].casters.empty();
-            std::optional<gpu::ScopedPass> pass;
-            if (drawn) {
-                formatPassName(g.passName, plan, "layer", k);
-                pass.emplace(g.timer, g.passName);
-            }
-            g.drawLayer(world, meshes, plan, k, ls);
-        }
-        stats.shadowLayersDrawn += ls.layersDrawn;
-        stats.shadowLayersReused += ls.layersReused;
-        stats.shadowLayersCleared += ls.layersCleared;
-        stats.shadowDrawCalls += ls.castersDrawn;
-    }
-    endDepthOnly();
-    for (const ShadowLightPlan& plan : frame.lights) {
-        if (plan.hasMap()) g.updateChains(plan);
-    }
-    gpu::checkGlError("shadow pass");
-    g.timer.collect(stats);
+Result<const ShadowShaderInputs*> ShadowSystem::tryShaderInputs(std::span<const int> sceneLights,
+                                                                const glm::dvec3& wsCamera) noexcept {
+    return gpu::noThrow<const ShadowShaderInputs*>("shaderInputs",
+                                                   [&] { return &shaderInputs(sceneLights, wsCamera); });
 }
 
-void ShadowSystem::setTiming(bool enabled) { gpu_->timer.setEnabled(enabled); }
-
-unsigned ShadowSystem::textureOf(std::size_t i) const {
-    const auto& maps = gpu_->maps;
-    return i < maps.size() && maps[i].second ? maps[i].second->array.get() : 0u;
+void ShadowSystem::bindShaderInputs(const ShadowShaderInputs& inputs, const ShadowBindingPoints& points) {
+    gpu::reportHostGlErrors("ShadowSystem::bindShaderInputs", impl_->pending, gpu::kMaxPendingWarnings);
+    impl_->contract.bind(inputs, points);
 }
 
-unsigned ShadowSystem::textureOfLight(Entity light) const {
-    for (const auto& [entity, map] : gpu_->maps) {
-        if (entity == light && map) return map->array.get();
-    }
-    return 0;
+void ShadowSystem::renderMask(std::span<const int> sceneLights, const ShadowMaskRequest& request, FrameStats& stats) {
+    Impl& s = *impl_;
+    gpu::reportHostGlErrors("ShadowSystem::renderMask", stats);
+    if (!s.mask) s.mask.emplace();
+    s.mask->render(s.planner.frame(), s.maps, sceneLights, request, stats);
 }
 
-unsigned ShadowSystem::minMaxOf(std::size_t i) const {
-    const auto& maps = gpu_->maps;
-    return i < maps.size() && maps[i].second && maps[i].second->chain ? maps[i].second->chain->texture.get() : 0u;
+Status ShadowSystem::tryRenderMask(std::span<const int> sceneLights, const ShadowMaskRequest& request,
+                                   FrameStats& stats) noexcept {
+    return gpu::noThrowStatus("renderMask", [&] { renderMask(sceneLights, request, stats); });
 }
 
-std::vector<float> ShadowSystem::readLayerDepth(std::size_t i, int layer) const {
-    const ShadowFrame& frame = planner_.frame();
-    const auto& maps = gpu_->maps;
-    if (i >= maps.size() || i >= frame.lights.size() || !maps[i].second) return {};
-    const ShadowMapGpu& map = *maps[i].second;
-    if (layer < 0 || layer >= map.layers) return {};
-    std::vector<float> depth(static_cast<std::size_t>(map.mapSize) * map.mapSize);
-    const gpu::GlStateGuard hostState({}, {});
-    gpu::setReadbackDefaults();
-    gl.GetTextureSubImage(map.array.get(), 0, 0, 0, layer, map.mapSize, map.mapSize, 1, GL_DEPTH_COMPONENT, GL_FLOAT,
-                          static_cast<GLsizei>(depth.size() * sizeof(float)), depth.data());
-    const float scale = frame.lights[i].layers[static_cast<std::size_t>(layer)].depthScale;
-    for (float& d : depth) d *= scale;
-    return depth;
-}
+GlTexture ShadowSystem::textureOfLight(Entity light) const { return impl_->maps.textureOfLight(light); }
+
+const ShadowFrame& ShadowSystem::frame() const { return impl_->planner.frame(); }
+ShadowPlanner& ShadowSystem::planner() { return impl_->planner; }
+ShadowMaps& ShadowSystem::maps() { return impl_->maps; }
+const ShadowMaps& ShadowSystem::maps() const { return impl_->maps; }
+ShadowShaderContract& ShadowSystem::contract() { return impl_->contract; }
+MeshCache& ShadowSystem::meshes() { return impl_->meshes; }
+
+const std::vector<Warning>& ShadowSystem::warnings() const { return impl_->pending; }
+
+void ShadowSystem::clearWarnings() { impl_->pending.clear(); }
 
 }  // namespace shadow

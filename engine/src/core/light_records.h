@@ -1,9 +1,10 @@
 // A shadow frame's lights as the records the shadow GLSL reads (gpu_records.h): used by the
-// renderer's passes and by the shader inputs a game binds (ShadowSystem::shaderInputs). Pure CPU.
+// renderer's passes, by the shader inputs a game binds (ShadowShaderContract) and by the mask.
+// Pure CPU. Here, below shadow/ and render/, so that both reach it.
 #pragma once
 
 #include <shadow/gpu_records.h>
-#include <shadow/shadow_system.h>
+#include <shadow/shadow_planner.h>
 
 #include <glm/glm.hpp>
 

@@ -1,4 +1,4 @@
-#include "shadow/screen_bounds.h"
+#include "core/screen_bounds.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // Pure CPU (tested without GL).
 #pragma once
 
-#include <shadow/shadow_system.h>
+#include <shadow/shadow_planner.h>
 
 #include <glm/glm.hpp>
 

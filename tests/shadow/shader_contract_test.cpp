@@ -15,6 +15,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -105,8 +106,10 @@ GLuint hostProgram(const ShadowBindingPoints& points, unsigned techniques) {
 /// Draws every mesh of `scene` with the host's program into an RGBA32F target and reads the
 /// visibility of the three lights back, rows top first (as the renderer's images).
 /// With `keepDepth`, the host's depth texture is left to the caller there.
+/// `beforeDraw`, when given, runs between binding the inputs and drawing.
 std::vector<glm::vec4> hostVisibility(Scene& scene, FrameRunner& runner, const ShadowBindingPoints& points,
-                                      unsigned techniques = kAllShadowTechniques, GLuint* keepDepth = nullptr) {
+                                      unsigned techniques = kAllShadowTechniques, GLuint* keepDepth = nullptr,
+                                      const std::function<void()>& beforeDraw = {}) {
     const CameraView& cam = runner.lastCamera();
     GLuint colour = 0, depth = 0, framebuffer = 0;
     gl.CreateTextures(GL_TEXTURE_2D, 1, &colour);
@@ -151,6 +154,12 @@ std::vector<glm::vec4> hostVisibility(Scene& scene, FrameRunner& runner, const S
                                      ~techniqueBit(ShadowTechnique::Vsm) & ~techniqueBit(ShadowTechnique::Vssm) &
                                      ~techniqueBit(ShadowTechnique::Msm) & ~techniqueBit(ShadowTechnique::MsmSoft));
     shadows.bindShaderInputs(inputs, points);
+    if (beforeDraw) {
+        beforeDraw();
+        gl.UseProgram(program);
+        gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        gl.Viewport(0, 0, kWidth, kHeight);
+    }
 
     scene.world.view<Mesh, WorldTransform>().each([&](Entity, Mesh& mesh, WorldTransform& wt) {
         glm::dmat4 csFromLocal = wt.worldFromLocal;
@@ -243,8 +252,8 @@ TEST(ShaderContract, ScreenSpaceMaskFromTheHostsDepthMatchesTheRenderer) {
     gl.CreateTextures(GL_TEXTURE_2D, 1, &target);
     gl.TextureStorage2D(target, 1, GL_RGBA32F, kWidth, kHeight);
     ShadowMaskRequest request;
-    request.depthTexture = depth;
-    request.target = target;
+    request.depthTexture = GlTexture{depth};
+    request.target = GlTexture{target};
     request.width = kWidth;
     request.height = kHeight;
     request.camera = runner.lastCamera();
@@ -279,6 +288,48 @@ TEST(ShaderContract, ScreenSpaceMaskFromTheHostsDepthMatchesTheRenderer) {
         EXPECT_GE(close, covered * 99 / 100);
         EXPECT_LE(sum / std::max(covered, 1), 0.002);
     }
+}
+
+TEST(ShaderContract, TheMaskLeavesTheHostsForwardPassAlone) {
+    // A game binds the inputs of its forward pass, asks for a mask of other lights (another
+    // order, another camera position), and draws: its pixels are those it draws without the mask.
+    test::glContext();
+    Scene scene = test::threeLightScene();
+    FrameRunner runner;
+    (void)test::renderFrame(runner, scene, kWidth, kHeight);
+    const std::vector<glm::vec4> alone = hostVisibility(scene, runner, hostPoints());
+    GLuint depth = 0;
+    (void)hostVisibility(scene, runner, ShadowBindingPoints{}, kAllShadowTechniques, &depth);
+    GLuint target = 0;
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &target);
+    gl.TextureStorage2D(target, 1, GL_RGBA8, kWidth, kHeight);
+    auto mask = [&] {
+        ShadowMaskRequest request;
+        request.depthTexture = GlTexture{depth};
+        request.target = GlTexture{target};
+        request.width = kWidth;
+        request.height = kHeight;
+        request.camera = runner.lastCamera();
+        request.camera.wsPosition += glm::dvec3(0.5, 0.0, 0.0);
+        FrameStats stats;
+        const std::array<int, 2> lights{2, 0};
+        runner.shadows().renderMask(lights, request, stats);
+    };
+    const std::vector<glm::vec4> withMask =
+        hostVisibility(scene, runner, hostPoints(), kAllShadowTechniques, nullptr, mask);
+    gl.DeleteTextures(1, &target);
+    gl.DeleteTextures(1, &depth);
+    int covered = 0, wrong = 0;
+    for (std::size_t i = 0; i < alone.size(); ++i) {
+        if (alone[i].a < 0.5f) continue;
+        ++covered;
+        const glm::vec4 d = glm::abs(alone[i] - withMask[i]);
+        wrong += std::max({d.r, d.g, d.b}) > 1.0f / 255.0f ? 1 : 0;
+    }
+    std::printf("host's forward pass after a mask: %d of %d covered pixels differ by more than 1/255\n", wrong,
+                covered);
+    EXPECT_GT(covered, kWidth * kHeight / 2);
+    EXPECT_EQ(wrong, 0);
 }
 
 TEST(ShaderContract, TechniquesLeftOutReadAsLit) {
@@ -335,9 +386,9 @@ TEST(ShaderContract, ShaderInputsRefuseWhatIsNotASceneLight) {
     EXPECT_EQ(inputs.sceneLight[0], 2);
     EXPECT_EQ(inputs.sceneLight[1], 0);
     EXPECT_EQ(inputs.sceneLight[2], -1);
-    EXPECT_EQ(inputs.depthArray[0], runner.shadows().textureOf(2));
-    EXPECT_EQ(inputs.minMax[0], 0u);  // a hard light has no pyramid
-    EXPECT_NE(inputs.minMax[1], 0u);  // a PCSS light has one
+    EXPECT_EQ(inputs.depthArray[0], runner.shadows().maps().textureOf(2));
+    EXPECT_FALSE(inputs.minMax[0]);  // a hard light has no pyramid
+    EXPECT_TRUE(inputs.minMax[1]);   // a PCSS light has one
 
     // A mask request that names no texture, or a target that cannot be drawn to: one clear error.
     ShadowMaskRequest request;
@@ -349,12 +400,12 @@ TEST(ShaderContract, ShaderInputsRefuseWhatIsNotASceneLight) {
     GLuint depth = 0;
     gl.CreateTextures(GL_TEXTURE_2D, 1, &depth);
     gl.TextureStorage2D(depth, 1, GL_DEPTH_COMPONENT32F, 32, 24);
-    request.depthTexture = depth;
-    request.target = depth;  // a depth texture is no colour target
+    request.depthTexture = GlTexture{depth};
+    request.target = GlTexture{depth};  // a depth texture is no colour target
     EXPECT_THROW(runner.shadows().renderMask(two, request, stats), GlError);
     EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
     const std::array<int, SG_MAX_MASK_LIGHTS + 1> five{};
-    request.target = depth;
+    request.target = GlTexture{depth};
     EXPECT_THROW(runner.shadows().renderMask(five, request, stats), std::invalid_argument);
     // The same as error values, for a game built without exceptions.
     const Status mask = runner.shadows().tryRenderMask(five, request, stats);

@@ -1,4 +1,6 @@
-#include "shadow/light_records.h"
+#include "core/light_records.h"
+
+#include <shadow/shadow_shaders.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 

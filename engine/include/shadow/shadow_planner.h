@@ -1,0 +1,173 @@
+// The decide phase of the shadow system: what this frame needs, on the CPU alone (testable
+// without GL). `ShadowPlanner::prepare` reads the world (it cannot change it) and decides which
+// lights are shadowed and can affect the view, each light's layers and matrices, which casters
+// fall in each layer's frustum, which layers are dirty, and the array sizes inside the shadow
+// memory budget. The result is a `ShadowFrame`, the hand-off to the shadow maps, the shader
+// contract, the mask and the renderer: one entry per scene light, in scene order (the one index
+// space up to the AOVs). A light with no `Shadow` component or technique None gets no map. Every
+// light's settings out of their documented range are clamped once, here, and reported in
+// `ShadowFrame::warnings`.
+#pragma once
+
+#include <shadow/caster_draw.h>
+#include <shadow/components.h>
+#include <shadow/scene.h>
+#include <shadow/warnings.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace shadow {
+
+/// One layer of a light's array as decided by `ShadowPlanner::prepare`.
+struct ShadowLayerPlan {
+    /// World -> light view (m; the light looks down -Z), in double. The GPU gets it made
+    /// relative to the camera.
+    glm::dmat4 lightFromWorld{1.0};
+    glm::dmat4 clipFromLight{1.0};  ///< light view -> clip (GL's [-1, 1] depth), in double
+    bool orthographic = false;      ///< a directional light's cascade (else a perspective frustum)
+    float depthScale = 1.0f;        ///< stored depth = lsDepth / depthScale (m per stored unit, > 0)
+    float depthNear = 0.0f;         ///< near plane (m)
+    float splitFar = 0.0f;          ///< directional: camera distance where the cascade ends (m)
+    /// VSSM: the power of two >= 1 its summed-area table scales stored depths by before their
+    /// fixed point (it holds the moments of min(z momentScale, 1)), so that the farthest
+    /// caster's bounds lie in (1/4, 1/2]: a light whose range is 10^6 times the depth of its
+    /// scene keeps 2^-24 of the casters' depth as its resolution rather than of its range.
+    float momentScale = 1.0f;
+    /// Casters (meshes and `ShadowCasterDraw`s) whose world bounds meet this layer's frustum,
+    /// in entity order.
+    std::vector<Entity> casters;
+    /// Must be drawn this frame: matrices, caster set, a caster's transform or the allocation
+    /// changed (or caching is off).
+    bool dirty = true;
+};
+
+/// One scene light as decided by `ShadowPlanner::prepare`: entry i of `ShadowFrame::lights` is
+/// light i of `Scene::lights` (the `lights` handed to `prepare`), shadowed or not. This is the one index
+/// space from the decide step to the renderer's light records, `FrameStats::lights` and the
+/// `visibility_<i>` AOVs.
+struct ShadowLightPlan {
+    Entity entity;        ///< the light's entity
+    int sceneIndex = -1;  ///< position in `Scene::lights` (= the index of this entry)
+    std::string name;     ///< its `Name`, or "light" without one
+    /// False when the entity has no `Light` or `WorldTransform`, or its transform is not finite:
+    /// it shades nothing and its visibility is 1.
+    bool shaded = false;
+    Light light;                             ///< clamped to the documented ranges, once, here
+    glm::dvec3 wsPosition{0.0};              ///< light position (point, spot)
+    glm::dvec3 wsDirection{0.0, 0.0, -1.0};  ///< unit direction the light travels (node -Z)
+    /// Clamped to the documented ranges; `mapSize` is the one asked for. `technique` is the
+    /// light's own, None when it has no `Shadow`.
+    Shadow settings;
+    /// Texels per layer edge allocated: `settings.mapSize`, or less when the shadow memory budget
+    /// (`ShadowLimits::maxShadowBytes`) halved it; 0 without a map.
+    int mapSize = 0;
+    /// The layers of its map; empty when the light has no map this frame (no shadow, technique
+    /// None, or dropped by the memory budget).
+    std::vector<ShadowLayerPlan> layers;
+    /// False when its range cannot reach the camera's frustum: its layers are not drawn.
+    bool affectsView = true;
+
+    /// True when the light has a shadow map this frame.
+    [[nodiscard]] bool hasMap() const { return !layers.empty(); }
+    /// The technique its pixels use: its own when it has a map, None otherwise.
+    [[nodiscard]] ShadowTechnique technique() const { return hasMap() ? settings.technique : ShadowTechnique::None; }
+};
+
+/// The hand-off from `ShadowPlanner::prepare` to the shadow maps, the shader contract, the mask
+/// and the renderer: everything lighting needs.
+struct ShadowFrame {
+    /// Every scene light, in scene order (see `ShadowLightPlan`).
+    std::vector<ShadowLightPlan> lights;
+    /// Bit `1 << t` for every technique t (`ShadowTechnique`) some light's pixels use
+    /// (`ShadowLightPlan::technique`; None's bit when a light has no map), computed once, here:
+    /// the union of the techniques the renderer's passes and a game's `shadowShaderSource` need.
+    unsigned techniquesInUse = 0;
+    /// World bounds of every finite mesh this frame (empty without one): what any light can reach.
+    DAabb wsGeometry;
+    /// Clamped settings and the memory budget's decisions, one each (codes in warnings.h).
+    std::vector<Warning> warnings;
+};
+
+/// Limits the planner must respect: the GL implementation's, and the memory the shadow maps
+/// may take together.
+struct ShadowLimits {
+    int maxTextureSize = 16384;  ///< GL_MAX_TEXTURE_SIZE: the largest `mapSize` (texels)
+    int maxArrayLayers = 2048;   ///< GL_MAX_ARRAY_TEXTURE_LAYERS
+    /// GPU memory every shadowed light's maps take together (bytes): its depth array (4 bytes a
+    /// texel, mapSize^2 x layers) and the filter chain its technique reads (the min/max pyramid
+    /// of PCF and PCSS, the moments of VSM, MSM and MSM-soft, the summed-area table of VSSM), as
+    /// `shadowMapBytes` counts them and `LightShadowStats::mapBytes` + `filterChainBytes`
+    /// report them. Default 2^30 (1 GiB): one hard 16384^2 layer, a VSM spot at 8192^2 (0.75
+    /// GiB), or 256 hard spot lights at 1024^2. Over budget, the planner degrades lights
+    /// deterministically: ranked by distance from the camera (lights that cannot reach the view
+    /// count as farthest, directional lights as nearest, ties by scene order, later first), maps
+    /// are halved round by round, farthest first, down to 256 texels (a light that asked for less
+    /// keeps its own); then the farthest lights lose their shadow (visibility 1) until the rest
+    /// fit. Each decision is a warning. The ranking follows the camera: a light whose map size
+    /// changes is reallocated and redrawn that frame. Range: >= 0 (0: no light has a map).
+    std::int64_t maxShadowBytes = std::int64_t{1} << 30;
+};
+
+/// GPU memory (bytes) of the maps of one light with technique `technique`, `layers` layers of
+/// `mapSize`^2 texels and filter radius `maxFilterTexels` (the `Shadow` field): its depth array
+/// and the filter chain the technique reads, as the shadow maps allocate them; 0 for None.
+[[nodiscard]] std::int64_t shadowMapBytes(ShadowTechnique technique, int mapSize, int layers, float maxFilterTexels);
+
+/// Clamps the fields of `light` to their documented ranges (components.h), NaN to the low end;
+/// appends one `SettingClamped` warning per clamped field, its element `who`. A light out of
+/// range is drawn as clamped, so one bad light never makes the others' pixels NaN. Never throws.
+void clampLight(Light& light, std::string_view who, std::vector<Warning>& warnings);
+
+/// Clamps `s` and `light` (`clampLight`, and a spot's cone to what a map covers, 85 degrees)
+/// to the documented ranges; appends one `SettingClamped` warning per clamped field, its
+/// element `who`. Never throws.
+void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, const std::string& who,
+                         std::vector<Warning>& warnings);
+
+/// The decide phase. Keeps last frame's decisions to find what changed (which layers are dirty),
+/// and the storage of its lists: planning a frame like the last allocates nothing.
+class ShadowPlanner {
+public:
+    ShadowPlanner();
+    ~ShadowPlanner();
+    ShadowPlanner(const ShadowPlanner&) = delete;
+    ShadowPlanner& operator=(const ShadowPlanner&) = delete;
+
+    /// Decides this frame's layers. `lights` is the scene's light order. Reads the world only;
+    /// what it remembers between frames (last frame's matrices and casters per layer) is its own.
+    const ShadowFrame& prepare(const World& world, const CameraView& camera, const std::vector<Entity>& lights);
+    /// The last prepared frame.
+    [[nodiscard]] const ShadowFrame& frame() const { return frame_; }
+    /// With caching off every layer is dirty every frame (reference for cache tests).
+    void setCaching(bool enabled) { caching_ = enabled; }
+    /// The limits the next `prepare` respects.
+    void setLimits(const ShadowLimits& limits) { limits_ = limits; }
+    /// The limits in force.
+    [[nodiscard]] const ShadowLimits& limits() const { return limits_; }
+
+private:
+    struct LayerMemory {
+        glm::dmat4 lightFromWorld{0.0};
+        glm::dmat4 clipFromLight{0.0};
+        std::vector<Entity> casters;
+    };
+    struct LightMemory {
+        int mapSize = 0;
+        std::vector<LayerMemory> layers;
+    };
+    void markDirty(const World& world, ShadowLightPlan& plan);
+
+    ShadowFrame frame_;
+    std::vector<std::pair<Entity, LightMemory>> memory_;
+    struct Scratch;  ///< the working lists of `prepare` (planner.cpp), kept for their storage
+    std::unique_ptr<Scratch> scratch_;
+    ShadowLimits limits_;
+    bool caching_ = true;
+};
+
+}  // namespace shadow

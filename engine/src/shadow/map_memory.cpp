@@ -1,0 +1,106 @@
+#include "shadow/map_memory.h"
+
+#include <shadow/shadow_planner.h>
+#include <shadow/shared_constants.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <string_view>
+
+namespace shadow {
+
+namespace {
+
+/// The technique table's Chain column: None, or a kind of chain.
+enum class TableChain : std::uint8_t { None, MinMax, Moments, FourMoments, SummedMoments };
+
+std::optional<FilterChainKind> chainOf(TableChain c) {
+    switch (c) {
+        case TableChain::None: return std::nullopt;
+        case TableChain::MinMax: return FilterChainKind::MinMax;
+        case TableChain::Moments: return FilterChainKind::Moments;
+        case TableChain::FourMoments: return FilterChainKind::FourMoments;
+        case TableChain::SummedMoments: return FilterChainKind::SummedMoments;
+    }
+    return std::nullopt;
+}
+
+/// Whether technique `t`'s regions are one texel wide (the table's Reach column), so that its
+/// chain keeps level 0 only.
+bool readsOneTexel(ShadowTechnique t) {
+    switch (t) {
+#define SHADOW_TECHNIQUE_REACH(Enum, Constant, Name, File, Glsl, Chain, Reach, ...) \
+    case ShadowTechnique::Enum: return std::string_view(#Reach) == "Texel";
+        SHADOW_TECHNIQUE_TABLE(SHADOW_TECHNIQUE_REACH)
+#undef SHADOW_TECHNIQUE_REACH
+    }
+    return false;
+}
+
+}  // namespace
+
+std::optional<FilterChainKind> filterChainOf(ShadowTechnique t) {
+    switch (t) {
+#define SHADOW_TECHNIQUE_CHAIN(Enum, Constant, Name, File, Glsl, Chain, ...) \
+    case ShadowTechnique::Enum: return chainOf(TableChain::Chain);
+        SHADOW_TECHNIQUE_TABLE(SHADOW_TECHNIQUE_CHAIN)
+#undef SHADOW_TECHNIQUE_CHAIN
+    }
+    return std::nullopt;
+}
+
+int chainBaseSize(FilterChainKind kind, int mapSize) {
+    if (kind != FilterChainKind::MinMax) return std::max(1, mapSize);
+    // A power of two, so that every level halves exactly: texel j of level k covers map texels
+    // [T j, T (j + 1)) with T = SG_MINMAX_TILE * 2^k (the shader's mapping); texels past the
+    // map's edge repeat the edge.
+    const int tiles = std::max(1, (mapSize + SG_MINMAX_TILE - 1) / SG_MINMAX_TILE);
+    int size = 1;
+    while (size < tiles) size *= 2;
+    return size;
+}
+
+int chainLevels(ShadowTechnique t, int mapSize, float maxFilterTexels) {
+    const FilterChainKind kind = filterChainOf(t).value_or(FilterChainKind::MinMax);
+    if (kind == FilterChainKind::SummedMoments) return 1;
+    int all = 0;
+    for (int size = chainBaseSize(kind, mapSize); size > 0; size /= 2) ++all;
+    int needed = 1;
+    if (kind == FilterChainKind::MinMax) {
+        // A region test reads the first level whose tiles are as wide as the whole region.
+        const double widest = 2.0 * (static_cast<double>(maxFilterTexels) + 1.5);
+        for (double tile = SG_MINMAX_TILE; tile < widest; tile *= 2.0) ++needed;
+    } else {
+        // A trilinear fetch at level log2(radius in texels) reads that level's floor and ceiling;
+        // a technique whose regions are one texel (hard-edged MSM) reads level 0 only.
+        const double radius = readsOneTexel(t) ? 1.0 : static_cast<double>(maxFilterTexels);
+        for (double tile = 1.0; tile < radius; tile *= 2.0) ++needed;
+    }
+    return std::clamp(needed, 1, all);
+}
+
+int chainTexelBytes(FilterChainKind kind) {
+    return kind == FilterChainKind::FourMoments || kind == FilterChainKind::SummedMoments ? 16 : 8;
+}
+
+std::int64_t chainBytes(FilterChainKind kind, int mapSize, int layers, int levels) {
+    std::int64_t total = 0;
+    std::int64_t size = chainBaseSize(kind, mapSize);
+    for (int level = 0; level < levels; ++level, size = std::max<std::int64_t>(1, size / 2)) {
+        total += std::int64_t{chainTexelBytes(kind)} * size * size * layers;
+    }
+    return total;
+}
+
+std::int64_t depthArrayBytes(int mapSize, int layers) { return std::int64_t{4} * mapSize * mapSize * layers; }
+
+std::int64_t shadowMapBytes(ShadowTechnique technique, int mapSize, int layers, float maxFilterTexels) {
+    if (technique == ShadowTechnique::None || mapSize <= 0 || layers <= 0) return 0;
+    std::int64_t bytes = depthArrayBytes(mapSize, layers);
+    if (const std::optional<FilterChainKind> kind = filterChainOf(technique)) {
+        bytes += chainBytes(*kind, mapSize, layers, chainLevels(technique, mapSize, maxFilterTexels));
+    }
+    return bytes;
+}
+
+}  // namespace shadow
