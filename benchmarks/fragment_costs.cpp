@@ -5,7 +5,7 @@
 // should follow measurements. Each probe is one small synthetic fragment shader drawn over a
 // full-screen triangle at 1280x720 into a framebuffer object (or, for the overdraw probes, the
 // meshes of a real scene); its row in the table is the wall-clock time of one frame between
-// glFinish fences. Timer queries do not cover rasterisation on a CPU rasteriser (see design.md),
+// glFinish fences. Timer queries do not cover rasterisation on a CPU rasteriser (see BENCHMARKS.md),
 // so only the wall clock is used. Every probe gets warm-up frames first (the first one includes
 // the JIT compile of the shader variant, reported separately), then the timed frames are taken
 // round by round over all probes, so that background load on the shared cores spreads over all

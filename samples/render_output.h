@@ -1,4 +1,4 @@
-// Writing a rendered frame to a folder as the CLI contract (design.md) names it, and
+// Writing a rendered frame to a folder as the CLI contract (docs/output_contract.md) names it, and
 // stats.json. Shared by shadow_render and the benchmarks.
 #pragma once
 

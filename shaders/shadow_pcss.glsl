@@ -1,5 +1,5 @@
 // Percentage-closer soft shadows: blocker search, penumbra width from similar triangles in the
-// emitter's physical size (design.md, emitter conventions), then PCF over that width. The
+// emitter's physical size (docs/output_contract.md, conventions), then PCF over that width. The
 // min/max pyramid answers for the whole search region first: where it holds no blocker or only
 // blockers, neither the search nor the filter takes a tap.
 //

@@ -1,5 +1,5 @@
 // The emitter's geometry shared by every soft-shadow technique (PCSS, VSSM), in the physical
-// units of design.md: `emitterSize` is a disk or sphere radius (m) for spot and point lights, an
+// units of docs/output_contract.md: `emitterSize` is a disk or sphere radius (m) for spot and point lights, an
 // angular radius (rad) for directional ones; all widths are lateral metres at the receiver.
 #ifndef SG_SHADOW_PENUMBRA
 #define SG_SHADOW_PENUMBRA

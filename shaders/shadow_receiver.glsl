@@ -1,7 +1,7 @@
 // The receiver as one light sees it: layer choice, normal offset, bias, the tangent plane the
 // filter taps lie on, and the projection of a tap into a layer.
 //
-// Frame of reference (design.md): depths are linear metres from the light (perspective
+// Frame of reference (docs/output_contract.md): depths are linear metres from the light (perspective
 // layers) or along its axis (orthographic layers). Filter radii are lateral distances in
 // metres at the receiver, measured perpendicular to the light ray. A tap at lateral offset o
 // is placed on the receiver's tangent plane along the light ray, so its reference depth is the

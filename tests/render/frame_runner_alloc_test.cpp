@@ -1,4 +1,4 @@
-// Nothing allocates per frame in steady state (design.md, "Leave out what a scene does not
+// Nothing allocates per frame in steady state (docs/architecture.md, "Leave out what a scene does not
 // need"): FrameRunner::runFrame (engine/src/render/frame_runner.cpp) and all it calls, frame
 // after frame of an animated scene whose casters move, with one FrameStats reused. The binary's
 // operator new counts (tests/allocation_counter.h). On a failure the call stacks of the first

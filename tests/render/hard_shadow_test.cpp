@@ -123,7 +123,7 @@ TEST(HardShadow, SpotLightTiltedFootprintMatchesGeometry) {
     expectMatchesGeometry({"spot-tilted", LightType::Spot, position, kBoxCenter - position, {1.3, 0, -0.5}});
 }
 
-// Far from the origin (design.md: 10^5 m keeps millimetre precision) the shadows must stay as
+// Far from the origin (docs/architecture.md: 10^5 m keeps millimetre precision) the shadows must stay as
 // exact. The position AOV is float32 there (ulp 8 mm), well inside the edge band.
 TEST(HardShadow, FootprintsFarFromTheOriginMatchGeometry) {
     const glm::dvec3 far(1.0e5, 0.0, -1.0e5);

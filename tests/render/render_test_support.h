@@ -241,7 +241,7 @@ inline int countNonFinite(const ImageF& image) {
         std::count_if(image.pixels.begin(), image.pixels.end(), [](float v) { return !std::isfinite(v); }));
 }
 
-/// The AOV invariants every frame must keep (design.md): nothing NaN/Inf, visibility in [0, 1],
+/// The AOV invariants every frame must keep (docs/output_contract.md): nothing NaN/Inf, visibility in [0, 1],
 /// background pixels fully lit. Adds a failure for each broken one.
 inline void expectSaneAovs(const FrameImages& images) {
     ASSERT_GT(images.position.width, 0) << "AOVs were not produced";

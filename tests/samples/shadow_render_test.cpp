@@ -1,4 +1,4 @@
-// The shadow_render CLI contract (design.md): the files it writes, what is in them, stats.json,
+// The shadow_render CLI contract (docs/output_contract.md): the files it writes, what is in them, stats.json,
 // and bad input answered by one message and exit code 2 with nothing written.
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Far from the origin: the same scene translated by 10^4 m and 10^5 m must render as it does at
 // the origin, within the origin's own error. Positions and matrices stay in double on the CPU
-// and reach the GPU relative to the camera or the light (design.md), so nothing should change
+// and reach the GPU relative to the camera or the light (docs/architecture.md), so nothing should change
 // but the texel grid of a sun's map, which is anchored to the world.
 #include <gtest/gtest.h>
 

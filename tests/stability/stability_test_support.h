@@ -58,7 +58,7 @@ inline ShadowMapCheck checkShadowMaps(const ShadowSystem& shadows) {
     return c;
 }
 
-/// The frame invariants of design.md over the AOVs (`expectSaneAovs`) and the shadow maps:
+/// The frame invariants of docs/output_contract.md over the AOVs (`expectSaneAovs`) and the shadow maps:
 /// nothing NaN/Inf, visibility in [0, 1], stored depths inside their layer's range, and every
 /// plan's numbers finite.
 inline void expectSaneFrame(const FrameImages& images, const ShadowSystem& shadows, const std::string& what) {

@@ -1,6 +1,6 @@
 // The scene's components: plain structs, no registration, no GL types.
 //
-// Conventions (see design.md): metres, seconds, radians; +Y up, right-handed; lights and
+// Conventions (docs/output_contract.md): metres, seconds, radians; +Y up, right-handed; lights and
 // cameras look along their node's -Z.
 #pragma once
 

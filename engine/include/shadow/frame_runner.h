@@ -1,4 +1,4 @@
-// FrameRunner: one frame of a scene in the documented order (design.md, "The frame, as data
+// FrameRunner: one frame of a scene in the documented order (docs/architecture.md, "The frame, as data
 // flows"): animate, transforms, shadow prepare, shadow render, main pass.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Emitter shapes as design.md defines them, and stratified samples over them.
+// Emitter shapes as docs/output_contract.md defines them, and stratified samples over them.
 //
 //   spot:        a disk of `Light::radius` centred on the light, perpendicular to the spot axis;
 //   point:       a sphere of `Light::radius`, seen from a point as the disk of its silhouette;
@@ -55,7 +55,7 @@ struct ShadowRayAim {
 /// from `wsPoint`. For a point light the disk is the sphere's silhouette: radius
 /// r·sqrt(1 − (r/d)²) at distance d − r²/d from the point, d the distance to the centre. Its
 /// rim is the circle where the tangent cone touches the sphere, so the set of directions is
-/// exactly the sphere's; samples are uniform over that disk's area (design.md: "seen from any
+/// exactly the sphere's; samples are uniform over that disk's area (docs/output_contract.md: "seen from any
 /// point as a disk facing it"), which differs from uniform solid angle by O((r/d)²).
 [[nodiscard]] ShadowRayAim aimAtEmitter(const Emitter& emitter, const glm::dvec3& wsPoint, const glm::dvec2& disk);
 

@@ -1,4 +1,4 @@
-// FrameRunner: the frame in its documented order (design.md, "The frame, as data flows").
+// FrameRunner: the frame in its documented order (docs/architecture.md, "The frame, as data flows").
 #include <shadow/context.h>
 #include <shadow/frame_runner.h>
 
