@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <initializer_list>
 
 /// X(Enum, CONSTANT, "name", "include", glsl, Chain, Reach, Loops, Availability, "description"):
 ///   Enum          the `ShadowTechnique` enumerator; rows are in the order of the enum's values;
@@ -59,11 +60,12 @@ enum class ShadowTechnique : std::uint8_t {
 };
 
 /// Number of techniques (rows of the table).
-inline constexpr int kShadowTechniqueCount = 0
-#define SHADOW_TECHNIQUE_COUNT(...) +1
+inline constexpr int kShadowTechniqueCount = static_cast<int>(std::initializer_list<ShadowTechnique>{
+#define SHADOW_TECHNIQUE_COUNT(Enum, ...) ShadowTechnique::Enum,
     SHADOW_TECHNIQUE_TABLE(SHADOW_TECHNIQUE_COUNT)
 #undef SHADOW_TECHNIQUE_COUNT
-    ;
+}
+                                                                  .size());
 
 /// Bit `1 << t` for technique t: sets of techniques (e.g. `shadowShaderSource`'s) are masks.
 constexpr unsigned techniqueBit(ShadowTechnique t) { return 1u << static_cast<unsigned>(t); }

@@ -4,6 +4,7 @@
 #include <shadow/shared_constants.h>
 
 #include <algorithm>
+#include <iterator>
 #include <cstdint>
 #include <string_view>
 
@@ -25,28 +26,29 @@ std::optional<FilterChainKind> chainOf(TableChain c) {
     return std::nullopt;
 }
 
-/// Whether technique `t`'s regions are one texel wide (the table's Reach column), so that its
+/// The table's Chain column, one entry per technique.
+constexpr TableChain kChainColumn[] = {
+#define SHADOW_TECHNIQUE_CHAIN(Enum, Constant, Name, File, Glsl, Chain, ...) TableChain::Chain,
+    SHADOW_TECHNIQUE_TABLE(SHADOW_TECHNIQUE_CHAIN)
+#undef SHADOW_TECHNIQUE_CHAIN
+};
+
+/// The table's Reach column: whether a technique's regions are one texel wide, so that its
 /// chain keeps level 0 only.
-bool readsOneTexel(ShadowTechnique t) {
-    switch (t) {
-#define SHADOW_TECHNIQUE_REACH(Enum, Constant, Name, File, Glsl, Chain, Reach, ...) \
-    case ShadowTechnique::Enum: return std::string_view(#Reach) == "Texel";
-        SHADOW_TECHNIQUE_TABLE(SHADOW_TECHNIQUE_REACH)
+constexpr bool kReadsOneTexel[] = {
+#define SHADOW_TECHNIQUE_REACH(Enum, Constant, Name, File, Glsl, Chain, Reach, ...) std::string_view(#Reach) == "Texel",
+    SHADOW_TECHNIQUE_TABLE(SHADOW_TECHNIQUE_REACH)
 #undef SHADOW_TECHNIQUE_REACH
-    }
-    return false;
-}
+};
+static_assert(std::size(kChainColumn) == kShadowTechniqueCount && std::size(kReadsOneTexel) == kShadowTechniqueCount);
+
+bool readsOneTexel(ShadowTechnique t) { return kReadsOneTexel[static_cast<std::size_t>(t)]; }
 
 }  // namespace
 
 std::optional<FilterChainKind> filterChainOf(ShadowTechnique t) {
-    switch (t) {
-#define SHADOW_TECHNIQUE_CHAIN(Enum, Constant, Name, File, Glsl, Chain, ...) \
-    case ShadowTechnique::Enum: return chainOf(TableChain::Chain);
-        SHADOW_TECHNIQUE_TABLE(SHADOW_TECHNIQUE_CHAIN)
-#undef SHADOW_TECHNIQUE_CHAIN
-    }
-    return std::nullopt;
+    const auto i = static_cast<std::size_t>(t);
+    return i < std::size(kChainColumn) ? chainOf(kChainColumn[i]) : std::nullopt;
 }
 
 int chainBaseSize(FilterChainKind kind, int mapSize) {
