@@ -96,9 +96,10 @@ nlohmann::json lightsJson(const Scene& scene, const reference::ReferenceResult& 
 }
 
 std::string referenceJson(const Scene& scene, const Options& o, int cameraIndex, int width, int height,
-                          const reference::ReferenceResult& r, double totalSeconds) {
+                          const reference::ReferenceResult& r, double startTime, double totalSeconds) {
     nlohmann::json j;
     j["scene"] = scene.name;
+    j["startTime"] = startTime;  // shadow_compare: files older than this are an earlier run's
     j["sceneSpec"] = o.scene;
     j["size"] = {width, height};
     j["camera"] = cameraIndex;
@@ -134,6 +135,7 @@ Status writeOutputs(const std::string& dir, reference::ReferenceResult& r) {
 
 int run(Options& o) {
     const auto start = std::chrono::steady_clock::now();
+    const double startTime = samples::unixSecondsNow();
     auto size = samples::parseSize(o.size);
     if (!size) return fail(kExitBadInput, size.error().message);
     if (o.samples < 1 || o.samples > (1 << 20)) return fail(kExitBadInput, "--samples: must be in [1, 1048576]");
@@ -186,7 +188,7 @@ int run(Options& o) {
     if (!traced) return fail(kExitBadInput, traced.error().message);
 
     const std::string json =
-        referenceJson(scene, o, cameraIndex, size->first, size->second, *traced,
+        referenceJson(scene, o, cameraIndex, size->first, size->second, *traced, startTime,
                       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     if (Status s = writeOutputs(o.out, *traced); !s) return fail(kExitFailure, s.error().message);
     if (Status s = writeTextFileAtomic(o.out + "/reference.json", json); !s)
