@@ -1,5 +1,6 @@
 #include "render_output.h"
 
+#include <chrono>
 #include <nlohmann/json.hpp>
 #include <shadow/program_cache.h>
 
@@ -160,11 +161,16 @@ nlohmann::json lightsJson(const Scene& scene, const FrameStats& last) {
 
 }  // namespace
 
+double unixSecondsNow() {
+    return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
 std::string statsJson(const Scene& scene, const std::vector<FrameStats>& frames, int width, int height,
-                      const std::string& technique) {
+                      const std::string& technique, double startTime) {
     nlohmann::json j;
     const FrameStats& last = frames.back();
     j["scene"] = scene.name;
+    j["startTime"] = startTime;
     j["renderer"] = last.renderer;
     j["timingMethod"] = last.timingMethod;
     j["timingLagFrames"] = last.timingLagFrames;

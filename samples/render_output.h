@@ -47,11 +47,16 @@ struct Spread {
 };
 [[nodiscard]] Spread spreadOf(std::vector<double> values);
 
+/// Now, in seconds since the Unix epoch: a run's `startTime` in stats.json and reference.json,
+/// by which shadow_compare tells a file of that run from one an earlier run left in the folder.
+[[nodiscard]] double unixSecondsNow();
+
 /// stats.json: the light mapping, the last frame's counters and warnings (each
-/// `{"code", "element", "message"}`, codes as `warningCodeName` spells them), and per-pass
-/// timing spreads over `frames` (the first, warm-up frame left out when there are more).
+/// `{"code", "element", "message"}`, codes as `warningCodeName` spells them), per-pass timing
+/// spreads over `frames` (the first, warm-up frame left out when there are more), and the run's
+/// `startTime` (unixSecondsNow when it began).
 [[nodiscard]] std::string statsJson(const Scene& scene, const std::vector<FrameStats>& frames, int width, int height,
-                                    const std::string& technique);
+                                    const std::string& technique, double startTime);
 
 /// Parses a technique name; error names the value.
 [[nodiscard]] Result<ShadowTechnique> parseTechnique(const std::string& name);

@@ -6,7 +6,9 @@
 //
 // SCENE, --size, --camera and --time mean what they mean to shadow_render, so both programs
 // shade the same pixels. Each pixel's point is the first surface on its camera ray or, with
-// --positions, the world position in an engine position.exr (its size is then the image size).
+// --positions, the world position in an engine position.exr (its size is then the image size;
+// a covered pixel that is not finite is bad input, one beyond 1e9 m in some coordinate is
+// background, counted in reference.json's pixels.positionsBeyondReach).
 // For every light, --samples stratified shadow rays go to its emitter (engine/src/reference/
 // shadow/reference.h states the choices). Writes into DIR: visibility_<i>.exr, stderr_<i>.exr
 // (binomial standard error per pixel), lit_<i>.exr (1 where the light shades the surface), position.exr and reference.json. Progress goes to stderr
@@ -96,9 +98,10 @@ nlohmann::json lightsJson(const Scene& scene, const reference::ReferenceResult& 
 }
 
 std::string referenceJson(const Scene& scene, const Options& o, int cameraIndex, int width, int height,
-                          const reference::ReferenceResult& r, double totalSeconds) {
+                          const reference::ReferenceResult& r, double startTime, double totalSeconds) {
     nlohmann::json j;
     j["scene"] = scene.name;
+    j["startTime"] = startTime;  // shadow_compare: files older than this are an earlier run's
     j["sceneSpec"] = o.scene;
     j["size"] = {width, height};
     j["camera"] = cameraIndex;
@@ -113,7 +116,8 @@ std::string referenceJson(const Scene& scene, const Options& o, int cameraIndex,
     j["timeSeconds"] = {{"build", r.buildSeconds}, {"trace", r.traceSeconds}, {"total", totalSeconds}};
     j["pixels"] = {{"covered", r.coveredPixels},
                    {"nonReceiver", r.nonReceiverPixels},
-                   {"positionsWithoutSurface", r.positionsWithoutSurface}};
+                   {"positionsWithoutSurface", r.positionsWithoutSurface},
+                   {"positionsBeyondReach", r.positionsBeyondReach}};
     j["lights"] = lightsJson(scene, r);
     return j.dump(2) + "\n";
 }
@@ -134,6 +138,7 @@ Status writeOutputs(const std::string& dir, reference::ReferenceResult& r) {
 
 int run(Options& o) {
     const auto start = std::chrono::steady_clock::now();
+    const double startTime = samples::unixSecondsNow();
     auto size = samples::parseSize(o.size);
     if (!size) return fail(kExitBadInput, size.error().message);
     if (o.samples < 1 || o.samples > (1 << 20)) return fail(kExitBadInput, "--samples: must be in [1, 1048576]");
@@ -150,6 +155,9 @@ int run(Options& o) {
         if (o.sizeGiven && (read->width != size->first || read->height != size->second)) {
             return fail(kExitBadInput, "--positions " + o.positions + ": image is " + std::to_string(read->width) +
                                            "x" + std::to_string(read->height) + " but --size is " + o.size);
+        }
+        if (Status s = reference::checkPositions(*read); !s) {
+            return fail(kExitBadInput, "--positions " + o.positions + ": " + s.error().message);
         }
         *size = {read->width, read->height};
         positions = std::move(*read);
@@ -186,11 +194,15 @@ int run(Options& o) {
     if (!traced) return fail(kExitBadInput, traced.error().message);
 
     const std::string json =
-        referenceJson(scene, o, cameraIndex, size->first, size->second, *traced,
+        referenceJson(scene, o, cameraIndex, size->first, size->second, *traced, startTime,
                       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     if (Status s = writeOutputs(o.out, *traced); !s) return fail(kExitFailure, s.error().message);
     if (Status s = writeTextFileAtomic(o.out + "/reference.json", json); !s)
         return fail(kExitFailure, s.error().message);
+    if (traced->positionsBeyondReach > 0) {
+        std::cerr << "shadow_reference: warning: " << traced->positionsBeyondReach
+                  << " positions beyond 1e9 m (kMaxTracedPosition) treated as background\n";
+    }
     return 0;
 }
 

@@ -96,6 +96,7 @@ Status writeShadowMaps(const std::string& dir, const ShadowSystem& shadows) {
 }
 
 int run(const Options& o) {
+    const double startTime = samples::unixSecondsNow();
     auto size = samples::parseSize(o.size);
     if (!size) return fail(kExitBadInput, size.error().message);
     auto selection = samples::parseAovList(o.aov);
@@ -184,7 +185,8 @@ int run(const Options& o) {
     if (o.debug == "shadowmap") {
         if (Status s = writeShadowMaps(o.out, runner.shadows()); !s) return fail(kExitFailure, s.error().message);
     }
-    const std::string json = samples::statsJson(scene, frames, options.width, options.height, o.technique.value_or(""));
+    const std::string json =
+        samples::statsJson(scene, frames, options.width, options.height, o.technique.value_or(""), startTime);
     if (Status s = writeTextFileAtomic(o.out + "/stats.json", json); !s) return fail(kExitFailure, s.error().message);
     for (const Warning& w : frames.back().warnings) std::cerr << "shadow_render: warning: " << w.message << "\n";
     return 0;

@@ -162,27 +162,45 @@ TEST(ErrorMetrics, NonFiniteMaskedOutPixelsAreIgnoredAndEmptyMaskGivesZeros) {
     EXPECT_EQ(empty->acneFraction, 0.0);
 }
 
-TEST(ErrorMetrics, NonFiniteReceiversAreCountedNotPropagated) {
+TEST(ErrorMetrics, NonFiniteEstimateScoresTheWorstErrorAndIsCounted) {
     std::vector<float> estimate = kEstimate4x4;
-    std::vector<float> truth = kTruth4x4;
-    estimate[3] = kNaN;   // a lit pixel with e = -0.25
-    truth[7] = kInf;      // an umbra pixel with e = 0
-    estimate[9] = -kInf;  // an umbra pixel with e = +0.75 (a leak)
-    const Result<VisibilityErrors> r = compareVisibility(imageOf(4, 4, estimate), imageOf(4, 4, truth));
-    ASSERT_TRUE(r.ok());
+    estimate[3] = kNaN;   // lit: e = -0.25 becomes -1 (acne)
+    estimate[9] = -kInf;  // umbra: e = +0.75 becomes +1 (a leak either way)
+    const Result<VisibilityErrors> r = compareVisibility(imageOf(4, 4, estimate), imageOf(4, 4, kTruth4x4));
+    ASSERT_TRUE(r.ok()) << r.error().message;
     EXPECT_EQ(r->receiverPixels, 16);
-    EXPECT_EQ(r->nonFinite, 3);
-    EXPECT_EQ(r->validPixels, 13);
-    EXPECT_EQ(r->litPixels, 5);
-    EXPECT_EQ(r->umbraPixels, 3);
-    EXPECT_EQ(r->leakPixels, 1);
-    const double sumSq = 3.578125 - 0.0625 - 0.5625;
-    EXPECT_DOUBLE_EQ(r->rmse, std::sqrt(sumSq / 13.0));
-    EXPECT_DOUBLE_EQ(r->mae, (4.875 - 0.25 - 0.75) / 13.0);
-    for (double v : {r->rmse, r->mae, r->meanError, r->p99, r->maxAbsError, r->fractionOver0_1, r->penumbraRmse,
-                     r->acneFraction, r->acneMeanDarkening, r->leakFraction, r->leakMeanLightening}) {
-        EXPECT_TRUE(std::isfinite(v));
-    }
+    EXPECT_EQ(r->nonFinite, 2);
+    EXPECT_EQ(r->validPixels, 16);
+    EXPECT_EQ(r->litPixels, 6);
+    EXPECT_EQ(r->umbraPixels, 5);
+    EXPECT_EQ(r->acnePixels, 3);
+    EXPECT_EQ(r->leakPixels, 2);
+    const double sumSq = 3.578125 - 0.0625 + 1.0 - 0.5625 + 1.0;
+    EXPECT_DOUBLE_EQ(r->rmse, std::sqrt(sumSq / 16.0));
+    EXPECT_DOUBLE_EQ(r->mae, (4.875 - 0.25 + 1.0 - 0.75 + 1.0) / 16.0);
+    EXPECT_DOUBLE_EQ(r->maxAbsError, 1.0);
+
+    // An estimate that is NaN everywhere is the worst there is, not a perfect score.
+    const Result<VisibilityErrors> allNaN =
+        compareVisibility(imageOf(4, 4, std::vector<float>(16, kNaN)), imageOf(4, 4, kTruth4x4));
+    ASSERT_TRUE(allNaN.ok()) << allNaN.error().message;
+    EXPECT_EQ(allNaN->nonFinite, 16);
+    EXPECT_DOUBLE_EQ(allNaN->rmse, 1.0);
+    EXPECT_DOUBLE_EQ(allNaN->mae, 1.0);
+}
+
+TEST(ErrorMetrics, NonFiniteTruthIsBadInputNamingThePixel) {
+    std::vector<float> truth = kTruth4x4;
+    truth[7] = kInf;  // (3, 1)
+    const Result<VisibilityErrors> r = compareVisibility(imageOf(4, 4, kEstimate4x4), imageOf(4, 4, truth));
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.error().message.find("(3, 1)"), std::string::npos) << r.error().message;
+
+    // Outside the mask it is not looked at.
+    std::vector<float> coverage(16, 1.0f);
+    coverage[7] = 0.0f;
+    const ImageF mask = rgbaMask(4, 4, coverage);
+    EXPECT_TRUE(compareVisibility(imageOf(4, 4, kEstimate4x4), imageOf(4, 4, truth), &mask).ok());
 }
 
 TEST(ErrorMetrics, ClassEpsilonAbsorbsNearBinaryTruth) {

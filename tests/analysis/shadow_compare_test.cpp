@@ -13,7 +13,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <limits>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -105,6 +107,27 @@ protected:
         ASSERT_TRUE(writeExr(truth_ + "/position.exr", position, {"R", "G", "B", "A"}).ok());
     }
 
+    /// A run record as shadow_render (stats.json) or shadow_reference (reference.json) writes
+    /// it: the lights it names and the run's start.
+    static void writeRecord(const std::string& file, const std::vector<int>& lights, double startTime) {
+        nlohmann::json j;
+        j["startTime"] = startTime;
+        j["lights"] = nlohmann::json::array();
+        for (int i : lights) {
+            j["lights"].push_back({{"index", i}, {"visibility", "visibility_" + std::to_string(i) + ".exr"}});
+        }
+        std::ofstream(file) << j.dump(2);
+    }
+
+    static double now() {
+        return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+    }
+
+    /// Moves `file`'s modification time `seconds` into the past.
+    static void age(const std::string& file, int seconds) {
+        fs::last_write_time(file, fs::last_write_time(file) - std::chrono::seconds(seconds));
+    }
+
     std::unique_ptr<test::TempDir> tmp_;  // removes the folder
     fs::path dir_;
     std::string estimate_;
@@ -175,6 +198,75 @@ TEST_F(ShadowCompareCli, MissingEstimateLightExitsTwo) {
     EXPECT_EQ(r.exitCode, kExitBadInput);
     EXPECT_NE(r.err.find("visibility_1.exr"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(estimate_ + "/error_0.png"));
+}
+
+TEST_F(ShadowCompareCli, NaNEstimateScoresTheWorstErrorNotZero) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    writeVisibility(truth_, 0, imageOf(2, 2, {1, 0, 1, 0}));
+    writeVisibility(estimate_, 0, imageOf(2, 2, {nan, nan, nan, nan}));
+    const CliRun r = run(shellQuoted(estimate_) + " " + shellQuoted(truth_));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
+    ASSERT_FALSE(j.is_discarded()) << r.out;
+    EXPECT_DOUBLE_EQ(j["allLights"]["rmse"].get<double>(), 1.0);
+    EXPECT_EQ(j["allLights"]["counts"]["nonFinite"], 4);
+    EXPECT_EQ(j["lights"][0]["counts"]["nonFinite"], 4);
+}
+
+TEST_F(ShadowCompareCli, NaNTruthExitsTwoNamingTheFileAndPixel) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    writeVisibility(truth_, 0, imageOf(2, 2, {1, 0, nan, 0}));
+    writeVisibility(estimate_, 0, imageOf(2, 2, {1, 0, 1, 0}));
+    const CliRun r = run(shellQuoted(estimate_) + " " + shellQuoted(truth_));
+    EXPECT_EQ(r.exitCode, kExitBadInput) << r.out;
+    EXPECT_NE(r.err.find(truth_ + "/visibility_0.exr"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("(0, 1)"), std::string::npos) << r.err;
+}
+
+TEST_F(ShadowCompareCli, ComparesExactlyTheLightsTheRunRecordsName) {
+    writeTwoLights();
+    // An earlier run left a third light in both folders; the records of the last runs name two.
+    writeVisibility(truth_, 2, imageOf(2, 2, {0, 0, 0, 0}));
+    writeVisibility(estimate_, 2, imageOf(2, 2, {1, 1, 1, 1}));
+    const double start = now() - 1.0;
+    writeRecord(truth_ + "/reference.json", {0, 1}, start);
+    writeRecord(estimate_ + "/stats.json", {0, 1}, start);
+    const CliRun r = run(shellQuoted(estimate_) + " " + shellQuoted(truth_));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
+    ASSERT_FALSE(j.is_discarded()) << r.out;
+    ASSERT_EQ(j["lights"].size(), 2u);
+    EXPECT_EQ(j["lights"][1]["index"], 1);
+    EXPECT_EQ(j["allLights"]["counts"]["valid"], 6);
+}
+
+TEST_F(ShadowCompareCli, NamedLightMissingExitsTwo) {
+    writeTwoLights();
+    writeRecord(truth_ + "/reference.json", {0, 1, 2}, now() - 1.0);
+    const CliRun r = run(shellQuoted(estimate_) + " " + shellQuoted(truth_));
+    EXPECT_EQ(r.exitCode, kExitBadInput) << r.out;
+    EXPECT_NE(r.err.find(truth_ + "/visibility_2.exr"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("missing"), std::string::npos) << r.err;
+
+    // The estimate's record must name every light of the truth's.
+    writeVisibility(truth_, 2, imageOf(2, 2, {0, 0, 0, 0}));
+    writeVisibility(estimate_, 2, imageOf(2, 2, {0, 0, 0, 0}));
+    writeRecord(estimate_ + "/stats.json", {0, 1}, now() - 1.0);
+    const CliRun named = run(shellQuoted(estimate_) + " " + shellQuoted(truth_));
+    EXPECT_EQ(named.exitCode, kExitBadInput) << named.out;
+    EXPECT_NE(named.err.find("stats.json"), std::string::npos) << named.err;
+    EXPECT_NE(named.err.find("light 2"), std::string::npos) << named.err;
+}
+
+TEST_F(ShadowCompareCli, FileOfAnEarlierRunExitsTwo) {
+    writeTwoLights();
+    writeRecord(truth_ + "/reference.json", {0, 1}, now() - 1.0);
+    writeRecord(estimate_ + "/stats.json", {0, 1}, now() - 1.0);
+    age(estimate_ + "/visibility_1.exr", 3600);  // named by the run, but written an hour before it
+    const CliRun r = run(shellQuoted(estimate_) + " " + shellQuoted(truth_));
+    EXPECT_EQ(r.exitCode, kExitBadInput) << r.out;
+    EXPECT_NE(r.err.find(estimate_ + "/visibility_1.exr"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("earlier run"), std::string::npos) << r.err;
 }
 
 TEST_F(ShadowCompareCli, HelpNamesTheArgumentOrder) {

@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -305,6 +306,39 @@ TEST(Reference, ImagesDoNotDependOnTheThreadCount) {
 }
 
 // ---- The CLI contract ----
+
+TEST(Reference, CliRefusesNonFinitePositionsAndSkipsPositionsBeyondReach) {
+    TempDir tmp;
+    const std::vector<std::string> rgba = {"R", "G", "B", "A"};
+    ImageF positions = makeImage(8, 6, 4);
+    for (int y = 0; y < 6; ++y) {
+        for (int x = 0; x < 8; ++x) positions.at(x, y, 3) = 1.0f;  // covered, at the origin
+    }
+    positions.at(3, 2, 0) = 1e20f;
+    positions.at(5, 4, 2) = -3e38f;
+    ASSERT_TRUE(writeExr(tmp / "far.exr", positions, rgba).ok());
+    const CliRun far = runProgram(
+        tmp, "shadow_reference",
+        "builtin:plates --samples 4 --positions " + quoted(tmp / "far.exr") + " --out " + quoted(tmp / "far"));
+    ASSERT_EQ(far.exitCode, 0) << far.output;
+    EXPECT_NE(far.output.find("2 positions beyond"), std::string::npos) << far.output;
+    std::ifstream in(tmp / "far/reference.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["pixels"]["positionsBeyondReach"], 2);
+    EXPECT_EQ(j["pixels"]["covered"], 8 * 6 - 2);
+    Result<ImageF> written = readExr(tmp / "far/position.exr", rgba);
+    ASSERT_TRUE(written.ok()) << written.error().message;
+    EXPECT_EQ(written->at(3, 2, 3), 0.0f) << "beyond reach: background";
+
+    positions.at(6, 1, 1) = std::numeric_limits<float>::quiet_NaN();
+    ASSERT_TRUE(writeExr(tmp / "nan.exr", positions, rgba).ok());
+    const CliRun nan =
+        runProgram(tmp, "shadow_reference",
+                   "builtin:plates --positions " + quoted(tmp / "nan.exr") + " --out " + quoted(tmp / "nan"));
+    EXPECT_EQ(nan.exitCode, kExitBadInput) << nan.output;
+    EXPECT_NE(nan.output.find("pixel (6, 1)"), std::string::npos) << nan.output;
+    EXPECT_FALSE(fs::exists(tmp / "nan")) << "bad input writes nothing";
+}
 
 TEST(Reference, CliRejectsBadInputWithExitCodeTwoAndWritesNothing) {
     TempDir tmp;

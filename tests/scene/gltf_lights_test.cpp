@@ -109,6 +109,31 @@ TEST(GltfImport, RejectsStringWhereNumberDue) {
                    "KHR_lights_punctual.lights[0].intensity: must be a number");
 }
 
+// A misspelt key of extras.shadow does nothing: it is warned about, naming the key, with the
+// known key it is closest to.
+TEST(GltfImport, UnknownShadowKeysAreWarnedWithTheClosestKnownKey) {
+    Doc doc;
+    doc.light({{"type", "point"}, {"extras", {{"shadow", {{"techniqe", "pcss"}, {"futureKnob", 1}}}}}});
+    doc.node({{"name", "lamp"}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    doc.node({{"name", "tri"}, {"mesh", doc.triangleMesh()}, {"extras", {{"shadow", {{"recieve", false}}}}}});
+    const std::string path = doc.write(testDir() / "typo.gltf").string();
+    auto scene = loadGltf(path);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    ASSERT_EQ(scene->warnings.size(), 3u);
+    // tinygltf keeps an object's keys sorted: futureKnob, then techniqe.
+    EXPECT_EQ(scene->warnings[0].element, "KHR_lights_punctual.lights[0].extras.shadow.futureKnob");
+    EXPECT_EQ(scene->warnings[0].message.find("did you mean"), std::string::npos) << scene->warnings[0].message;
+    const Warning& typo = scene->warnings[1];
+    EXPECT_EQ(typo.code, WarningCode::UnknownSetting);
+    EXPECT_EQ(typo.element, "KHR_lights_punctual.lights[0].extras.shadow.techniqe");
+    EXPECT_EQ(typo.message, path +
+                                ": KHR_lights_punctual.lights[0].extras.shadow: unknown key \"techniqe\" ignored "
+                                "(did you mean \"technique\"?)");
+    EXPECT_EQ(scene->warnings[2].code, WarningCode::UnknownSetting);
+    EXPECT_EQ(scene->warnings[2].element, "nodes[1].extras.shadow.recieve");
+    EXPECT_MESSAGE(scene->warnings[2].message, "(did you mean \"receive\"?)");
+}
+
 // Lenient loading (a game that must show what it can): each `extras.shadow` that does not parse
 // is replaced by the defaults and reported once, naming the object; the rest loads as written.
 TEST(GltfImport, LenientLoadReplacesBadShadowExtrasByDefaultsWithOneWarningEach) {

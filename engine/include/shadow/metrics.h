@@ -4,9 +4,11 @@
 // The error of a pixel is e = estimate − truth: e < 0 means the estimate is too dark (false
 // shadow, "acne"), e > 0 too light (light leaking). Statistics are taken over *receiver pixels*,
 // the pixels a mask covers (mask > 0.5; normally position.exr's A, 1 on geometry), or every
-// pixel when there is no mask. A receiver where the estimate or the truth is NaN or ±Inf is a
-// *bad* pixel: counted in `nonFinite` and left out of every statistic, so one bad pixel never
-// turns a whole report into NaN.
+// pixel when there is no mask. A receiver whose estimate is NaN or ±Inf is counted in
+// `nonFinite` and scored as the worst estimate, |e| = 1 (towards the far end of [0, 1]: e = +1
+// where V_true ≤ 0.5, −1 elsewhere), so a broken estimate can never score better than any real
+// one and never turns a report into NaN. A receiver whose *truth* is not finite is bad input: an
+// error naming the pixel.
 //
 // Truth classes (ε = kVisibilityClassEpsilon, which absorbs the reference's sampling noise and
 // half-float round-off at the ends of [0, 1]):
@@ -51,8 +53,8 @@ inline constexpr int kErrorPercentile = 99;
 struct VisibilityErrors {
     // ---- Populations (pixels) ----
     std::int64_t receiverPixels = 0;       ///< pixels in the mask (every pixel without a mask)
-    std::int64_t nonFinite = 0;            ///< receivers with a NaN/Inf estimate or truth: excluded
-    std::int64_t validPixels = 0;          ///< receiverPixels − nonFinite: population of rmse … p99
+    std::int64_t nonFinite = 0;            ///< receivers with a NaN/Inf estimate, scored |e| = 1
+    std::int64_t validPixels = 0;          ///< receivers scored (all of them): population of rmse … p99
     std::int64_t litPixels = 0;            ///< valid, V_true ≥ 1 − ε
     std::int64_t penumbraPixels = 0;       ///< valid, ε < V_true < 1 − ε
     std::int64_t umbraPixels = 0;          ///< valid, V_true ≤ ε
@@ -89,8 +91,8 @@ struct VisibilityErrors {
 
 /// Compares a one-channel `estimate` with a one-channel `truth` over the pixels where `mask`'s
 /// last channel is > 0.5 (a non-finite mask value is not a receiver), or over every pixel when
-/// `mask` is null. Errors: a size mismatch (naming both sizes) or a channel count other than 1
-/// (mask: any count ≥ 1).
+/// `mask` is null. Errors: a size mismatch (naming both sizes), a channel count other than 1
+/// (mask: any count ≥ 1), a receiver whose truth is not finite (naming the pixel `(x, y)`).
 [[nodiscard]] Result<VisibilityErrors> compareVisibility(const ImageF& estimate, const ImageF& truth,
                                                          const ImageF* mask = nullptr);
 
@@ -148,12 +150,14 @@ struct FolderComparison {
     std::vector<std::string> warnings;
 };
 
-/// Compares every visibility_<i>.exr in `truthDir` with the same file in `estimateDir`.
-/// The mask is the EXR `maskPath` when not empty (its channel A, or Y when it has no A), else
+/// Compares the visibility_<i>.exr of `truthDir` for every `<i>` in `lights` (every such file
+/// found in `truthDir` when `lights` is empty) with the same file in `estimateDir`. The mask is the EXR `maskPath` when not empty (its channel A, or Y when it has no A), else
 /// truth's position.exr A, else the estimate's position.exr A, else every pixel. Errors name
 /// the file at fault: a missing or non-folder directory, a truth folder without visibility
-/// files, a truth light missing from the estimate, an unreadable EXR, a size mismatch.
+/// files, a light missing from either folder, an unreadable EXR, a size mismatch, a non-finite
+/// truth pixel.
 [[nodiscard]] Result<FolderComparison> compareFolders(const std::string& estimateDir, const std::string& truthDir,
-                                                      const std::string& maskPath = "");
+                                                      const std::string& maskPath = "",
+                                                      const std::vector<int>& lights = {});
 
 }  // namespace shadow

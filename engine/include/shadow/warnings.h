@@ -42,6 +42,11 @@ enum class WarningCode {
     /// `FrameStats` keeps it in its object's `warnings()`). Element: the engine call. The message
     /// lists the codes.
     HostGlError,
+    /// A glTF `extras.shadow` object has a key the engine does not know (a misspelling, or a
+    /// setting of a newer engine); it was ignored. Element: the key, e.g.
+    /// `KHR_lights_punctual.lights[0].extras.shadow.techniqe`; the message suggests the closest
+    /// known key when one is near.
+    UnknownSetting,
 };
 
 /// One decision the engine reports.
@@ -64,6 +69,7 @@ struct Warning {
         case WarningCode::NonFiniteTransform: return "NonFiniteTransform";
         case WarningCode::ShadowSettingsIgnored: return "ShadowSettingsIgnored";
         case WarningCode::HostGlError: return "HostGlError";
+        case WarningCode::UnknownSetting: return "UnknownSetting";
     }
     return "Unknown";
 }

@@ -28,6 +28,28 @@ std::size_t pixelCount(const ImageF& image) {
     return static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
 }
 
+/// Pixel `i` is a receiver: covered by the mask's last channel, or any pixel without a mask.
+bool isReceiver(const ImageF* mask, std::size_t i) {
+    if (mask == nullptr) return true;
+    const auto channels = static_cast<std::size_t>(mask->channels);
+    return mask->pixels[i * channels + channels - 1] > 0.5f;  // NaN: false
+}
+
+/// A truth that is not finite at a receiver is no truth to score against: bad input.
+Status checkTruthFinite(const ImageF& truth, const ImageF* mask) {
+    for (int y = 0; y < truth.height; ++y) {
+        for (int x = 0; x < truth.width; ++x) {
+            const std::size_t i =
+                static_cast<std::size_t>(y) * static_cast<std::size_t>(truth.width) + static_cast<std::size_t>(x);
+            if (isReceiver(mask, i) && !std::isfinite(truth.pixels[i])) {
+                return Error{"truth pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is not finite (" +
+                             std::to_string(truth.pixels[i]) + ")"};
+            }
+        }
+    }
+    return Ok{};
+}
+
 Status checkInputs(const ImageF& estimate, const ImageF& truth, const ImageF* mask) {
     if (estimate.channels != 1) {
         return Error{"estimate has " + std::to_string(estimate.channels) + " channels, expected 1"};
@@ -48,14 +70,7 @@ Status checkInputs(const ImageF& estimate, const ImageF& truth, const ImageF* ma
     assert(estimate.pixels.size() == pixelCount(estimate));
     assert(truth.pixels.size() == pixelCount(truth));
     assert(mask == nullptr || mask->pixels.size() == pixelCount(*mask) * mask->channels);
-    return Ok{};
-}
-
-/// Pixel `i` is a receiver: covered by the mask's last channel, or any pixel without a mask.
-bool isReceiver(const ImageF* mask, std::size_t i) {
-    if (mask == nullptr) return true;
-    const auto channels = static_cast<std::size_t>(mask->channels);
-    return mask->pixels[i * channels + channels - 1] > 0.5f;  // NaN: false
+    return checkTruthFinite(truth, mask);
 }
 
 bool bothFinite(float estimate, float truth) { return std::isfinite(estimate) && std::isfinite(truth); }
@@ -64,13 +79,15 @@ bool bothFinite(float estimate, float truth) { return std::isfinite(estimate) &&
 class ErrorAccumulator {
 public:
     /// `interiorUmbra`: the pixel is interior umbra (see `kInteriorUmbraMargin`).
+    /// `truth` is finite (checkTruthFinite).
     void addReceiver(float estimate, float truth, bool interiorUmbra) {
         ++counts_.receiverPixels;
-        if (!bothFinite(estimate, truth)) {
-            ++counts_.nonFinite;
-            return;
-        }
         const double vTrue = truth;
+        if (!std::isfinite(estimate)) {
+            // The worst estimate: the far end of [0, 1] at |e| = 1.
+            ++counts_.nonFinite;
+            estimate = static_cast<float>(vTrue <= 0.5 ? vTrue + 1.0 : vTrue - 1.0);
+        }
         const double e = static_cast<double>(estimate) - vTrue;
         const double absE = std::abs(e);
         ++counts_.validPixels;
@@ -358,11 +375,16 @@ Status writeHeatMapPng(const std::string& path, const ImageF& heatMap) {
 }
 
 Result<FolderComparison> compareFolders(const std::string& estimateDir, const std::string& truthDir,
-                                        const std::string& maskPath) {
+                                        const std::string& maskPath, const std::vector<int>& lights) {
     if (Status s = checkFolder(estimateDir, "estimate"); !s.ok()) return s.error();
     if (Status s = checkFolder(truthDir, "truth"); !s.ok()) return s.error();
     Result<std::vector<int>> truthIndices = visibilityIndices(truthDir);
     if (!truthIndices.ok()) return truthIndices.error();
+    if (!lights.empty()) {
+        truthIndices = lights;
+        std::sort(truthIndices->begin(), truthIndices->end());
+        truthIndices->erase(std::unique(truthIndices->begin(), truthIndices->end()), truthIndices->end());
+    }
     if (truthIndices->empty()) return Error{truthDir + ": no visibility_<i>.exr files (truth)"};
     Result<std::vector<int>> estimateIndices = visibilityIndices(estimateDir);
     if (!estimateIndices.ok()) return estimateIndices.error();
@@ -377,6 +399,7 @@ Result<FolderComparison> compareFolders(const std::string& estimateDir, const st
     for (int index : *truthIndices) {
         const std::string truthPath = joinPath(truthDir, visibilityName(index));
         const std::string estimatePath = joinPath(estimateDir, visibilityName(index));
+        if (!isFile(truthPath)) return Error{truthPath + ": missing (truth light " + std::to_string(index) + ")"};
         if (!isFile(estimatePath)) {
             return Error{estimatePath + ": missing (the truth folder " + truthDir + " has " + visibilityName(index) +
                          ")"};

@@ -75,6 +75,26 @@ Estimate estimateVisibility(const RayScene& scene, const Emitter& emitter, const
     return e;
 }
 
+}  // namespace
+
+Status checkPositions(const ImageF& positions) {
+    if (positions.channels != 4) return Error{"positions: expected 4 channels (R, G, B, A)"};
+    for (int y = 0; y < positions.height; ++y) {
+        for (int x = 0; x < positions.width; ++x) {
+            if (!(positions.at(x, y, 3) >= 0.5f)) continue;
+            for (int c = 0; c < 3; ++c) {
+                if (!std::isfinite(positions.at(x, y, c))) {
+                    return Error{"positions: pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                                 ") is covered but its position is not finite"};
+                }
+            }
+        }
+    }
+    return Ok{};
+}
+
+namespace {
+
 Status validate(const ReferenceOptions& o) {
     if (o.width < 1 || o.height < 1 || o.width > kMaxImageSize || o.height > kMaxImageSize) {
         return Error{"size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
@@ -87,24 +107,19 @@ Status validate(const ReferenceOptions& o) {
         return Error{"threads " + std::to_string(o.threads) + ": must be in [0, 1024]"};
     }
     if (const ImageF* p = o.wsPositions; p != nullptr) {
-        if (p->channels != 4) return Error{"positions: expected 4 channels (R, G, B, A)"};
+        if (Status s = checkPositions(*p); !s) return s;
         if (p->width != o.width || p->height != o.height) {
             return Error{"positions: image is " + std::to_string(p->width) + "x" + std::to_string(p->height) +
                          ", expected " + std::to_string(o.width) + "x" + std::to_string(o.height)};
         }
-        for (int y = 0; y < p->height; ++y) {
-            for (int x = 0; x < p->width; ++x) {
-                if (!(p->at(x, y, 3) >= 0.5f)) continue;
-                for (int c = 0; c < 3; ++c) {
-                    if (!std::isfinite(p->at(x, y, c))) {
-                        return Error{"positions: pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-                                     ") is covered but its position is not finite"};
-                    }
-                }
-            }
-        }
     }
     return Ok{};
+}
+
+/// Whether a position lies beyond what is traced (see kMaxTracedPosition).
+bool beyondReach(const glm::dvec3& p) {
+    return std::abs(p.x) > kMaxTracedPosition || std::abs(p.y) > kMaxTracedPosition ||
+           std::abs(p.z) > kMaxTracedPosition;
 }
 
 /// Everything the workers share; each pixel is written by exactly one worker.
@@ -131,6 +146,7 @@ public:
 
     [[nodiscard]] const std::vector<std::uint8_t>& shaded() const { return shaded_; }
     [[nodiscard]] int positionsWithoutSurface() const { return withoutSurface_.load(); }
+    [[nodiscard]] int positionsBeyondReach() const { return beyondReach_.load(); }
 
 private:
     ShadingPoint fromCamera(int x, int y) const {
@@ -150,8 +166,14 @@ private:
         const ImageF& image = *options_.wsPositions;
         ShadingPoint p;
         if (!(image.at(x, y, 3) >= 0.5f)) return p;
-        p.covered = true;
         p.wsPosition = glm::dvec3(image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2));
+        if (beyondReach(p.wsPosition)) {
+            // No surface of a scene can be there, and rays from there are beyond float tracing.
+            ++beyondReach_;
+            p.wsPosition = glm::dvec3(0.0);
+            return p;
+        }
+        p.covered = true;
         // The surface under the position: the camera ray through it, searched only near it so
         // a surface just in front (a silhouette the rasteriser decided otherwise) is skipped.
         const glm::dvec3 toPoint = p.wsPosition - camera_.wsPosition;
@@ -225,6 +247,7 @@ private:
     std::atomic<int> nextRow_{0};
     std::atomic<int> rowsDone_{0};
     std::atomic<int> withoutSurface_{0};
+    std::atomic<int> beyondReach_{0};
     std::mutex progressMutex_;
 };
 
@@ -327,6 +350,7 @@ Result<ReferenceResult> traceVisibility(Scene& scene, const CameraView& camera, 
         out.nonReceiverPixels += covered && tracer.shaded()[p] == 0 ? 1 : 0;
     }
     out.positionsWithoutSurface = tracer.positionsWithoutSurface();
+    out.positionsBeyondReach = tracer.positionsBeyondReach();
     return out;
 }
 

@@ -84,6 +84,7 @@ struct Importer {
         auto flags = gltf::orDefaults(gltf::parseMeshShadowExtras(node.extras, where), options.strictShadowSettings,
                                       where, scene.warnings);
         if (!flags) return flags.error();
+        gltf::warnUnknownShadowKeys(node.extras, where, /*light=*/false, scene.warnings);
         const auto attach = [&](Entity target, const gltf::MeshPart& part) {
             scene.world.emplace<Mesh>(target, Mesh{part.data, flags->cast, flags->receive});
             scene.world.emplace<Material>(target, part.material);

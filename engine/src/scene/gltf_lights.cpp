@@ -93,6 +93,7 @@ Result<LightDefinition> parseLight(const tinygltf::Value& value, const std::stri
     auto settings =
         orDefaults(parseShadowExtras(extras != nullptr ? *extras : tinygltf::Value(), where), strict, where, warnings);
     if (!settings) return settings.error();
+    if (extras != nullptr) warnUnknownShadowKeys(*extras, where, /*light=*/true, warnings);
     def.light.radius = settings->radius;
     def.light.angularRadius = settings->angularRadius;
     if (settings->shadow.technique != ShadowTechnique::None) def.shadow = settings->shadow;

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <string>
 
 namespace shadow::gltf {
@@ -19,23 +22,138 @@ bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int
 /// names, not shell words, so take them literally.
 std::string literalPath(const std::string& path, void*) { return path; }
 
-/// tinygltf messages end in newlines and may hold several lines; make them one line.
-std::string oneLine(std::string text) {
+/// tinygltf quotes the element at fault, and that may be a whole data: URI (megabytes of
+/// base64): each one becomes `data:… (N bytes)`.
+std::string withoutDataUris(const std::string& text) {
+    std::string out;
+    std::size_t at = 0;
+    for (std::size_t found = text.find("data:"); found != std::string::npos; found = text.find("data:", at)) {
+        std::size_t end = found;
+        while (end < text.size() && text[end] != '"' && text[end] != '\'' && text[end] != '\n' &&
+               !std::isspace(static_cast<unsigned char>(text[end]))) {
+            ++end;
+        }
+        out.append(text, at, found - at);
+        out += "data:\u2026 (" + std::to_string(end - found) + " bytes)";
+        at = end;
+    }
+    out.append(text, at, std::string::npos);
+    return out;
+}
+
+/// tinygltf messages end in newlines and may hold several lines, and may quote input at any
+/// length: make them one line of at most kMaxQuotedMessage bytes, data: URIs never quoted.
+std::string oneLine(const std::string& raw) {
+    std::string text = withoutDataUris(raw);
     std::replace(text.begin(), text.end(), '\n', ' ');
     while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+    if (text.size() > kMaxQuotedMessage) {
+        std::size_t cut = kMaxQuotedMessage;
+        while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0U) == 0x80U) --cut;  // whole UTF-8 only
+        text.resize(cut);
+        text += "\u2026";
+    }
     return text.empty() ? "could not be parsed" : text;
 }
 
-bool hasBinaryMagic(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    char magic[4] = {};
-    return file.read(magic, 4) && std::string(magic, 4) == "glTF";
+/// What `path` is when it is not a regular file, for the message ("a FIFO", ...), by
+/// std::filesystem::status: never opened, so a FIFO or device cannot block the load.
+std::optional<std::string> notRegularFile(const std::string& path) {
+    std::error_code ec;
+    const std::filesystem::file_status st = std::filesystem::status(path, ec);
+    switch (st.type()) {
+        case std::filesystem::file_type::regular: return std::nullopt;
+        case std::filesystem::file_type::not_found: return std::string("no such file");
+        case std::filesystem::file_type::directory: return std::string("not a regular file (a directory)");
+        case std::filesystem::file_type::fifo: return std::string("not a regular file (a FIFO)");
+        case std::filesystem::file_type::socket: return std::string("not a regular file (a socket)");
+        case std::filesystem::file_type::block:
+        case std::filesystem::file_type::character: return std::string("not a regular file (a device)");
+        default: break;
+    }
+    return ec ? "cannot be read (" + ec.message() + ")" : std::string("not a regular file");
 }
+
+/// The file's bytes; errors name it. Checked to be a regular file first.
+Result<std::string> readWholeFile(const std::string& path) {
+    if (std::optional<std::string> what = notRegularFile(path)) return Error{path + ": " + *what};
+    std::ifstream file(path, std::ios::binary | std::ios::ate);
+    const std::streamoff size = file ? static_cast<std::streamoff>(file.tellg()) : -1;
+    if (size < 0) return Error{path + ": cannot be read"};
+    std::string bytes(static_cast<std::size_t>(size), '\0');
+    file.seekg(0);
+    if (!file.read(bytes.data(), size)) return Error{path + ": cannot be read"};
+    return bytes;
+}
+
+/// The deepest nesting of arrays and objects in `json` (brackets inside strings skipped).
+std::size_t jsonNestingDepth(std::string_view json) {
+    std::size_t depth = 0;
+    std::size_t deepest = 0;
+    bool inString = false;
+    bool escaped = false;
+    for (const char c : json) {
+        if (inString) {
+            if (escaped) {
+                escaped = false;
+            } else if (c == '\\') {
+                escaped = true;
+            } else if (c == '"') {
+                inString = false;
+            }
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            deepest = std::max(deepest, ++depth);
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return deepest;
+}
+
+/// The JSON text of `bytes`: all of it, or a GLB's JSON chunk (as much of it as is there; a
+/// malformed header is tinygltf's to report).
+std::string_view jsonText(std::string_view bytes, bool binary) {
+    if (!binary) return bytes;
+    constexpr std::size_t kHeader = 12;
+    constexpr std::size_t kChunkHeader = 8;
+    if (bytes.size() < kHeader + kChunkHeader) return {};
+    std::uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + kHeader, sizeof(length));  // GLB is little-endian, as is every target
+    return bytes.substr(kHeader + kChunkHeader, length);
+}
+
+/// tinygltf converts JSON recursively, a stack frame per level: refuse deep nesting up front.
+Status checkJsonDepth(std::string_view bytes, bool binary, const std::string& name) {
+    const std::size_t depth = jsonNestingDepth(jsonText(bytes, binary));
+    if (depth > kMaxJsonDepth) {
+        return Error{name + ": JSON nested " + std::to_string(depth) + " levels deep; at most " +
+                     std::to_string(kMaxJsonDepth) + " are read"};
+    }
+    return Ok{};
+}
+
+bool hasBinaryMagic(std::string_view bytes) { return bytes.size() >= 4 && bytes.substr(0, 4) == "glTF"; }
 
 std::string lowerExtension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return ext;
+}
+
+/// External buffers and images: a path that names something (so that tinygltf reads it and
+/// tells what it is) without opening it, as opening a FIFO blocks.
+bool pathExists(const std::string& path, void*) {
+    std::error_code ec;
+    return std::filesystem::exists(path, ec);
+}
+bool readRegularFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+    if (std::optional<std::string> what = notRegularFile(path)) {
+        if (err != nullptr) *err += *what;
+        return false;
+    }
+    return tinygltf::ReadWholeFile(out, err, path, nullptr);
 }
 
 /// In-memory input reads no file: an external buffer URI is an error, not a disk access.
@@ -53,8 +171,7 @@ Result<tinygltf::Model> parseModel(const std::string& name, bool filesAllowed, L
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&skipImage, nullptr);
     if (filesAllowed) {
-        loader.SetFsCallbacks(
-            {&tinygltf::FileExists, &literalPath, &tinygltf::ReadWholeFile, &tinygltf::WriteWholeFile, nullptr});
+        loader.SetFsCallbacks({&pathExists, &literalPath, &readRegularFile, &tinygltf::WriteWholeFile, nullptr});
     } else {
         loader.SetFsCallbacks({&noFileExists, &literalPath, &noFileRead, &tinygltf::WriteWholeFile, nullptr});
     }
@@ -74,23 +191,28 @@ Result<tinygltf::Model> parseModel(const std::string& name, bool filesAllowed, L
 }  // namespace
 
 Result<tinygltf::Model> readModel(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) {
-        return Error{path + ": no such file"};
-    }
-    const bool binary = hasBinaryMagic(path);
+    Result<std::string> bytes = readWholeFile(path);
+    if (!bytes) return bytes.error();
+    const bool binary = hasBinaryMagic(*bytes);
     if (!binary && lowerExtension(path) == ".glb") {
         return Error{path + ": not a binary glTF file (the header magic is not \"glTF\")"};
     }
+    if (Status s = checkJsonDepth(*bytes, binary, path); !s) return s.error();
+    if (bytes->size() > std::numeric_limits<unsigned int>::max()) return Error{path + ": too large"};
+    // External buffers and images are found beside the file.
+    const std::string baseDir = std::filesystem::path(path).parent_path().string();
+    const auto* data = reinterpret_cast<const unsigned char*>(bytes->data());
+    const auto size = static_cast<unsigned int>(bytes->size());
     return parseModel(path, true,
                       [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& err, std::string& warn) {
-                          return binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                                        : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+                          return binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, size, baseDir)
+                                        : loader.LoadASCIIFromString(&model, &err, &warn, bytes->data(), size, baseDir);
                       });
 }
 
 Result<tinygltf::Model> readModelFromMemory(std::string_view bytes, const std::string& name) {
-    const bool binary = bytes.size() >= 4 && bytes.substr(0, 4) == "glTF";
+    const bool binary = hasBinaryMagic(bytes);
+    if (Status s = checkJsonDepth(bytes, binary, name); !s) return s.error();
     // tinygltf takes the length as unsigned int.
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) return Error{name + ": too large"};
     const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());

@@ -1,6 +1,9 @@
 #include "scene/shadow_extras.h"
 
+#include <algorithm>
 #include <array>
+#include <cctype>
+#include <vector>
 
 #include "scene/gltf_values.h"
 
@@ -93,6 +96,82 @@ Result<LightShadowExtras> parseShadowExtras(const tinygltf::Value& extras, const
     if (auto st = readKnobs(*object, ints, readPositiveInt); !st) return st.error();
     if (auto st = readKnobs(*object, floats, readNonNegativeFloat); !st) return st.error();
     return out;
+}
+
+namespace {
+
+constexpr std::array<const char*, 18> kLightKeys{"technique",
+                                                 "kernel",
+                                                 "mapSize",
+                                                 "pcfSamples",
+                                                 "blockerSamples",
+                                                 "cascades",
+                                                 "radius",
+                                                 "angularRadius",
+                                                 "constantBias",
+                                                 "slopeBias",
+                                                 "normalOffset",
+                                                 "pcfRadius",
+                                                 "lightBleedReduction",
+                                                 "maxFilterTexels",
+                                                 "cascadeSplitLambda",
+                                                 "cascadeBlend",
+                                                 "shadowDistance",
+                                                 "nearPlane"};
+constexpr std::array<const char*, 2> kMeshKeys{"cast", "receive"};
+
+/// Levenshtein distance, case-insensitive (a key differing only in case is a near miss too).
+std::size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                              std::tolower(static_cast<unsigned char>(b[j - 1]));
+            const std::size_t next = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
+            diagonal = row[j];
+            row[j] = next;
+        }
+    }
+    return row[b.size()];
+}
+
+}  // namespace
+
+void warnUnknownShadowKeys(const tinygltf::Value& extras, const std::string& where, bool light,
+                           std::vector<Warning>& warnings) {
+    const tinygltf::Value* object = member(extras, "shadow");
+    if (object == nullptr || !object->IsObject()) return;
+    const std::string objectWhere = where + ".extras.shadow";
+    for (const std::string& key : object->Keys()) {
+        const auto known = [&](auto const& keys) {
+            return std::find_if(keys.begin(), keys.end(), [&](const char* k) { return key == k; }) != keys.end();
+        };
+        if (light ? known(kLightKeys) : known(kMeshKeys)) continue;
+        std::string closest;
+        std::size_t best = 3;  // suggest only within two edits
+        const auto consider = [&](auto const& keys) {
+            for (const char* k : keys) {
+                const std::size_t d = editDistance(key, k);
+                if (d < best) {
+                    best = d;
+                    closest = k;
+                }
+            }
+        };
+        if (light) {
+            consider(kLightKeys);
+        } else {
+            consider(kMeshKeys);
+        }
+        // Keys are quoted at most 64 bytes long: a file may hold any key.
+        const std::string shown = key.size() > 64 ? key.substr(0, 64) + "\u2026" : key;
+        std::string message = objectWhere + ": unknown key \"" + shown + "\" ignored";
+        if (!closest.empty()) message += " (did you mean \"" + closest + "\"?)";
+        warnings.push_back({WarningCode::UnknownSetting, objectWhere + "." + shown, message});
+    }
 }
 
 Result<MeshShadowFlags> parseMeshShadowExtras(const tinygltf::Value& extras, const std::string& where) {

@@ -11,7 +11,8 @@
 //   cast, receive                                             booleans (default true)
 //
 // Only type, sign and finiteness are checked here: ranges are clamped (and reported) by the
-// shadow system. Unknown keys are ignored so files can carry settings of newer engines.
+// shadow system. Unknown keys are ignored so files can carry settings of newer engines, each
+// with an `UnknownSetting` warning (warnUnknownShadowKeys) so that a misspelling is seen.
 #pragma once
 
 #include <shadow/components.h>
@@ -47,6 +48,12 @@ struct MeshShadowFlags {
 
 /// Parses the `shadow` member of a mesh node's `extras`, as `parseShadowExtras` does.
 [[nodiscard]] Result<MeshShadowFlags> parseMeshShadowExtras(const tinygltf::Value& extras, const std::string& where);
+
+/// Appends one `UnknownSetting` warning for every key of `extras.shadow` (an object) that a
+/// light's (`light`) or a mesh node's object does not know, suggesting the closest known key
+/// when it is at most two edits away. `where` names the light or node, as for the parsers.
+void warnUnknownShadowKeys(const tinygltf::Value& extras, const std::string& where, bool light,
+                           std::vector<Warning>& warnings);
 
 /// `parsed` itself when it holds a value or `strict` is set; otherwise the defaults `T{}`, with
 /// the error appended to `warnings` as `ShadowSettingsIgnored` (the lenient `GltfLoadOptions`).
