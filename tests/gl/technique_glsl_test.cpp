@@ -109,6 +109,7 @@ TEST(TechniqueGlsl, NamesAndDefinesFollowTheTable) {
     EXPECT_EQ(defines.size(), static_cast<std::size_t>(kShadowTechniqueCount - 1));  // None has none
     for (ShadowTechnique t : allTechniques()) {
         EXPECT_EQ(techniqueFromName(techniqueName(t)), techniqueAvailable(t) ? std::optional(t) : std::nullopt);
+        EXPECT_EQ(techniqueFromAnyName(techniqueName(t)), t) << "a scene names a technique of any build";
         if (techniqueAvailable(t)) {
             EXPECT_NE(techniqueNameList().find(techniqueName(t)), std::string::npos);
         }
@@ -117,6 +118,7 @@ TEST(TechniqueGlsl, NamesAndDefinesFollowTheTable) {
     EXPECT_EQ(kAllShadowTechniques & techniqueBit(ShadowTechnique::PcssTextbook), 0u);
     EXPECT_EQ(shadowShaderSource({}, ~0u).find("sg_pcssTextbookVisibility"), std::string::npos);
     EXPECT_EQ(techniqueFromName("no-such-technique"), std::nullopt);
+    EXPECT_EQ(techniqueFromAnyName("no-such-technique"), std::nullopt);
 }
 
 /// Expands `#include`s from the installed shader folder as a simple game loader does: each file

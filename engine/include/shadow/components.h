@@ -120,6 +120,9 @@ struct Light {
 [[nodiscard]] bool techniqueAvailable(ShadowTechnique t);
 /// The technique named `name` if this build offers it, or nullopt.
 [[nodiscard]] std::optional<ShadowTechnique> techniqueFromName(std::string_view name);
+/// The technique of the table named `name`, offered by this build or not: a scene file may name
+/// one of any build (the planner replaces one this build lacks, with a warning), or nullopt.
+[[nodiscard]] std::optional<ShadowTechnique> techniqueFromAnyName(std::string_view name);
 /// The names of the techniques this build offers, comma-separated ("none, hard, ..."), for
 /// messages and help.
 [[nodiscard]] std::string techniqueNameList();

@@ -28,7 +28,7 @@ Result<ShadowObject> findShadowObject(const tinygltf::Value& extras, const std::
 Result<ShadowTechnique> parseTechnique(const tinygltf::Value& v, const std::string& where) {
     auto name = readString(v, where);
     if (!name) return name.error();
-    if (const auto t = techniqueFromName(*name)) return *t;
+    if (const auto t = techniqueFromAnyName(*name)) return *t;
     return elementError(where, "unknown technique \"" + *name + "\" (expected one of " + techniqueNameList() + ")");
 }
 

@@ -58,6 +58,13 @@ std::optional<ShadowTechnique> techniqueFromName(std::string_view name) {
     return std::nullopt;
 }
 
+std::optional<ShadowTechnique> techniqueFromAnyName(std::string_view name) {
+    for (const TechniqueRow& row : kTechniques) {
+        if (name == row.name) return row.technique;
+    }
+    return std::nullopt;
+}
+
 std::string techniqueNameList() {
     std::string list;
     for (const TechniqueRow& row : kTechniques) {
