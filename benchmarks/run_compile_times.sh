@@ -86,7 +86,7 @@ print("| case | CPU s |")
 print("|---|---:|")
 for line in open(f"{work}/tests.log"):
     m = re.match(r"\[ compile  \] (.*?)\s+(\d+\.\d+) s(, \d+ programs)?\s*$", line)
-    if m:
+    if m and "pcf only:" not in line:
         print(f"| {m.group(1).strip()} | {m.group(2)} |")
     m = re.match(r"\[ compile  \] game shader, pcf only: one call (\S+) s, four straight-line calls (\S+) s", line)
     if m:
