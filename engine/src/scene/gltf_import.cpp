@@ -110,9 +110,24 @@ struct Importer {
         scene.lights.push_back(e);
     }
 
-    Result<Entity> instantiate(std::size_t i, Entity parent) {
+    /// Warns that the light or camera of `nodes[i]` points down the default axes: `nodes[from]`
+    /// (itself or an ancestor) has a `matrix` without a rotation.
+    void warnUndeterminedRotation(std::size_t i, std::size_t from, const std::string& name) {
+        const std::string where = indexed("nodes", i);
+        std::string message = where + " (" + name + "): ";
+        message += from == i ? "its matrix" : "the matrix of its ancestor " + indexed("nodes", from);
+        message +=
+            " has fewer than two non-zero columns and so no rotation; the identity was taken "
+            "(-Z forward, +Y up in the parent's frame)";
+        scene.warnings.push_back({WarningCode::DegenerateTransform, where, std::move(message)});
+    }
+
+    /// `undeterminedFrom`: the nearest node, this one or an ancestor, whose matrix holds no
+    /// rotation.
+    Result<Entity> instantiate(std::size_t i, Entity parent, std::optional<std::size_t> undeterminedFrom) {
         const tinygltf::Node& node = model.nodes[i];
         const std::string name = node.name.empty() ? "node" + std::to_string(i) : node.name;
+        if (undeterminedFrom && (node.camera >= 0 || nodes[i].light)) warnUndeterminedRotation(i, *undeterminedFrom, name);
         Transform transform = nodes[i].transform;
         transform.parent = parent;
         auto e = createEntity(name, transform);
@@ -139,19 +154,22 @@ struct Importer {
         struct Pending {
             std::size_t node;
             Entity parent;
+            std::optional<std::size_t> undeterminedAbove;  // see instantiate
         };
         std::vector<Pending> stack;
         for (auto it = roots.rbegin(); it != roots.rend(); ++it) {
-            stack.push_back({static_cast<std::size_t>(*it), Entity::null()});
+            stack.push_back({static_cast<std::size_t>(*it), Entity::null(), std::nullopt});
         }
         while (!stack.empty()) {
             const Pending next = stack.back();
             stack.pop_back();
-            auto e = instantiate(next.node, next.parent);
+            const std::optional<std::size_t> undetermined =
+                nodes[next.node].rotationUndetermined ? std::optional<std::size_t>(next.node) : next.undeterminedAbove;
+            auto e = instantiate(next.node, next.parent, undetermined);
             if (!e) return e.error();
             const std::vector<int>& children = model.nodes[next.node].children;
             for (auto it = children.rbegin(); it != children.rend(); ++it) {
-                stack.push_back({static_cast<std::size_t>(*it), *e});
+                stack.push_back({static_cast<std::size_t>(*it), *e, undetermined});
             }
         }
         return Ok{};
