@@ -52,6 +52,10 @@ enum class WarningCode {
     /// for a light or camera on such a node or below it. Element: the light or camera's node,
     /// e.g. `nodes[1]`; the message names the node with the matrix.
     DegenerateTransform,
+    /// A `KHR_lights_punctual` light has a `type` the engine does not know; it was skipped, and
+    /// the nodes that reference it carry no light. Element: the light, e.g.
+    /// `KHR_lights_punctual.lights[2]`.
+    UnsupportedLight,
 };
 
 /// One decision the engine reports.
@@ -76,6 +80,7 @@ struct Warning {
         case WarningCode::HostGlError: return "HostGlError";
         case WarningCode::UnknownSetting: return "UnknownSetting";
         case WarningCode::DegenerateTransform: return "DegenerateTransform";
+        case WarningCode::UnsupportedLight: return "UnsupportedLight";
     }
     return "Unknown";
 }

@@ -16,7 +16,7 @@
 // glTF mesh share its `MeshData`.
 //
 // Not supported (ignored): skins, morph targets, textures (images are never decoded),
-// orthographic cameras (an error when a node uses one), sparse accessors (an error when used).
+// orthographic cameras (an error when a node uses one).
 //
 // Each step lives in a file of its topic: gltf_parse (bytes to a tinygltf model), gltf_nodes
 // (transforms, references, the node graph), gltf_cameras, gltf_lights, gltf_mesh (with
@@ -105,6 +105,7 @@ struct Importer {
 
     void addLight(std::size_t lightIndex, Entity e) {
         const gltf::LightDefinition& def = lights[lightIndex];
+        if (!def.supported) return;
         scene.world.emplace<Light>(e, def.light);
         if (def.shadow) scene.world.emplace<Shadow>(e, *def.shadow);
         scene.lights.push_back(e);
@@ -127,7 +128,8 @@ struct Importer {
     Result<Entity> instantiate(std::size_t i, Entity parent, std::optional<std::size_t> undeterminedFrom) {
         const tinygltf::Node& node = model.nodes[i];
         const std::string name = node.name.empty() ? "node" + std::to_string(i) : node.name;
-        if (undeterminedFrom && (node.camera >= 0 || nodes[i].light)) warnUndeterminedRotation(i, *undeterminedFrom, name);
+        const bool hasLight = nodes[i].light && lights[*nodes[i].light].supported;
+        if (undeterminedFrom && (node.camera >= 0 || hasLight)) warnUndeterminedRotation(i, *undeterminedFrom, name);
         Transform transform = nodes[i].transform;
         transform.parent = parent;
         auto e = createEntity(name, transform);
