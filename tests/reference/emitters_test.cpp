@@ -113,6 +113,25 @@ TEST(Emitters, EmitterOfReadsThePoseAndClampsTheSize) {
     EXPECT_TRUE(emitter->clamped);
 }
 
+TEST(Emitters, AZeroScaleSpotShinesAlongItsRotationAsInTheRenderer) {
+    // The renderer's rule (worldOrientation, read by the planner's lightPose): a node of scale 0
+    // points along its rotation, not down -Z.
+    Scene scene;
+    Light light;
+    light.type = LightType::Spot;
+    const Entity e = addLight(scene, "spot", light, Shadow{}, {0, 4, 0}, {0, 0, -1});
+    const glm::dquat rotation = glm::angleAxis(0.9, glm::normalize(glm::dvec3(1.0, 0.0, 0.5)));
+    scene.world.get<Transform>(e).rotation = rotation;
+    scene.world.get<Transform>(e).scale = glm::dvec3(0.0);
+    (void)updateTransforms(scene.world);
+    const std::optional<Emitter> emitter = emitterOf(scene.world, e);
+    ASSERT_TRUE(emitter.has_value());
+    const glm::dvec3 towardLight = rotation * glm::dvec3(0.0, 0.0, 1.0);
+    EXPECT_NEAR(glm::length(emitter->wsTowardLight - towardLight), 0.0, 1e-12);
+    EXPECT_NEAR(glm::length(emitter->wsTowardLight - worldOrientation(scene.world.get<WorldTransform>(e))[2]), 0.0,
+                1e-15);
+}
+
 // ---- Each light type at a straight blocker edge, through the tracer ----
 
 constexpr double kBlockerHeight = 1.0;

@@ -46,7 +46,7 @@ TEST(GltfImport, DecomposesNodeMatrixIntoTrs) {
     expectSameRotation(t.rotation, glm::angleAxis(0.5 * M_PI, glm::dvec3(0, 1, 0)));
 }
 
-TEST(GltfImport, DecomposesMirroredMatrixAndRejectsSingularOne) {
+TEST(GltfImport, DecomposesMirroredMatrixAndOneWithAZeroColumn) {
     Doc doc;
     doc.node({{"name", "mirror"}, {"matrix", {-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}}});
     auto scene = loadGltf(doc.write(testDir() / "s.gltf").string());
@@ -58,9 +58,14 @@ TEST(GltfImport, DecomposesMirroredMatrixAndRejectsSingularOne) {
     EXPECT_NEAR(m[1][1], 1.0, 1e-9);
     EXPECT_NEAR(m[2][2], 1.0, 1e-9);
 
-    doc.j["nodes"][0]["matrix"] = {0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    EXPECT_MESSAGE(loadError(doc.write(testDir() / "s.gltf")),
-                   "nodes[0].matrix: cannot be decomposed into translation, rotation and scale");
+    // A zero column (scale 0 along x) keeps the rotation of the other two and the matrix itself.
+    doc.j["nodes"][0]["matrix"] = {0, 0, 0, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 1};
+    auto singular = loadGltf(doc.write(testDir() / "s.gltf").string());
+    ASSERT_TRUE(singular.ok()) << singular.error().message;
+    EXPECT_TRUE(singular->warnings.empty());
+    const Transform& z = singular->world.get<Transform>(findByName(*singular, "mirror"));
+    expectVec3(z.scale, {0, 1, 1});
+    expectSameRotation(z.rotation, glm::angleAxis(0.5 * M_PI, glm::dvec3(1, 0, 0)));
 }
 
 TEST(GltfImport, ImportsPerspectiveCamerasInNodeOrder) {

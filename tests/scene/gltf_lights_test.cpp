@@ -1,5 +1,6 @@
 // KHR_lights_punctual lights and their `extras.shadow` settings (engine/src/scene/gltf_lights.cpp):
-// every light type, light order, the errors of strict loading and the warnings of lenient loading.
+// every light type, light order, the errors of strict loading and the warnings of lenient loading,
+// and where a light on a node of scale 0 points.
 #include <gtest/gtest.h>
 #include <shadow/scene.h>
 
@@ -171,6 +172,47 @@ TEST(GltfImport, LenientLoadReplacesBadShadowExtrasByDefaultsWithOneWarningEach)
     EXPECT_EQ(w.get<Shadow>(findByName(*scene, "good lamp")).technique, ShadowTechnique::Pcf);
     EXPECT_EQ(w.get<Shadow>(findByName(*scene, "good lamp")).mapSize, 256);
     EXPECT_TRUE(w.get<Mesh>(findByName(*scene, "tri")).receiveShadows) << "the default";
+}
+
+TEST(GltfImport, ZeroScaleLightsPointAlongTheirRotationAndAMatrixWithoutOneWarns) {
+    Doc doc;
+    const int spot = doc.light({{"type", "spot"}, {"spot", {{"outerConeAngle", 0.6}}}});
+    const int sun = doc.light({{"type", "directional"}});
+    // Scale 0 with a rotation of -90 degrees about X: the spot shines down -Y.
+    const double h = std::sqrt(0.5);
+    doc.node({{"name", "spot"},
+              {"scale", {0, 0, 0}},
+              {"rotation", {-h, 0, 0, h}},
+              {"extensions", {{"KHR_lights_punctual", {{"light", spot}}}}}});
+    // One zero column of three: the other two still hold the rotation (+Y forward, +Z up).
+    doc.node({{"name", "tilted"},
+              {"matrix", {0, 0, 0, 0, 0, 0, 2, 0, 0, -2, 0, 0, 0, 0, 0, 1}},
+              {"extensions", {{"KHR_lights_punctual", {{"light", spot}}}}}});
+    // Only zero columns: no rotation at all; the sun and a camera below it warn.
+    const int camera = doc.push("cameras", {{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}});
+    const int below = doc.node({{"name", "eye"}, {"camera", camera}});
+    doc.node({{"name", "sun"},
+              {"matrix", {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2, 3, 1}},
+              {"children", {below}},
+              {"extensions", {{"KHR_lights_punctual", {{"light", sun}}}}}});
+    doc.scene({0, 1, 3});
+    auto scene = loadGltf(doc.write(testDir() / "zero_scale.gltf").string());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    (void)updateTransforms(scene->world);
+    const auto forward = [&](const std::string& name) {
+        return -worldOrientation(scene->world.get<WorldTransform>(findByName(*scene, name)))[2];
+    };
+    expectVec3(forward("spot"), {0, -1, 0}, 1e-12);
+    expectVec3(forward("tilted"), {0, 1, 0}, 1e-12);
+    expectVec3(forward("sun"), {0, 0, -1}, 1e-12);
+    expectVec3(forward("eye"), {0, 0, -1}, 1e-12);
+    ASSERT_EQ(scene->warnings.size(), 2u);
+    EXPECT_EQ(scene->warnings[0].code, WarningCode::DegenerateTransform);
+    EXPECT_EQ(scene->warnings[0].element, "nodes[3]");
+    EXPECT_MESSAGE(scene->warnings[0].message, "nodes[3] (sun): its matrix has fewer than two non-zero columns");
+    EXPECT_EQ(scene->warnings[1].code, WarningCode::DegenerateTransform);
+    EXPECT_EQ(scene->warnings[1].element, "nodes[2]");
+    EXPECT_MESSAGE(scene->warnings[1].message, "the matrix of its ancestor nodes[3]");
 }
 
 }  // namespace

@@ -1,8 +1,11 @@
 // The transform system's report of what it skipped (engine/src/scene/transforms.cpp): one
 // NonFiniteTransform warning per skipped entity, named so a reader can find it. (Rendering with
-// such entities is tested in tests/stability/animation_extremes_test.cpp.)
+// such entities is tested in tests/stability/animation_extremes_test.cpp.) And the one rule for a
+// node's world orientation (`worldOrientation`), also where its scale is 0.
 #include <gtest/gtest.h>
 #include <shadow/scene.h>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <limits>
@@ -97,6 +100,43 @@ TEST(Transforms, ParentCycleIsSkipped) {
     EXPECT_TRUE(world.get<WorldTransform>(root).finite);
     EXPECT_FALSE(world.get<WorldTransform>(a).finite);
     EXPECT_FALSE(world.get<WorldTransform>(b).finite);
+}
+
+TEST(Transforms, WorldOrientationIsTheNormalisedRotationOfARegularMatrix) {
+    const glm::dquat rotation = glm::angleAxis(0.7, glm::normalize(glm::dvec3(0.3, 1.0, -0.2)));
+    WorldTransform wt;
+    wt.worldFromLocal = glm::translate(glm::dmat4(1.0), glm::dvec3(1, 2, 3)) * glm::mat4_cast(rotation) *
+                        glm::scale(glm::dmat4(1.0), glm::dvec3(2.0, 3.0, 4.0));
+    wt.rotation = glm::angleAxis(2.0, glm::dvec3(1, 0, 0));  // not read: the matrix is regular
+    const glm::dmat3 axes = worldOrientation(wt);
+    const glm::dmat3 expected = glm::mat3_cast(rotation);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(glm::length(axes[c] - expected[c]), 0.0, 1e-12) << "column " << c;
+}
+
+TEST(Transforms, WorldOrientationOfAZeroScaleNodeIsItsChainsRotations) {
+    // A parent turned about Y holds a child with scale 0 turned about X: the world matrix of the
+    // child is singular, but glTF's TRS still says where it points.
+    World world;
+    Transform parent;
+    parent.rotation = glm::angleAxis(0.5, glm::dvec3(0, 1, 0));
+    parent.scale = glm::dvec3(2.0);
+    const Entity p = world.create();
+    world.emplace<Transform>(p, parent);
+    Transform child;
+    child.parent = p;
+    child.rotation = glm::angleAxis(-1.2, glm::dvec3(1, 0, 0));
+    child.scale = glm::dvec3(0.0);
+    const Entity c = world.create();
+    world.emplace<Transform>(c, child);
+    (void)updateTransforms(world);
+    const glm::dmat3 axes = worldOrientation(world.get<WorldTransform>(c));
+    const glm::dmat3 expected = glm::mat3_cast(parent.rotation * child.rotation);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(glm::length(axes[k] - expected[k]), 0.0, 1e-12) << "column " << k;
+    // The same answer as the matrix gives at any scale but 0.
+    world.get<Transform>(c).scale = glm::dvec3(1e-3, 5.0, 0.25);
+    (void)updateTransforms(world);
+    const glm::dmat3 scaled = worldOrientation(world.get<WorldTransform>(c));
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(glm::length(scaled[k] - expected[k]), 0.0, 1e-12) << "column " << k;
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/light_records.h"
 #include "shadow/planner_test_support.h"
 #include "test_support.h"
 
@@ -308,6 +309,25 @@ TEST(Planner, MemoryBudgetCountsEachTechniquesFilterChain) {
         std::printf("%s at 16384^2 under 1 GiB: %d^2, %.0f MiB\n", name.c_str(), plan.mapSize,
                     static_cast<double>(bytes) / (1 << 20));
     }
+}
+
+TEST(Planner, AZeroScaleSpotShinesAlongItsRotationInThePlanAndTheLightRecord) {
+    // glTF scale 0 with a rotation (regression zero_scale_light_nodes.gltf): the world matrix is
+    // singular, and the light used to point down -Z whatever its rotation.
+    TestScene t;
+    const glm::dquat rotation = glm::angleAxis(0.9, glm::normalize(glm::dvec3(1.0, 0.0, 0.5)));
+    const Entity spot = addLight(t.scene, "spot", lightOf(LightType::Spot), hard(), {0, 4, 0}, {0, 0, -1});
+    Transform& transform = t.scene.world.get<Transform>(spot);
+    transform.rotation = rotation;
+    transform.scale = glm::dvec3(0.0);
+    ShadowPlanner planner;
+    const ShadowFrame& frame = planner.prepare(t.scene.world, t.update(), t.scene.lights);
+    ASSERT_EQ(frame.lights.size(), 1u);
+    const glm::dvec3 expected = rotation * glm::dvec3(0.0, 0.0, -1.0);
+    EXPECT_NEAR(glm::length(frame.lights[0].wsDirection - expected), 0.0, 1e-12);
+    std::vector<gpu::GpuShadowLayer> layers(SG_MAX_LAYERS_PER_LIGHT);
+    const gpu::GpuLight record = packSlot(frame.lights[0], glm::dvec3(0.0), 0, layers.data());
+    EXPECT_NEAR(glm::length(glm::dvec3(record.wsDirection) - expected), 0.0, 1e-6);
 }
 
 }  // namespace

@@ -45,6 +45,9 @@ struct WorldTransform {
     /// False when the matrix has a NaN or Inf, or places the entity (a mesh: any of its
     /// vertices) beyond `kMaxWorldCoordinate`; such entities are skipped by rendering.
     bool finite = true;
+    /// The rotations of the parent chain composed, scale ignored: what `worldOrientation` takes
+    /// where `worldFromLocal` is singular (a scale of 0 somewhere in the chain).
+    glm::dquat rotation{1.0, 0.0, 0.0, 0.0};
 };
 
 /// Triangle mesh on the CPU. Shared between mesh instances; uploaded once by the renderer.

@@ -69,6 +69,13 @@ TransformStats updateTransforms(World& world);
 /// element is the entity's `Name`, or `entity <index>` without one.
 void reportSkippedTransforms(const World& world, const TransformStats& stats, std::vector<Warning>& warnings);
 
+/// The entity's world orientation as orthonormal, right-handed axes (columns x, y, z; lights
+/// and cameras look along -z with +y up): the normalised rotation of `worldFromLocal` where that
+/// matrix is regular, else (a scale of 0 in the chain) `WorldTransform::rotation`, the chain's
+/// rotations without their scales. One rule for the renderer, the shadow planner and the
+/// reference tracer, so that they agree on where a degenerate light points.
+[[nodiscard]] glm::dmat3 worldOrientation(const WorldTransform& wt);
+
 /// Camera pose and projection for one frame, derived from a camera entity.
 struct CameraView {
     glm::dvec3 wsPosition{0.0};

@@ -47,6 +47,15 @@ enum class WarningCode {
     /// `KHR_lights_punctual.lights[0].extras.shadow.techniqe`; the message suggests the closest
     /// known key when one is near.
     UnknownSetting,
+    /// A glTF node `matrix` has fewer than two non-zero columns, so it holds no rotation; the
+    /// node's rotation is taken as identity (in its parent's frame: -Z forward, +Y up). Reported
+    /// for a light or camera on such a node or below it. Element: the light or camera's node,
+    /// e.g. `nodes[1]`; the message names the node with the matrix.
+    DegenerateTransform,
+    /// A `KHR_lights_punctual` light has a `type` the engine does not know; it was skipped, and
+    /// the nodes that reference it carry no light. Element: the light, e.g.
+    /// `KHR_lights_punctual.lights[2]`.
+    UnsupportedLight,
 };
 
 /// One decision the engine reports.
@@ -70,6 +79,8 @@ struct Warning {
         case WarningCode::ShadowSettingsIgnored: return "ShadowSettingsIgnored";
         case WarningCode::HostGlError: return "HostGlError";
         case WarningCode::UnknownSetting: return "UnknownSetting";
+        case WarningCode::DegenerateTransform: return "DegenerateTransform";
+        case WarningCode::UnsupportedLight: return "UnsupportedLight";
     }
     return "Unknown";
 }

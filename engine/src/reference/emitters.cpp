@@ -1,6 +1,7 @@
 #include "emitters.h"
 
 #include <shadow/math.h>
+#include <shadow/scene.h>
 
 #include <algorithm>
 #include <cmath>
@@ -108,8 +109,8 @@ std::optional<Emitter> emitterOf(const World& world, Entity light) {
     Emitter e;
     e.type = l->type;
     e.wsPosition = glm::dvec3(wt->worldFromLocal[3]);
-    const glm::dvec3 z(wt->worldFromLocal[2]);
-    e.wsTowardLight = glm::length(z) > 0.0 ? glm::normalize(z) : glm::dvec3(0.0, 0.0, 1.0);
+    // The renderer's rule (lightPose), so that both agree on a node of scale 0.
+    e.wsTowardLight = worldOrientation(*wt)[2];
     const double radius = std::isfinite(l->radius) ? l->radius : 0.0;
     const double angle = std::isfinite(l->angularRadius) ? l->angularRadius : 0.0;
     e.radius = std::clamp(radius, 0.0, kMaxRadius);

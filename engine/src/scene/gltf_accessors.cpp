@@ -18,7 +18,15 @@ struct Format {
     const char* description;  ///< for the error message
 };
 
-/// A range of elements known to lie inside its buffer.
+template <typename T>
+T load(const unsigned char* p) {
+    T value;
+    std::memcpy(&value, p, sizeof(T));  // glTF data need not be aligned for the host
+    return value;
+}
+
+/// A range of elements known to lie inside its buffer, or inside `dense` (an accessor without
+/// bufferView, or a sparse one: its elements gathered, zero-filled, sparse values applied).
 struct CheckedSpan {
     const unsigned char* data = nullptr;
     std::size_t count = 0;
@@ -27,7 +35,14 @@ struct CheckedSpan {
     int components = 0;
     bool normalized = false;
     std::string name;  ///< `<where>: accessors[i]`, for messages about elements
+    /// Owns the elements `data` points at when they are not the buffer's. A move keeps the
+    /// pointer valid (the heap block moves with the vector); the span is never copied.
+    std::vector<unsigned char> dense;
 };
+
+/// Most bytes the elements of one accessor without bufferView, or of one sparse accessor, may
+/// take once made dense: the file does not hold them, so its size does not bound them.
+constexpr std::size_t kMaxDenseBytes = std::size_t{256} << 20U;
 
 /// Whether `count` elements of `elementSize` bytes, `stride` apart, starting `offset` bytes in,
 /// fit in `length` bytes. Written to be free of overflow for any input.
@@ -47,58 +62,138 @@ Status checkFormat(const tinygltf::Accessor& a, const Format& format, const std:
     return Ok{};
 }
 
+/// Where `count` elements of `elementSize` bytes, `stride` apart (0: packed), start at
+/// `byteOffset` in bufferView `viewIndex`, checked against the view and its buffer. `user` names
+/// the reader in messages (`<where>: accessors[i]`, or its `.sparse.indices`).
+Result<const unsigned char*> viewElements(const tinygltf::Model& model, int viewIndex, std::size_t byteOffset,
+                                          std::size_t stride, std::size_t count, std::size_t elementSize,
+                                          const std::string& where, const std::string& user) {
+    if (viewIndex < 0 || static_cast<std::size_t>(viewIndex) >= model.bufferViews.size()) {
+        return elementError(user, "bufferView " + std::to_string(viewIndex) + " does not exist");
+    }
+    const auto view = static_cast<std::size_t>(viewIndex);
+    const tinygltf::BufferView& v = model.bufferViews[view];
+    const std::string viewName = where + ": " + indexed("bufferViews", view);
+    if (v.buffer < 0 || static_cast<std::size_t>(v.buffer) >= model.buffers.size()) {
+        return elementError(viewName, "buffer " + std::to_string(v.buffer) + " does not exist");
+    }
+    const auto bufferIndex = static_cast<std::size_t>(v.buffer);
+    const tinygltf::Buffer& buffer = model.buffers[bufferIndex];
+    if (buffer.uri.empty() && buffer.data.empty() && v.byteLength > 0) {
+        return elementError(viewName, "reads " + indexed("buffers", bufferIndex) +
+                                          ", which has no uri (only a .glb's BIN chunk may go without one)");
+    }
+    if (!fits(v.byteOffset, 1, v.byteLength, 1, buffer.data.size())) {
+        return elementError(viewName, "exceeds " + indexed("buffers", bufferIndex));
+    }
+    if (stride == 0) stride = elementSize;
+    if (stride < elementSize) {
+        return elementError(user, "byteStride of " + indexed("bufferViews", view) + " is smaller than one element");
+    }
+    if (!fits(byteOffset, stride, count, elementSize, v.byteLength)) {
+        return elementError(user, "exceeds " + indexed("bufferViews", view));
+    }
+    return buffer.data.data() + v.byteOffset + byteOffset;
+}
+
+/// Applies `a.sparse` to the dense elements of `span` (glTF 2.0, 3.6.2.3): `sparse.count`
+/// indices, strictly increasing and below `a.count`, each replacing one element by the next of
+/// `sparse.values`.
+Status applySparse(const tinygltf::Model& model, const tinygltf::Accessor& a, std::size_t elementSize,
+                   const std::string& where, CheckedSpan& span) {
+    const std::string sparseName = span.name + ".sparse";
+    if (a.sparse.count < 1 || static_cast<std::size_t>(a.sparse.count) > a.count) {
+        return elementError(sparseName + ".count", "must be in [1, count " + std::to_string(a.count) + "], not " +
+                                                       std::to_string(a.sparse.count));
+    }
+    const auto n = static_cast<std::size_t>(a.sparse.count);
+    const int indexType = a.sparse.indices.componentType;
+    if (indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+        return elementError(sparseName + ".indices.componentType",
+                            "must be UNSIGNED_BYTE, UNSIGNED_SHORT or "
+                            "UNSIGNED_INT");
+    }
+    const auto indexSize =
+        static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(indexType)));
+    if (a.sparse.indices.byteOffset < 0 || a.sparse.values.byteOffset < 0) {
+        return elementError(sparseName, "byteOffset must not be negative");
+    }
+    // Sparse data is tightly packed: the bufferViews' byteStride does not apply.
+    auto indices =
+        viewElements(model, a.sparse.indices.bufferView, static_cast<std::size_t>(a.sparse.indices.byteOffset),
+                     indexSize, n, indexSize, where, sparseName + ".indices");
+    if (!indices) return indices.error();
+    auto values = viewElements(model, a.sparse.values.bufferView, static_cast<std::size_t>(a.sparse.values.byteOffset),
+                               elementSize, n, elementSize, where, sparseName + ".values");
+    if (!values) return values.error();
+    std::size_t previous = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        const unsigned char* p = *indices + k * indexSize;
+        const std::size_t index = indexType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? load<std::uint8_t>(p)
+                                  : indexType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? load<std::uint16_t>(p)
+                                                                                        : load<std::uint32_t>(p);
+        if (index >= a.count) {
+            return elementError(sparseName + ".indices", "index " + std::to_string(index) + " at position " +
+                                                             std::to_string(k) + " out of range (count " +
+                                                             std::to_string(a.count) + ")");
+        }
+        if (k > 0 && index <= previous) {
+            return elementError(sparseName + ".indices", "not strictly increasing at position " + std::to_string(k) +
+                                                             " (" + std::to_string(previous) + ", then " +
+                                                             std::to_string(index) + ")");
+        }
+        previous = index;
+        std::memcpy(span.dense.data() + index * elementSize, *values + k * elementSize, elementSize);
+    }
+    return Ok{};
+}
+
 /// Checks accessor `index` against `format` and its bufferView and buffer; returns where its
-/// elements are.
+/// elements are. An accessor without bufferView is zero-filled (glTF 2.0, 3.6.2.1), and a sparse
+/// one's values replace elements on top (3.6.2.3).
 Result<CheckedSpan> checkedSpan(const tinygltf::Model& model, int index, const Format& format,
                                 const std::string& where) {
     if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size()) {
         return elementError(where, "accessor " + std::to_string(index) + " does not exist");
     }
     const tinygltf::Accessor& a = model.accessors[static_cast<std::size_t>(index)];
-    const std::string name = where + ": " + indexed("accessors", static_cast<std::size_t>(index));
-    if (a.sparse.isSparse) return elementError(name, "sparse accessors are not supported");
-    if (auto st = checkFormat(a, format, name); !st) return st.error();
-    if (a.bufferView < 0) return elementError(name, "has no bufferView");
-    const auto viewIndex = static_cast<std::size_t>(a.bufferView);
-    if (viewIndex >= model.bufferViews.size()) {
-        return elementError(name, indexed("bufferViews", viewIndex) + " does not exist");
-    }
-    const tinygltf::BufferView& view = model.bufferViews[viewIndex];
-    const std::string viewName = where + ": " + indexed("bufferViews", viewIndex);
-    if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size()) {
-        return elementError(viewName, "buffer " + std::to_string(view.buffer) + " does not exist");
-    }
-    const auto bufferIndex = static_cast<std::size_t>(view.buffer);
-    const std::vector<unsigned char>& bytes = model.buffers[bufferIndex].data;
-    if (!fits(view.byteOffset, 1, view.byteLength, 1, bytes.size())) {
-        return elementError(viewName, "exceeds " + indexed("buffers", bufferIndex));
-    }
     CheckedSpan span;
+    span.name = where + ": " + indexed("accessors", static_cast<std::size_t>(index));
+    if (auto st = checkFormat(a, format, span.name); !st) return st.error();
     span.components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
     const auto elementSize =
         static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType))) *
         static_cast<std::size_t>(span.components);
-    span.stride = view.byteStride != 0 ? view.byteStride : elementSize;
-    if (span.stride < elementSize) {
-        return elementError(name,
-                            "byteStride of " + indexed("bufferViews", viewIndex) + " is smaller than one element");
-    }
-    if (!fits(a.byteOffset, span.stride, a.count, elementSize, view.byteLength)) {
-        return elementError(name, "exceeds " + indexed("bufferViews", viewIndex));
-    }
-    span.data = bytes.data() + view.byteOffset + a.byteOffset;
     span.count = a.count;
     span.componentType = a.componentType;
     span.normalized = a.normalized;
-    span.name = name;
+    span.stride = elementSize;
+    if (a.bufferView >= 0) {
+        const auto viewIndex = static_cast<std::size_t>(a.bufferView);
+        const std::size_t stride =
+            viewIndex < model.bufferViews.size() ? model.bufferViews[viewIndex].byteStride : std::size_t{0};
+        auto data = viewElements(model, a.bufferView, a.byteOffset, stride, a.count, elementSize, where, span.name);
+        if (!data) return data.error();
+        span.data = *data;
+        if (stride != 0) span.stride = stride;
+        if (!a.sparse.isSparse) return span;
+    }
+    if (a.count > kMaxDenseBytes / elementSize) {
+        return elementError(span.name, std::string(a.bufferView >= 0 ? "is sparse" : "has no bufferView") +
+                                           " and its " + std::to_string(a.count) + " elements exceed the " +
+                                           std::to_string(kMaxDenseBytes >> 20U) + " MiB the engine makes dense");
+    }
+    span.dense.assign(a.count * elementSize, 0);
+    for (std::size_t i = 0; span.data != nullptr && i < a.count; ++i) {
+        std::memcpy(span.dense.data() + i * elementSize, span.data + i * span.stride, elementSize);
+    }
+    if (a.sparse.isSparse) {
+        if (auto st = applySparse(model, a, elementSize, where, span); !st) return st.error();
+    }
+    span.data = span.dense.data();
+    span.stride = elementSize;
     return span;
-}
-
-template <typename T>
-T load(const unsigned char* p) {
-    T value;
-    std::memcpy(&value, p, sizeof(T));  // glTF data need not be aligned for the host
-    return value;
 }
 
 /// One component as a float; integer types are mapped to [-1, 1] or [0, 1] as the glTF spec

@@ -1,7 +1,8 @@
 // Checked reads of glTF accessors. tinygltf parses the JSON but does not check that an
 // accessor's elements lie inside its bufferView and buffer, nor that component types suit the
 // semantic; every read of binary data in the importer goes through here, and nothing is read
-// before the whole range has been checked.
+// before the whole range has been checked. An accessor without bufferView reads as zeros, and a
+// sparse accessor's values replace elements on top (glTF 2.0, 3.6.2.1 and 3.6.2.3).
 //
 // Errors name the use and then the accessor: `meshes[0].primitives[1].indices: accessors[2]:
 // exceeds bufferViews[1]`.

@@ -16,7 +16,7 @@
 // glTF mesh share its `MeshData`.
 //
 // Not supported (ignored): skins, morph targets, textures (images are never decoded),
-// orthographic cameras (an error when a node uses one), sparse accessors (an error when used).
+// orthographic cameras (an error when a node uses one).
 //
 // Each step lives in a file of its topic: gltf_parse (bytes to a tinygltf model), gltf_nodes
 // (transforms, references, the node graph), gltf_cameras, gltf_lights, gltf_mesh (with
@@ -105,14 +105,31 @@ struct Importer {
 
     void addLight(std::size_t lightIndex, Entity e) {
         const gltf::LightDefinition& def = lights[lightIndex];
+        if (!def.supported) return;
         scene.world.emplace<Light>(e, def.light);
         if (def.shadow) scene.world.emplace<Shadow>(e, *def.shadow);
         scene.lights.push_back(e);
     }
 
-    Result<Entity> instantiate(std::size_t i, Entity parent) {
+    /// Warns that the light or camera of `nodes[i]` points down the default axes: `nodes[from]`
+    /// (itself or an ancestor) has a `matrix` without a rotation.
+    void warnUndeterminedRotation(std::size_t i, std::size_t from, const std::string& name) {
+        const std::string where = indexed("nodes", i);
+        std::string message = where + " (" + name + "): ";
+        message += from == i ? "its matrix" : "the matrix of its ancestor " + indexed("nodes", from);
+        message +=
+            " has fewer than two non-zero columns and so no rotation; the identity was taken "
+            "(-Z forward, +Y up in the parent's frame)";
+        scene.warnings.push_back({WarningCode::DegenerateTransform, where, std::move(message)});
+    }
+
+    /// `undeterminedFrom`: the nearest node, this one or an ancestor, whose matrix holds no
+    /// rotation.
+    Result<Entity> instantiate(std::size_t i, Entity parent, std::optional<std::size_t> undeterminedFrom) {
         const tinygltf::Node& node = model.nodes[i];
         const std::string name = node.name.empty() ? "node" + std::to_string(i) : node.name;
+        const bool hasLight = nodes[i].light && lights[*nodes[i].light].supported;
+        if (undeterminedFrom && (node.camera >= 0 || hasLight)) warnUndeterminedRotation(i, *undeterminedFrom, name);
         Transform transform = nodes[i].transform;
         transform.parent = parent;
         auto e = createEntity(name, transform);
@@ -139,19 +156,22 @@ struct Importer {
         struct Pending {
             std::size_t node;
             Entity parent;
+            std::optional<std::size_t> undeterminedAbove;  // see instantiate
         };
         std::vector<Pending> stack;
         for (auto it = roots.rbegin(); it != roots.rend(); ++it) {
-            stack.push_back({static_cast<std::size_t>(*it), Entity::null()});
+            stack.push_back({static_cast<std::size_t>(*it), Entity::null(), std::nullopt});
         }
         while (!stack.empty()) {
             const Pending next = stack.back();
             stack.pop_back();
-            auto e = instantiate(next.node, next.parent);
+            const std::optional<std::size_t> undetermined =
+                nodes[next.node].rotationUndetermined ? std::optional<std::size_t>(next.node) : next.undeterminedAbove;
+            auto e = instantiate(next.node, next.parent, undetermined);
             if (!e) return e.error();
             const std::vector<int>& children = model.nodes[next.node].children;
             for (auto it = children.rbegin(); it != children.rend(); ++it) {
-                stack.push_back({static_cast<std::size_t>(*it), *e});
+                stack.push_back({static_cast<std::size_t>(*it), *e, undetermined});
             }
         }
         return Ok{};

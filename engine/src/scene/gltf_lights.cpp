@@ -10,15 +10,22 @@ namespace {
 
 const char* const kExtension = "KHR_lights_punctual";
 
-Result<LightType> parseType(const tinygltf::Value& light, const std::string& where) {
+/// The light's type; nullopt for a type this engine does not know (a later version of the
+/// extension may add types, so such a light is skipped rather than the file refused).
+Result<std::optional<LightType>> parseType(const tinygltf::Value& light, const std::string& where,
+                                           std::vector<Warning>& warnings) {
     const tinygltf::Value* type = member(light, "type");
     if (type == nullptr) return elementError(where + ".type", "missing");
     auto name = readString(*type, where + ".type");
     if (!name) return name.error();
-    if (*name == "directional") return LightType::Directional;
-    if (*name == "point") return LightType::Point;
-    if (*name == "spot") return LightType::Spot;
-    return elementError(where + ".type", "unknown light type \"" + *name + "\"");
+    if (*name == "directional") return std::optional(LightType::Directional);
+    if (*name == "point") return std::optional(LightType::Point);
+    if (*name == "spot") return std::optional(LightType::Spot);
+    warnings.push_back({WarningCode::UnsupportedLight, where,
+                        where + ": unknown light type \"" + *name +
+                            "\" (known: directional, point, spot); the light and the nodes' references to it "
+                            "are ignored"});
+    return std::optional<LightType>{};
 }
 
 Result<glm::vec3> parseColor(const tinygltf::Value& color, const std::string& where) {
@@ -69,9 +76,13 @@ Result<LightDefinition> parseLight(const tinygltf::Value& value, const std::stri
                                    std::vector<Warning>& warnings) {
     if (!value.IsObject()) return elementError(where, "must be an object");
     LightDefinition def;
-    auto type = parseType(value, where);
+    auto type = parseType(value, where, warnings);
     if (!type) return type.error();
-    def.light.type = *type;
+    if (!*type) {
+        def.supported = false;
+        return def;
+    }
+    def.light.type = **type;
     if (const tinygltf::Value* name = member(value, "name")) {
         auto parsed = readString(*name, where + ".name");
         if (!parsed) return parsed.error();

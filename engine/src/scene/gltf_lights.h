@@ -23,6 +23,9 @@ struct LightDefinition {
     Light light;
     /// Absent when `extras.shadow.technique` is "none": such a light gets no `Shadow`.
     std::optional<Shadow> shadow;
+    /// False for a light of an unknown `type` (warned as `UnsupportedLight`): nodes that
+    /// reference it get no light.
+    bool supported = true;
 };
 
 /// Every light of the file, in file order; empty when the extension is absent. With

@@ -1,5 +1,7 @@
 #include "scene/gltf_nodes.h"
 
+#include <shadow/math.h>
+
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/type_ptr.hpp>
@@ -40,15 +42,54 @@ glm::dquat unitQuat(double x, double y, double z, double w) {
     return glm::normalize(glm::dquat(w / largest, x / largest, y / largest, z / largest));
 }
 
+/// A singular node `matrix` with a zero column (a scale of 0) as TRS: the rotation from the
+/// non-zero columns when two are left (the third axis follows, right-handed), else the identity
+/// with `rotationUndetermined` set. The scale is each column's length, so the matrix is kept.
+NodeInfo decomposeSingular(const glm::dmat4& m) {
+    NodeInfo info;
+    Transform& t = info.transform;
+    t.translation = glm::dvec3(m[3]);
+    glm::dvec3 axes[3];
+    int nonZero = 0;
+    for (int c = 0; c < 3; ++c) {
+        axes[c] = glm::dvec3(m[c]);
+        t.scale[c] = glm::length(axes[c]);
+        if (t.scale[c] > 0.0) ++nonZero;
+    }
+    if (nonZero < 2) {
+        info.rotationUndetermined = true;
+        return info;
+    }
+    // Orthonormalise the two non-zero columns in order, then complete the right-handed frame.
+    const int zero = t.scale.x == 0.0 ? 0 : (t.scale.y == 0.0 ? 1 : 2);
+    const int a = (zero + 1) % 3;
+    const int b = (zero + 2) % 3;
+    const glm::dvec3 u = axes[a] / t.scale[a];
+    glm::dvec3 v = axes[b] - u * glm::dot(axes[b], u);
+    v = glm::length(v) > 1e-12 * t.scale[b] ? glm::normalize(v) : anyPerpendicular(u);
+    glm::dmat3 r;
+    r[a] = u;
+    r[b] = v;
+    r[zero] = glm::cross(u, v);  // (a, b, zero) is a cyclic order of (x, y, z)
+    t.rotation = glm::normalize(glm::quat_cast(r));
+    return info;
+}
+
 /// A node `matrix` as TRS. glTF requires it affine and free of shear; any shear (which
 /// `Transform` cannot hold) is dropped by the decomposition.
-Result<Transform> decomposeMatrix(const std::vector<double>& values, const std::string& where) {
+Result<NodeInfo> decomposeMatrix(const std::vector<double>& values, const std::string& where) {
     glm::dmat4 m(1.0);
     if (auto st = readNodeArray<16>(values, where, glm::value_ptr(m)); !st) return st.error();
     if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0) {
         return elementError(where, "must be affine (last row 0, 0, 0, 1)");
     }
-    Transform t;
+    // glm::decompose divides by each column's length.
+    if (glm::dvec3(m[0]) == glm::dvec3(0.0) || glm::dvec3(m[1]) == glm::dvec3(0.0) ||
+        glm::dvec3(m[2]) == glm::dvec3(0.0)) {
+        return decomposeSingular(m);
+    }
+    NodeInfo info;
+    Transform& t = info.transform;
     glm::dvec3 skew;
     glm::dvec4 perspective;
     const bool ok = glm::decompose(m, t.scale, t.rotation, t.translation, skew, perspective);
@@ -59,12 +100,13 @@ Result<Transform> decomposeMatrix(const std::vector<double>& values, const std::
         return elementError(where, "cannot be decomposed into translation, rotation and scale");
     }
     t.rotation = unitQuat(q.x, q.y, q.z, q.w);
-    return t;
+    return info;
 }
 
-Result<Transform> nodeTransform(const tinygltf::Node& node, const std::string& where) {
+Result<NodeInfo> nodeTransform(const tinygltf::Node& node, const std::string& where) {
     if (!node.matrix.empty()) return decomposeMatrix(node.matrix, where + ".matrix");
-    Transform t;
+    NodeInfo info;
+    Transform& t = info.transform;
     double rotation[4] = {0.0, 0.0, 0.0, 1.0};
     if (auto st = readNodeArray<3>(node.translation, where + ".translation", glm::value_ptr(t.translation)); !st) {
         return st.error();
@@ -76,7 +118,7 @@ Result<Transform> nodeTransform(const tinygltf::Node& node, const std::string& w
         return st.error();
     }
     t.rotation = unitQuat(rotation[0], rotation[1], rotation[2], rotation[3]);
-    return t;
+    return info;
 }
 
 /// Checks an optional index of a node into one of the model's arrays.
@@ -98,10 +140,9 @@ Result<NodeInfo> checkNode(const tinygltf::Model& model, std::size_t i, std::siz
     if (auto st = checkReference(node.camera, model.cameras.size(), where + ".camera", "camera"); !st) {
         return st.error();
     }
-    NodeInfo info;
     auto transform = nodeTransform(node, where);
     if (!transform) return transform.error();
-    info.transform = *transform;
+    NodeInfo info = *transform;
     auto light = gltf::nodeLight(node, i, lightCount);
     if (!light) return light.error();
     info.light = *light;

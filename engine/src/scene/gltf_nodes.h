@@ -15,6 +15,9 @@ namespace shadow::gltf {
 struct NodeInfo {
     Transform transform;
     std::optional<std::size_t> light;
+    /// The node's `matrix` has fewer than two non-zero columns: `transform.rotation` is the
+    /// identity by default, not the file's (which it does not hold).
+    bool rotationUndetermined = false;
 };
 
 /// `nodes[i]` checked: mesh and camera indices in range, the transform (TRS or an affine

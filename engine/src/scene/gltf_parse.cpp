@@ -7,8 +7,11 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace shadow::gltf {
 namespace {
@@ -188,6 +191,54 @@ Result<tinygltf::Model> parseModel(const std::string& name, bool filesAllowed, L
     return model;
 }
 
+/// A buffer's stand-in for tinygltf's parse: one byte, as it refuses an empty data URI.
+constexpr const char* kStandInUri = "data:application/octet-stream;base64,AA==";
+
+/// `text` with a stand-in data URI in every buffer that has no `uri`, and those buffers'
+/// indices; nullopt when the JSON does not parse (tinygltf then says why) or has no such buffer.
+std::optional<std::pair<std::string, std::vector<std::size_t>>> withStandInBuffers(std::string_view text) {
+    nlohmann::json doc = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+    if (doc.is_discarded() || !doc.is_object()) return std::nullopt;
+    const auto buffers = doc.find("buffers");
+    if (buffers == doc.end() || !buffers->is_array()) return std::nullopt;
+    std::vector<std::size_t> standIns;
+    for (std::size_t i = 0; i < buffers->size(); ++i) {
+        nlohmann::json& buffer = (*buffers)[i];
+        if (!buffer.is_object() || buffer.contains("uri")) continue;
+        buffer["uri"] = kStandInUri;
+        buffer["byteLength"] = 1;
+        standIns.push_back(i);
+    }
+    if (standIns.empty()) return std::nullopt;
+    return std::pair(doc.dump(), std::move(standIns));
+}
+
+/// Parses a .gltf's JSON `text`. glTF allows a buffer without `uri` only as a .glb's BIN chunk,
+/// and tinygltf refuses one in a .gltf; but a file whose bufferViews never read it holds a
+/// whole scene. So such a buffer is parsed with a stand-in and left empty (no uri, no data),
+/// and a read of it fails naming the buffer (gltf_accessors.cpp).
+Result<tinygltf::Model> parseAscii(const std::string& name, bool filesAllowed, std::string_view text,
+                                   const std::string& baseDir) {
+    const auto parse = [&](std::string_view json) {
+        return parseModel(name, filesAllowed,
+                          [&](tinygltf::TinyGLTF& loader, tinygltf::Model& m, std::string& err, std::string& warn) {
+                              return loader.LoadASCIIFromString(&m, &err, &warn, json.data(),
+                                                                static_cast<unsigned int>(json.size()), baseDir);
+                          });
+    };
+    Result<tinygltf::Model> model = parse(text);
+    if (model || model.error().message.find("'uri' is missing") == std::string::npos) return model;
+    auto patched = withStandInBuffers(text);
+    if (!patched || patched->first.size() > std::numeric_limits<unsigned int>::max()) return model;
+    Result<tinygltf::Model> retried = parse(patched->first);
+    if (!retried) return retried;
+    for (const std::size_t i : patched->second) {
+        retried->buffers[i].uri.clear();
+        retried->buffers[i].data.clear();
+    }
+    return retried;
+}
+
 }  // namespace
 
 Result<tinygltf::Model> readModel(const std::string& path) {
@@ -201,12 +252,12 @@ Result<tinygltf::Model> readModel(const std::string& path) {
     if (bytes->size() > std::numeric_limits<unsigned int>::max()) return Error{path + ": too large"};
     // External buffers and images are found beside the file.
     const std::string baseDir = std::filesystem::path(path).parent_path().string();
+    if (!binary) return parseAscii(path, true, *bytes, baseDir);
     const auto* data = reinterpret_cast<const unsigned char*>(bytes->data());
     const auto size = static_cast<unsigned int>(bytes->size());
     return parseModel(path, true,
                       [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& err, std::string& warn) {
-                          return binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, size, baseDir)
-                                        : loader.LoadASCIIFromString(&model, &err, &warn, bytes->data(), size, baseDir);
+                          return loader.LoadBinaryFromMemory(&model, &err, &warn, data, size, baseDir);
                       });
 }
 
@@ -215,12 +266,12 @@ Result<tinygltf::Model> readModelFromMemory(std::string_view bytes, const std::s
     if (Status s = checkJsonDepth(bytes, binary, name); !s) return s.error();
     // tinygltf takes the length as unsigned int.
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) return Error{name + ": too large"};
+    if (!binary) return parseAscii(name, false, bytes, "");
     const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
     const auto size = static_cast<unsigned int>(bytes.size());
     return parseModel(name, false,
                       [&](tinygltf::TinyGLTF& loader, tinygltf::Model& m, std::string& err, std::string& warn) {
-                          return binary ? loader.LoadBinaryFromMemory(&m, &err, &warn, data, size, "")
-                                        : loader.LoadASCIIFromString(&m, &err, &warn, bytes.data(), size, "");
+                          return loader.LoadBinaryFromMemory(&m, &err, &warn, data, size, "");
                       });
 }
 

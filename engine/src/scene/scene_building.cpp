@@ -149,20 +149,9 @@ CameraView makeCameraView(const World& world, Entity camera, float imageAspect) 
     }
     if (!(v.aspect > 0.0f) || !std::isfinite(v.aspect)) v.aspect = 1.0f;
     if (wt == nullptr || !wt->finite) return v;
-    // Rigid part of the node's matrix: orthonormalised axes, scale ignored.
+    // Rigid part of the node's matrix, scale ignored: the lights' rule (worldOrientation).
     const glm::dmat4& m = wt->worldFromLocal;
-    glm::dvec3 z = glm::dvec3(m[2]);
-    glm::dvec3 y = glm::dvec3(m[1]);
-    if (glm::length(z) < 1e-12) z = glm::dvec3(0, 0, 1);
-    z = glm::normalize(z);
-    y = y - z * glm::dot(y, z);
-    if (glm::length(y) < 1e-12) y = anyPerpendicular(z);
-    y = glm::normalize(y);
-    const glm::dvec3 x = glm::cross(y, z);
-    glm::dmat4 worldFromView(1.0);
-    worldFromView[0] = glm::dvec4(x, 0.0);
-    worldFromView[1] = glm::dvec4(y, 0.0);
-    worldFromView[2] = glm::dvec4(z, 0.0);
+    glm::dmat4 worldFromView(worldOrientation(*wt));
     worldFromView[3] = m[3];
     v.wsPosition = glm::dvec3(m[3]);
     v.viewFromWorld = glm::inverse(worldFromView);

@@ -19,11 +19,15 @@ bool insideWorld(const glm::dvec3& p) {
            std::abs(p.z) <= kMaxWorldCoordinate;
 }
 
-glm::dmat4 localMatrix(const Transform& t) {
-    glm::dquat q = t.rotation;
+/// The unit rotation of `t`; identity for a zero or non-finite quaternion.
+glm::dquat unitRotation(const Transform& t) {
+    const glm::dquat q = t.rotation;
     const double len = glm::length(q);
-    q = (len > 0.0 && std::isfinite(len)) ? q / len : glm::dquat(1.0, 0.0, 0.0, 0.0);
-    glm::dmat4 m = glm::mat4_cast(q);
+    return (len > 0.0 && std::isfinite(len)) ? q / len : glm::dquat(1.0, 0.0, 0.0, 0.0);
+}
+
+glm::dmat4 localMatrix(const Transform& t) {
+    glm::dmat4 m = glm::mat4_cast(unitRotation(t));
     m[0] *= t.scale.x;
     m[1] *= t.scale.y;
     m[2] *= t.scale.z;
@@ -66,11 +70,16 @@ struct Resolver {
     bool update(Entity e, bool parentFinite) {
         const Transform t = world.get<Transform>(e);
         glm::dmat4 parentMatrix(1.0);
+        glm::dquat parentRotation(1.0, 0.0, 0.0, 0.0);
         if (!t.parent.isNull() && world.has<Transform, WorldTransform>(t.parent)) {
-            parentMatrix = world.get<WorldTransform>(t.parent).worldFromLocal;
+            const WorldTransform& parent = world.get<WorldTransform>(t.parent);
+            parentMatrix = parent.worldFromLocal;
+            parentRotation = parent.rotation;
         }
         WorldTransform& wt = world.get<WorldTransform>(e);
         const glm::dmat4 next = parentMatrix * localMatrix(t);
+        // Renormalised at every step so that rounding does not pile up along deep chains.
+        wt.rotation = glm::normalize(parentRotation * unitRotation(t));
         const bool finite = parentFinite && isFinite(next) && insideWorld(glm::dvec3(next[3]));
         wt.movedThisFrame = wt.movedThisFrame || next != wt.worldFromLocal || finite != wt.finite;
         wt.worldFromLocal = next;
@@ -124,6 +133,21 @@ TransformStats updateTransforms(World& world) {
         }
     });
     return stats;
+}
+
+glm::dmat3 worldOrientation(const WorldTransform& wt) {
+    const glm::dmat3 m(wt.worldFromLocal);
+    const double lengths = glm::length(m[0]) * glm::length(m[1]) * glm::length(m[2]);
+    // Regular: every column non-zero and the three far from a plane (|det| relative to the
+    // columns' lengths is the sine-like volume they span; 1e-9 keeps a 1e-20 uniform scale).
+    const double det = glm::determinant(m);
+    if (std::isfinite(lengths) && lengths > 0.0 && std::abs(det) > 1e-9 * lengths) {
+        const glm::dvec3 z = glm::normalize(m[2]);
+        glm::dvec3 y = m[1] - z * glm::dot(m[1], z);
+        y = glm::length(y) > 1e-12 * glm::length(m[1]) ? glm::normalize(y) : anyPerpendicular(z);
+        return glm::dmat3(glm::cross(y, z), y, z);
+    }
+    return glm::mat3_cast(wt.rotation);
 }
 
 void reportSkippedTransforms(const World& world, const TransformStats& stats, std::vector<Warning>& warnings) {

@@ -1,5 +1,6 @@
 #include "shadow/light_projection.h"
 
+#include <shadow/scene.h>
 #include <shadow/shared_constants.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -281,9 +282,7 @@ void gatherGeometry(const World& world, SceneGeometry& out) {
 LightPose lightPose(const WorldTransform& wt) {
     LightPose pose;
     pose.wsPosition = glm::dvec3(wt.worldFromLocal[3]);
-    const glm::dvec3 forward = -glm::dvec3(wt.worldFromLocal[2]);
-    const double len = glm::length(forward);
-    if (std::isfinite(len) && len > 1e-12) pose.wsDirection = forward / len;
+    pose.wsDirection = -worldOrientation(wt)[2];
     return pose;
 }
 

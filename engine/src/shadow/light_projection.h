@@ -44,6 +44,8 @@ struct LightPose {
     glm::dvec3 wsDirection{0.0, 0.0, -1.0};  ///< unit, the node's -Z
 };
 
+/// The pose of a light's node; its direction is -z of `worldOrientation` (the reference tracer's
+/// rule too).
 LightPose lightPose(const WorldTransform& wt);
 
 /// False when the light's range sphere misses the camera frustum (only lights with a range).
