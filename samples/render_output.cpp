@@ -17,11 +17,12 @@ namespace shadow::samples {
 Result<std::pair<int, int>> parseSize(const std::string& text) {
     static const std::regex kSize(R"((\d{1,5})x(\d{1,5}))");
     std::smatch m;
-    if (!std::regex_match(text, m, kSize)) return Error{"--size '" + text + "': expected WxH, e.g. 640x360"};
+    if (!std::regex_match(text, m, kSize))
+        return Error{ErrorCode::InvalidArgument, "--size '" + text + "': expected WxH, e.g. 640x360"};
     const int w = std::stoi(m[1].str());
     const int h = std::stoi(m[2].str());
     if (w < 1 || h < 1 || w > 16384 || h > 16384) {
-        return Error{"--size '" + text + "': width and height must be in [1, 16384]"};
+        return Error{ErrorCode::InvalidArgument, "--size '" + text + "': width and height must be in [1, 16384]"};
     }
     return std::make_pair(w, h);
 }
@@ -29,8 +30,8 @@ Result<std::pair<int, int>> parseSize(const std::string& text) {
 Result<Entity> chooseCamera(Scene& scene, std::optional<int> index, double time) {
     if (index) {
         if (*index < 0 || *index >= static_cast<int>(scene.cameras.size())) {
-            return Error{"--camera " + std::to_string(*index) + ": the scene has " +
-                         std::to_string(scene.cameras.size()) + " cameras"};
+            return Error{ErrorCode::InvalidArgument, "--camera " + std::to_string(*index) + ": the scene has " +
+                                                         std::to_string(scene.cameras.size()) + " cameras"};
         }
         return scene.cameras[static_cast<std::size_t>(*index)];
     }
@@ -55,10 +56,11 @@ Result<OutputSelection> parseAovList(const std::string& list) {
         else if (item == "depth")
             s.depth = true;
         else
-            return Error{"--aov: unknown output '" + item + "' (known: color, visibility, position, depth)"};
+            return Error{ErrorCode::InvalidArgument,
+                         "--aov: unknown output '" + item + "' (known: color, visibility, position, depth)"};
         any = true;
     }
-    if (!any) return Error{"--aov: empty list (known: color, visibility, position, depth)"};
+    if (!any) return Error{ErrorCode::InvalidArgument, "--aov: empty list (known: color, visibility, position, depth)"};
     return s;
 }
 
@@ -66,13 +68,13 @@ Status prepareOutputDir(const std::string& dir) {
     namespace fs = std::filesystem;
     std::error_code ec;
     fs::create_directories(dir, ec);
-    if (ec) return Error{"--out " + dir + ": cannot create folder: " + ec.message()};
-    if (!fs::is_directory(dir, ec)) return Error{"--out " + dir + ": not a folder"};
+    if (ec) return Error{ErrorCode::FileUnwritable, "--out " + dir + ": cannot create folder: " + ec.message()};
+    if (!fs::is_directory(dir, ec)) return Error{ErrorCode::FileUnwritable, "--out " + dir + ": not a folder"};
     const fs::path probe = fs::path(dir) / (".write-probe-" + std::to_string(::getpid()));
     {
         std::ofstream out(probe);
         if (!out || !(out << "probe") || !(out.flush())) {
-            return Error{"--out " + dir + ": folder is not writable"};
+            return Error{ErrorCode::FileUnwritable, "--out " + dir + ": folder is not writable"};
         }
     }
     fs::remove(probe, ec);
@@ -115,7 +117,7 @@ Spread spreadOf(std::vector<double> values) {
 
 Result<ShadowTechnique> parseTechnique(const std::string& name) {
     if (const auto t = techniqueFromName(name)) return *t;
-    return Error{"unknown technique '" + name + "' (known: " + techniqueNameList() + ")"};
+    return Error{ErrorCode::InvalidArgument, "unknown technique '" + name + "' (known: " + techniqueNameList() + ")"};
 }
 
 namespace {

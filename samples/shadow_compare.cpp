@@ -132,7 +132,7 @@ Result<std::optional<RunRecord>> readRunRecord(const std::string& dir) {
         std::error_code ec;
         if (!fs::is_regular_file(p, ec)) continue;
         const fs::file_time_type t = fs::last_write_time(p, ec);
-        if (ec) return Error{p.string() + ": " + ec.message()};
+        if (ec) return Error{ErrorCode::FileUnreadable, p.string() + ": " + ec.message()};
         if (!newest || t > newestTime) {
             newest = p;
             newestTime = t;
@@ -144,14 +144,16 @@ Result<std::optional<RunRecord>> readRunRecord(const std::string& dir) {
     record.writtenAt = unixSeconds(newestTime);
     std::ifstream in(*newest);
     const json j = json::parse(in, nullptr, /*allow_exceptions=*/false);
-    if (j.is_discarded() || !j.is_object()) return Error{record.path + ": not a JSON object"};
+    if (j.is_discarded() || !j.is_object()) return Error{ErrorCode::MalformedFile, record.path + ": not a JSON object"};
     if (j.contains("startTime") && j["startTime"].is_number()) record.startTime = j["startTime"].get<double>();
-    if (!j.contains("lights") || !j["lights"].is_array()) return Error{record.path + ": no \"lights\" array"};
+    if (!j.contains("lights") || !j["lights"].is_array())
+        return Error{ErrorCode::MalformedFile, record.path + ": no \"lights\" array"};
     for (std::size_t k = 0; k < j["lights"].size(); ++k) {
         const json& light = j["lights"][k];
         if (!light.is_object() || !light.contains("index") || !light["index"].is_number_unsigned() ||
             light["index"].get<std::uint64_t>() > 1000000) {
-            return Error{record.path + ": lights[" + std::to_string(k) + "] has no valid \"index\""};
+            return Error{ErrorCode::MalformedFile,
+                         record.path + ": lights[" + std::to_string(k) + "] has no valid \"index\""};
         }
         record.lights.push_back(light["index"].get<int>());
     }
@@ -162,14 +164,16 @@ Result<std::optional<RunRecord>> readRunRecord(const std::string& dir) {
 Status checkOfRun(const RunRecord& record, const std::string& file) {
     std::error_code ec;
     const fs::file_time_type t = fs::last_write_time(file, ec);
-    if (ec) return Error{file + ": " + ec.message()};
+    if (ec) return Error{ErrorCode::FileUnreadable, file + ": " + ec.message()};
     const double at = unixSeconds(t);
     if (record.startTime && at < *record.startTime - kRunClockSlack) {
-        return Error{file + ": older than the run of " + record.path +
-                     " (a file an earlier run left in the folder; render into an empty folder)"};
+        return Error{ErrorCode::MismatchedInputs,
+                     file + ": older than the run of " + record.path +
+                         " (a file an earlier run left in the folder; render into an empty folder)"};
     }
     if (at > record.writtenAt + kRunClockSlack) {
-        return Error{file + ": newer than " + record.path + " (written by a later run that did not finish)"};
+        return Error{ErrorCode::MismatchedInputs,
+                     file + ": newer than " + record.path + " (written by a later run that did not finish)"};
     }
     return Ok{};
 }
@@ -189,7 +193,7 @@ Result<std::vector<int>> lightsToCompare(const std::string& estimateDir, const s
     std::vector<int> lights;
     if (*truth) {
         lights = (*truth)->lights;
-        if (lights.empty()) return Error{(*truth)->path + ": names no lights to compare"};
+        if (lights.empty()) return Error{ErrorCode::MismatchedInputs, (*truth)->path + ": names no lights to compare"};
     } else {
         warnings.push_back(truthDir + ": no stats.json or reference.json; comparing every visibility_<i>.exr in it");
     }
@@ -197,8 +201,8 @@ Result<std::vector<int>> lightsToCompare(const std::string& estimateDir, const s
         const std::vector<int>& named = (*estimate)->lights;
         for (int i : lights) {
             if (std::find(named.begin(), named.end(), i) == named.end()) {
-                return Error{(*estimate)->path + ": names no light " + std::to_string(i) + " (" + (*truth)->path +
-                             " does)"};
+                return Error{ErrorCode::MismatchedInputs, (*estimate)->path + ": names no light " + std::to_string(i) +
+                                                              " (" + (*truth)->path + " does)"};
             }
         }
         for (int i : named) {
@@ -214,7 +218,8 @@ Result<std::vector<int>> lightsToCompare(const std::string& estimateDir, const s
             const std::string file = visibilityPath(dir, i);
             std::error_code ec;
             if (!fs::is_regular_file(file, ec)) {
-                return Error{file + ": missing (" + (*record)->path + " names light " + std::to_string(i) + ")"};
+                return Error{ErrorCode::FileUnreadable,
+                             file + ": missing (" + (*record)->path + " names light " + std::to_string(i) + ")"};
             }
             if (Status s = checkOfRun(**record, file); !s) return s.error();
         }
@@ -231,8 +236,8 @@ Result<std::vector<int>> lightsToCompare(const std::string& estimateDir, const s
 Status prepareOutDir(const std::string& dir) {
     std::error_code ec;
     fs::create_directories(dir, ec);
-    if (ec) return Error{"--out " + dir + ": cannot create folder: " + ec.message()};
-    if (!fs::is_directory(dir, ec)) return Error{"--out " + dir + ": not a folder"};
+    if (ec) return Error{ErrorCode::FileUnreadable, "--out " + dir + ": cannot create folder: " + ec.message()};
+    if (!fs::is_directory(dir, ec)) return Error{ErrorCode::FileUnwritable, "--out " + dir + ": not a folder"};
     return Ok{};
 }
 

@@ -62,7 +62,8 @@ Result<DebugView> parseDebug(const std::string& name) {
     if (name == "penumbra") return DebugView::Penumbra;
     if (name == "visibility") return DebugView::Visibility;
     if (name == "shadowmap") return DebugView::None;  // written from the maps themselves
-    return Error{"--debug '" + name + "': unknown view (known: shadowmap, cascade, blocker, penumbra, visibility)"};
+    return Error{ErrorCode::InvalidArgument,
+                 "--debug '" + name + "': unknown view (known: shadowmap, cascade, blocker, penumbra, visibility)"};
 }
 
 /// Writes every layer of every shadow map as linear depth (EXR, metres) and a grey PNG.

@@ -42,12 +42,9 @@ json sparseOf(Doc& doc, const std::vector<std::uint16_t>& indices, const std::ve
 
 TEST(GltfSpecInput, AccessorWithoutBufferViewIsZeroFilledAndSparseValuesReplaceElements) {
     Doc doc;
-    json positions = {{"componentType", kFloat},
-                      {"count", 3},
-                      {"type", "VEC3"},
-                      {"min", {0, 0, 0}},
-                      {"max", {1, 1, 0}},
-                      {"sparse", sparseOf(doc, {1, 2}, {1, 0, 0, 0, 1, 0})}};
+    json positions = {{"componentType", kFloat}, {"count", 3},
+                      {"type", "VEC3"},          {"min", {0, 0, 0}},
+                      {"max", {1, 1, 0}},        {"sparse", sparseOf(doc, {1, 2}, {1, 0, 0, 0, 1, 0})}};
     const int accessor = doc.push("accessors", positions);
     const std::vector<glm::vec3> p = loadedPositions(doc, trianglePrimitive(doc, accessor), "zero_filled.gltf");
     ASSERT_EQ(p.size(), 3u);

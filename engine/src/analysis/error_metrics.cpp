@@ -42,8 +42,8 @@ Status checkTruthFinite(const ImageF& truth, const ImageF* mask) {
             const std::size_t i =
                 static_cast<std::size_t>(y) * static_cast<std::size_t>(truth.width) + static_cast<std::size_t>(x);
             if (isReceiver(mask, i) && !std::isfinite(truth.pixels[i])) {
-                return Error{"truth pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is not finite (" +
-                             std::to_string(truth.pixels[i]) + ")"};
+                return Error{ErrorCode::InvalidValue, "truth pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                                                          ") is not finite (" + std::to_string(truth.pixels[i]) + ")"};
             }
         }
     }
@@ -52,18 +52,22 @@ Status checkTruthFinite(const ImageF& truth, const ImageF* mask) {
 
 Status checkInputs(const ImageF& estimate, const ImageF& truth, const ImageF* mask) {
     if (estimate.channels != 1) {
-        return Error{"estimate has " + std::to_string(estimate.channels) + " channels, expected 1"};
+        return Error{ErrorCode::MismatchedInputs,
+                     "estimate has " + std::to_string(estimate.channels) + " channels, expected 1"};
     }
     if (truth.channels != 1) {
-        return Error{"truth has " + std::to_string(truth.channels) + " channels, expected 1"};
+        return Error{ErrorCode::MismatchedInputs,
+                     "truth has " + std::to_string(truth.channels) + " channels, expected 1"};
     }
     if (!sameSize(estimate, truth)) {
-        return Error{"size mismatch: estimate is " + sizeText(estimate) + ", truth is " + sizeText(truth)};
+        return Error{ErrorCode::MismatchedInputs,
+                     "size mismatch: estimate is " + sizeText(estimate) + ", truth is " + sizeText(truth)};
     }
     if (mask != nullptr) {
-        if (mask->channels < 1) return Error{"mask has no channels"};
+        if (mask->channels < 1) return Error{ErrorCode::MismatchedInputs, "mask has no channels"};
         if (!sameSize(*mask, truth)) {
-            return Error{"size mismatch: mask is " + sizeText(*mask) + ", truth is " + sizeText(truth)};
+            return Error{ErrorCode::MismatchedInputs,
+                         "size mismatch: mask is " + sizeText(*mask) + ", truth is " + sizeText(truth)};
         }
     }
     // Buffers that disagree with their own header are a programming error, not input.
@@ -247,8 +251,8 @@ std::string visibilityName(int index) { return "visibility_" + std::to_string(in
 
 Status checkFolder(const std::string& dir, const std::string& role) {
     std::error_code ec;
-    if (!fs::exists(dir, ec)) return Error{dir + ": no such folder (" + role + ")"};
-    if (!fs::is_directory(dir, ec)) return Error{dir + ": not a folder (" + role + ")"};
+    if (!fs::exists(dir, ec)) return Error{ErrorCode::FileUnreadable, dir + ": no such folder (" + role + ")"};
+    if (!fs::is_directory(dir, ec)) return Error{ErrorCode::FileUnreadable, dir + ": not a folder (" + role + ")"};
     return Ok{};
 }
 
@@ -262,7 +266,7 @@ Result<std::vector<int>> visibilityIndices(const std::string& dir) {
         std::smatch m;
         if (std::regex_match(name, m, kName)) indices.push_back(std::stoi(m[1].str()));
     }
-    if (ec) return Error{dir + ": cannot list folder: " + ec.message()};
+    if (ec) return Error{ErrorCode::FileUnreadable, dir + ": cannot list folder: " + ec.message()};
     std::sort(indices.begin(), indices.end());
     return indices;
 }
@@ -280,12 +284,12 @@ struct Mask {
 
 /// A mask file given by the user: its channel A, or Y when it has no A.
 Result<Mask> readMaskFile(const std::string& path) {
-    if (!isFile(path)) return Error{path + ": no such mask file"};
+    if (!isFile(path)) return Error{ErrorCode::FileUnreadable, path + ": no such mask file"};
     Result<ImageF> alpha = readExr(path, {"A"});
     if (alpha.ok()) return Mask{std::move(alpha).value(), path};
     Result<ImageF> grey = readExr(path, {"Y"});
     if (grey.ok()) return Mask{std::move(grey).value(), path};
-    return Error{alpha.error().message + " (a mask needs channel A or Y)"};
+    return Error{alpha.error().code, alpha.error().message + " (a mask needs channel A or Y)"};
 }
 
 /// The mask of a folder comparison, in the order compareFolders documents.
@@ -324,13 +328,13 @@ Result<VisibilityErrors> compareVisibility(const ImageF& estimate, const ImageF&
 Result<VisibilityErrors> compareVisibilityPooled(const std::vector<ImageF>& estimates,
                                                  const std::vector<ImageF>& truths, const ImageF* mask) {
     if (estimates.size() != truths.size()) {
-        return Error{std::to_string(estimates.size()) + " estimate images for " + std::to_string(truths.size()) +
-                     " truth images"};
+        return Error{ErrorCode::MismatchedInputs, std::to_string(estimates.size()) + " estimate images for " +
+                                                      std::to_string(truths.size()) + " truth images"};
     }
     ErrorAccumulator pooled;
     for (std::size_t i = 0; i < truths.size(); ++i) {
         if (Status s = checkInputs(estimates[i], truths[i], mask); !s.ok()) {
-            return Error{"light " + std::to_string(i) + ": " + s.error().message};
+            return s.error().within("light " + std::to_string(i) + ": ");
         }
         pooled.merge(accumulate(estimates[i], truths[i], mask));
     }
@@ -340,13 +344,14 @@ Result<VisibilityErrors> compareVisibilityPooled(const std::vector<ImageF>& esti
 Result<VisibilityErrors> compareVisibilityPooled(const std::vector<ImageF>& estimates,
                                                  const std::vector<ImageF>& truths, const std::vector<ImageF>& masks) {
     if (estimates.size() != truths.size() || masks.size() != truths.size()) {
-        return Error{std::to_string(estimates.size()) + " estimate images, " + std::to_string(truths.size()) +
-                     " truth images and " + std::to_string(masks.size()) + " masks"};
+        return Error{ErrorCode::MismatchedInputs, std::to_string(estimates.size()) + " estimate images, " +
+                                                      std::to_string(truths.size()) + " truth images and " +
+                                                      std::to_string(masks.size()) + " masks"};
     }
     ErrorAccumulator pooled;
     for (std::size_t i = 0; i < truths.size(); ++i) {
         if (Status s = checkInputs(estimates[i], truths[i], &masks[i]); !s.ok()) {
-            return Error{"light " + std::to_string(i) + ": " + s.error().message};
+            return s.error().within("light " + std::to_string(i) + ": ");
         }
         pooled.merge(accumulate(estimates[i], truths[i], &masks[i]));
     }
@@ -367,7 +372,8 @@ Result<ImageF> errorHeatMap(const ImageF& estimate, const ImageF& truth, const I
 
 Status writeHeatMapPng(const std::string& path, const ImageF& heatMap) {
     if (heatMap.channels != 3) {
-        return Error{path + ": heat map has " + std::to_string(heatMap.channels) + " channels, expected 3"};
+        return Error{ErrorCode::InvalidArgument,
+                     path + ": heat map has " + std::to_string(heatMap.channels) + " channels, expected 3"};
     }
     std::vector<std::uint8_t> bytes(heatMap.pixels.size());
     std::transform(heatMap.pixels.begin(), heatMap.pixels.end(), bytes.begin(), toByte);
@@ -385,7 +391,8 @@ Result<FolderComparison> compareFolders(const std::string& estimateDir, const st
         std::sort(truthIndices->begin(), truthIndices->end());
         truthIndices->erase(std::unique(truthIndices->begin(), truthIndices->end()), truthIndices->end());
     }
-    if (truthIndices->empty()) return Error{truthDir + ": no visibility_<i>.exr files (truth)"};
+    if (truthIndices->empty())
+        return Error{ErrorCode::FileUnreadable, truthDir + ": no visibility_<i>.exr files (truth)"};
     Result<std::vector<int>> estimateIndices = visibilityIndices(estimateDir);
     if (!estimateIndices.ok()) return estimateIndices.error();
     Result<Mask> mask = findMask(maskPath, truthDir, estimateDir);
@@ -399,24 +406,27 @@ Result<FolderComparison> compareFolders(const std::string& estimateDir, const st
     for (int index : *truthIndices) {
         const std::string truthPath = joinPath(truthDir, visibilityName(index));
         const std::string estimatePath = joinPath(estimateDir, visibilityName(index));
-        if (!isFile(truthPath)) return Error{truthPath + ": missing (truth light " + std::to_string(index) + ")"};
+        if (!isFile(truthPath))
+            return Error{ErrorCode::FileUnreadable,
+                         truthPath + ": missing (truth light " + std::to_string(index) + ")"};
         if (!isFile(estimatePath)) {
-            return Error{estimatePath + ": missing (the truth folder " + truthDir + " has " + visibilityName(index) +
-                         ")"};
+            return Error{ErrorCode::FileUnreadable, estimatePath + ": missing (the truth folder " + truthDir + " has " +
+                                                        visibilityName(index) + ")"};
         }
         Result<ImageF> truth = readExr(truthPath, {"Y"});
         if (!truth.ok()) return truth.error();
         Result<ImageF> estimate = readExr(estimatePath, {"Y"});
         if (!estimate.ok()) return estimate.error();
         if (Status s = checkInputs(*estimate, *truth, maskImage); !s.ok()) {
-            return Error{estimatePath + " vs " + truthPath + " (mask " + mask->source + "): " + s.error().message};
+            return s.error().within(estimatePath + " vs " + truthPath + " (mask " + mask->source + "): ");
         }
         if (result.lights.empty()) {
             result.width = truth->width;
             result.height = truth->height;
         } else if (truth->width != result.width || truth->height != result.height) {
-            return Error{truthPath + ": size " + sizeText(*truth) + " differs from the first light's " +
-                         std::to_string(result.width) + "x" + std::to_string(result.height)};
+            return Error{ErrorCode::MismatchedInputs,
+                         truthPath + ": size " + sizeText(*truth) + " differs from the first light's " +
+                             std::to_string(result.width) + "x" + std::to_string(result.height)};
         }
         ErrorAccumulator light = accumulate(*estimate, *truth, maskImage);
         pooled.merge(light);

@@ -37,18 +37,18 @@ private:
 };
 
 Error eglError(const std::string& what) {
-    return Error{"EGL: " + what + " failed (error 0x" + [] {
-        char buf[16];
-        std::snprintf(buf, sizeof(buf), "%04x", static_cast<unsigned>(eglGetError()));
-        return std::string(buf);
-    }() + ")"};
+    return Error{ErrorCode::GlUnavailable, "EGL: " + what + " failed (error 0x" + [] {
+                     char buf[16];
+                     std::snprintf(buf, sizeof(buf), "%04x", static_cast<unsigned>(eglGetError()));
+                     return std::string(buf);
+                 }() + ")"};
 }
 
 }  // namespace
 
 Result<std::unique_ptr<GlContext>> createEglContext() {
     EGLDisplay display = eglGetDisplay(EGL_DEFAULT_DISPLAY);
-    if (display == EGL_NO_DISPLAY) return Error{"EGL: no display"};
+    if (display == EGL_NO_DISPLAY) return Error{ErrorCode::GlUnavailable, "EGL: no display"};
     if (eglInitialize(display, nullptr, nullptr) != EGL_TRUE) return eglError("eglInitialize");
     if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) {
         eglTerminate(display);

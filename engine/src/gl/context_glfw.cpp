@@ -59,7 +59,7 @@ private:
 }  // namespace
 
 Result<std::unique_ptr<Window>> createGlfwWindow(int width, int height, const std::string& title) {
-    if (glfwInit() != GLFW_TRUE) return Error{"GLFW: initialisation failed (no display?)"};
+    if (glfwInit() != GLFW_TRUE) return Error{ErrorCode::GlUnavailable, "GLFW: initialisation failed (no display?)"};
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -67,7 +67,7 @@ Result<std::unique_ptr<Window>> createGlfwWindow(int width, int height, const st
     GLFWwindow* raw = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (raw == nullptr) {
         glfwTerminate();
-        return Error{"GLFW: could not open a window with an OpenGL 4.5 core context"};
+        return Error{ErrorCode::GlUnavailable, "GLFW: could not open a window with an OpenGL 4.5 core context"};
     }
     auto window = std::make_unique<GlfwWindow>(raw);
     window->makeCurrent();

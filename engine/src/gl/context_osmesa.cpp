@@ -44,7 +44,7 @@ Result<std::unique_ptr<GlContext>> createOsMesaContext() {
                            5,
                            0};
     OSMesaContext raw = OSMesaCreateContextAttribs(attribs, nullptr);
-    if (raw == nullptr) return Error{"OSMesa: could not create an OpenGL 4.5 core context"};
+    if (raw == nullptr) return Error{ErrorCode::GlUnavailable, "OSMesa: could not create an OpenGL 4.5 core context"};
     auto ctx = std::make_unique<OsMesaContext>(raw);
     ctx->makeCurrent();
     if (Status s = loadGl(ctx->loader()); !s) return s.error();

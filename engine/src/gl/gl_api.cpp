@@ -8,7 +8,7 @@ namespace shadow {
 gpu::Api gl;
 
 Status loadGl(const GlProcLoader& loader) {
-    if (!loader) return Error{"loadGl: no getProcAddress given"};
+    if (!loader) return Error{ErrorCode::InvalidArgument, "loadGl: no getProcAddress given"};
     gpu::Api api;
     const char* missing = nullptr;
 #define SHADOW_GL_LOAD(type, name)                         \
@@ -17,16 +17,16 @@ Status loadGl(const GlProcLoader& loader) {
     SHADOW_GL_FUNCTIONS(SHADOW_GL_LOAD)
 #undef SHADOW_GL_LOAD
     if (missing != nullptr) {
-        return Error{std::string("OpenGL entry point ") + missing +
-                     " is missing: an OpenGL 4.5 core context is required"};
+        return Error{ErrorCode::GlUnavailable, std::string("OpenGL entry point ") + missing +
+                                                   " is missing: an OpenGL 4.5 core context is required"};
     }
     GLint major = 0;
     GLint minor = 0;
     api.GetIntegerv(GL_MAJOR_VERSION, &major);
     api.GetIntegerv(GL_MINOR_VERSION, &minor);
     if (major * 10 + minor < 45) {
-        return Error{"OpenGL " + std::to_string(major) + "." + std::to_string(minor) +
-                     " context: OpenGL 4.5 core is required"};
+        return Error{ErrorCode::GlUnavailable, "OpenGL " + std::to_string(major) + "." + std::to_string(minor) +
+                                                   " context: OpenGL 4.5 core is required"};
     }
     gl = api;
     return Ok{};

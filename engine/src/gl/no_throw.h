@@ -19,15 +19,15 @@ Result<T> noThrow(std::string_view call, F&& f) noexcept {
         return Result<T>(std::forward<F>(f)());
     } catch (const std::exception& e) {
         try {
-            return Error{std::string(call) + ": " + e.what()};
+            return Error{ErrorCode::Internal, std::string(call) + ": " + e.what()};
         } catch (...) {
-            return Error{};  // no memory left even for the message
+            return Error(ErrorCode::Internal, "out of memory");  // no memory left even for the message
         }
     } catch (...) {
         try {
-            return Error{std::string(call) + ": unknown error"};
+            return Error{ErrorCode::Internal, std::string(call) + ": unknown error"};
         } catch (...) {
-            return Error{};
+            return Error(ErrorCode::Internal, "out of memory");
         }
     }
 }

@@ -64,7 +64,8 @@ Status setProgramBinaryCache(const std::string& directory) {
     std::error_code error;
     std::filesystem::create_directories(directory, error);
     if (!std::filesystem::is_directory(directory, error)) {
-        return Error{"program binary cache: " + directory + " is not a folder that can be created"};
+        return Error{ErrorCode::FileUnwritable,
+                     "program binary cache: " + directory + " is not a folder that can be created"};
     }
     s.directory = directory;
     return Ok{};

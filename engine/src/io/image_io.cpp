@@ -44,7 +44,10 @@ constexpr std::int64_t kMaxExrSamples = std::int64_t{1} << 30;
 /// Half-float limit: larger finite values are clamped so a bright pixel never becomes Inf.
 constexpr float kHalfMax = 65504.0f;
 
-Error pathError(const std::string& path, const std::string& cause) { return Error{path + ": " + cause}; }
+/// `"<path>: <cause>"`, with the code of what went wrong.
+Error pathError(const std::string& path, ErrorCode code, const std::string& cause) {
+    return Error{code, path + ": " + cause};
+}
 
 /// Thread-safe errno text (std::strerror is not).
 std::string errnoText(int err) { return std::generic_category().message(err); }
@@ -64,18 +67,18 @@ void removeQuietly(const std::string& file) {
 /// every failure.
 template <typename WriteFn>
 Status writeViaTemp(const std::string& path, WriteFn&& write) {
-    if (path.empty()) return Error{"empty output path"};
+    if (path.empty()) return Error{ErrorCode::InvalidArgument, "empty output path"};
     const std::string temp = tempPathFor(path);
     Status written = write(temp);
     if (!written.ok()) {
         removeQuietly(temp);
-        return pathError(path, written.error().message);
+        return written.error().within(path + ": ");
     }
     std::error_code ec;
     std::filesystem::rename(temp, path, ec);
     if (ec) {
         removeQuietly(temp);
-        return pathError(path, "cannot rename temporary file into place: " + ec.message());
+        return pathError(path, ErrorCode::FileUnwritable, "cannot rename temporary file into place: " + ec.message());
     }
     return Ok{};
 }
@@ -83,12 +86,12 @@ Status writeViaTemp(const std::string& path, WriteFn&& write) {
 /// Writes `size` bytes to `file` (created or truncated), checking open, write and close.
 Status writeBytes(const std::string& file, const void* data, std::size_t size) {
     std::FILE* f = std::fopen(file.c_str(), "wb");
-    if (f == nullptr) return Error{"cannot open for writing: " + errnoText(errno)};
+    if (f == nullptr) return Error{ErrorCode::FileUnwritable, "cannot open for writing: " + errnoText(errno)};
     const bool wrote = std::fwrite(data, 1, size, f) == size;
     const int writeErr = errno;
     const bool closed = std::fclose(f) == 0;  // flushes: a full disk may show up only here
-    if (!wrote) return Error{"write failed: " + errnoText(writeErr)};
-    if (!closed) return Error{"write failed on close: " + errnoText(errno)};
+    if (!wrote) return Error{ErrorCode::FileUnwritable, "write failed: " + errnoText(writeErr)};
+    if (!closed) return Error{ErrorCode::FileUnwritable, "write failed on close: " + errnoText(errno)};
     return Ok{};
 }
 
@@ -98,9 +101,9 @@ Result<T> catchAll(F&& f) {
     try {
         return f();
     } catch (const std::exception& e) {
-        return Error{e.what()};
+        return Error{ErrorCode::MalformedFile, e.what()};
     } catch (...) {
-        return Error{"unknown error"};
+        return Error{ErrorCode::Internal, "unknown error"};
     }
 }
 
@@ -108,15 +111,16 @@ Result<T> catchAll(F&& f) {
 
 Status validatePngArgs(int width, int height, int channels, std::size_t bytes) {
     if (width <= 0 || height <= 0) {
-        return Error{"bad size " + std::to_string(width) + "x" + std::to_string(height)};
+        return Error{ErrorCode::InvalidArgument, "bad size " + std::to_string(width) + "x" + std::to_string(height)};
     }
     if (channels != 3 && channels != 4) {
-        return Error{"PNG needs 3 or 4 channels, got " + std::to_string(channels)};
+        return Error{ErrorCode::InvalidArgument, "PNG needs 3 or 4 channels, got " + std::to_string(channels)};
     }
-    if (static_cast<std::int64_t>(width) * channels > INT_MAX) return Error{"row too wide"};
+    if (static_cast<std::int64_t>(width) * channels > INT_MAX) return Error{ErrorCode::InvalidArgument, "row too wide"};
     const std::size_t expected = static_cast<std::size_t>(width) * height * channels;
     if (bytes != expected) {
-        return Error{"pixel buffer holds " + std::to_string(bytes) + " bytes, expected " + std::to_string(expected)};
+        return Error{ErrorCode::InvalidArgument,
+                     "pixel buffer holds " + std::to_string(bytes) + " bytes, expected " + std::to_string(expected)};
     }
     return Ok{};
 }
@@ -140,22 +144,24 @@ std::vector<std::uint8_t> encodePng(int width, int height, int channels, const s
 
 Status validateExrArgs(const ImageF& image, const std::vector<std::string>& names) {
     if (image.width <= 0 || image.height <= 0 || image.channels <= 0) {
-        return Error{"bad image size " + std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
-                     std::to_string(image.channels)};
+        return Error{ErrorCode::InvalidArgument, "bad image size " + std::to_string(image.width) + "x" +
+                                                     std::to_string(image.height) + "x" +
+                                                     std::to_string(image.channels)};
     }
     const std::size_t expected = static_cast<std::size_t>(image.width) * image.height * image.channels;
     if (image.pixels.size() != expected) {
-        return Error{"pixel buffer holds " + std::to_string(image.pixels.size()) + " floats, expected " +
-                     std::to_string(expected)};
+        return Error{ErrorCode::InvalidArgument, "pixel buffer holds " + std::to_string(image.pixels.size()) +
+                                                     " floats, expected " + std::to_string(expected)};
     }
     if (names.size() != static_cast<std::size_t>(image.channels)) {
-        return Error{std::to_string(names.size()) + " channel names for " + std::to_string(image.channels) +
-                     " channels"};
+        return Error{ErrorCode::InvalidArgument, std::to_string(names.size()) + " channel names for " +
+                                                     std::to_string(image.channels) + " channels"};
     }
     std::set<std::string> seen;
     for (const std::string& name : names) {
-        if (name.empty()) return Error{"empty channel name"};
-        if (!seen.insert(name).second) return Error{"duplicate channel name '" + name + "'"};
+        if (name.empty()) return Error{ErrorCode::InvalidArgument, "empty channel name"};
+        if (!seen.insert(name).second)
+            return Error{ErrorCode::InvalidArgument, "duplicate channel name '" + name + "'"};
     }
     return Ok{};
 }
@@ -218,12 +224,13 @@ std::string channelList(const Imf::ChannelList& channels) {
 /// Checks that every requested name is present once in `channels`; the error names the first
 /// missing or repeated one.
 Status checkRequestedChannels(const Imf::ChannelList& channels, const std::vector<std::string>& names) {
-    if (names.empty()) return Error{"no channels requested"};
+    if (names.empty()) return Error{ErrorCode::MalformedFile, "no channels requested"};
     std::set<std::string> seen;
     for (const std::string& name : names) {
-        if (!seen.insert(name).second) return Error{"channel '" + name + "' requested twice"};
+        if (!seen.insert(name).second) return Error{ErrorCode::MalformedFile, "channel '" + name + "' requested twice"};
         if (channels.findChannel(name) == nullptr) {
-            return Error{"no channel '" + name + "' (file has " + channelList(channels) + ")"};
+            return Error{ErrorCode::MalformedFile,
+                         "no channel '" + name + "' (file has " + channelList(channels) + ")"};
         }
     }
     return Ok{};
@@ -233,9 +240,10 @@ Status checkRequestedChannels(const Imf::ChannelList& channels, const std::vecto
 Result<ImageF> allocateFor(const Imath::Box2i& window, std::size_t channels) {
     const std::int64_t width = std::int64_t{window.max.x} - window.min.x + 1;
     const std::int64_t height = std::int64_t{window.max.y} - window.min.y + 1;
-    if (width <= 0 || height <= 0) return Error{"empty data window"};
+    if (width <= 0 || height <= 0) return Error{ErrorCode::MalformedFile, "empty data window"};
     if (width > kMaxExrSamples / height / static_cast<std::int64_t>(channels)) {
-        return Error{"data window " + std::to_string(width) + "x" + std::to_string(height) + " is too large"};
+        return Error{ErrorCode::LimitExceeded,
+                     "data window " + std::to_string(width) + "x" + std::to_string(height) + " is too large"};
     }
     return makeImage(static_cast<int>(width), static_cast<int>(height), static_cast<int>(channels));
 }
@@ -309,24 +317,28 @@ ImageF makeImage(int width, int height, int channels) {
 
 Status writePng(const std::string& path, int width, int height, int channels, const std::vector<std::uint8_t>& pixels) {
     const Status valid = validatePngArgs(width, height, channels, pixels.size());
-    if (!valid.ok()) return pathError(path, valid.error().message);
+    if (!valid.ok()) return valid.error().within(path + ": ");
     const std::vector<std::uint8_t> png = encodePng(width, height, channels, pixels);
-    if (png.empty()) return pathError(path, "PNG encoding failed");
+    if (png.empty()) return pathError(path, ErrorCode::Internal, "PNG encoding failed");
     return writeViaTemp(path, [&png](const std::string& temp) { return writeBytes(temp, png.data(), png.size()); });
 }
 
 Status writeExr(const std::string& path, const ImageF& image, const std::vector<std::string>& names,
                 ExrPixelType type) {
     const Status valid = validateExrArgs(image, names);
-    if (!valid.ok()) return pathError(path, valid.error().message);
+    if (!valid.ok()) return valid.error().within(path + ": ");
     return writeViaTemp(path, [&](const std::string& temp) {
         return catchAll<Ok>([&] { return writeExrFile(temp, image, names, type); });
     });
 }
 
 Result<ImageF> readExr(const std::string& path, const std::vector<std::string>& names) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+        return Error{ErrorCode::FileUnreadable, path + ": no such file (or not a regular file)"};
+    }
     Result<ImageF> image = catchAll<ImageF>([&] { return readExrFile(path, names); });
-    if (!image.ok()) return pathError(path, image.error().message);
+    if (!image.ok()) return image.error().within(path + ": ");
     return image;
 }
 

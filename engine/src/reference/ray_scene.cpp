@@ -44,18 +44,19 @@ std::string meshName(const World& world, Entity e, const MeshData& data) {
 Status validate(const Instance& instance) {
     const MeshData& d = *instance.data;
     if (d.indices.size() % 3 != 0) {
-        return Error{"mesh '" + instance.name + "': index count " + std::to_string(d.indices.size()) +
-                     " is not a multiple of 3"};
+        return Error{ErrorCode::InvalidValue, "mesh '" + instance.name + "': index count " +
+                                                  std::to_string(d.indices.size()) + " is not a multiple of 3"};
     }
     for (const std::uint32_t i : d.indices) {
         if (i >= d.positions.size()) {
-            return Error{"mesh '" + instance.name + "': index " + std::to_string(i) + " out of range (" +
-                         std::to_string(d.positions.size()) + " vertices)"};
+            return Error{ErrorCode::InvalidValue, "mesh '" + instance.name + "': index " + std::to_string(i) +
+                                                      " out of range (" + std::to_string(d.positions.size()) +
+                                                      " vertices)"};
         }
     }
     for (const glm::vec3& p : d.positions) {
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-            return Error{"mesh '" + instance.name + "': a vertex position is not finite"};
+            return Error{ErrorCode::InvalidValue, "mesh '" + instance.name + "': a vertex position is not finite"};
         }
     }
     return Ok{};
@@ -135,7 +136,7 @@ struct RayScene::Impl {
     /// The device, its error sink, and the two empty scenes.
     [[nodiscard]] Status createDevice() {
         device = rtcNewDevice(nullptr);
-        if (device == nullptr) return Error{"Embree: cannot create a device"};
+        if (device == nullptr) return Error{ErrorCode::GlUnavailable, "Embree: cannot create a device"};
         rtcSetDeviceErrorFunction(device, recordEmbreeError, &error);
         all = rtcNewScene(device);
         casters = rtcNewScene(device);
@@ -174,7 +175,7 @@ struct RayScene::Impl {
     [[nodiscard]] Status embreeStatus(const std::string& what) {
         const std::lock_guard<std::mutex> lock(error.first);
         if (error.second.empty()) return Ok{};
-        return Error{"Embree: " + what + ": " + error.second};
+        return Error{ErrorCode::GlUnavailable, "Embree: " + what + ": " + error.second};
     }
 };
 

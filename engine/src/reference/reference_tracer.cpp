@@ -78,14 +78,15 @@ Estimate estimateVisibility(const RayScene& scene, const Emitter& emitter, const
 }  // namespace
 
 Status checkPositions(const ImageF& positions) {
-    if (positions.channels != 4) return Error{"positions: expected 4 channels (R, G, B, A)"};
+    if (positions.channels != 4) return Error{ErrorCode::MalformedFile, "positions: expected 4 channels (R, G, B, A)"};
     for (int y = 0; y < positions.height; ++y) {
         for (int x = 0; x < positions.width; ++x) {
             if (!(positions.at(x, y, 3) >= 0.5f)) continue;
             for (int c = 0; c < 3; ++c) {
                 if (!std::isfinite(positions.at(x, y, c))) {
-                    return Error{"positions: pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-                                 ") is covered but its position is not finite"};
+                    return Error{ErrorCode::InvalidValue, "positions: pixel (" + std::to_string(x) + ", " +
+                                                              std::to_string(y) +
+                                                              ") is covered but its position is not finite"};
                 }
             }
         }
@@ -97,20 +98,21 @@ namespace {
 
 Status validate(const ReferenceOptions& o) {
     if (o.width < 1 || o.height < 1 || o.width > kMaxImageSize || o.height > kMaxImageSize) {
-        return Error{"size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
-                     ": width and height must be in [1, 16384]"};
+        return Error{ErrorCode::InvalidArgument, "size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                                                     ": width and height must be in [1, 16384]"};
     }
     if (o.samples < 1 || o.samples > kMaxSamples) {
-        return Error{"samples " + std::to_string(o.samples) + ": must be in [1, 1048576]"};
+        return Error{ErrorCode::InvalidArgument, "samples " + std::to_string(o.samples) + ": must be in [1, 1048576]"};
     }
     if (o.threads < 0 || o.threads > kMaxThreads) {
-        return Error{"threads " + std::to_string(o.threads) + ": must be in [0, 1024]"};
+        return Error{ErrorCode::InvalidArgument, "threads " + std::to_string(o.threads) + ": must be in [0, 1024]"};
     }
     if (const ImageF* p = o.wsPositions; p != nullptr) {
         if (Status s = checkPositions(*p); !s) return s;
         if (p->width != o.width || p->height != o.height) {
-            return Error{"positions: image is " + std::to_string(p->width) + "x" + std::to_string(p->height) +
-                         ", expected " + std::to_string(o.width) + "x" + std::to_string(o.height)};
+            return Error{ErrorCode::MismatchedInputs, "positions: image is " + std::to_string(p->width) + "x" +
+                                                          std::to_string(p->height) + ", expected " +
+                                                          std::to_string(o.width) + "x" + std::to_string(o.height)};
         }
     }
     return Ok{};

@@ -256,7 +256,7 @@ Status checkRenderSize(const RenderOptions& options, int lights) {
     gpu::requireLoaded("checkRenderSize");
     const int passes = std::max(1, (lights + SG_MAX_LIGHTS_PER_PASS - 1) / SG_MAX_LIGHTS_PER_PASS);
     const std::string why = render::renderSizeProblem(options.width, options.height, options.aovs, passes);
-    if (!why.empty()) return Error{why};
+    if (!why.empty()) return Error{ErrorCode::LimitExceeded, why};
     return Ok{};
 }
 

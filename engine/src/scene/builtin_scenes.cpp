@@ -189,7 +189,7 @@ void addBunny(World& w, std::shared_ptr<const MeshData> bunny) {
 
 Result<Scene> makeBunny() {
     auto bunny = loadObjMesh(kBunnyObjPath);
-    if (!bunny) return Error{"builtin:bunny: " + bunny.error().message + " (install glmark2-data)"};
+    if (!bunny) return Error{bunny.error().code, "builtin:bunny: " + bunny.error().message + " (install glmark2-data)"};
     Scene scene;
     scene.name = "bunny";
     World& w = scene.world;
@@ -232,7 +232,8 @@ Result<Scene> makeBunny() {
 /// the Stanford bunny on an 8 m ground, a spot light with a 0.7 rad cone and a 2048^2 PCSS map.
 Result<Scene> makeBunnySpot() {
     auto bunny = loadObjMesh(kBunnyObjPath);
-    if (!bunny) return Error{"builtin:bunny-spot: " + bunny.error().message + " (install glmark2-data)"};
+    if (!bunny)
+        return Error{bunny.error().code, "builtin:bunny-spot: " + bunny.error().message + " (install glmark2-data)"};
     Scene scene;
     scene.name = "bunny-spot";
     World& w = scene.world;
@@ -320,7 +321,7 @@ Result<Scene> makeBuiltinScene(const std::string& name) {
     if (it == registry().end()) {
         std::string known;
         for (const std::string& n : builtinSceneNames()) known += (known.empty() ? "" : ", ") + n;
-        return Error{"builtin:" + name + ": no such built-in scene (known: " + known + ")"};
+        return Error{ErrorCode::InvalidArgument, "builtin:" + name + ": no such built-in scene (known: " + known + ")"};
     }
     return it->second();
 }

@@ -180,9 +180,11 @@ Result<CheckedSpan> checkedSpan(const tinygltf::Model& model, int index, const F
         if (!a.sparse.isSparse) return span;
     }
     if (a.count > kMaxDenseBytes / elementSize) {
-        return elementError(span.name, std::string(a.bufferView >= 0 ? "is sparse" : "has no bufferView") +
-                                           " and its " + std::to_string(a.count) + " elements exceed the " +
-                                           std::to_string(kMaxDenseBytes >> 20U) + " MiB the engine makes dense");
+        return elementError(span.name,
+                            std::string(a.bufferView >= 0 ? "is sparse" : "has no bufferView") + " and its " +
+                                std::to_string(a.count) + " elements exceed the " +
+                                std::to_string(kMaxDenseBytes >> 20U) + " MiB the engine makes dense",
+                            ErrorCode::LimitExceeded);
     }
     span.dense.assign(a.count * elementSize, 0);
     for (std::size_t i = 0; span.data != nullptr && i < a.count; ++i) {

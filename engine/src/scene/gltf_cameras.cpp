@@ -17,7 +17,7 @@ Result<Camera> importCamera(const tinygltf::Model& model, std::size_t index) {
     const tinygltf::Camera& camera = model.cameras[index];
     const std::string where = indexed("cameras", index);
     if (camera.type == "orthographic") {
-        return elementError(where, "orthographic cameras are not supported");
+        return elementError(where, "orthographic cameras are not supported", ErrorCode::Unsupported);
     }
     if (camera.type != "perspective") {
         return elementError(where + ".type", "unknown camera type \"" + camera.type + "\"");

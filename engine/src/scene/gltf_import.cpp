@@ -58,8 +58,8 @@ struct Importer {
     Result<Entity> createEntity(const std::string& name, const Transform& transform) {
         // World::create asserts when out of slots; a file must not be able to trigger that.
         if (scene.world.size() + 1 >= Entity::kMaxEntities) {
-            return Error{"too many nodes: the engine holds at most " + std::to_string(Entity::kMaxEntities - 1) +
-                         " entities"};
+            return Error{ErrorCode::LimitExceeded, "too many nodes: the engine holds at most " +
+                                                       std::to_string(Entity::kMaxEntities - 1) + " entities"};
         }
         const Entity e = scene.world.create();
         scene.world.emplace<Name>(e, Name{name});
@@ -207,7 +207,7 @@ Result<Scene> buildScene(const tinygltf::Model& model, const std::string& name, 
 Result<Scene> sceneOf(const tinygltf::Model& model, const std::string& source, const std::string& name,
                       const GltfLoadOptions& options) {
     auto scene = buildScene(model, name, options);
-    if (!scene) return Error{source + ": " + scene.error().message};
+    if (!scene) return scene.error().within(source + ": ");
     for (Warning& w : scene->warnings) w.message = source + ": " + w.message;
     return scene;
 }

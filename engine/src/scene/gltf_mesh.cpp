@@ -70,7 +70,7 @@ Result<std::optional<MeshPart>> importPrimitive(const tinygltf::Model& model, co
     auto positions = readVec3(model, position->second, where + ".attributes.POSITION");
     if (!positions) return positions.error();
     if (positions->size() > std::numeric_limits<std::uint32_t>::max()) {
-        return elementError(where, "too many vertices for 32-bit indices");
+        return elementError(where, "too many vertices for 32-bit indices", ErrorCode::LimitExceeded);
     }
     auto mesh = std::make_shared<MeshData>();
     mesh->name = std::move(name);

@@ -79,13 +79,14 @@ std::optional<std::string> notRegularFile(const std::string& path) {
 
 /// The file's bytes; errors name it. Checked to be a regular file first.
 Result<std::string> readWholeFile(const std::string& path) {
-    if (std::optional<std::string> what = notRegularFile(path)) return Error{path + ": " + *what};
+    if (std::optional<std::string> what = notRegularFile(path))
+        return Error{ErrorCode::FileUnreadable, path + ": " + *what};
     std::ifstream file(path, std::ios::binary | std::ios::ate);
     const std::streamoff size = file ? static_cast<std::streamoff>(file.tellg()) : -1;
-    if (size < 0) return Error{path + ": cannot be read"};
+    if (size < 0) return Error{ErrorCode::FileUnreadable, path + ": cannot be read"};
     std::string bytes(static_cast<std::size_t>(size), '\0');
     file.seekg(0);
-    if (!file.read(bytes.data(), size)) return Error{path + ": cannot be read"};
+    if (!file.read(bytes.data(), size)) return Error{ErrorCode::FileUnreadable, path + ": cannot be read"};
     return bytes;
 }
 
@@ -131,8 +132,9 @@ std::string_view jsonText(std::string_view bytes, bool binary) {
 Status checkJsonDepth(std::string_view bytes, bool binary, const std::string& name) {
     const std::size_t depth = jsonNestingDepth(jsonText(bytes, binary));
     if (depth > kMaxJsonDepth) {
-        return Error{name + ": JSON nested " + std::to_string(depth) + " levels deep; at most " +
-                     std::to_string(kMaxJsonDepth) + " are read"};
+        return Error{ErrorCode::MalformedFile, name + ": JSON nested " + std::to_string(depth) +
+                                                   " levels deep; at most " + std::to_string(kMaxJsonDepth) +
+                                                   " are read"};
     }
     return Ok{};
 }
@@ -187,7 +189,7 @@ Result<tinygltf::Model> parseModel(const std::string& name, bool filesAllowed, L
     } catch (const std::exception& e) {  // tinygltf throws on some malformed input
         err = e.what();
     }
-    if (!ok) return Error{name + ": " + oneLine(err)};
+    if (!ok) return Error{ErrorCode::MalformedFile, name + ": " + oneLine(err)};
     return model;
 }
 
@@ -246,10 +248,11 @@ Result<tinygltf::Model> readModel(const std::string& path) {
     if (!bytes) return bytes.error();
     const bool binary = hasBinaryMagic(*bytes);
     if (!binary && lowerExtension(path) == ".glb") {
-        return Error{path + ": not a binary glTF file (the header magic is not \"glTF\")"};
+        return Error{ErrorCode::MalformedFile, path + ": not a binary glTF file (the header magic is not \"glTF\")"};
     }
     if (Status s = checkJsonDepth(*bytes, binary, path); !s) return s.error();
-    if (bytes->size() > std::numeric_limits<unsigned int>::max()) return Error{path + ": too large"};
+    if (bytes->size() > std::numeric_limits<unsigned int>::max())
+        return Error{ErrorCode::LimitExceeded, path + ": too large"};
     // External buffers and images are found beside the file.
     const std::string baseDir = std::filesystem::path(path).parent_path().string();
     if (!binary) return parseAscii(path, true, *bytes, baseDir);
@@ -265,7 +268,8 @@ Result<tinygltf::Model> readModelFromMemory(std::string_view bytes, const std::s
     const bool binary = hasBinaryMagic(bytes);
     if (Status s = checkJsonDepth(bytes, binary, name); !s) return s.error();
     // tinygltf takes the length as unsigned int.
-    if (bytes.size() > std::numeric_limits<unsigned int>::max()) return Error{name + ": too large"};
+    if (bytes.size() > std::numeric_limits<unsigned int>::max())
+        return Error{ErrorCode::LimitExceeded, name + ": too large"};
     if (!binary) return parseAscii(name, false, bytes, "");
     const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
     const auto size = static_cast<unsigned int>(bytes.size());

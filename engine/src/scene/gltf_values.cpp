@@ -6,7 +6,9 @@
 
 namespace shadow::gltf {
 
-Error elementError(const std::string& where, const std::string& what) { return Error{where + ": " + what}; }
+Error elementError(const std::string& where, const std::string& what, ErrorCode code) {
+    return Error{code, where + ": " + what, where};
+}
 
 std::string indexed(const std::string& array, std::size_t i) { return array + "[" + std::to_string(i) + "]"; }
 

@@ -12,7 +12,8 @@
 namespace shadow::gltf {
 
 /// `"<where>: <what>"`, the shape of every import error before the file name is prefixed.
-[[nodiscard]] Error elementError(const std::string& where, const std::string& what);
+[[nodiscard]] Error elementError(const std::string& where, const std::string& what,
+                                 ErrorCode code = ErrorCode::InvalidValue);
 
 /// `"<array>[<i>]"`: element `i` of a glTF array as messages name it (`nodes[3]`).
 [[nodiscard]] std::string indexed(const std::string& array, std::size_t i);

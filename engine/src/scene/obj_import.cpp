@@ -29,7 +29,7 @@ void smoothNormals(MeshData& mesh) {
 
 Result<std::shared_ptr<MeshData>> loadObjMesh(const std::string& path) {
     std::ifstream in(path);
-    if (!in) return Error{path + ": cannot open"};
+    if (!in) return Error{ErrorCode::FileUnreadable, path + ": cannot open"};
     auto mesh = std::make_shared<MeshData>();
     mesh->name = path.substr(path.find_last_of('/') + 1);
     std::string line;
@@ -42,7 +42,7 @@ Result<std::shared_ptr<MeshData>> loadObjMesh(const std::string& path) {
         if (tag == "v") {
             glm::vec3 p;
             if (!(ls >> p.x >> p.y >> p.z) || !std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-                return Error{path + ":" + std::to_string(lineNo) + ": bad vertex"};
+                return Error{ErrorCode::MalformedFile, path + ":" + std::to_string(lineNo) + ": bad vertex"};
             }
             mesh->positions.push_back(p);
         } else if (tag == "f") {
@@ -54,12 +54,14 @@ Result<std::shared_ptr<MeshData>> loadObjMesh(const std::string& path) {
                 try {
                     index = std::stol(item.substr(0, item.find('/')));
                 } catch (...) {
-                    return Error{path + ":" + std::to_string(lineNo) + ": bad face index '" + item + "'"};
+                    return Error{ErrorCode::MalformedFile,
+                                 path + ":" + std::to_string(lineNo) + ": bad face index '" + item + "'"};
                 }
                 const long count = static_cast<long>(mesh->positions.size());
                 if (index < 0) index = count + index + 1;
                 if (index < 1 || index > count) {
-                    return Error{path + ":" + std::to_string(lineNo) + ": face index " + item + " out of range"};
+                    return Error{ErrorCode::InvalidValue,
+                                 path + ":" + std::to_string(lineNo) + ": face index " + item + " out of range"};
                 }
                 face.push_back(static_cast<std::uint32_t>(index - 1));
             }
@@ -68,7 +70,7 @@ Result<std::shared_ptr<MeshData>> loadObjMesh(const std::string& path) {
             }
         }
     }
-    if (mesh->indices.empty()) return Error{path + ": no faces"};
+    if (mesh->indices.empty()) return Error{ErrorCode::MalformedFile, path + ": no faces"};
     smoothNormals(*mesh);
     computeBounds(*mesh);
     return mesh;
