@@ -44,8 +44,8 @@ TEST(ErrorCodes, AFileThatCannotBeReadIsFileUnreadable) {
 
 TEST(ErrorCodes, BrokenSyntaxAndNestingAreMalformedFile) {
     EXPECT_EQ(memoryFailure(R"({"asset": {"version": "2.0"}, "nodes": [)").code, ErrorCode::MalformedFile);
-    const std::string deep = R"({"asset": {"version": "2.0"}, "extras": )" + std::string(100, '[') +
-                             std::string(100, ']') + "}";
+    const std::string deep =
+        R"({"asset": {"version": "2.0"}, "extras": )" + std::string(100, '[') + std::string(100, ']') + "}";
     EXPECT_EQ(memoryFailure(deep).code, ErrorCode::MalformedFile);
 }
 
