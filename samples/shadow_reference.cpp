@@ -201,7 +201,7 @@ int run(Options& o) {
         return fail(kExitFailure, s.error().message);
     if (traced->positionsBeyondReach > 0) {
         std::cerr << "shadow_reference: warning: " << traced->positionsBeyondReach
-                  << " positions beyond 1e9 m (kMaxTracedPosition) treated as background\n";
+                  << " positions beyond 1e9 m (kMaxWorldCoordinate) treated as background\n";
     }
     return 0;
 }

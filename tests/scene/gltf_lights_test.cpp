@@ -124,12 +124,11 @@ TEST(GltfImport, UnknownShadowKeysAreWarnedWithTheClosestKnownKey) {
     // tinygltf keeps an object's keys sorted: futureKnob, then techniqe.
     EXPECT_EQ(scene->warnings[0].element, "KHR_lights_punctual.lights[0].extras.shadow.futureKnob");
     EXPECT_EQ(scene->warnings[0].message.find("did you mean"), std::string::npos) << scene->warnings[0].message;
-    const Warning& typo = scene->warnings[1];
-    EXPECT_EQ(typo.code, WarningCode::UnknownSetting);
-    EXPECT_EQ(typo.element, "KHR_lights_punctual.lights[0].extras.shadow.techniqe");
-    EXPECT_EQ(typo.message, path +
-                                ": KHR_lights_punctual.lights[0].extras.shadow: unknown key \"techniqe\" ignored "
-                                "(did you mean \"technique\"?)");
+    expectWarning(scene->warnings[1], WarningCode::UnknownSetting,
+                  "KHR_lights_punctual.lights[0].extras.shadow.techniqe",
+                  path +
+                      ": KHR_lights_punctual.lights[0].extras.shadow: unknown key \"techniqe\" ignored "
+                      "(did you mean \"technique\"?)");
     EXPECT_EQ(scene->warnings[2].code, WarningCode::UnknownSetting);
     EXPECT_EQ(scene->warnings[2].element, "nodes[1].extras.shadow.recieve");
     EXPECT_MESSAGE(scene->warnings[2].message, "(did you mean \"receive\"?)");
@@ -152,18 +151,12 @@ TEST(GltfImport, LenientLoadReplacesBadShadowExtrasByDefaultsWithOneWarningEach)
     auto scene = loadGltf(path, lenient);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     ASSERT_EQ(scene->warnings.size(), 2u);
-    const Warning& light = scene->warnings[0];
-    EXPECT_EQ(light.code, WarningCode::ShadowSettingsIgnored);
-    EXPECT_EQ(light.element, "KHR_lights_punctual.lights[0].extras.shadow");
-    EXPECT_EQ(light.message, path +
-                                 ": KHR_lights_punctual.lights[0].extras.shadow.mapSize: must be a "
-                                 "positive integer (ignored: the defaults are used)");
-    const Warning& mesh = scene->warnings[1];
-    EXPECT_EQ(mesh.code, WarningCode::ShadowSettingsIgnored);
-    EXPECT_EQ(mesh.element, "nodes[2].extras.shadow");
-    EXPECT_EQ(mesh.message, path +
-                                ": nodes[2].extras.shadow.receive: must be true or false "
-                                "(ignored: the defaults are used)");
+    expectWarning(scene->warnings[0], WarningCode::ShadowSettingsIgnored, "KHR_lights_punctual.lights[0].extras.shadow",
+                  path +
+                      ": KHR_lights_punctual.lights[0].extras.shadow.mapSize: must be a positive integer "
+                      "(ignored: the defaults are used)");
+    expectWarning(scene->warnings[1], WarningCode::ShadowSettingsIgnored, "nodes[2].extras.shadow",
+                  path + ": nodes[2].extras.shadow.receive: must be true or false (ignored: the defaults are used)");
 
     const World& w = scene->world;
     // The whole object is ignored, its valid technique too.

@@ -23,10 +23,16 @@ json trianglePrimitive(Doc& doc, int positions) {
             {"indices", doc.indices({0, 1, 2})}};
 }
 
-/// Loads `doc` with mesh primitive `primitive` on node "tri" and returns its positions.
-std::vector<glm::vec3> loadedPositions(Doc& doc, const json& primitive, const std::string& file) {
-    doc.node({{"name", "tri"}, {"mesh", doc.push("meshes", {{"primitives", json::array({primitive})}})}});
+/// Adds node "tri", a triangle whose POSITION is accessor `positions`, and the scene holding it.
+void addTriangleNode(Doc& doc, int positions) {
+    doc.node({{"name", "tri"},
+              {"mesh", doc.push("meshes", {{"primitives", json::array({trianglePrimitive(doc, positions)})}})}});
     doc.scene({0});
+}
+
+/// Loads `doc` with a triangle whose POSITION is accessor `positions` and returns its positions.
+std::vector<glm::vec3> loadedPositions(Doc& doc, int positions, const std::string& file) {
+    addTriangleNode(doc, positions);
     auto scene = loadGltf(doc.write(testDir() / file).string());
     EXPECT_TRUE(scene.ok()) << scene.error().message;
     if (!scene.ok()) return {};
@@ -46,7 +52,7 @@ TEST(GltfSpecInput, AccessorWithoutBufferViewIsZeroFilledAndSparseValuesReplaceE
                       {"type", "VEC3"},          {"min", {0, 0, 0}},
                       {"max", {1, 1, 0}},        {"sparse", sparseOf(doc, {1, 2}, {1, 0, 0, 0, 1, 0})}};
     const int accessor = doc.push("accessors", positions);
-    const std::vector<glm::vec3> p = loadedPositions(doc, trianglePrimitive(doc, accessor), "zero_filled.gltf");
+    const std::vector<glm::vec3> p = loadedPositions(doc, accessor, "zero_filled.gltf");
     ASSERT_EQ(p.size(), 3u);
     expectVec3(p[0], {0, 0, 0});
     expectVec3(p[1], {1, 0, 0});
@@ -57,47 +63,32 @@ TEST(GltfSpecInput, SparseValuesReplaceElementsOfTheBufferView) {
     Doc doc;
     const int base = doc.floats({0, 0, 0, 5, 5, 5, 0, 1, 0}, "VEC3");
     doc.j["accessors"][static_cast<std::size_t>(base)]["sparse"] = sparseOf(doc, {1}, {1, 0, 0});
-    const std::vector<glm::vec3> p = loadedPositions(doc, trianglePrimitive(doc, base), "sparse_on_view.gltf");
+    const std::vector<glm::vec3> p = loadedPositions(doc, base, "sparse_on_view.gltf");
     ASSERT_EQ(p.size(), 3u);
     expectVec3(p[0], {0, 0, 0});
     expectVec3(p[1], {1, 0, 0});
     expectVec3(p[2], {0, 1, 0});
 }
 
+/// The load error of a triangle of zero-filled positions with two sparse values at `indices`.
+std::string sparseTriangleError(const std::vector<std::uint16_t>& indices, const std::string& file) {
+    Doc doc;
+    json positions = {{"componentType", kFloat}, {"count", 3}, {"type", "VEC3"}};
+    positions["sparse"] = sparseOf(doc, indices, {1, 0, 0, 0, 1, 0});
+    addTriangleNode(doc, doc.push("accessors", positions));
+    return loadError(doc.write(testDir() / file));
+}
+
 TEST(GltfSpecInput, BadSparseIndicesAndHugeZeroFilledAccessorsAreRefusedNamingTheAccessor) {
-    std::string message;
-    {
-        Doc doc;
-        json positions = {{"componentType", kFloat}, {"count", 3}, {"type", "VEC3"}};
-        positions["sparse"] = sparseOf(doc, {1, 3}, {1, 0, 0, 0, 1, 0});
-        const int accessor = doc.push("accessors", positions);
-        doc.node({{"name", "tri"},
-                  {"mesh", doc.push("meshes", {{"primitives", json::array({trianglePrimitive(doc, accessor)})}})}});
-        doc.scene({0});
-        message = loadError(doc.write(testDir() / "out_of_range.gltf"));
-        EXPECT_MESSAGE(message, "accessors[0].sparse.indices: index 3 at position 1 out of range (count 3)");
-    }
-    {
-        Doc doc;
-        json positions = {{"componentType", kFloat}, {"count", 3}, {"type", "VEC3"}};
-        positions["sparse"] = sparseOf(doc, {2, 1}, {1, 0, 0, 0, 1, 0});
-        const int accessor = doc.push("accessors", positions);
-        doc.node({{"name", "tri"},
-                  {"mesh", doc.push("meshes", {{"primitives", json::array({trianglePrimitive(doc, accessor)})}})}});
-        doc.scene({0});
-        message = loadError(doc.write(testDir() / "decreasing.gltf"));
-        EXPECT_MESSAGE(message, "accessors[0].sparse.indices: not strictly increasing at position 1");
-    }
-    {
-        Doc doc;
-        const int accessor =
-            doc.push("accessors", {{"componentType", kFloat}, {"count", std::uint64_t{1} << 40U}, {"type", "VEC3"}});
-        doc.node({{"name", "tri"},
-                  {"mesh", doc.push("meshes", {{"primitives", json::array({trianglePrimitive(doc, accessor)})}})}});
-        doc.scene({0});
-        message = loadError(doc.write(testDir() / "huge.gltf"));
-    }
-    EXPECT_MESSAGE(message, "accessors[0]: has no bufferView and its 1099511627776 elements exceed the 256 MiB");
+    EXPECT_MESSAGE(sparseTriangleError({1, 3}, "out_of_range.gltf"),
+                   "accessors[0].sparse.indices: index 3 at position 1 out of range (count 3)");
+    EXPECT_MESSAGE(sparseTriangleError({2, 1}, "decreasing.gltf"),
+                   "accessors[0].sparse.indices: not strictly increasing at position 1");
+    Doc doc;
+    addTriangleNode(
+        doc, doc.push("accessors", {{"componentType", kFloat}, {"count", std::uint64_t{1} << 40U}, {"type", "VEC3"}}));
+    EXPECT_MESSAGE(loadError(doc.write(testDir() / "huge.gltf")),
+                   "accessors[0]: has no bufferView and its 1099511627776 elements exceed the 256 MiB");
 }
 
 TEST(GltfSpecInput, AGltfBufferWithoutUriLoadsWhenNothingReadsItAndOtherwiseIsNamed) {

@@ -158,6 +158,13 @@ inline Entity findByName(Scene& scene, const std::string& name) {
 }
 
 /// Loads `path` expecting failure; returns the message.
+/// Expects `w` to be the warning of `code` about `element` with the whole `message`.
+inline void expectWarning(const Warning& w, WarningCode code, const std::string& element, const std::string& message) {
+    EXPECT_EQ(w.code, code) << w.message;
+    EXPECT_EQ(w.element, element);
+    EXPECT_EQ(w.message, message);
+}
+
 inline std::string loadError(const fs::path& path) {
     const Result<Scene> result = loadGltf(path.string());
     EXPECT_FALSE(result.ok());

@@ -37,6 +37,12 @@ struct Transform {
 /// non-finite: skipped by every pass and reported. A file may well place a mesh at 1e38 m.
 inline constexpr double kMaxWorldCoordinate = 1e9;
 
+/// Whether every coordinate of `p` lies within `kMaxWorldCoordinate` (false for NaN).
+[[nodiscard]] inline bool insideWorld(const glm::dvec3& p) {
+    return std::abs(p.x) <= kMaxWorldCoordinate && std::abs(p.y) <= kMaxWorldCoordinate &&
+           std::abs(p.z) <= kMaxWorldCoordinate;
+}
+
 /// Written by `updateTransforms`; read by everything after it.
 struct WorldTransform {
     glm::dmat4 worldFromLocal{1.0};

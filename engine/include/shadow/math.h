@@ -72,6 +72,14 @@ inline glm::dvec3 anyPerpendicular(const glm::dvec3& axis) {
     return glm::normalize(glm::cross(axis, pick));
 }
 
+/// `v` made unit and perpendicular to unit `axis` (one Gram-Schmidt step); any perpendicular of
+/// `axis` where `v` is zero or parallel to it. With `axis`, the two columns of a rotation.
+inline glm::dvec3 perpendicularPart(const glm::dvec3& axis, const glm::dvec3& v) {
+    const glm::dvec3 rest = v - axis * glm::dot(v, axis);
+    const double length = glm::length(rest);
+    return length > 0.0 && length > 1e-12 * glm::length(v) ? rest / length : anyPerpendicular(axis);
+}
+
 /// View matrix looking from `eye` along unit `forward`, robust for any `forward` including
 /// straight up or down: the up vector is world +Y unless `forward` is within ~0.6 degrees of
 /// it, then a perpendicular axis is chosen instead.

@@ -87,15 +87,11 @@ struct ReferenceResult {
     /// 0.1 % of the distance (the position is shaded without a normal offset; `tnear` =
     /// epsilon instead).
     int positionsWithoutSurface = 0;
-    /// Positions mode: covered pixels whose position lies beyond `kMaxTracedPosition` in some
-    /// coordinate, treated as background (not covered, V = 1).
+    /// Positions mode: covered pixels whose position lies beyond `kMaxWorldCoordinate` in some
+    /// coordinate (`insideWorld` false: the engine draws nothing there, and a ray starting there
+    /// is beyond what float ray tracing resolves), treated as background (not covered, V = 1).
     int positionsBeyondReach = 0;
 };
-
-/// Largest |coordinate| (m) of a position traced in positions mode: the engine's
-/// `kMaxWorldCoordinate`, beyond which it draws nothing, so no surface of a rendered image lies
-/// there (and a ray starting there is beyond what float ray tracing resolves).
-inline constexpr double kMaxTracedPosition = kMaxWorldCoordinate;
 
 /// A positions image (RGBA, the layout of an engine `position.exr`) as positions mode takes it:
 /// four channels, and every covered pixel (A >= 0.5) finite. The error names the first pixel at

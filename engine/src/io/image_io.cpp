@@ -224,10 +224,11 @@ std::string channelList(const Imf::ChannelList& channels) {
 /// Checks that every requested name is present once in `channels`; the error names the first
 /// missing or repeated one.
 Status checkRequestedChannels(const Imf::ChannelList& channels, const std::vector<std::string>& names) {
-    if (names.empty()) return Error{ErrorCode::MalformedFile, "no channels requested"};
+    if (names.empty()) return Error{ErrorCode::InvalidArgument, "no channels requested"};
     std::set<std::string> seen;
     for (const std::string& name : names) {
-        if (!seen.insert(name).second) return Error{ErrorCode::MalformedFile, "channel '" + name + "' requested twice"};
+        if (!seen.insert(name).second)
+            return Error{ErrorCode::InvalidArgument, "channel '" + name + "' requested twice"};
         if (channels.findChannel(name) == nullptr) {
             return Error{ErrorCode::MalformedFile,
                          "no channel '" + name + "' (file has " + channelList(channels) + ")"};

@@ -118,12 +118,6 @@ Status validate(const ReferenceOptions& o) {
     return Ok{};
 }
 
-/// Whether a position lies beyond what is traced (see kMaxTracedPosition).
-bool beyondReach(const glm::dvec3& p) {
-    return std::abs(p.x) > kMaxTracedPosition || std::abs(p.y) > kMaxTracedPosition ||
-           std::abs(p.z) > kMaxTracedPosition;
-}
-
 /// Everything the workers share; each pixel is written by exactly one worker.
 class Tracer {
 public:
@@ -169,7 +163,7 @@ private:
         ShadingPoint p;
         if (!(image.at(x, y, 3) >= 0.5f)) return p;
         p.wsPosition = glm::dvec3(image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2));
-        if (beyondReach(p.wsPosition)) {
+        if (!insideWorld(p.wsPosition)) {
             // No surface of a scene can be there, and rays from there are beyond float tracing.
             ++beyondReach_;
             p.wsPosition = glm::dvec3(0.0);

@@ -65,8 +65,7 @@ NodeInfo decomposeSingular(const glm::dmat4& m) {
     const int a = (zero + 1) % 3;
     const int b = (zero + 2) % 3;
     const glm::dvec3 u = axes[a] / t.scale[a];
-    glm::dvec3 v = axes[b] - u * glm::dot(axes[b], u);
-    v = glm::length(v) > 1e-12 * t.scale[b] ? glm::normalize(v) : anyPerpendicular(u);
+    const glm::dvec3 v = perpendicularPart(u, axes[b]);
     glm::dmat3 r;
     r[a] = u;
     r[b] = v;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <string_view>
 #include <vector>
 
 #include "scene/gltf_values.h"
@@ -58,70 +59,60 @@ Status readKnobs(const ShadowObject& object, const std::array<Knob<Field>, N>& k
     return Ok{};
 }
 
-}  // namespace
+constexpr const char* kTechniqueKey = "technique";
+constexpr const char* kKernelKey = "kernel";
 
-Result<LightShadowExtras> parseShadowExtras(const tinygltf::Value& extras, const std::string& where) {
-    auto object = findShadowObject(extras, where);
-    if (!object) return object.error();
-    LightShadowExtras out;
-    if (object->value == nullptr) return out;
+/// A light's numeric knobs: each key of its `extras.shadow` with the field it sets. The one list
+/// of them: the parser reads these, and the unknown-key check knows these.
+struct LightKnobs {
+    std::array<Knob<int>, 4> ints;
+    std::array<Knob<float>, 12> floats;
+};
 
-    if (const tinygltf::Value* technique = member(*object->value, "technique")) {
-        auto parsed = parseTechnique(*technique, object->where + ".technique");
-        if (!parsed) return parsed.error();
-        out.shadow.technique = *parsed;
-    }
-    if (const tinygltf::Value* kernel = member(*object->value, "kernel")) {
-        auto parsed = parseKernel(*kernel, object->where + ".kernel");
-        if (!parsed) return parsed.error();
-        out.shadow.kernel = *parsed;
-    }
+LightKnobs lightKnobs(LightShadowExtras& out) {
     Shadow& s = out.shadow;
-    const std::array<Knob<int>, 4> ints{{{"mapSize", &s.mapSize},
-                                         {"pcfSamples", &s.pcfSamples},
-                                         {"blockerSamples", &s.blockerSamples},
-                                         {"cascades", &s.cascades}}};
-    const std::array<Knob<float>, 12> floats{{{"radius", &out.radius},
-                                              {"angularRadius", &out.angularRadius},
-                                              {"constantBias", &s.constantBias},
-                                              {"slopeBias", &s.slopeBias},
-                                              {"normalOffset", &s.normalOffset},
-                                              {"pcfRadius", &s.pcfRadius},
-                                              {"lightBleedReduction", &s.lightBleedReduction},
-                                              {"maxFilterTexels", &s.maxFilterTexels},
-                                              {"cascadeSplitLambda", &s.cascadeSplitLambda},
-                                              {"cascadeBlend", &s.cascadeBlend},
-                                              {"shadowDistance", &s.shadowDistance},
-                                              {"nearPlane", &s.nearPlane}}};
-    if (auto st = readKnobs(*object, ints, readPositiveInt); !st) return st.error();
-    if (auto st = readKnobs(*object, floats, readNonNegativeFloat); !st) return st.error();
-    return out;
+    return {{{{"mapSize", &s.mapSize},
+              {"pcfSamples", &s.pcfSamples},
+              {"blockerSamples", &s.blockerSamples},
+              {"cascades", &s.cascades}}},
+            {{{"radius", &out.radius},
+              {"angularRadius", &out.angularRadius},
+              {"constantBias", &s.constantBias},
+              {"slopeBias", &s.slopeBias},
+              {"normalOffset", &s.normalOffset},
+              {"pcfRadius", &s.pcfRadius},
+              {"lightBleedReduction", &s.lightBleedReduction},
+              {"maxFilterTexels", &s.maxFilterTexels},
+              {"cascadeSplitLambda", &s.cascadeSplitLambda},
+              {"cascadeBlend", &s.cascadeBlend},
+              {"shadowDistance", &s.shadowDistance},
+              {"nearPlane", &s.nearPlane}}}};
 }
 
-namespace {
+/// A mesh node's knobs.
+std::array<Knob<bool>, 2> meshKnobs(MeshShadowFlags& out) { return {{{"cast", &out.cast}, {"receive", &out.receive}}}; }
 
-constexpr std::array<const char*, 18> kLightKeys{"technique",
-                                                 "kernel",
-                                                 "mapSize",
-                                                 "pcfSamples",
-                                                 "blockerSamples",
-                                                 "cascades",
-                                                 "radius",
-                                                 "angularRadius",
-                                                 "constantBias",
-                                                 "slopeBias",
-                                                 "normalOffset",
-                                                 "pcfRadius",
-                                                 "lightBleedReduction",
-                                                 "maxFilterTexels",
-                                                 "cascadeSplitLambda",
-                                                 "cascadeBlend",
-                                                 "shadowDistance",
-                                                 "nearPlane"};
-constexpr std::array<const char*, 2> kMeshKeys{"cast", "receive"};
+/// Every key a light's (`light`) or a mesh node's `extras.shadow` reads.
+std::vector<std::string_view> knownKeys(bool light) {
+    std::vector<std::string_view> keys;
+    const auto add = [&](const auto& knobs) {
+        for (const auto& knob : knobs) keys.emplace_back(knob.key);
+    };
+    if (light) {
+        LightShadowExtras scratch;
+        const LightKnobs knobs = lightKnobs(scratch);
+        keys = {kTechniqueKey, kKernelKey};
+        add(knobs.ints);
+        add(knobs.floats);
+    } else {
+        MeshShadowFlags scratch;
+        add(meshKnobs(scratch));
+    }
+    return keys;
+}
 
 /// Levenshtein distance, case-insensitive (a key differing only in case is a near miss too).
-std::size_t editDistance(const std::string& a, const std::string& b) {
+std::size_t editDistance(std::string_view a, std::string_view b) {
     std::vector<std::size_t> row(b.size() + 1);
     for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
     for (std::size_t i = 1; i <= a.size(); ++i) {
@@ -140,36 +131,49 @@ std::size_t editDistance(const std::string& a, const std::string& b) {
 
 }  // namespace
 
+Result<LightShadowExtras> parseShadowExtras(const tinygltf::Value& extras, const std::string& where) {
+    auto object = findShadowObject(extras, where);
+    if (!object) return object.error();
+    LightShadowExtras out;
+    if (object->value == nullptr) return out;
+
+    if (const tinygltf::Value* technique = member(*object->value, kTechniqueKey)) {
+        auto parsed = parseTechnique(*technique, object->where + "." + kTechniqueKey);
+        if (!parsed) return parsed.error();
+        out.shadow.technique = *parsed;
+    }
+    if (const tinygltf::Value* kernel = member(*object->value, kKernelKey)) {
+        auto parsed = parseKernel(*kernel, object->where + "." + kKernelKey);
+        if (!parsed) return parsed.error();
+        out.shadow.kernel = *parsed;
+    }
+    const LightKnobs knobs = lightKnobs(out);
+    if (auto st = readKnobs(*object, knobs.ints, readPositiveInt); !st) return st.error();
+    if (auto st = readKnobs(*object, knobs.floats, readNonNegativeFloat); !st) return st.error();
+    return out;
+}
+
 void warnUnknownShadowKeys(const tinygltf::Value& extras, const std::string& where, bool light,
                            std::vector<Warning>& warnings) {
     const tinygltf::Value* object = member(extras, "shadow");
     if (object == nullptr || !object->IsObject()) return;
     const std::string objectWhere = where + ".extras.shadow";
+    const std::vector<std::string_view> keys = knownKeys(light);
     for (const std::string& key : object->Keys()) {
-        const auto known = [&](auto const& keys) {
-            return std::find_if(keys.begin(), keys.end(), [&](const char* k) { return key == k; }) != keys.end();
-        };
-        if (light ? known(kLightKeys) : known(kMeshKeys)) continue;
-        std::string closest;
+        if (std::find(keys.begin(), keys.end(), key) != keys.end()) continue;
+        std::string_view closest;
         std::size_t best = 3;  // suggest only within two edits
-        const auto consider = [&](auto const& keys) {
-            for (const char* k : keys) {
-                const std::size_t d = editDistance(key, k);
-                if (d < best) {
-                    best = d;
-                    closest = k;
-                }
+        for (const std::string_view k : keys) {
+            const std::size_t d = editDistance(key, k);
+            if (d < best) {
+                best = d;
+                closest = k;
             }
-        };
-        if (light) {
-            consider(kLightKeys);
-        } else {
-            consider(kMeshKeys);
         }
         // Keys are quoted at most 64 bytes long: a file may hold any key.
         const std::string shown = key.size() > 64 ? key.substr(0, 64) + "\u2026" : key;
         std::string message = objectWhere + ": unknown key \"" + shown + "\" ignored";
-        if (!closest.empty()) message += " (did you mean \"" + closest + "\"?)";
+        if (!closest.empty()) message += " (did you mean \"" + std::string(closest) + "\"?)";
         warnings.push_back({WarningCode::UnknownSetting, objectWhere + "." + shown, message});
     }
 }
@@ -179,8 +183,7 @@ Result<MeshShadowFlags> parseMeshShadowExtras(const tinygltf::Value& extras, con
     if (!object) return object.error();
     MeshShadowFlags out;
     if (object->value == nullptr) return out;
-    const std::array<Knob<bool>, 2> flags{{{"cast", &out.cast}, {"receive", &out.receive}}};
-    if (auto st = readKnobs(*object, flags, readBool); !st) return st.error();
+    if (auto st = readKnobs(*object, meshKnobs(out), readBool); !st) return st.error();
     return out;
 }
 

@@ -51,18 +51,16 @@ bool techniqueAvailable(ShadowTechnique t) {
 #endif
 }
 
-std::optional<ShadowTechnique> techniqueFromName(std::string_view name) {
-    for (const TechniqueRow& row : kTechniques) {
-        if (name == row.name && techniqueAvailable(row.technique)) return row.technique;
-    }
-    return std::nullopt;
-}
-
 std::optional<ShadowTechnique> techniqueFromAnyName(std::string_view name) {
     for (const TechniqueRow& row : kTechniques) {
         if (name == row.name) return row.technique;
     }
     return std::nullopt;
+}
+
+std::optional<ShadowTechnique> techniqueFromName(std::string_view name) {
+    const std::optional<ShadowTechnique> t = techniqueFromAnyName(name);
+    return t && techniqueAvailable(*t) ? t : std::nullopt;
 }
 
 std::string techniqueNameList() {

@@ -13,12 +13,6 @@ namespace {
 
 enum class Visit : std::uint8_t { NotYet, InProgress, Done };
 
-/// Whether every coordinate of `p` lies within kMaxWorldCoordinate (false for NaN).
-bool insideWorld(const glm::dvec3& p) {
-    return std::abs(p.x) <= kMaxWorldCoordinate && std::abs(p.y) <= kMaxWorldCoordinate &&
-           std::abs(p.z) <= kMaxWorldCoordinate;
-}
-
 /// The unit rotation of `t`; identity for a zero or non-finite quaternion.
 glm::dquat unitRotation(const Transform& t) {
     const glm::dquat q = t.rotation;
@@ -26,8 +20,9 @@ glm::dquat unitRotation(const Transform& t) {
     return (len > 0.0 && std::isfinite(len)) ? q / len : glm::dquat(1.0, 0.0, 0.0, 0.0);
 }
 
-glm::dmat4 localMatrix(const Transform& t) {
-    glm::dmat4 m = glm::mat4_cast(unitRotation(t));
+/// `t` as a matrix, its rotation `unit` (unitRotation(t), which the caller keeps too).
+glm::dmat4 localMatrix(const Transform& t, const glm::dquat& unit) {
+    glm::dmat4 m = glm::mat4_cast(unit);
     m[0] *= t.scale.x;
     m[1] *= t.scale.y;
     m[2] *= t.scale.z;
@@ -77,9 +72,10 @@ struct Resolver {
             parentRotation = parent.rotation;
         }
         WorldTransform& wt = world.get<WorldTransform>(e);
-        const glm::dmat4 next = parentMatrix * localMatrix(t);
+        const glm::dquat localRotation = unitRotation(t);
+        const glm::dmat4 next = parentMatrix * localMatrix(t, localRotation);
         // Renormalised at every step so that rounding does not pile up along deep chains.
-        wt.rotation = glm::normalize(parentRotation * unitRotation(t));
+        wt.rotation = glm::normalize(parentRotation * localRotation);
         const bool finite = parentFinite && isFinite(next) && insideWorld(glm::dvec3(next[3]));
         wt.movedThisFrame = wt.movedThisFrame || next != wt.worldFromLocal || finite != wt.finite;
         wt.worldFromLocal = next;
@@ -143,8 +139,7 @@ glm::dmat3 worldOrientation(const WorldTransform& wt) {
     const double det = glm::determinant(m);
     if (std::isfinite(lengths) && lengths > 0.0 && std::abs(det) > 1e-9 * lengths) {
         const glm::dvec3 z = glm::normalize(m[2]);
-        glm::dvec3 y = m[1] - z * glm::dot(m[1], z);
-        y = glm::length(y) > 1e-12 * glm::length(m[1]) ? glm::normalize(y) : anyPerpendicular(z);
+        const glm::dvec3 y = perpendicularPart(z, m[1]);
         return glm::dmat3(glm::cross(y, z), y, z);
     }
     return glm::mat3_cast(wt.rotation);
