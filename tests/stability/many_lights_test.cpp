@@ -21,6 +21,7 @@ glm::dvec3 boxCentre(int i) { return {-4.0 + 2.0 * i, 0.6, 0.0}; }
 /// A ground with a row of boxes, and `count` spot and point lights (alternating) in a grid
 /// above it, every one shadowed, the techniques taking turns (one program holds them all).
 Scene manyLights(int count, int mapSize) {
+    const std::vector<ShadowTechnique> offered = test::offeredShadowTechniques();
     Scene scene;
     test::addGround(scene, 8.0f);
     for (int i = 0; i < 5; ++i) test::addBox(scene, "box" + std::to_string(i), boxCentre(i), kBoxHalf);
@@ -33,7 +34,7 @@ Scene manyLights(int count, int mapSize) {
         Light light = test::pointSizedLight(type, 0.9f);  // PCSS of a point-sized light is hard
         light.intensity = 40.0f / static_cast<float>(count);
         light.range = 12.0f;
-        const ShadowTechnique technique = test::kShadowTechniques[static_cast<std::size_t>(i / 2) % 4];
+        const ShadowTechnique technique = offered[static_cast<std::size_t>(i / 2) % 4];
         addLight(scene, "light" + std::to_string(i), light, test::shadowWith(technique, mapSize), {x, 3.0, z},
                  {0, -1, 0});
     }

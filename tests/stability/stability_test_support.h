@@ -23,6 +23,16 @@ inline constexpr std::array<ShadowTechnique, 8> kShadowTechniques{
     ShadowTechnique::Hard, ShadowTechnique::Pcf,  ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook,
     ShadowTechnique::Vsm,  ShadowTechnique::Vssm, ShadowTechnique::Msm,  ShadowTechnique::MsmSoft};
 
+/// The techniques of kShadowTechniques this build offers: pcss-textbook only where the build has
+/// SHADOW_BASELINE_TECHNIQUES (elsewhere a light asking for it gets PCSS and a warning).
+inline std::vector<ShadowTechnique> offeredShadowTechniques() {
+    std::vector<ShadowTechnique> offered;
+    for (ShadowTechnique t : kShadowTechniques) {
+        if (techniqueAvailable(t)) offered.push_back(t);
+    }
+    return offered;
+}
+
 /// Whether `t` reads a depth moments chain (VSM, VSSM, MSM, MSM-soft): a bound over a filter
 /// region, which some extreme cases hold to their own measured bounds.
 inline constexpr bool readsMoments(ShadowTechnique t) {
@@ -141,13 +151,13 @@ inline void setTechnique(Scene& scene, ShadowTechnique technique) {
     scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.technique = technique; });
 }
 
-/// Renders one frame per technique of `kShadowTechniques` (one runner: the maps do not depend
+/// Renders one frame per technique of `offeredShadowTechniques()` (one runner: the maps do not depend
 /// on the technique), checks the frame invariants, and hands each frame to `inspect`.
 template <typename Inspect>
 void forEveryTechnique(Scene& scene, int width, int height, const std::string& what, Inspect inspect) {
     glContext();
     FrameRunner runner;
-    for (ShadowTechnique technique : kShadowTechniques) {
+    for (ShadowTechnique technique : offeredShadowTechniques()) {
         setTechnique(scene, technique);
         const RenderedFrame frame = renderFrame(runner, scene, width, height);
         expectSaneFrame(frame.images, runner.shadows(), what + ", " + techniqueName(technique));
