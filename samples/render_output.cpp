@@ -154,7 +154,8 @@ nlohmann::json lightsJson(const Scene& scene, const FrameStats& last) {
                            {"mapBytes", ls.mapBytes},
                            {"filterChainBytes", ls.filterChainBytes},
                            {"castersDrawn", ls.castersDrawn},
-                           {"affectsView", ls.affectsView}};
+                           {"affectsView", ls.affectsView},
+                           {"depthMode", shadow != nullptr ? depthModeName(shadow->depthMode) : "nearest"}};
         }
         lights.push_back(j);
     }
@@ -214,6 +215,7 @@ std::string statsJson(const Scene& scene, const std::vector<FrameStats>& frames,
                      {"mainDrawCalls", last.mainDrawCalls},
                      {"mainPasses", last.mainPasses},
                      {"programsCompiled", last.programsCompiled},
+                     {"shadowScratchBytes", last.shadowScratchBytes},
                      {"entitiesSkippedNonFinite", last.entitiesSkippedNonFinite}};
     nlohmann::json perFrame = nlohmann::json::array();
     for (const FrameStats& f : frames) {

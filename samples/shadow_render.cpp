@@ -1,7 +1,7 @@
 // shadow_render: renders a scene headless (OSMesa) and writes images, AOVs and stats.json.
 //
 //   shadow_render SCENE [--out DIR] [--size WxH] [--camera N] [--time T] [--frames N --dt S]
-//                 [--technique NAME] [--aov color,visibility,position,depth]
+//                 [--technique NAME] [--depth-mode MODE] [--aov color,visibility,position,depth]
 //                 [--debug NAME] [--debug-light I] [--frame-images] [--no-cache] [--exposure E]
 //                 [--shader-cache DIR]
 //
@@ -41,6 +41,7 @@ struct Options {
     int frames = 1;
     double dt = 1.0 / 30.0;
     std::optional<std::string> technique;  ///< absent: each light keeps its own
+    std::optional<std::string> depthMode;  ///< absent: each light keeps its own
     std::string aov = "color,visibility,position,depth";
     std::string debug;
     int debugLight = 0;
@@ -110,6 +111,14 @@ int run(const Options& o) {
         if (!t) return fail(kExitBadInput, "--technique: " + t.error().message);
         technique = *t;
     }
+    std::optional<DepthMode> depthMode;
+    if (o.depthMode) {
+        depthMode = depthModeFromName(*o.depthMode);
+        if (!depthMode) {
+            return fail(kExitBadInput,
+                        "--depth-mode: unknown depth mode '" + *o.depthMode + "' (known: nearest, midpoint, second)");
+        }
+    }
     if (!std::isfinite(o.time)) return fail(kExitBadInput, "--time: must be a finite number of seconds");
     if (o.exposure && !(std::isfinite(*o.exposure) && *o.exposure > 0.0f)) {
         return fail(kExitBadInput, "--exposure: must be a finite number > 0");
@@ -128,6 +137,12 @@ int run(const Options& o) {
     }
     if (technique) {
         scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.technique = *technique; });
+    }
+    if (depthMode) {
+        scene.world.view<Shadow>().each([&](Entity, Shadow& s) {
+            s.depthMode = *depthMode;
+            if (*depthMode != DepthMode::Nearest) s.constantBias = s.slopeBias = 0.0f;  // as the modes are meant
+        });
     }
     Result<Entity> chosen = samples::chooseCamera(scene, o.camera, o.time);
     if (!chosen) return fail(kExitBadInput, chosen.error().message);
@@ -206,6 +221,9 @@ int main(int argc, char** argv) {
     app.add_option("--frames", o.frames, "frames to render");
     app.add_option("--dt", o.dt, "time step between frames (s)");
     app.add_option("--technique", o.technique, "override every shadowed light: " + techniqueNameList());
+    app.add_option("--depth-mode", o.depthMode,
+                   "override every shadowed light's depth mode: nearest|midpoint|second (midpoint and second "
+                   "also set constant and slope bias to 0)");
     app.add_option("--aov", o.aov, "outputs: color,visibility,position,depth");
     app.add_option("--debug", o.debug, "debug view: shadowmap|cascade|blocker|penumbra|visibility");
     app.add_option("--debug-light", o.debugLight, "scene light index the debug view shows");

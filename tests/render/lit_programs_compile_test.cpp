@@ -155,7 +155,7 @@ TEST_F(CompileBudget, OneLightOfEachTypeWithItsHeaviestTechnique) {
 TEST_F(CompileBudget, CascadedSunsWithPcss) {
     for (int suns : {3, 8}) {
         expectCompiles(repeated(suns, {LightType::Directional, ShadowTechnique::Pcss, FilterKernel::Vogel, 4}),
-                     kPassTarget);
+                       kPassTarget);
     }
     expectCompiles(repeated(3, {LightType::Directional, ShadowTechnique::Pcf, FilterKernel::Vogel, 3}), kPassTarget);
 }
@@ -175,14 +175,14 @@ TEST_F(CompileBudget, EightSlotsOfEachTechnique) {
 // Eight lights, no two alike, the heaviest configurations: every slot compiles its own code.
 TEST_F(CompileBudget, EightUnlikeHeavySlots) {
     expectCompiles({{LightType::Point, ShadowTechnique::Pcss, FilterKernel::Vogel},
-                  {LightType::Point, ShadowTechnique::Pcss, FilterKernel::Poisson},
-                  {LightType::Point, ShadowTechnique::Vssm},
-                  {LightType::Point, ShadowTechnique::Pcf, FilterKernel::Uniform},
-                  {LightType::Directional, ShadowTechnique::Vssm, FilterKernel::Vogel, 4},
-                  {LightType::Directional, ShadowTechnique::Pcss, FilterKernel::Poisson, 4},
-                  {LightType::Spot, ShadowTechnique::Vssm},
-                  {LightType::Spot, ShadowTechnique::MsmSoft}},
-                 kPassTarget);
+                    {LightType::Point, ShadowTechnique::Pcss, FilterKernel::Poisson},
+                    {LightType::Point, ShadowTechnique::Vssm},
+                    {LightType::Point, ShadowTechnique::Pcf, FilterKernel::Uniform},
+                    {LightType::Directional, ShadowTechnique::Vssm, FilterKernel::Vogel, 4},
+                    {LightType::Directional, ShadowTechnique::Pcss, FilterKernel::Poisson, 4},
+                    {LightType::Spot, ShadowTechnique::Vssm},
+                    {LightType::Spot, ShadowTechnique::MsmSoft}},
+                   kPassTarget);
 }
 
 // The space of shader variants, sampled: random light configurations (1 to 8 lights of any

@@ -161,6 +161,28 @@ TEST(ShadowRenderCli, ClampedSettingIsReportedInStatsJsonAndOnStderr) {
     EXPECT_EQ(stats["warnings"], expected) << stats["warnings"].dump(2);
 }
 
+TEST(ShadowRenderCli, DepthModeFlagSetsEveryShadowedLightAndReportsTheScratch) {
+    TempDir tmp;
+    const std::string out = tmp / "out";
+    const CliRun run =
+        runCli(tmp, "builtin:default --size 32x18 --aov color --depth-mode midpoint --out " + quoted(out));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const nlohmann::json stats = readJson(out + "/stats.json");
+    ASSERT_FALSE(stats.is_discarded()) << "stats.json is not JSON";
+    int shadowed = 0;
+    for (const nlohmann::json& light : stats["lights"]) {
+        if (!light.contains("shadow")) continue;
+        ++shadowed;
+        EXPECT_EQ(light["shadow"]["depthMode"], "midpoint") << light.dump();
+    }
+    EXPECT_GT(shadowed, 0);
+    EXPECT_GT(stats["counters"]["shadowScratchBytes"].get<long long>(), 0);
+    // The default scene's ground is an open plane: each light says so once.
+    int open = 0;
+    for (const nlohmann::json& w : stats["warnings"]) open += w["code"] == "OpenCaster" ? 1 : 0;
+    EXPECT_EQ(open, shadowed) << stats["warnings"].dump(2);
+}
+
 struct BadInput {
     const char* what;
     std::string args;  // everything after the scene and --out
@@ -177,6 +199,8 @@ TEST(ShadowRenderCli, BadInputExitsWithCode2AndWritesNothing) {
         {"zero width", "--size 0x5", "builtin:default", "--size"},
         {"size not a size", "--size abc", "builtin:default", "--size"},
         {"unknown technique", "--technique foo", "builtin:default", "foo"},
+        {"unknown depth mode", "--depth-mode mid", "builtin:default", "--depth-mode: unknown depth mode 'mid'"},
+        {"depth mode without a value", "--depth-mode", "builtin:default", "--depth-mode"},
         {"camera out of range", "--camera 99", "builtin:default", "--camera"},
         {"unknown AOV", "--aov bogus", "builtin:default", "bogus"},
         {"no frames", "--frames 0", "builtin:default", "--frames"},

@@ -1,6 +1,7 @@
-// Tests of computeBounds and makeFlatNormals (engine/src/scene/mesh_utils.cpp).
+// Tests of computeBounds, computeClosed and makeFlatNormals (engine/src/scene/mesh_utils.cpp).
 #include <gtest/gtest.h>
 #include <shadow/components.h>
+#include <shadow/scene.h>
 
 #include <cmath>
 #include <limits>
@@ -78,6 +79,62 @@ TEST(MeshUtils, FlatNormalsDropTrianglesWithBadIndices) {
     EXPECT_EQ(mesh.positions.size(), 6u);
     EXPECT_EQ(mesh.indices.size(), 6u);
     EXPECT_EQ(mesh.normals[3], glm::vec3(0, 0, 1));
+}
+
+TEST(MeshUtils, ComputeClosedKnowsWatertightMeshesFromOpenOnes) {
+    // The generated meshes: the box and the sphere are closed (the sphere's pole vertices and
+    // seam repeat positions, welded), the plane is not.
+    EXPECT_TRUE(makeBoxMesh(glm::vec3(0.5f, 0.2f, 1.0f))->closed);
+    EXPECT_TRUE(makeSphereMesh(0.5f, 48, 24)->closed);
+    EXPECT_TRUE(makeSphereMesh(1e-3f, 8, 4)->closed);
+    EXPECT_FALSE(makePlaneMesh(2.0f, 4)->closed);
+
+    // The box with flat normals (every triangle its own vertices) is still closed.
+    MeshData flat = *makeBoxMesh(glm::vec3(1.0f));
+    makeFlatNormals(flat);
+    computeClosed(flat);
+    EXPECT_TRUE(flat.closed);
+
+    // One face missing: open. One face doubled: an edge of four triangles, not closed either.
+    MeshData box = *makeBoxMesh(glm::vec3(1.0f));
+    MeshData missing = box;
+    missing.indices.resize(missing.indices.size() - 6);
+    computeClosed(missing);
+    EXPECT_FALSE(missing.closed);
+    MeshData doubled = box;
+    doubled.indices.insert(doubled.indices.end(), box.indices.begin(), box.indices.begin() + 6);
+    computeClosed(doubled);
+    EXPECT_FALSE(doubled.closed);
+
+    // Degenerate triangles are ignored; an empty mesh is not closed; bad indices are skipped.
+    MeshData degenerate = box;
+    degenerate.indices.insert(degenerate.indices.end(), {0, 0, 1});
+    computeClosed(degenerate);
+    EXPECT_TRUE(degenerate.closed);
+    MeshData empty;
+    computeClosed(empty);
+    EXPECT_FALSE(empty.closed);
+    MeshData outOfRange = box;
+    outOfRange.indices.insert(outOfRange.indices.end(), {0, 1, 100000});
+    computeClosed(outOfRange);
+    EXPECT_TRUE(outOfRange.closed);
+
+    // A tetrahedron far from the origin, and the same with one vertex 1e-9 of the extent off
+    // its twin (welded) and 1e-3 off (not).
+    const glm::vec3 o(1e5f, -3e4f, 7e3f);
+    MeshData tet;
+    tet.positions = {o, o + glm::vec3(1, 0, 0), o + glm::vec3(0, 1, 0), o + glm::vec3(0, 0, 1)};
+    tet.indices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+    computeClosed(tet);
+    EXPECT_TRUE(tet.closed);
+    MeshData split;
+    split.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1e-9f, 0, 0}, {1e-3f, 0, 0}};
+    split.indices = {0, 2, 1, 4, 1, 3, 0, 3, 2, 1, 2, 3};
+    computeClosed(split);
+    EXPECT_TRUE(split.closed);
+    split.indices = {0, 2, 1, 5, 1, 3, 0, 3, 2, 1, 2, 3};
+    computeClosed(split);
+    EXPECT_FALSE(split.closed);
 }
 
 }  // namespace

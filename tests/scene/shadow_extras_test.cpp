@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "scene/shadow_extras.h"
 
@@ -27,6 +28,28 @@ TEST(GltfShadowExtras, AcceptsIntegralRealAsInteger) {
     ASSERT_TRUE(result.ok()) << result.error().message;
     EXPECT_EQ(result->shadow.mapSize, 512);
     EXPECT_FALSE(gltf::parseShadowExtras(object({{"shadow", object({{"mapSize", tinygltf::Value(1e12)}})}}), "L").ok());
+}
+
+TEST(GltfShadowExtras, ReadsTheDepthModeByNameAndRejectsAnUnknownOne) {
+    for (DepthMode mode : {DepthMode::Nearest, DepthMode::Midpoint, DepthMode::Second}) {
+        const auto extras =
+            object({{"shadow", object({{"depthMode", tinygltf::Value(std::string(depthModeName(mode)))}})}});
+        const auto result = gltf::parseShadowExtras(extras, "L");
+        ASSERT_TRUE(result.ok()) << result.error().message;
+        EXPECT_EQ(result->shadow.depthMode, mode);
+    }
+    EXPECT_EQ(gltf::parseShadowExtras(object({{"shadow", object({})}}), "L")->shadow.depthMode, DepthMode::Nearest);
+    const auto bad = gltf::parseShadowExtras(
+        object({{"shadow", object({{"depthMode", tinygltf::Value(std::string("mid"))}})}}), "L");
+    ASSERT_FALSE(bad.ok());
+    EXPECT_EQ(bad.error().code, ErrorCode::InvalidValue);
+    EXPECT_EQ(bad.error().message,
+              "L.extras.shadow.depthMode: unknown depth mode \"mid\" (expected nearest, midpoint or second)");
+    std::vector<Warning> warnings;
+    gltf::warnUnknownShadowKeys(object({{"shadow", object({{"depthmode", tinygltf::Value(std::string("second"))}})}}),
+                                "L", true, warnings);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].message.find("did you mean \"depthMode\""), std::string::npos) << warnings[0].message;
 }
 
 TEST(GltfShadowExtras, RejectsShadowThatIsNotAnObjectButIgnoresOtherExtras) {

@@ -239,6 +239,53 @@ TEST(Planner, LightsWithoutShadowOrWithTechniqueNoneGetNoPlan) {
                                          (1u << static_cast<unsigned>(ShadowTechnique::Hard)));
 }
 
+TEST(Planner, SecondDepthModesWarnOnceAboutCastersNotKnownToBeClosed) {
+    // The scene's ground plane is open, its boxes closed; a game's caster is closed only on its
+    // word. A point light sees all of them.
+    TestScene t;
+    ShadowCasterDraw own;
+    own.localBounds.extend(glm::vec3(-0.3f));
+    own.localBounds.extend(glm::vec3(0.3f));
+    own.vertexArray = GlVertexArray{7};
+    own.indexCount = 36;
+    const Entity game = t.scene.world.create();
+    t.scene.world.emplace<Transform>(game, at({0.0, 1.5, 2.0}));
+    t.scene.world.emplace<ShadowCasterDraw>(game, own);
+    Shadow s = hard();
+    s.depthMode = DepthMode::Midpoint;
+    const Entity bulb = addLight(t.scene, "bulb", lightOf(LightType::Point), s, {0, 3, 0}, {0, -1, 0});
+    auto warningsOf = [&](DepthMode mode, bool groundCasts, bool gameClosed) {
+        t.scene.world.get<Shadow>(bulb).depthMode = mode;
+        t.scene.world.view<Mesh, Name>().each([&](Entity, Mesh& m, Name& n) {
+            if (n.value == "ground") m.castShadows = groundCasts;
+        });
+        t.scene.world.get<ShadowCasterDraw>(game).closed = gameClosed;
+        ShadowPlanner planner;
+        return planner.prepare(t.scene.world, t.update(), t.scene.lights).warnings;
+    };
+    const std::vector<Warning> both = warningsOf(DepthMode::Midpoint, true, false);
+    ASSERT_EQ(test::countWarnings(both, WarningCode::OpenCaster, "bulb"), 1) << test::describe(both);
+    EXPECT_NE(both[0].message.find("2 are not"), std::string::npos) << both[0].message;
+    EXPECT_NE(both[0].message.find("depth mode midpoint"), std::string::npos) << both[0].message;
+    const std::vector<Warning> ground = warningsOf(DepthMode::Second, true, true);
+    ASSERT_EQ(test::countWarnings(ground, WarningCode::OpenCaster, "bulb"), 1) << test::describe(ground);
+    EXPECT_NE(ground[0].message.find("1 is not (\"ground\" first)"), std::string::npos) << ground[0].message;
+    EXPECT_TRUE(warningsOf(DepthMode::Midpoint, false, true).empty());
+    EXPECT_TRUE(warningsOf(DepthMode::Nearest, true, false).empty());
+}
+
+TEST(Planner, ADepthModeOutsideTheEnumIsReplacedByNearestAndReported) {
+    TestScene t;
+    Shadow s = hard();
+    s.depthMode = static_cast<DepthMode>(7);
+    addLight(t.scene, "lamp", lightOf(LightType::Spot), s, {0, 5, 0}, {0, -1, 0});
+    ShadowPlanner planner;
+    const ShadowFrame& frame = planner.prepare(t.scene.world, t.update(), t.scene.lights);
+    EXPECT_EQ(frame.lights.at(0).settings.depthMode, DepthMode::Nearest);
+    EXPECT_EQ(test::countWarnings(frame.warnings, WarningCode::SettingClamped, "lamp"), 1)
+        << test::describe(frame.warnings);
+}
+
 TEST(Planner, ReadsAConstWorldAndLeavesItAsItWas) {
     // The decide phase takes the world as const: what it remembers between frames (which layers
     // are dirty) is its own. A caster the game marked changed stays marked (the game resets it).

@@ -43,11 +43,15 @@ struct ShadowCasterDraw {
     std::size_t indexOffset = 0;           ///< bytes into the vertex array's element buffer
     int indexCount = 0;                    ///< indices drawn (triangles)
     int baseVertex = 0;                    ///< added to every index
-    /// When set, called instead of the indexed draw, once per layer the caster falls in.
+    /// When set, called instead of the indexed draw, once per layer the caster falls in (twice
+    /// for a light whose depth mode is midpoint or second: the context's program differs).
     std::function<void(const CasterDrawContext&)> draw;
     /// Set by the game in a frame where the geometry changed while the transform did not
     /// (skinning, streaming): the layers it falls in are redrawn. The module does not reset it.
     bool changedThisFrame = false;
+    /// Whether what it draws is closed (watertight), which the second-depth modes need
+    /// (`DepthMode`); a light in those modes warns about a caster not marked closed.
+    bool closed = false;
 
     /// Whether it draws anything: a callback, or a vertex array with indices.
     [[nodiscard]] bool drawsSomething() const { return draw != nullptr || (vertexArray && indexCount > 0); }

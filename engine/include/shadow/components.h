@@ -63,10 +63,17 @@ struct MeshData {
     std::vector<glm::vec3> normals;      // one per position
     std::vector<std::uint32_t> indices;  // triangle list
     Aabb bounds;                         // of `positions`
+    /// Every edge, matched by position, is shared by exactly two triangles: a watertight surface
+    /// (see `computeClosed`). The second-depth modes (`DepthMode`) need closed casters.
+    bool closed = false;
 };
 
 /// Computes `bounds` from `positions`.
 void computeBounds(MeshData& mesh);
+/// Computes `closed`: vertices at the same position count as one (a mesh with flat normals
+/// repeats them per face), degenerate triangles are ignored, and every remaining edge must
+/// belong to exactly two triangles.
+void computeClosed(MeshData& mesh);
 /// Replaces a mesh by one with flat normals: every triangle gets its own three vertices.
 void makeFlatNormals(MeshData& mesh);
 
@@ -148,6 +155,21 @@ enum class FilterKernel : std::uint8_t {
 /// The kernel named `name`, or nullopt for an unknown name.
 [[nodiscard]] std::optional<FilterKernel> filterKernelFromName(std::string_view name);
 
+/// What a shadow map stores per texel: which surface along the light's ray the receivers are
+/// compared against.
+enum class DepthMode : std::uint8_t {
+    Nearest,   ///< the nearest caster (the classic map; needs the bias settings against acne)
+    Midpoint,  ///< the mean of the nearest and the second-nearest surface: a lit surface sits
+               ///< half a caster's thickness in front of the stored depth, so no bias is needed
+    Second,    ///< the second-nearest surface: a lit front face is never compared with itself
+};
+
+/// A depth mode's name as glTF `extras.shadow.depthMode` and the CLI spell it ("nearest",
+/// "midpoint", "second").
+[[nodiscard]] const char* depthModeName(DepthMode m);
+/// The depth mode named `name`, or nullopt for an unknown name.
+[[nodiscard]] std::optional<DepthMode> depthModeFromName(std::string_view name);
+
 /// Per-light shadow settings. A light with no `Shadow` component, or technique `None`, gets no
 /// shadow map at all. Values out of range are clamped to the stated range by the shadow system
 /// and the clamp is reported in stats.json.
@@ -206,6 +228,12 @@ struct Shadow {
     float shadowDistance = 0.0f;
     /// Spot/point: near plane of the shadow projection (m), (0, range). 0 = automatic.
     float nearPlane = 0.0f;
+    /// What the map stores (`DepthMode`). Default Nearest. Midpoint and Second draw every layer
+    /// twice (the second pass keeps the nearest surface behind the first) and are meant to be
+    /// used with zero constant and slope bias; they need closed (watertight) casters: where a
+    /// ray meets one surface only, the texel stores the far depth and casts nothing, and the
+    /// shadow system warns (`OpenCaster`) for every light whose layers hold an open caster.
+    DepthMode depthMode = DepthMode::Nearest;
 };
 
 /// A perspective camera looking along its node's -Z.

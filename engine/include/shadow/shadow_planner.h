@@ -158,6 +158,7 @@ private:
     };
     struct LightMemory {
         int mapSize = 0;
+        DepthMode depthMode = DepthMode::Nearest;
         std::vector<LayerMemory> layers;
     };
     void markDirty(const World& world, ShadowLightPlan& plan);

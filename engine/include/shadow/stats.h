@@ -68,6 +68,9 @@ struct FrameStats {
     int mainDrawCalls = 0;
     int mainPasses = 0;
     int programsCompiled = 0;  ///< shader programs built this frame (0 in steady state)
+    /// GPU memory of the nearest-depth scratch the second-depth modes draw through (one 32-bit
+    /// depth texture of the largest map in such a mode, shared by every light; 0 without one).
+    long long shadowScratchBytes = 0;
     /// Entities whose world matrix (or an ancestor's) is not finite, skipped by every pass
     /// (`TransformStats::nonFinite`); each is also a `NonFiniteTransform` warning.
     int entitiesSkippedNonFinite = 0;

@@ -56,6 +56,12 @@ enum class WarningCode {
     /// the nodes that reference it carry no light. Element: the light, e.g.
     /// `KHR_lights_punctual.lights[2]`.
     UnsupportedLight,
+    /// A light whose depth mode is `midpoint` or `second` has casters in its layers that are not
+    /// known to be closed (`MeshData::closed`, `ShadowCasterDraw::closed`): where a ray meets
+    /// only one surface of them the map stores the far depth, and in `second` mode a receiver
+    /// right behind one may be compared with itself. Element: the light; the message counts
+    /// them and names the first.
+    OpenCaster,
 };
 
 /// One decision the engine reports.
@@ -81,6 +87,7 @@ struct Warning {
         case WarningCode::UnknownSetting: return "UnknownSetting";
         case WarningCode::DegenerateTransform: return "DegenerateTransform";
         case WarningCode::UnsupportedLight: return "UnsupportedLight";
+        case WarningCode::OpenCaster: return "OpenCaster";
     }
     return "Unknown";
 }

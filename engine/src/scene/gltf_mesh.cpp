@@ -86,6 +86,7 @@ Result<std::optional<MeshPart>> importPrimitive(const tinygltf::Model& model, co
     } else {
         computeBounds(*mesh);
     }
+    computeClosed(*mesh);
     return std::optional<MeshPart>{MeshPart{std::move(mesh), *material}};
 }
 

@@ -1,7 +1,12 @@
 // CPU-side mesh helpers declared in components.h.
 #include <shadow/components.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
 
 namespace shadow {
 
@@ -12,6 +17,59 @@ void computeBounds(MeshData& mesh) {
     mesh.bounds = Aabb{};
     for (const glm::vec3& p : mesh.positions) {
         if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) mesh.bounds.extend(p);
+    }
+}
+
+// Welds positions that round to the same point of a grid a millionth of the mesh's extent
+// apart (so a flat-shaded mesh's repeated vertices, and a generated sphere's pole vertices that
+// differ by rounding, count once); then sorts the edges and checks that each appears exactly
+// twice.
+void computeClosed(MeshData& mesh) {
+    const std::size_t vertexCount = mesh.positions.size();
+    Aabb box;
+    for (const glm::vec3& p : mesh.positions) {
+        if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) box.extend(p);
+    }
+    const glm::vec3 extent = box.empty() ? glm::vec3(0.0f) : box.extent();
+    const double cell = std::max(1e-6 * std::max({extent.x, extent.y, extent.z}), 1e-12);
+    auto key = [cell](const glm::vec3& p) {
+        std::array<std::int64_t, 3> q{};
+        for (int c = 0; c < 3; ++c) {
+            const double v = std::isfinite(p[c]) ? static_cast<double>(p[c]) / cell : 0.0;
+            q[static_cast<std::size_t>(c)] = static_cast<std::int64_t>(std::llround(std::clamp(v, -4e18, 4e18)));
+        }
+        return q;
+    };
+    std::vector<std::pair<std::array<std::int64_t, 3>, std::uint32_t>> byPosition(vertexCount);
+    for (std::size_t i = 0; i < vertexCount; ++i)
+        byPosition[i] = {key(mesh.positions[i]), static_cast<std::uint32_t>(i)};
+    std::sort(byPosition.begin(), byPosition.end());
+    std::vector<std::uint32_t> welded(vertexCount);
+    std::uint32_t id = 0;
+    for (std::size_t i = 0; i < vertexCount; ++i) {
+        if (i > 0 && byPosition[i].first != byPosition[i - 1].first) ++id;
+        welded[byPosition[i].second] = id;
+    }
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+    edges.reserve(mesh.indices.size());
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const std::uint32_t* tri = &mesh.indices[t];
+        if (tri[0] >= vertexCount || tri[1] >= vertexCount || tri[2] >= vertexCount) continue;
+        const std::array<std::uint32_t, 3> v{welded[tri[0]], welded[tri[1]], welded[tri[2]]};
+        if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;  // degenerate: covers nothing
+        for (int e = 0; e < 3; ++e) {
+            const std::uint32_t a = v[static_cast<std::size_t>(e)];
+            const std::uint32_t b = v[static_cast<std::size_t>((e + 1) % 3)];
+            edges.emplace_back(std::min(a, b), std::max(a, b));
+        }
+    }
+    std::sort(edges.begin(), edges.end());
+    mesh.closed = !edges.empty();
+    for (std::size_t i = 0; i < edges.size() && mesh.closed;) {
+        std::size_t j = i;
+        while (j < edges.size() && edges[j] == edges[i]) ++j;
+        mesh.closed = j - i == 2;
+        i = j;
     }
 }
 

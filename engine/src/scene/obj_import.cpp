@@ -73,6 +73,7 @@ Result<std::shared_ptr<MeshData>> loadObjMesh(const std::string& path) {
     if (mesh->indices.empty()) return Error{ErrorCode::MalformedFile, path + ": no faces"};
     smoothNormals(*mesh);
     computeBounds(*mesh);
+    computeClosed(*mesh);
     return mesh;
 }
 

@@ -36,6 +36,7 @@ std::shared_ptr<MeshData> makeBoxMesh(const glm::vec3& halfExtents) {
         }
     }
     computeBounds(*mesh);
+    computeClosed(*mesh);
     return mesh;
 }
 
@@ -60,6 +61,7 @@ std::shared_ptr<MeshData> makePlaneMesh(float halfSize, int cells) {
         }
     }
     computeBounds(*mesh);
+    computeClosed(*mesh);
     return mesh;
 }
 
@@ -87,6 +89,7 @@ std::shared_ptr<MeshData> makeSphereMesh(float radius, int segments, int rings) 
         }
     }
     computeBounds(*mesh);
+    computeClosed(*mesh);
     return mesh;
 }
 

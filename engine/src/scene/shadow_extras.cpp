@@ -40,6 +40,13 @@ Result<FilterKernel> parseKernel(const tinygltf::Value& v, const std::string& wh
     return elementError(where, "unknown kernel \"" + *name + "\" (expected vogel, poisson or uniform)");
 }
 
+Result<DepthMode> parseDepthMode(const tinygltf::Value& v, const std::string& where) {
+    auto name = readString(v, where);
+    if (!name) return name.error();
+    if (const auto m = depthModeFromName(*name)) return *m;
+    return elementError(where, "unknown depth mode \"" + *name + "\" (expected nearest, midpoint or second)");
+}
+
 template <typename Field>
 struct Knob {
     const char* key;
@@ -61,6 +68,7 @@ Status readKnobs(const ShadowObject& object, const std::array<Knob<Field>, N>& k
 
 constexpr const char* kTechniqueKey = "technique";
 constexpr const char* kKernelKey = "kernel";
+constexpr const char* kDepthModeKey = "depthMode";
 
 /// A light's numeric knobs: each key of its `extras.shadow` with the field it sets. The one list
 /// of them: the parser reads these, and the unknown-key check knows these.
@@ -101,7 +109,7 @@ std::vector<std::string_view> knownKeys(bool light) {
     if (light) {
         LightShadowExtras scratch;
         const LightKnobs knobs = lightKnobs(scratch);
-        keys = {kTechniqueKey, kKernelKey};
+        keys = {kTechniqueKey, kKernelKey, kDepthModeKey};
         add(knobs.ints);
         add(knobs.floats);
     } else {
@@ -146,6 +154,11 @@ Result<LightShadowExtras> parseShadowExtras(const tinygltf::Value& extras, const
         auto parsed = parseKernel(*kernel, object->where + "." + kKernelKey);
         if (!parsed) return parsed.error();
         out.shadow.kernel = *parsed;
+    }
+    if (const tinygltf::Value* mode = member(*object->value, kDepthModeKey)) {
+        auto parsed = parseDepthMode(*mode, object->where + "." + kDepthModeKey);
+        if (!parsed) return parsed.error();
+        out.shadow.depthMode = *parsed;
     }
     const LightKnobs knobs = lightKnobs(out);
     if (auto st = readKnobs(*object, knobs.ints, readPositiveInt); !st) return st.error();

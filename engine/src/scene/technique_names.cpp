@@ -87,4 +87,20 @@ std::optional<FilterKernel> filterKernelFromName(std::string_view name) {
     return std::nullopt;
 }
 
+const char* depthModeName(DepthMode m) {
+    switch (m) {
+        case DepthMode::Nearest: return "nearest";
+        case DepthMode::Midpoint: return "midpoint";
+        case DepthMode::Second: return "second";
+    }
+    return "nearest";
+}
+
+std::optional<DepthMode> depthModeFromName(std::string_view name) {
+    for (DepthMode m : {DepthMode::Nearest, DepthMode::Midpoint, DepthMode::Second}) {
+        if (name == depthModeName(m)) return m;
+    }
+    return std::nullopt;
+}
+
 }  // namespace shadow

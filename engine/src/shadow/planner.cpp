@@ -147,6 +147,38 @@ void fitMemoryBudget(std::vector<Candidate>& lights, const glm::dvec3& camera, s
     }
 }
 
+/// Whether `caster` is known to be closed (watertight): a mesh by its data, a game's caster by
+/// its own word.
+bool knownClosed(const World& world, Entity caster) {
+    if (const Mesh* mesh = world.tryGet<Mesh>(caster); mesh != nullptr && mesh->data != nullptr) {
+        return mesh->data->closed;
+    }
+    const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(caster);
+    return own != nullptr && own->closed;
+}
+
+/// One `OpenCaster` warning for a light storing a second depth whose layers hold casters not
+/// known to be closed.
+void warnOpenCasters(const World& world, const ShadowLightPlan& plan, std::vector<Warning>& warnings) {
+    if (plan.settings.depthMode == DepthMode::Nearest) return;
+    std::vector<Entity> open;  // allocated only when there is something to warn about
+    for (const ShadowLayerPlan& layer : plan.layers) {
+        for (Entity caster : layer.casters) {
+            if (!knownClosed(world, caster) && std::find(open.begin(), open.end(), caster) == open.end()) {
+                open.push_back(caster);
+            }
+        }
+    }
+    if (open.empty()) return;
+    const Name* first = world.tryGet<Name>(open.front());
+    std::ostringstream msg;
+    msg << plan.name << ": depth mode " << depthModeName(plan.settings.depthMode) << " needs closed casters; "
+        << open.size() << (open.size() == 1 ? " is" : " are") << " not (\""
+        << (first != nullptr ? first->value : std::string("entity ") + std::to_string(open.front().index()))
+        << "\" first): where a ray meets only one surface of them the map stores the far depth";
+    warnings.push_back({WarningCode::OpenCaster, plan.name, msg.str()});
+}
+
 }  // namespace
 
 void clampLight(Light& light, std::string_view who, std::vector<Warning>& warnings) {
@@ -187,6 +219,12 @@ void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, co
     clampField(s.cascadeBlend, 0.0f, 0.5f, who, "cascadeBlend", warnings);
     clampField(s.shadowDistance, 0.0f, 1e7f, who, "shadowDistance", warnings);
     clampField(s.nearPlane, 0.0f, 1e7f, who, "nearPlane", warnings);
+    if (static_cast<int>(s.depthMode) > static_cast<int>(DepthMode::Second)) {
+        warnings.push_back({WarningCode::SettingClamped, who,
+                            who + ": depthMode " + std::to_string(static_cast<int>(s.depthMode)) +
+                                " is not a depth mode, replaced by nearest"});
+        s.depthMode = DepthMode::Nearest;
+    }
     clampLight(light, who, warnings);
     // A shadow map covers less than the half-space a spot may light.
     clampField(light.outerConeAngle, 1e-4f, kMaxSpotHalfAngle, who, "outerConeAngle", warnings);
@@ -241,6 +279,7 @@ const ShadowFrame& ShadowPlanner::prepare(const World& world, const CameraView& 
         }
         planLayers(plan, {plan.wsPosition, plan.wsDirection}, camera, geometry, plan.layers);
         markDirty(world, plan);
+        warnOpenCasters(world, plan, frame_.warnings);
     }
     for (ShadowLightPlan& plan : frame_.lights) {
         if (plan.mapSize == 0) plan.layers.clear();  // kept by describeLight in case it had a map
@@ -261,7 +300,8 @@ void ShadowPlanner::markDirty(const World& world, ShadowLightPlan& plan) {
         it = std::prev(memory_.end());
     }
     LightMemory& mem = it->second;
-    const bool reallocated = mem.mapSize != plan.mapSize || mem.layers.size() != plan.layers.size();
+    const bool reallocated = mem.mapSize != plan.mapSize || mem.layers.size() != plan.layers.size() ||
+                             mem.depthMode != plan.settings.depthMode;
     if (!plan.affectsView) {
         // Nothing the camera sees is lit by it: skip the layers. Casters may move meanwhile,
         // so forget what was drawn; the light is redrawn whole when it matters again.
@@ -271,6 +311,7 @@ void ShadowPlanner::markDirty(const World& world, ShadowLightPlan& plan) {
     }
     if (reallocated) {
         mem.mapSize = plan.mapSize;
+        mem.depthMode = plan.settings.depthMode;
         mem.layers.assign(plan.layers.size(), LayerMemory{});
     }
     for (std::size_t k = 0; k < plan.layers.size(); ++k) {

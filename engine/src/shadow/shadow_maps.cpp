@@ -42,21 +42,60 @@ struct ShadowMapGpu {
     bool allocatedThisFrame = true;
 };
 
-/// The depth-only program shared by every light type.
+/// A depth-only program of the shadow pass, shared by every light type: the nearest depth, or
+/// (`defines` SG_DEPTH_BEHIND_FIRST …) the second pass of a second-depth mode.
 struct DepthProgram {
     gpu::Program program;
     GLint lightFromLocal = -1;
     GLint clipFromLight = -1;
     GLint depthScale = -1;
     GLint orthographic = -1;
+    GLint firstPass = -1;  ///< the second-depth programs only
 
-    DepthProgram() {
-        program = gpu::buildProgram({"Shadow/Depth", "shadow_depth.vert.glsl", "shadow_depth.frag.glsl", {}});
+    DepthProgram(std::string label, std::vector<std::string> defines) {
+        program = gpu::buildProgram(
+            {std::move(label), "shadow_depth.vert.glsl", "shadow_depth.frag.glsl", std::move(defines)});
         lightFromLocal = gl.GetUniformLocation(program.get(), "uLightFromLocal");
         clipFromLight = gl.GetUniformLocation(program.get(), "uClipFromLight");
         depthScale = gl.GetUniformLocation(program.get(), "uDepthScale");
         orthographic = gl.GetUniformLocation(program.get(), "uOrthographic");
+        firstPass = gl.GetUniformLocation(program.get(), "uFirstPass");
     }
+
+    /// Sets the layer's uniforms and makes the program current; `first`: the first of a
+    /// second-depth mode's two passes.
+    void use(const ShadowLayerPlan& layer, bool first = false) const {
+        const GLuint name = program.get();
+        gl.UseProgram(name);
+        if (firstPass >= 0) gl.ProgramUniform1i(name, firstPass, first ? 1 : 0);
+        gl.ProgramUniformMatrix4fv(name, clipFromLight, 1, GL_FALSE, glm::value_ptr(glm::mat4(layer.clipFromLight)));
+        gl.ProgramUniform1f(name, depthScale, layer.depthScale);
+        gl.ProgramUniform1i(name, orthographic, layer.orthographic ? 1 : 0);
+    }
+};
+
+/// The nearest depth of the layer being drawn in a second-depth mode, which its second pass
+/// reads: one 2D depth texture shared by every light, grown to the largest map that needed it.
+struct NearestScratch {
+    gpu::Texture texture;
+    gpu::Framebuffer framebuffer;
+    int size = 0;
+
+    void reserve(int mapSize) {
+        if (size >= mapSize) return;
+        texture = gpu::makeTexture("Shadow/nearest scratch", GL_TEXTURE_2D);
+        gl.TextureStorage2D(texture.get(), 1, GL_DEPTH_COMPONENT32F, mapSize, mapSize);
+        gl.TextureParameteri(texture.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl.TextureParameteri(texture.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        framebuffer = gpu::makeFramebuffer("Shadow/nearest scratch framebuffer");
+        gl.NamedFramebufferTexture(framebuffer.get(), GL_DEPTH_ATTACHMENT, texture.get(), 0);
+        gl.NamedFramebufferDrawBuffer(framebuffer.get(), GL_NONE);
+        gl.NamedFramebufferReadBuffer(framebuffer.get(), GL_NONE);
+        size = mapSize;
+        gpu::checkGlError("allocating the nearest-depth scratch");
+    }
+
+    [[nodiscard]] long long bytes() const { return depthArrayBytes(size, size > 0 ? 1 : 0); }
 };
 
 std::unique_ptr<ShadowMapGpu> allocate(const ShadowLightPlan& plan) {
@@ -132,7 +171,11 @@ void describe(const ShadowLightPlan& plan, LightShadowStats& ls) {
 }  // namespace
 
 struct ShadowMaps::Impl {
-    DepthProgram depth;
+    DepthProgram depth{"Shadow/Depth", {}};
+    /// The second passes of the second-depth modes, built when a light first uses one.
+    std::optional<DepthProgram> midpoint;
+    std::optional<DepthProgram> second;
+    NearestScratch scratch;
     FilterChainBuilder chains;
     gpu::PassTimer timer;
     std::string passName;  ///< the name of the pass being timed (see `formatPassName`)
@@ -147,9 +190,11 @@ struct ShadowMaps::Impl {
 
     /// Gives every light of `frame` with a map an array of its size, reusing last frame's.
     void syncMaps(const ShadowFrame& frame);
-    /// Draws layer `k` of `plan`'s map: its casters, depth only.
+    /// Draws layer `k` of `plan`'s map: its casters, depth only (twice in a second-depth mode).
     void drawLayer(const World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k,
                    LightShadowStats& ls);
+    /// The second pass's program of depth mode `mode` (Midpoint or Second), built on first use.
+    const DepthProgram& behindFirst(DepthMode mode);
     /// Brings the filter chain of every layer of `plan` whose map changed up to date.
     void updateChains(const ShadowLightPlan& plan);
 };
@@ -203,6 +248,49 @@ void ShadowMaps::Impl::updateChains(const ShadowLightPlan& plan) {
     }
 }
 
+const DepthProgram& ShadowMaps::Impl::behindFirst(DepthMode mode) {
+    std::optional<DepthProgram>& p = mode == DepthMode::Midpoint ? midpoint : second;
+    if (!p) {
+        if (mode == DepthMode::Midpoint) {
+            p.emplace("Shadow/Depth/midpoint", std::vector<std::string>{"SG_DEPTH_BEHIND_FIRST", "SG_DEPTH_MIDPOINT"});
+        } else {
+            p.emplace("Shadow/Depth/second", std::vector<std::string>{"SG_DEPTH_BEHIND_FIRST"});
+        }
+    }
+    return *p;
+}
+
+namespace {
+
+/// Draws every caster of `layer` with `program` (current, its layer uniforms set) into the bound
+/// framebuffer; returns the draw calls made.
+int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& layer, const DepthProgram& program) {
+    const CasterDrawContext context{layer.lightFromWorld,
+                                    layer.clipFromLight,
+                                    layer.depthScale,
+                                    layer.orthographic,
+                                    GlProgram{program.program.get()},
+                                    program.lightFromLocal};
+    int drawn = 0;
+    for (Entity caster : layer.casters) {
+        const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
+        if (wt == nullptr || !wt->finite) continue;
+        if (const Mesh* mesh = world.tryGet<Mesh>(caster); mesh != nullptr && mesh->data != nullptr) {
+            context.setWorldFromLocal(wt->worldFromLocal);
+            const int count = gpu::MeshCacheAccess::bind(meshes, mesh->data);
+            gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+        } else if (const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(caster); own != nullptr) {
+            drawOwnCaster(*own, *wt, context);
+        } else {
+            continue;
+        }
+        ++drawn;
+    }
+    return drawn;
+}
+
+}  // namespace
+
 void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k,
                                  LightShadowStats& ls) {
     const ShadowLayerPlan& layer = plan.layers[k];
@@ -216,32 +304,32 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
         ++ls.layersCleared;
         return;
     }
-    const GLuint program = depth.program.get();
+    gl.Viewport(0, 0, map.mapSize, map.mapSize);
+    const DepthMode mode = plan.settings.depthMode;
+    if (mode != DepthMode::Nearest) {
+        // First pass: the nearest depth, into the scratch the second pass reads, by the second
+        // pass's own program (see uFirstPass in shadow_depth.frag.glsl).
+        scratch.reserve(map.mapSize);
+        gl.BindFramebuffer(GL_FRAMEBUFFER, scratch.framebuffer.get());
+        gl.ClearNamedFramebufferfv(scratch.framebuffer.get(), GL_DEPTH, 0, &far);
+        const DepthProgram& program = behindFirst(mode);
+        program.use(layer, true);
+        ls.castersDrawn += drawCasters(world, meshes, layer, program);
+    }
     gl.NamedFramebufferTextureLayer(map.framebuffer.get(), GL_DEPTH_ATTACHMENT, map.array.get(), 0,
                                     static_cast<GLint>(k));
     gl.BindFramebuffer(GL_FRAMEBUFFER, map.framebuffer.get());
-    gl.Viewport(0, 0, map.mapSize, map.mapSize);
     gl.ClearNamedFramebufferfv(map.framebuffer.get(), GL_DEPTH, 0, &far);
-    gl.UseProgram(program);
-    gl.ProgramUniformMatrix4fv(program, depth.clipFromLight, 1, GL_FALSE,
-                               glm::value_ptr(glm::mat4(layer.clipFromLight)));
-    gl.ProgramUniform1f(program, depth.depthScale, layer.depthScale);
-    gl.ProgramUniform1i(program, depth.orthographic, layer.orthographic ? 1 : 0);
-    const CasterDrawContext context{layer.lightFromWorld, layer.clipFromLight, layer.depthScale,
-                                    layer.orthographic,   GlProgram{program},  depth.lightFromLocal};
-    for (Entity caster : layer.casters) {
-        const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
-        if (wt == nullptr || !wt->finite) continue;
-        if (const Mesh* mesh = world.tryGet<Mesh>(caster); mesh != nullptr && mesh->data != nullptr) {
-            context.setWorldFromLocal(wt->worldFromLocal);
-            const int count = gpu::MeshCacheAccess::bind(meshes, mesh->data);
-            gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
-        } else if (const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(caster); own != nullptr) {
-            drawOwnCaster(*own, *wt, context);
-        } else {
-            continue;
-        }
-        ++ls.castersDrawn;
+    if (mode == DepthMode::Nearest) {
+        depth.use(layer);
+        ls.castersDrawn += drawCasters(world, meshes, layer, depth);
+    } else {
+        const DepthProgram& program = behindFirst(mode);
+        gl.BindSampler(SG_UNIT_MINMAX_SOURCE, 0);  // the texture's own nearest filtering, no comparison
+        gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, scratch.texture.get());
+        program.use(layer);
+        ls.castersDrawn += drawCasters(world, meshes, layer, program);
+        gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
     }
     ++ls.layersDrawn;
 }
@@ -313,6 +401,7 @@ void ShadowMaps::render(const ShadowFrame& frame, const World& world, MeshCache&
     for (const ShadowLightPlan& plan : frame.lights) {
         if (plan.hasMap()) g.updateChains(plan);
     }
+    stats.shadowScratchBytes = g.scratch.bytes();
     gpu::checkGlError("shadow pass");
     g.timer.collect(stats);
 }
