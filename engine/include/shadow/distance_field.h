@@ -3,7 +3,7 @@
 // k·d/t along the way is the visibility).
 //
 // What it does: one mesh in, one dense grid of float distances out, in the mesh's local units;
-// trilinear sampling on the CPU.
+// trilinear sampling on the CPU; a small versioned binary file a game can ship.
 // What it does not do: no GL, no upload, no shader code; no sparse or compressed storage; no
 // scene-wide field (a game places one field per mesh instance and scales a sample by the
 // instance's uniform scale; a non-uniform scale breaks the distance bound).
@@ -28,7 +28,7 @@
 // An unsigned (open) surface is a zero-thickness sheet: a march should count a value under
 // about one voxel as a hit, as `sampleDistance` on the sheet returns up to √3/2 voxel.
 //
-// Nothing declared here throws on bad input: a bad mesh or setting is an `Error`. Only
+// Nothing declared here throws on bad input: a bad mesh, setting or file is an `Error`. Only
 // running out of memory throws (std::bad_alloc).
 #pragma once
 
@@ -45,8 +45,10 @@ namespace shadow {
 
 /// Fewest voxels a field may have in total (16³).
 inline constexpr int kMinDistanceFieldVoxels = 16 * 16 * 16;
-/// Most voxels a field may have in total (256³, 64 MiB of floats).
+/// Most voxels a field may have in total (256³, 64 MiB of floats): the bake's and the loader's limit.
 inline constexpr int kMaxDistanceFieldVoxels = 256 * 256 * 256;
+/// Version of the file format `saveDistanceField` writes and `loadDistanceField` reads.
+inline constexpr std::uint32_t kDistanceFieldFileVersion = 1;
 
 /// How `bakeDistanceField` lays out and computes a field. Values out of range are an
 /// `InvalidArgument` error (a bake is a tool step, not a frame: nothing to carry on with).
@@ -105,5 +107,22 @@ struct DistanceField {
 /// overestimate by up to 0.4 of the box's size). NaN for a non-finite point; +infinity for a
 /// field with fewer than 2 voxels on an axis (never one from a bake or a load).
 [[nodiscard]] float sampleDistance(const DistanceField& field, const glm::vec3& localPoint);
+
+/// Writes `field` to `path` (through a temporary file and a rename) in the format
+/// `loadDistanceField` reads: little-endian, a 60-byte header ("SHADOWDF", u32 version, i32 size
+/// xyz, f32 box min xyz, f32 box max xyz, f32 voxelSize, u64 data bytes) and the distances as
+/// f32 in `distances` order. A field that would not load back (bad size, box, voxel size, data
+/// count or a non-finite distance) is an `InvalidArgument`; a file that cannot be written
+/// `FileUnwritable`.
+[[nodiscard]] Status saveDistanceField(const std::string& path, const DistanceField& field);
+
+/// Reads a field written by `saveDistanceField`, checking every header field before reading
+/// the data; allocates at most the data a valid header of the file's own length describes.
+/// Errors name the file and the field: missing or unreadable `FileUnreadable`; shorter than the
+/// header, wrong magic, or data bytes that disagree with the size or the file's length
+/// `MalformedFile`; another version `Unsupported`; a size over `kMaxDistanceFieldVoxels`
+/// `LimitExceeded`; an axis under 2 voxels, a non-finite or empty box, a voxel size that is not
+/// positive or disagrees with the box, or a non-finite distance `InvalidValue`.
+[[nodiscard]] Result<DistanceField> loadDistanceField(const std::string& path);
 
 }  // namespace shadow
