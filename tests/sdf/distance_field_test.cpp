@@ -10,9 +10,7 @@
 #include <shadow/scene.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -177,6 +175,13 @@ TEST(DistanceField, SampleOfANonFinitePointIsNaN) {
     const DistanceField field = bake(*makeBoxMesh(glm::vec3(0.5f)));
     EXPECT_TRUE(std::isnan(sampleDistance(field, {std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f})));
     EXPECT_TRUE(std::isnan(sampleDistance(field, {0.0f, std::numeric_limits<float>::infinity(), 0.0f})));
+}
+
+TEST(DistanceField, SampleOfAFieldWithoutItsVoxelsIsInfinite) {
+    DistanceField field = bake(*makeBoxMesh(glm::vec3(0.5f)));
+    field.distances.pop_back();
+    EXPECT_EQ(sampleDistance(field, {0.0f, 0.0f, 0.0f}), std::numeric_limits<float>::infinity());
+    EXPECT_EQ(sampleDistance(DistanceField{}, {0.0f, 0.0f, 0.0f}), std::numeric_limits<float>::infinity());
 }
 
 // ---- The bunny ------------------------------------------------------------------------------

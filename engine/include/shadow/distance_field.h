@@ -105,7 +105,8 @@ struct DistanceField {
 /// nearest point q within the centres − |localPoint − q|), a lower bound of the true distance, so
 /// a march never oversteps into the mesh from outside (adding |localPoint − q| instead would
 /// overestimate by up to 0.4 of the box's size). NaN for a non-finite point; +infinity for a
-/// field with fewer than 2 voxels on an axis (never one from a bake or a load).
+/// field with fewer than 2 voxels on an axis or a `distances` count other than the size's (never
+/// one from a bake or a load).
 [[nodiscard]] float sampleDistance(const DistanceField& field, const glm::vec3& localPoint);
 
 /// Writes `field` to `path` (through a temporary file and a rename) in the format

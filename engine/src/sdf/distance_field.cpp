@@ -205,7 +205,10 @@ Result<DistanceField> bakeDistanceField(const MeshData& mesh, const DistanceFiel
 
 float sampleDistance(const DistanceField& field, const glm::vec3& localPoint) {
     if (!finite(localPoint)) return std::numeric_limits<float>::quiet_NaN();
-    if (field.size.x < 2 || field.size.y < 2 || field.size.z < 2) return std::numeric_limits<float>::infinity();
+    const bool sampleable =
+        field.size.x >= 2 && field.size.y >= 2 && field.size.z >= 2 &&
+        field.distances.size() == static_cast<std::size_t>(field.size.x) * field.size.y * field.size.z;
+    if (!sampleable) return std::numeric_limits<float>::infinity();
     // Grid coordinates: voxel centre i at i. q is the nearest point within the centres.
     const glm::vec3 g = (localPoint - field.box.min) / field.voxelSize - 0.5f;
     const glm::vec3 last = glm::vec3(field.size - 1);
