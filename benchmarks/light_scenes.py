@@ -3,7 +3,11 @@
 benchmark: each light as TYPE:TECHNIQUE[:KERNEL[:CASCADES]], or COUNTxTYPE:TECHNIQUE... for
 several alike. Lights stand on a ring above the box, each aimed at it, with a small emitter.
 
-    python3 benchmarks/light_scenes.py OUT.gltf SPEC [SPEC ...]
+    python3 benchmarks/light_scenes.py [--instances N] OUT.gltf SPEC [SPEC ...]
+
+--instances N adds N more copies of the ground and box, at a fifth of the size, on a square grid
+3 m apart around the scene (none within 4 m of its centre): casters a light reaches but that
+the view's shadow rays pass far from (the distance-field technique's cost test).
 """
 import base64
 import json
@@ -58,8 +62,12 @@ def main():
     if len(sys.argv) < 3:
         print(__doc__, file=sys.stderr)
         return 2
-    out, specs = sys.argv[1], []
-    for spec in sys.argv[2:]:
+    args = sys.argv[1:]
+    instances = 0
+    if args[0] == "--instances":
+        instances, args = int(args[1]), args[2:]
+    out, specs = args[0], []
+    for spec in args[1:]:
         count = 1
         if "x" in spec.split(":")[0]:
             n, spec = spec.split("x", 1)
@@ -93,6 +101,17 @@ def main():
         eye = [3 * math.cos(angle), 5.0, 3 * math.sin(angle)]
         nodes.append({"translation": eye, "rotation": look_rotation(eye, [0, 0, 0]),
                       "extensions": {"KHR_lights_punctual": {"light": k}}})
+    side = 1
+    while side * side - 9 < instances:  # the grid's centre 3 x 3 stays empty
+        side += 2
+    placed = 0
+    for i in range(side):
+        for j in range(side):
+            x, z = 3.0 * (i - side // 2), 3.0 * (j - side // 2)
+            if placed == instances or (abs(x) < 4.0 and abs(z) < 4.0):
+                continue
+            nodes.append({"mesh": 0, "translation": [x, 0.0, z], "scale": [0.2, 0.2, 0.2]})
+            placed += 1
     gltf = {
         "asset": {"version": "2.0"},
         "extensionsUsed": ["KHR_lights_punctual"],

@@ -216,6 +216,9 @@ std::string statsJson(const Scene& scene, const std::vector<FrameStats>& frames,
                      {"mainPasses", last.mainPasses},
                      {"programsCompiled", last.programsCompiled},
                      {"shadowScratchBytes", last.shadowScratchBytes},
+                     {"distanceFieldBytes", last.distanceFieldBytes},
+                     {"distanceFieldsBaked", last.distanceFieldsBaked},
+                     {"distanceFieldBakeMs", last.distanceFieldBakeMs},
                      {"entitiesSkippedNonFinite", last.entitiesSkippedNonFinite}};
     nlohmann::json perFrame = nlohmann::json::array();
     for (const FrameStats& f : frames) {

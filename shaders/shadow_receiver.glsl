@@ -58,6 +58,7 @@ sg_ReceiverPolicy sg_planePolicy() {
 // The receiver as seen from one light.
 struct sg_Receiver {
     vec3 csPosition;  // camera-relative, after the normal offset
+    vec3 csNormal;    // the shading normal (unit)
     vec3 toLight;     // unit direction from the receiver towards the light
     vec3 csTangent1;  // lateral axes (perpendicular to the light ray), stretched onto the
     vec3 csTangent2;  // receiver's tangent plane: a lateral offset o lands at o.x*t1 + o.y*t2
@@ -209,6 +210,7 @@ sg_Receiver sg_makeReceiver(sg_GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 
     // Normal offset: move along the normal by whole texel footprints, more as the light grazes.
     r.offsetPerTexel = wsNormal * ((policy.extraNormalOffset + L.normalOffset) * sinTheta);
     r.csPosition = csPosition + r.offsetPerTexel * texel;
+    r.csNormal = wsNormal;
     r.toLight = L.type == SG_LIGHT_DIRECTIONAL ? toLight : sg_safeNormalize(L.csPosition - r.csPosition, toLight);
     r.layer = chosen ? layer : sg_selectLayer(L, r.csPosition, viewDistance);
     r.texelMetres = sg_texelMetresAt(L, r.layer, r.csPosition);

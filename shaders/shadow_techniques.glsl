@@ -38,6 +38,9 @@
 #ifdef SG_TECH_MSM_SOFT_ENABLED
 #include "shadow_msm_soft.glsl"
 #endif
+#ifdef SG_TECH_SDF_ENABLED
+#include "shadow_sdf.glsl"
+#endif
 
 // The receiver policy of technique `technique` (its share of bias and normal offset).
 sg_ReceiverPolicy sg_techniquePolicy(int technique) {
@@ -62,6 +65,9 @@ sg_ReceiverPolicy sg_techniquePolicy(int technique) {
 #endif
 #ifdef SG_TECH_MSM_SOFT_ENABLED
     if (technique == SG_TECH_MSM_SOFT) policy = sg_msmSoftPolicy();
+#endif
+#ifdef SG_TECH_SDF_ENABLED
+    if (technique == SG_TECH_SDF) policy = sg_sdfPolicy();
 #endif
     return policy;
 }
@@ -90,6 +96,9 @@ float sg_techniqueVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
 #endif
 #ifdef SG_TECH_MSM_SOFT_ENABLED
     SG_ISOLATED for (int k = 0; k < int(L.technique == SG_TECH_MSM_SOFT); ++k) v = sg_msmSoftVisibility(slot, L, r);
+#endif
+#ifdef SG_TECH_SDF_ENABLED
+    SG_ISOLATED for (int k = 0; k < int(L.technique == SG_TECH_SDF); ++k) v = sg_sdfVisibility(slot, L, r);
 #endif
     return v;
 }
@@ -141,6 +150,12 @@ float sg_msmLightVisibility(int slot, sg_GpuLight L, vec3 csPosition, vec3 wsNor
 float sg_msmSoftLightVisibility(int slot, sg_GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 geoNormal, float curvature,
     float viewDistance) {
     SG_SHADOW_VISIBILITY_BODY(sg_msmSoftPolicy(), sg_msmSoftVisibility)
+}
+#endif
+#ifdef SG_TECH_SDF_ENABLED
+float sg_sdfLightVisibility(int slot, sg_GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 geoNormal, float curvature,
+    float viewDistance) {
+    SG_SHADOW_VISIBILITY_BODY(sg_sdfPolicy(), sg_sdfVisibility)
 }
 #endif
 #endif

@@ -38,6 +38,8 @@ ShadowBindingPoints hostPoints() {
     p.compareUnit = 3;
     p.depthUnit = 11;
     p.minMaxUnit = 19;
+    p.sdfAtlasUnit = 28;
+    p.sdfInstanceUnit = 2;
     return p;
 }
 
@@ -150,9 +152,10 @@ std::vector<glm::vec4> hostVisibility(Scene& scene, FrameRunner& runner, const S
     ShadowSystem& shadows = runner.shadows();
     const ShadowShaderInputs& inputs = shadows.shaderInputs(lights, cam.wsPosition);
     EXPECT_EQ(inputs.lights, kLights);
-    EXPECT_EQ(inputs.techniques, kAllShadowTechniques & ~techniqueBit(ShadowTechnique::PcssTextbook) &
-                                     ~techniqueBit(ShadowTechnique::Vsm) & ~techniqueBit(ShadowTechnique::Vssm) &
-                                     ~techniqueBit(ShadowTechnique::Msm) & ~techniqueBit(ShadowTechnique::MsmSoft));
+    unsigned used = 0;  // the techniques of the scene's lights
+    for (int light : lights)
+        used |= techniqueBit(runner.shadows().frame().lights.at(static_cast<std::size_t>(light)).technique());
+    EXPECT_EQ(inputs.techniques, used);
     shadows.bindShaderInputs(inputs, points);
     if (beforeDraw) {
         beforeDraw();
@@ -195,9 +198,10 @@ std::vector<glm::vec4> hostVisibility(Scene& scene, FrameRunner& runner, const S
     return topFirst;
 }
 
-TEST(ShaderContract, HostShaderGetsTheRenderersVisibility) {
+/// Renders `scene` with the engine and with a host's own shader (its own binding points) and
+/// checks that every light's visibility agrees on every covered pixel, to 1/255.
+void expectHostMatchesRenderer(Scene& scene, const std::string& what) {
     test::glContext();
-    Scene scene = test::threeLightScene();
     FrameRunner runner;
     const test::RenderedFrame frame = test::renderFrame(runner, scene, kWidth, kHeight);
     ASSERT_EQ(frame.images.visibility.size(), static_cast<std::size_t>(kLights));
@@ -218,14 +222,25 @@ TEST(ShaderContract, HostShaderGetsTheRenderersVisibility) {
                 lit += e > 0.9f ? 1 : 0;
             }
         }
-        SCOPED_TRACE("light " + std::to_string(light));
+        SCOPED_TRACE(what + ", light " + std::to_string(light));
         EXPECT_GT(covered, kWidth * kHeight / 2);
         // Both shadow and light on screen: a host that read nothing (all lit) could not pass.
         EXPECT_GT(shadowed, 100);
         EXPECT_GT(lit, 100);
         EXPECT_LE(worst, 1.0 / 255.0);
-        std::printf("light %d: %d pixels covered, largest difference %.3g\n", light, covered, worst);
+        std::printf("%s, light %d: %d pixels covered, largest difference %.3g\n", what.c_str(), light, covered, worst);
     }
+}
+
+TEST(ShaderContract, HostShaderGetsTheRenderersVisibility) {
+    Scene scene = test::threeLightScene();
+    expectHostMatchesRenderer(scene, "PCSS spot, PCF point, cascaded sun");
+}
+
+TEST(ShaderContract, HostShaderGetsTheRenderersDistanceFieldVisibility) {
+    Scene scene = test::threeLightScene();
+    scene.world.view<Shadow>().each([](Entity, Shadow& s) { s.technique = ShadowTechnique::Sdf; });
+    expectHostMatchesRenderer(scene, "sdf");
 }
 
 /// Reads an RGBA32F texture, rows top first.
@@ -241,9 +256,10 @@ std::vector<glm::vec4> readTopFirst(GLuint texture) {
     return topFirst;
 }
 
-TEST(ShaderContract, ScreenSpaceMaskFromTheHostsDepthMatchesTheRenderer) {
+/// The screen-space mask of `scene`'s three lights over the host's depth against the renderer's
+/// visibility.
+void expectMaskMatchesRenderer(Scene& scene, const std::string& what) {
     test::glContext();
-    Scene scene = test::threeLightScene();
     FrameRunner runner;
     const test::RenderedFrame frame = test::renderFrame(runner, scene, kWidth, kHeight);
     GLuint depth = 0;
@@ -281,13 +297,24 @@ TEST(ShaderContract, ScreenSpaceMaskFromTheHostsDepthMatchesTheRenderer) {
                 close += d <= 1.0 / 255.0 ? 1 : 0;
             }
         }
-        SCOPED_TRACE("light " + std::to_string(light));
-        std::printf("mask light %d: %d pixels, %.2f %% within 1/255, mean difference %.4f\n", light, covered,
-                    100.0 * close / std::max(covered, 1), sum / std::max(covered, 1));
+        SCOPED_TRACE(what + ", light " + std::to_string(light));
+        std::printf("%s, mask light %d: %d pixels, %.2f %% within 1/255, mean difference %.4f\n", what.c_str(), light,
+                    covered, 100.0 * close / std::max(covered, 1), sum / std::max(covered, 1));
         EXPECT_EQ(background, kWidth * kHeight - covered);  // no geometry: lit
         EXPECT_GE(close, covered * 99 / 100);
         EXPECT_LE(sum / std::max(covered, 1), 0.002);
     }
+}
+
+TEST(ShaderContract, ScreenSpaceMaskFromTheHostsDepthMatchesTheRenderer) {
+    Scene scene = test::threeLightScene();
+    expectMaskMatchesRenderer(scene, "PCSS spot, PCF point, cascaded sun");
+}
+
+TEST(ShaderContract, ScreenSpaceMaskOfDistanceFieldLightsMatchesTheRenderer) {
+    Scene scene = test::threeLightScene();
+    scene.world.view<Shadow>().each([](Entity, Shadow& s) { s.technique = ShadowTechnique::Sdf; });
+    expectMaskMatchesRenderer(scene, "sdf");
 }
 
 TEST(ShaderContract, TheMaskLeavesTheHostsForwardPassAlone) {

@@ -113,8 +113,8 @@ double measureGrazing(LightType type, Receiver receiver) {
                         const glm::dvec3 p = test::positionAt(im, x, y);
                         if (type == LightType::Spot && !test::insideCone(p, position, dir, kSpotHalfAngle - 0.02))
                             continue;
-                        const glm::dvec3 n = receiver == Receiver::Slab ? glm::dvec3(0, 1, 0)
-                                                                         : glm::normalize(p - kSphereCentre);
+                        const glm::dvec3 n =
+                            receiver == Receiver::Slab ? glm::dvec3(0, 1, 0) : glm::normalize(p - kSphereCentre);
                         if (receiver == Receiver::Slab && std::abs(p.y) > 1e-3) continue;  // its top only
                         const glm::dvec3 toLight = type == LightType::Spot ? glm::normalize(position - p) : -dir;
                         if (glm::dot(n, toLight) < 0.1 * (receiver == Receiver::Sphere ? 1.0 : 0.0)) continue;
@@ -125,16 +125,16 @@ double measureGrazing(LightType type, Receiver receiver) {
                     }
                 }
                 std::printf("[ measured ] grazing %s at %.1f deg on the %s, %s, %s: false shadow %.5f, darkened %.5f\n",
-                            type == LightType::Spot ? "spot" : "sun", deg, what, techniqueName(technique),
-                            setting.name, a.darkFraction(), a.darkenedFraction());
+                            type == LightType::Spot ? "spot" : "sun", deg, what, techniqueName(technique), setting.name,
+                            a.darkFraction(), a.darkenedFraction());
                 EXPECT_GT(a.lit, 500) << what << ": too few lit pixels to judge";
                 EXPECT_TRUE(frame.stats.warnings.empty()) << test::describe(frame.stats.warnings);
                 if (setting.mode == DepthMode::Nearest && setting.zeroBias) {
                     worstUnbiasedNearest = std::max(worstUnbiasedNearest, a.darkFraction());
                 }
                 if (setting.mode != DepthMode::Midpoint) continue;
-                const std::string name = std::string(what) + ", " + techniqueName(technique) + " at " +
-                                         std::to_string(deg) + " deg";
+                const std::string name =
+                    std::string(what) + ", " + techniqueName(technique) + " at " + std::to_string(deg) + " deg";
                 EXPECT_LT(a.darkFraction(), kMaxAcneFraction) << name;
                 EXPECT_LT(a.darkenedFraction(), kMaxAcneFraction) << name;
             }
@@ -156,8 +156,8 @@ TEST(Stability, MidpointDepthHasNoAcneAtGrazingSpotWithoutBias) {
 /// A 40 cm box resting on the closed slab, lit obliquely: the ground pixels the box shadows (ray
 /// cast) within 10 cm of its footprint, and the fraction of them that read lit (visibility >
 /// 0.5): the shadow detached from its caster (peter-panning), per setting.
-double detachedFraction(LightType type, const glm::dvec3& direction, ShadowTechnique technique,
-                        const Setting& setting, const std::string& name) {
+double detachedFraction(LightType type, const glm::dvec3& direction, ShadowTechnique technique, const Setting& setting,
+                        const std::string& name) {
     constexpr double kHalf = 0.2;
     Scene scene;
     test::addBox(scene, "slab", {0.0, -0.1, 0.0}, {3.0, 0.1, 3.0});
@@ -191,8 +191,8 @@ double detachedFraction(LightType type, const glm::dvec3& direction, ShadowTechn
     }
     EXPECT_GT(shadowed, 300) << name;
     const double fraction = shadowed > 0 ? static_cast<double>(lit) / shadowed : 0.0;
-    std::printf("[ measured ] contact, %s, %s, %s: shadowed ground within 10 cm read lit %.5f (%d px)\n",
-                name.c_str(), techniqueName(technique), setting.name, fraction, shadowed);
+    std::printf("[ measured ] contact, %s, %s, %s: shadowed ground within 10 cm read lit %.5f (%d px)\n", name.c_str(),
+                techniqueName(technique), setting.name, fraction, shadowed);
     return fraction;
 }
 

@@ -234,6 +234,16 @@ struct Shadow {
     /// ray meets one surface only, the texel stores the far depth and casts nothing, and the
     /// shadow system warns (`OpenCaster`) for every light whose layers hold an open caster.
     DepthMode depthMode = DepthMode::Nearest;
+    /// Technique sdf: most steps of the march toward the light, [4, 256]. Default 48. A march
+    /// ends earlier when it leaves every field caster's bounds, reaches the light or is hit.
+    int sdfSteps = 48;
+    /// Technique sdf: how far (m) the march starts from the receiver, along its normal and
+    /// along the ray, [0, 1]. Default 0.02: the receiver's own field is within a voxel of zero
+    /// near its surface, and a march starting there would shadow lit surfaces (acne).
+    float sdfStartOffset = 0.02f;
+    /// Technique sdf: the shortest step (m), [1e-4, 1]. Default 0.005. Smaller follows thin
+    /// gaps closer, at more steps.
+    float sdfMinStep = 0.005f;
 };
 
 /// A perspective camera looking along its node's -Z.

@@ -28,6 +28,14 @@ SG_INT firstLayer;             // index of layer 0 in the layer buffer
 SG_FLOAT cascadeBlend;         // directional: fraction of a cascade's range blended into the next
 SG_INT kernel;                 // SG_KERNEL_*
 SG_FLOAT lightBleedReduction;  // VSM, VSSM: Chebyshev bounds below it read as shadow
+SG_INT sdfFirst;               // sdf: its first field caster in the instance buffer
+SG_INT sdfCount;               // sdf: its field casters
+SG_INT sdfSteps;               // sdf: most march steps
+SG_FLOAT sdfStartOffset;       // sdf: m along the normal and the ray before the march starts
+SG_FLOAT sdfMinStep;           // sdf: shortest step (m)
+SG_FLOAT reserved0;            // (std140 padding to 16 bytes)
+SG_FLOAT reserved1;
+SG_FLOAT reserved2;
 SG_END_STRUCT
 
 // One layer (cascade, spot map or cube face) of a light's shadow-map array.

@@ -61,6 +61,18 @@ public:
     /// shaders/shadow_summed_area_format.glsl); none when it has none. It is what unit
     /// SG_UNIT_SHADOW_MINMAX + slot reads.
     [[nodiscard]] GlTexture filterChainOf(std::size_t i) const;
+    /// Technique sdf: the atlas of the field casters' signed distance fields (a 3D R32F texture,
+    /// one brick per mesh, baked when a light first marches through it); what unit
+    /// SG_UNIT_SDF_ATLAS reads. None before a light uses sdf.
+    [[nodiscard]] GlTexture fieldAtlas() const;
+    /// Technique sdf: the instance records of the last rendered frame's field casters
+    /// (shaders/shadow_sdf.glsl has their layout), positions relative to `wsCamera`, as a buffer
+    /// texture (RGBA32F) that unit SG_UNIT_SDF_INSTANCES reads; uploaded again when the camera
+    /// differs from the last call's. None before a light uses sdf.
+    [[nodiscard]] GlTexture fieldInstances(const glm::dvec3& wsCamera) const;
+    /// The instance records as the last `fieldInstances(wsCamera)` uploaded them (what a pass
+    /// binds after its inputs were made for its camera). None before.
+    [[nodiscard]] GlTexture fieldInstances() const;
     /// Layers of the map of scene light `i` (0 without one).
     [[nodiscard]] int layersOf(std::size_t i) const;
     /// Reads layer `layer` of scene light `i` as linear depth in metres (debug views, tests);

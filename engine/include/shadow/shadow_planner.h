@@ -71,6 +71,14 @@ struct ShadowLightPlan {
     std::vector<ShadowLayerPlan> layers;
     /// False when its range cannot reach the camera's frustum: its layers are not drawn.
     bool affectsView = true;
+    /// Technique sdf: the casters its march reads through their distance fields (meshes with a
+    /// uniform scale in any of its layers' frustums), taken out of the layers' caster lists;
+    /// what stays there (a game's own casters, non-uniform scales) casts through its map. Empty
+    /// for the other techniques.
+    std::vector<Entity> fieldCasters;
+    /// Index of `fieldCasters[0]` among every light's field casters, in scene-light order:
+    /// where the shader finds its instances (`ShadowMaps::fieldInstances`).
+    int fieldFirst = 0;
 
     /// True when the light has a shadow map this frame.
     [[nodiscard]] bool hasMap() const { return !layers.empty(); }

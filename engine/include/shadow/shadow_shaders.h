@@ -45,6 +45,8 @@ struct ShadowBindingPoints {
     int depthUnit = SG_UNIT_SHADOW_DEPTH;      ///< the same arrays with the raw-depth sampler
     /// Filter chains: min/max pyramids (PCF, PCSS), moments (VSM, MSM), summed-area tables (VSSM).
     int minMaxUnit = SG_UNIT_SHADOW_MINMAX;
+    int sdfAtlasUnit = SG_UNIT_SDF_ATLAS;         ///< technique sdf: the distance-field atlas (3D)
+    int sdfInstanceUnit = SG_UNIT_SDF_INSTANCES;  ///< technique sdf: the field casters (buffer texture)
 };
 
 /// The public shadow GLSL as one text for a game's fragment shader, to stand after its
@@ -72,9 +74,11 @@ struct ShadowShaderInputs {
     GlBuffer kernelBuffer;                                       ///< uniform buffer: the kernel block
     std::array<GlTexture, SG_MAX_LIGHTS_PER_PASS> depthArray{};  ///< per slot, none without a map
     std::array<GlTexture, SG_MAX_LIGHTS_PER_PASS> minMax{};      ///< per slot: its filter chain, none without one
-    GlSampler compareSampler;                                    ///< for the compare units (hardware comparison)
-    GlSampler depthSampler;                                      ///< for the raw-depth units
-    unsigned techniques = 0;                                     ///< `techniqueBit`s of the slots' techniques
+    GlTexture fieldAtlas;      ///< technique sdf: the distance-field atlas, none before a light uses sdf
+    GlTexture fieldInstances;  ///< technique sdf: the frame's field casters, relative to the inputs' camera
+    GlSampler compareSampler;  ///< for the compare units (hardware comparison)
+    GlSampler depthSampler;    ///< for the raw-depth units
+    unsigned techniques = 0;   ///< `techniqueBit`s of the slots' techniques
     /// Per slot: the light's SG_LIGHT_*, SG_TECH_* and SG_KERNEL_*, for a shader specialised per
     /// light configuration (`shadowVisibility(slot, shadowSlotLight(slot, type, technique,
     /// kernel), ...)` with compile-time constants, as the module's own passes do).

@@ -18,6 +18,7 @@
 #define SG_TECH_VSSM 6
 #define SG_TECH_MSM 7
 #define SG_TECH_MSM_SOFT 8
+#define SG_TECH_SDF 9
 
 // Filter kernels (FilterKernel in components.h, in the same order).
 #define SG_KERNEL_VOGEL 0
@@ -57,6 +58,19 @@
 #ifndef SG_UNIT_SHADOW_MINMAX
 #define SG_UNIT_SHADOW_MINMAX 16
 #endif
+// The distance-field technique (sdf): the atlas of every caster's signed distance field (a 3D
+// texture, one brick per mesh) and the instance records of the frame's field casters (a buffer
+// texture of SG_SDF_INSTANCE_TEXELS vec4 per instance, layout in shaders/shadow_sdf.glsl).
+#ifndef SG_UNIT_SDF_ATLAS
+#define SG_UNIT_SDF_ATLAS 26
+#endif
+#ifndef SG_UNIT_SDF_INSTANCES
+#define SG_UNIT_SDF_INSTANCES 27
+#endif
+#define SG_SDF_INSTANCE_TEXELS 9
+// Most field casters one pixel's march reads: the nearest of those whose bounds its ray meets.
+#define SG_SDF_MAX_NEAR 8
+
 // Units the shadow mask reads the game's depth and normal textures from (after the three arrays).
 #define SG_UNIT_MASK_DEPTH 24
 #define SG_UNIT_MASK_NORMAL 25

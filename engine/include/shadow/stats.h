@@ -71,6 +71,12 @@ struct FrameStats {
     /// GPU memory of the nearest-depth scratch the second-depth modes draw through (one 32-bit
     /// depth texture of the largest map in such a mode, shared by every light; 0 without one).
     long long shadowScratchBytes = 0;
+    /// Technique sdf: GPU memory of the distance-field atlas and instance records (bytes), the
+    /// fields baked this frame and the time their bakes took (a mesh is baked once, when a light
+    /// first marches through it).
+    long long distanceFieldBytes = 0;
+    int distanceFieldsBaked = 0;
+    double distanceFieldBakeMs = 0.0;
     /// Entities whose world matrix (or an ancestor's) is not finite, skipped by every pass
     /// (`TransformStats::nonFinite`); each is also a `NonFiniteTransform` warning.
     int entitiesSkippedNonFinite = 0;

@@ -62,6 +62,11 @@ enum class WarningCode {
     /// right behind one may be compared with itself. Element: the light; the message counts
     /// them and names the first.
     OpenCaster,
+    /// A light with technique `sdf` has casters no distance field represents (a game's own
+    /// `ShadowCasterDraw`, a mesh with a non-uniform scale): they cast through the light's shadow
+    /// map instead (a hard shadow, multiplied with the march's visibility). Element: the light;
+    /// the message counts their draws and names the first.
+    CasterWithoutField,
 };
 
 /// One decision the engine reports.
@@ -88,6 +93,7 @@ struct Warning {
         case WarningCode::DegenerateTransform: return "DegenerateTransform";
         case WarningCode::UnsupportedLight: return "UnsupportedLight";
         case WarningCode::OpenCaster: return "OpenCaster";
+        case WarningCode::CasterWithoutField: return "CasterWithoutField";
     }
     return "Unknown";
 }

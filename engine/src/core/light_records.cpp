@@ -38,6 +38,11 @@ void packShadow(const ShadowLightPlan& plan, const glm::dvec3& wsCamera, int fir
     g.cascadeBlend = s.cascadeBlend;
     g.kernel = static_cast<int>(s.kernel);
     g.lightBleedReduction = s.lightBleedReduction;
+    g.sdfFirst = plan.fieldFirst;
+    g.sdfCount = static_cast<int>(plan.fieldCasters.size());
+    g.sdfSteps = s.sdfSteps;
+    g.sdfStartOffset = s.sdfStartOffset;
+    g.sdfMinStep = s.sdfMinStep;
     for (std::size_t k = 0; k < plan.layers.size(); ++k) slotLayers[k] = packLayer(plan.layers[k], wsCamera);
 }
 

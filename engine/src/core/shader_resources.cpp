@@ -49,6 +49,11 @@ void bindShadowResources(const ShaderResources& resources, const ShadowMaps& map
         // The texture's own filtering: nearest per level for a pyramid, trilinear for moments.
         gl.BindSampler(static_cast<GLuint>(points.minMaxUnit + slot), 0);
     }
+    // Technique sdf: the fields, and their instances as last uploaded for the caller's camera.
+    gl.BindTextureUnit(static_cast<GLuint>(points.sdfAtlasUnit), maps.fieldAtlas().name);
+    gl.BindSampler(static_cast<GLuint>(points.sdfAtlasUnit), 0);
+    gl.BindTextureUnit(static_cast<GLuint>(points.sdfInstanceUnit), maps.fieldInstances().name);
+    gl.BindSampler(static_cast<GLuint>(points.sdfInstanceUnit), 0);
 }
 
 }  // namespace shadow::gpu

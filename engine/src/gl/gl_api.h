@@ -73,6 +73,9 @@ namespace shadow::gpu {
     X(PFNGLDELETETEXTURESPROC, DeleteTextures)                             \
     X(PFNGLTEXTURESTORAGE2DPROC, TextureStorage2D)                         \
     X(PFNGLTEXTURESTORAGE3DPROC, TextureStorage3D)                         \
+    X(PFNGLTEXTURESUBIMAGE3DPROC, TextureSubImage3D)                       \
+    X(PFNGLTEXTUREBUFFERPROC, TextureBuffer)                               \
+    X(PFNGLCOPYIMAGESUBDATAPROC, CopyImageSubData)                         \
     X(PFNGLTEXTUREPARAMETERIPROC, TextureParameteri)                       \
     X(PFNGLGENTEXTURESPROC, GenTextures)                                   \
     X(PFNGLTEXTUREVIEWPROC, TextureView)                                   \

@@ -242,12 +242,15 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
 namespace {
 
 /// The texture units and uniform-buffer binding points the lit passes bind.
-constexpr std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS> litTextureUnits() {
-    std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS> units{};
-    std::iota(units.begin(), units.end(), 0);
+/// The three sampler arrays' units and the distance-field technique's two.
+constexpr std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS + 2> litTextureUnits() {
+    std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS + 2> units{};
+    std::iota(units.begin(), units.end() - 2, 0);
+    units[units.size() - 2] = SG_UNIT_SDF_ATLAS;
+    units[units.size() - 1] = SG_UNIT_SDF_INSTANCES;
     return units;
 }
-constexpr std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS> kLitTextureUnits = litTextureUnits();
+constexpr std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS + 2> kLitTextureUnits = litTextureUnits();
 constexpr std::array<GLint, 3> kLitUniformBindings{SG_BINDING_LIGHTS, SG_BINDING_LAYERS, SG_BINDING_KERNELS};
 
 }  // namespace
@@ -291,6 +294,8 @@ void Renderer::render(const World& world, const CameraView& camera, const Shadow
     r.lightCount = frame.lights.size();
     const ScreenView view{cameraClipFromWorld(camera), options.width, options.height, frame.wsGeometry};
     render::packLights(frame, camera.wsPosition, view, r.passes, r.packingOrder);
+    // Technique sdf: the field casters' records relative to this camera, which every pass binds.
+    if ((frame.techniquesInUse & techniqueBit(ShadowTechnique::Sdf)) != 0) (void)maps.fieldInstances(camera.wsPosition);
     r.preparePrograms(options, stats);
     r.uploadPasses();
     r.targets.ensure(options.width, options.height, options.aovs, static_cast<int>(r.passes.size()));

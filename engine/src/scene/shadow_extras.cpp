@@ -73,8 +73,8 @@ constexpr const char* kDepthModeKey = "depthMode";
 /// A light's numeric knobs: each key of its `extras.shadow` with the field it sets. The one list
 /// of them: the parser reads these, and the unknown-key check knows these.
 struct LightKnobs {
-    std::array<Knob<int>, 4> ints;
-    std::array<Knob<float>, 12> floats;
+    std::array<Knob<int>, 5> ints;
+    std::array<Knob<float>, 14> floats;
 };
 
 LightKnobs lightKnobs(LightShadowExtras& out) {
@@ -82,7 +82,8 @@ LightKnobs lightKnobs(LightShadowExtras& out) {
     return {{{{"mapSize", &s.mapSize},
               {"pcfSamples", &s.pcfSamples},
               {"blockerSamples", &s.blockerSamples},
-              {"cascades", &s.cascades}}},
+              {"cascades", &s.cascades},
+              {"sdfSteps", &s.sdfSteps}}},
             {{{"radius", &out.radius},
               {"angularRadius", &out.angularRadius},
               {"constantBias", &s.constantBias},
@@ -94,7 +95,9 @@ LightKnobs lightKnobs(LightShadowExtras& out) {
               {"cascadeSplitLambda", &s.cascadeSplitLambda},
               {"cascadeBlend", &s.cascadeBlend},
               {"shadowDistance", &s.shadowDistance},
-              {"nearPlane", &s.nearPlane}}}};
+              {"nearPlane", &s.nearPlane},
+              {"sdfStartOffset", &s.sdfStartOffset},
+              {"sdfMinStep", &s.sdfMinStep}}}};
 }
 
 /// A mesh node's knobs.

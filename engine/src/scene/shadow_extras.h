@@ -2,10 +2,11 @@
 // importer so a fuzzer can feed arbitrary JSON values to them directly.
 //
 // Light extras (`KHR_lights_punctual.lights[i].extras.shadow`):
-//   technique        "none" | "hard" | "pcf" | "pcss" | "pcss-textbook" | "vsm" | "vssm" | "msm" | "msm-soft"  (default "hard")
-//   mapSize, pcfSamples, blockerSamples, cascades             positive integers
+//   technique        a name of the technique table (techniques.h)  (default "hard")
+//   kernel           "vogel" | "poisson" | "uniform"; depthMode "nearest" | "midpoint" | "second"
+//   mapSize, pcfSamples, blockerSamples, cascades, sdfSteps   positive integers
 //   radius, angularRadius, constantBias, slopeBias, normalOffset, pcfRadius, lightBleedReduction,
-//   maxFilterTexels, cascadeSplitLambda, shadowDistance, nearPlane
+//   maxFilterTexels, cascadeSplitLambda, shadowDistance, nearPlane, sdfStartOffset, sdfMinStep
 //                                                             finite numbers >= 0
 // Mesh node extras (`nodes[i].extras.shadow`):
 //   cast, receive                                             booleans (default true)

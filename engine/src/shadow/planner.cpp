@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -45,9 +46,12 @@ const char* lightName(const World& world, Entity e) {
 void describeLight(const World& world, Entity e, int index, ShadowLightPlan& plan) {
     std::string name = std::move(plan.name);
     std::vector<ShadowLayerPlan> layers = std::move(plan.layers);
+    std::vector<Entity> fieldCasters = std::move(plan.fieldCasters);
     plan = ShadowLightPlan{};
     plan.name = std::move(name);
     plan.layers = std::move(layers);
+    plan.fieldCasters = std::move(fieldCasters);
+    plan.fieldCasters.clear();
     plan.entity = e;
     plan.sceneIndex = index;
     plan.name.assign(lightName(world, e));
@@ -157,6 +161,54 @@ bool knownClosed(const World& world, Entity caster) {
     return own != nullptr && own->closed;
 }
 
+/// Whether `caster` can be marched through a distance field: a mesh (its field is baked from
+/// its data) placed by a rotation and a scale along its own axes (a non-uniform scale gets a
+/// field of its own, baked with the scale applied); a shear would break the distance bound the
+/// march steps by.
+bool hasField(const World& world, Entity caster) {
+    const Mesh* mesh = world.tryGet<Mesh>(caster);
+    const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
+    if (mesh == nullptr || mesh->data == nullptr || mesh->data->indices.empty() || wt == nullptr || !wt->finite) {
+        return false;
+    }
+    std::array<glm::dvec3, 3> axes{};
+    for (int c = 0; c < 3; ++c) {
+        axes[static_cast<std::size_t>(c)] = glm::dvec3(wt->worldFromLocal[c]);
+        if (!(glm::length(axes[static_cast<std::size_t>(c)]) > 0.0)) return false;
+        axes[static_cast<std::size_t>(c)] = glm::normalize(axes[static_cast<std::size_t>(c)]);
+    }
+    return std::abs(glm::dot(axes[0], axes[1])) < 1e-4 && std::abs(glm::dot(axes[1], axes[2])) < 1e-4 &&
+           std::abs(glm::dot(axes[0], axes[2])) < 1e-4;
+}
+
+/// Technique sdf: moves the casters with a field out of `plan`'s layers into `fieldCasters`
+/// (once each), and warns once (`CasterWithoutField`) about those left to the map.
+void takeFieldCasters(const World& world, ShadowLightPlan& plan, std::vector<Warning>& warnings) {
+    int without = 0;
+    Entity first;
+    for (ShadowLayerPlan& layer : plan.layers) {
+        std::erase_if(layer.casters, [&](Entity caster) {
+            if (hasField(world, caster)) {
+                plan.fieldCasters.push_back(caster);
+                return true;
+            }
+            if (without++ == 0) first = caster;
+            return false;
+        });
+    }
+    std::sort(plan.fieldCasters.begin(), plan.fieldCasters.end(),
+              [](Entity a, Entity b) { return a.index() < b.index(); });
+    plan.fieldCasters.erase(std::unique(plan.fieldCasters.begin(), plan.fieldCasters.end()), plan.fieldCasters.end());
+    if (without == 0) return;
+    const Name* name = world.tryGet<Name>(first);
+    std::ostringstream msg;
+    msg << plan.name << ": technique sdf: " << without << " caster draw" << (without == 1 ? "" : "s")
+        << " without a distance field (a game's own draw or a sheared transform; \""
+        << (name != nullptr ? name->value : std::string("entity ") + std::to_string(first.index()))
+        << "\" first) cast through the light's shadow map";
+    warnings.push_back({WarningCode::CasterWithoutField, plan.name, msg.str()});
+}
+
 /// One `OpenCaster` warning for a light storing a second depth whose layers hold casters not
 /// known to be closed.
 void warnOpenCasters(const World& world, const ShadowLightPlan& plan, std::vector<Warning>& warnings) {
@@ -219,6 +271,9 @@ void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, co
     clampField(s.cascadeBlend, 0.0f, 0.5f, who, "cascadeBlend", warnings);
     clampField(s.shadowDistance, 0.0f, 1e7f, who, "shadowDistance", warnings);
     clampField(s.nearPlane, 0.0f, 1e7f, who, "nearPlane", warnings);
+    clampField(s.sdfSteps, 4, 256, who, "sdfSteps", warnings);
+    clampField(s.sdfStartOffset, 0.0f, 1.0f, who, "sdfStartOffset", warnings);
+    clampField(s.sdfMinStep, 1e-4f, 1.0f, who, "sdfMinStep", warnings);
     if (static_cast<int>(s.depthMode) > static_cast<int>(DepthMode::Second)) {
         warnings.push_back({WarningCode::SettingClamped, who,
                             who + ": depthMode " + std::to_string(static_cast<int>(s.depthMode)) +
@@ -278,11 +333,18 @@ const ShadowFrame& ShadowPlanner::prepare(const World& world, const CameraView& 
             continue;
         }
         planLayers(plan, {plan.wsPosition, plan.wsDirection}, camera, geometry, plan.layers);
+        if (plan.settings.technique == ShadowTechnique::Sdf) takeFieldCasters(world, plan, frame_.warnings);
         markDirty(world, plan);
         warnOpenCasters(world, plan, frame_.warnings);
     }
+    int fields = 0;  // every light's field casters, in scene-light order
     for (ShadowLightPlan& plan : frame_.lights) {
-        if (plan.mapSize == 0) plan.layers.clear();  // kept by describeLight in case it had a map
+        if (plan.mapSize == 0) {
+            plan.layers.clear();  // kept by describeLight in case it had a map
+            plan.fieldCasters.clear();
+        }
+        plan.fieldFirst = fields;
+        fields += static_cast<int>(plan.fieldCasters.size());
         frame_.techniquesInUse |= 1u << static_cast<unsigned>(plan.technique());
     }
     // Forget lights that are gone so their memory does not grow without bound.

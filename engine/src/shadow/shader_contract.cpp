@@ -30,6 +30,23 @@ void validate(const ShadowBindingPoints& points) {
     for (const auto& [name, value] : all) {
         if (value < 0) throw std::invalid_argument(std::string("shadow binding point ") + name + " is negative");
     }
+    // The distance-field technique's two units: not negative, apart, and outside the arrays.
+    const std::array<std::pair<const char*, int>, 2> single{
+        {{"sdfAtlasUnit", points.sdfAtlasUnit}, {"sdfInstanceUnit", points.sdfInstanceUnit}}};
+    for (const auto& [name, unit] : single) {
+        if (unit < 0) throw std::invalid_argument(std::string("shadow binding point ") + name + " is negative");
+        for (std::size_t a = 3; a < all.size(); ++a) {
+            if (unit >= all[a].second && unit < all[a].second + SG_MAX_LIGHTS_PER_PASS) {
+                throw std::invalid_argument(std::string("shadow texture unit ") + name + " (" + std::to_string(unit) +
+                                            ") lies in " + all[a].first + "'s " +
+                                            std::to_string(SG_MAX_LIGHTS_PER_PASS) + " units");
+            }
+        }
+    }
+    if (points.sdfAtlasUnit == points.sdfInstanceUnit) {
+        throw std::invalid_argument("shadow texture units sdfAtlasUnit and sdfInstanceUnit are both " +
+                                    std::to_string(points.sdfAtlasUnit));
+    }
     for (std::size_t a = 0; a < 3; ++a) {
         for (std::size_t b = a + 1; b < 3; ++b) {
             if (all[a].second == all[b].second) {
@@ -58,6 +75,8 @@ std::string shadowShaderSource(const ShadowBindingPoints& points, unsigned techn
         "SG_UNIT_SHADOW_COMPARE " + std::to_string(points.compareUnit),
         "SG_UNIT_SHADOW_DEPTH " + std::to_string(points.depthUnit),
         "SG_UNIT_SHADOW_MINMAX " + std::to_string(points.minMaxUnit),
+        "SG_UNIT_SDF_ATLAS " + std::to_string(points.sdfAtlasUnit),
+        "SG_UNIT_SDF_INSTANCES " + std::to_string(points.sdfInstanceUnit),
     };
     // A game's shader never gets the benchmarks' baselines.
     techniques &= kAllShadowTechniques;
@@ -122,6 +141,10 @@ void ShadowShaderContract::bind(const ShadowShaderInputs& inputs, const ShadowBi
         // The texture's own filtering: nearest per level for a pyramid, trilinear for moments.
         gl.BindSampler(static_cast<GLuint>(points.minMaxUnit + slot), 0);
     }
+    gl.BindTextureUnit(static_cast<GLuint>(points.sdfAtlasUnit), inputs.fieldAtlas.name);
+    gl.BindSampler(static_cast<GLuint>(points.sdfAtlasUnit), 0);
+    gl.BindTextureUnit(static_cast<GLuint>(points.sdfInstanceUnit), inputs.fieldInstances.name);
+    gl.BindSampler(static_cast<GLuint>(points.sdfInstanceUnit), 0);
 }
 
 void ShadowShaderContract::bindResources(const ShadowMaps& maps, std::span<const int> sceneLights,

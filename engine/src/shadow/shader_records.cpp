@@ -55,6 +55,10 @@ const ShadowShaderInputs& uploadShaderInputs(ShaderRecords& records, const Shado
         in.technique[slot] = record.technique;
         in.kernel[slot] = record.kernel;
     }
+    // The distance fields, positions relative to this call's camera (the same for every slot).
+    in.fieldAtlas = maps.fieldAtlas();
+    in.fieldInstances = (in.techniques & techniqueBit(ShadowTechnique::Sdf)) != 0 ? maps.fieldInstances(wsCamera)
+                                                                                  : maps.fieldInstances();
     gl.NamedBufferSubData(records.lights.get(), 0, sizeof(records.lightRecords), records.lightRecords.data());
     gl.NamedBufferSubData(records.layers.get(), 0, sizeof(records.layerRecords), records.layerRecords.data());
     checkGlError(call);

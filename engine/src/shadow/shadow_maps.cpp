@@ -11,6 +11,7 @@
 #include "gl/objects.h"
 #include "gl/pass_timer.h"
 #include "gl/program.h"
+#include "shadow/distance_field_atlas.h"
 #include "shadow/filter_chain.h"
 #include "shadow/map_memory.h"
 
@@ -176,6 +177,8 @@ struct ShadowMaps::Impl {
     std::optional<DepthProgram> midpoint;
     std::optional<DepthProgram> second;
     NearestScratch scratch;
+    /// The distance fields of the sdf lights' casters, made when a light first uses sdf.
+    std::optional<gpu::DistanceFieldAtlas> fields;
     FilterChainBuilder chains;
     gpu::PassTimer timer;
     std::string passName;  ///< the name of the pass being timed (see `formatPassName`)
@@ -402,6 +405,15 @@ void ShadowMaps::render(const ShadowFrame& frame, const World& world, MeshCache&
         if (plan.hasMap()) g.updateChains(plan);
     }
     stats.shadowScratchBytes = g.scratch.bytes();
+    if (!g.fields && (frame.techniquesInUse & techniqueBit(ShadowTechnique::Sdf)) != 0) g.fields.emplace();
+    if (g.fields) {
+        const int baked = g.fields->fieldsBaked();
+        const double seconds = g.fields->bakeSeconds();
+        g.fields->update(frame, world, stats.warnings);
+        stats.distanceFieldsBaked = g.fields->fieldsBaked() - baked;
+        stats.distanceFieldBakeMs = 1000.0 * (g.fields->bakeSeconds() - seconds);
+        stats.distanceFieldBytes = g.fields->bytes();
+    }
     gpu::checkGlError("shadow pass");
     g.timer.collect(stats);
 }
@@ -424,6 +436,16 @@ GlTexture ShadowMaps::filterChainOf(std::size_t i) const {
     const auto& maps = impl_->maps;
     return GlTexture{i < maps.size() && maps[i].second && maps[i].second->chain ? maps[i].second->chain->texture.get()
                                                                                 : 0u};
+}
+
+GlTexture ShadowMaps::fieldAtlas() const { return GlTexture{impl_->fields ? impl_->fields->atlas() : 0u}; }
+
+GlTexture ShadowMaps::fieldInstances(const glm::dvec3& wsCamera) const {
+    return GlTexture{impl_->fields ? impl_->fields->instances(wsCamera) : 0u};
+}
+
+GlTexture ShadowMaps::fieldInstances() const {
+    return GlTexture{impl_->fields ? impl_->fields->uploadedInstances() : 0u};
 }
 
 int ShadowMaps::layersOf(std::size_t i) const {

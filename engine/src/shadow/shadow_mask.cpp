@@ -79,12 +79,15 @@ MaskProgram buildMask(const ShadowShaderInputs& in, bool normals) {
 
 /// Texture units the mask pass binds (the three shadow arrays, depth, normals) and the uniform
 /// binding points: what its guard puts back.
-constexpr std::array<GLint, SG_UNIT_MASK_NORMAL + 1> maskUnits() {
-    std::array<GLint, SG_UNIT_MASK_NORMAL + 1> units{};
-    std::iota(units.begin(), units.end(), 0);
+/// Units 0 to SG_UNIT_MASK_NORMAL and the distance-field technique's two.
+constexpr std::array<GLint, SG_UNIT_MASK_NORMAL + 3> maskUnits() {
+    std::array<GLint, SG_UNIT_MASK_NORMAL + 3> units{};
+    std::iota(units.begin(), units.end() - 2, 0);
+    units[units.size() - 2] = SG_UNIT_SDF_ATLAS;
+    units[units.size() - 1] = SG_UNIT_SDF_INSTANCES;
     return units;
 }
-constexpr std::array<GLint, SG_UNIT_MASK_NORMAL + 1> kMaskUnits = maskUnits();
+constexpr std::array<GLint, SG_UNIT_MASK_NORMAL + 3> kMaskUnits = maskUnits();
 constexpr std::array<GLint, 3> kMaskBindings{SG_BINDING_LIGHTS, SG_BINDING_LAYERS, SG_BINDING_KERNELS};
 static_assert(SG_UNIT_MASK_DEPTH >= SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS);
 

@@ -1,0 +1,257 @@
+#include "shadow/distance_field_atlas.h"
+
+#include <shadow/shared_constants.h>
+
+#include "gl/gl_api.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <functional>
+#include <cmath>
+#include <string>
+
+namespace shadow::gpu {
+namespace {
+
+/// Edge of the atlas in x and y (texels); it grows in z as fields are added. A field wider than
+/// this is baked again with an eighth of the voxels until it fits.
+constexpr int kAtlasEdge = 128;
+
+/// The host's pixel-unpack state, set to tightly packed client memory for the uploads and put
+/// back after (a game may have left a row length or an unpack buffer bound).
+class UnpackDefaults {
+public:
+    UnpackDefaults() {
+        for (std::size_t i = 0; i < kNames.size(); ++i) gl.GetIntegerv(kNames[i], &saved_[i]);
+        gl.GetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &buffer_);
+        gl.BindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+        for (std::size_t i = 0; i < kNames.size(); ++i) gl.PixelStorei(kNames[i], kDefaults[i]);
+    }
+    ~UnpackDefaults() {
+        for (std::size_t i = 0; i < kNames.size(); ++i) gl.PixelStorei(kNames[i], saved_[i]);
+        gl.BindBuffer(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(buffer_));
+    }
+    UnpackDefaults(const UnpackDefaults&) = delete;
+    UnpackDefaults& operator=(const UnpackDefaults&) = delete;
+
+private:
+    static constexpr std::array<GLenum, 8> kNames{GL_UNPACK_ALIGNMENT,    GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT,
+                                                  GL_UNPACK_SKIP_PIXELS,  GL_UNPACK_SKIP_ROWS,  GL_UNPACK_SKIP_IMAGES,
+                                                  GL_UNPACK_SWAP_BYTES,   GL_UNPACK_LSB_FIRST};
+    static constexpr std::array<GLint, 8> kDefaults{4, 0, 0, 0, 0, 0, GL_FALSE, GL_FALSE};
+    std::array<GLint, 8> saved_{};
+    GLint buffer_ = 0;
+};
+
+/// The scale along each of a transform's own axes (the planner keeps transforms without shear).
+glm::dvec3 axisScales(const glm::dmat4& m) {
+    return {glm::length(glm::dvec3(m[0])), glm::length(glm::dvec3(m[1])), glm::length(glm::dvec3(m[2]))};
+}
+
+/// Scales within a thousandth of each other count as uniform: the instance applies them.
+bool uniform(const glm::dvec3& s) {
+    const double lo = std::min({s.x, s.y, s.z});
+    const double hi = std::max({s.x, s.y, s.z});
+    return hi <= lo * 1.001;
+}
+
+}  // namespace
+
+DistanceFieldAtlas::DistanceFieldAtlas(int voxelBudget) {
+    settings_.voxelBudget = voxelBudget;
+    gl.GetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize_);
+}
+
+void DistanceFieldAtlas::grow(int depth) {
+    // Grown to what the new brick needs (in steps of 16 slices), not doubled: a copy per new
+    // field is cheap, and the atlas is most of the technique's memory.
+    depth = std::min((depth + 15) / 16 * 16, maxSize_);
+    Texture next = makeTexture("Shadow/distance fields", GL_TEXTURE_3D);
+    gl.TextureStorage3D(next.get(), 1, GL_R32F, kAtlasEdge, kAtlasEdge, depth);
+    gl.TextureParameteri(next.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl.TextureParameteri(next.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) {
+        gl.TextureParameteri(next.get(), wrap, GL_CLAMP_TO_EDGE);
+    }
+    if (atlas_ && atlasSize_.z > 0) {
+        gl.CopyImageSubData(atlas_.get(), GL_TEXTURE_3D, 0, 0, 0, 0, next.get(), GL_TEXTURE_3D, 0, 0, 0, 0,
+                            atlasSize_.x, atlasSize_.y, atlasSize_.z);
+    }
+    atlas_ = std::move(next);
+    atlasSize_ = glm::ivec3(kAtlasEdge, kAtlasEdge, depth);
+    checkGlError("growing the distance-field atlas");
+}
+
+FieldBrick DistanceFieldAtlas::place(const DistanceField& field) {
+    const glm::ivec3 s = field.size;
+    if (cursor_.x + s.x > kAtlasEdge) {  // next row
+        cursor_.x = 0;
+        cursor_.y += rowHeight_;
+        rowHeight_ = 0;
+    }
+    if (cursor_.y + s.y > kAtlasEdge) {  // next slab
+        cursor_ = glm::ivec3(0, 0, cursor_.z + slabDepth_);
+        rowHeight_ = 0;
+        slabDepth_ = 0;
+    }
+    if (cursor_.z + s.z > atlasSize_.z) grow(cursor_.z + s.z);
+    FieldBrick b;
+    b.origin = cursor_;
+    b.size = s;
+    b.voxelSize = field.voxelSize;
+    b.firstCentre = field.voxelCentre(glm::ivec3(0));
+    b.lastCentre = field.voxelCentre(s - 1);
+    b.sheet = std::none_of(field.distances.begin(), field.distances.end(), [](float d) { return d < 0.0f; });
+    {
+        const UnpackDefaults unpack;
+        gl.TextureSubImage3D(atlas_.get(), 0, b.origin.x, b.origin.y, b.origin.z, s.x, s.y, s.z, GL_RED, GL_FLOAT,
+                             field.distances.data());
+    }
+    checkGlError("uploading a distance field");
+    cursor_.x += s.x;
+    rowHeight_ = std::max(rowHeight_, s.y);
+    slabDepth_ = std::max(slabDepth_, s.z);
+    return b;
+}
+
+const FieldBrick* DistanceFieldAtlas::brickOf(const std::shared_ptr<const MeshData>& mesh, const glm::vec3& scale,
+                                              const std::string& who, std::vector<Warning>& warnings) {
+    const Key key{mesh.get(), scale};
+    auto it = entries_.find(key);
+    if (it != entries_.end() && it->second.mesh.lock() == mesh) return it->second.brick ? &*it->second.brick : nullptr;
+    Entry entry{mesh, std::nullopt};
+    const auto start = std::chrono::steady_clock::now();
+    DistanceFieldSettings settings = settings_;
+    // A non-uniform scale is baked into the field: distances in the scaled space are metres
+    // over the instance's own scale, which a sheared or stretched field's would not be.
+    MeshData scaled;
+    const bool stretched = scale != glm::vec3(1.0f);
+    if (stretched) {
+        scaled.name = mesh->name;
+        scaled.indices = mesh->indices;
+        scaled.positions.reserve(mesh->positions.size());
+        for (const glm::vec3& p : mesh->positions) scaled.positions.push_back(p * scale);
+        computeBounds(scaled);
+    }
+    const MeshData& source = stretched ? scaled : *mesh;
+    Result<DistanceField> field = bakeDistanceField(source, settings);
+    // Too wide or too deep for the atlas: fewer voxels (an eighth halves every axis).
+    while (field && (field->size.x > kAtlasEdge || field->size.y > kAtlasEdge || field->size.z > maxSize_) &&
+           settings.voxelBudget / 8 >= kMinDistanceFieldVoxels) {
+        settings.voxelBudget /= 8;
+        field = bakeDistanceField(source, settings);
+    }
+    bakeSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ++baked_;
+    const bool fits = field && field->size.x <= kAtlasEdge && field->size.y <= kAtlasEdge &&
+                      cursor_.z + slabDepth_ + field->size.z <= maxSize_;
+    if (fits) {
+        entry.brick = place(*field);
+        entry.brick->meshBounds = source.bounds;
+    } else {
+        const std::string why = field ? "it does not fit the atlas" : field.error().message;
+        warnings.push_back({WarningCode::CasterWithoutField, who,
+                            who + ": technique sdf: no distance field for mesh \"" + mesh->name + "\" (" + why +
+                                "); it casts no shadow"});
+    }
+    it = entries_.insert_or_assign(key, std::move(entry)).first;
+    return it->second.brick ? &*it->second.brick : nullptr;
+}
+
+void DistanceFieldAtlas::update(const ShadowFrame& frame, const World& world, std::vector<Warning>& warnings) {
+    // Forget the fields of meshes gone (their address may come back for another mesh).
+    std::erase_if(entries_, [](const auto& e) { return e.second.mesh.expired(); });
+    instances_.clear();
+    for (const ShadowLightPlan& plan : frame.lights) {
+        for (Entity caster : plan.fieldCasters) {
+            Instance instance;
+            const Mesh* mesh = world.tryGet<Mesh>(caster);
+            const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
+            if (mesh != nullptr && mesh->data != nullptr && wt != nullptr) {
+                const glm::dvec3 s = axisScales(wt->worldFromLocal);
+                if (uniform(s)) {
+                    instance.brick = brickOf(mesh->data, glm::vec3(1.0f), plan.name, warnings);
+                    instance.worldFromLocal = wt->worldFromLocal;
+                    instance.scale = (s.x + s.y + s.z) / 3.0;
+                } else {
+                    // The field's space is the mesh scaled by `baked`, the scale rounded to steps
+                    // of 1/64 of an octave (so that a scale animated by a hair does not bake
+                    // again); the instance keeps the rotation, the translation and what is left
+                    // of the scale, within 1.1 % of 1 on each axis, whose smallest is a lower
+                    // bound of the distances' own scale.
+                    const glm::dvec3 baked = glm::exp2(glm::round(glm::log2(s) * 64.0) / 64.0);
+                    const glm::dvec3 rest = s / baked;
+                    instance.brick = brickOf(mesh->data, glm::vec3(baked), plan.name, warnings);
+                    instance.worldFromLocal = wt->worldFromLocal * glm::scale(glm::dmat4(1.0), 1.0 / baked);
+                    instance.scale = std::min({rest.x, rest.y, rest.z});
+                }
+            }
+            instances_.push_back(instance);
+        }
+    }
+    uploaded_ = false;
+}
+
+GLuint DistanceFieldAtlas::instances(const glm::dvec3& wsCamera) {
+    if (uploaded_ && uploadedFor_ == wsCamera) return bufferTexture_.get();
+    records_.assign(instances_.size() * SG_SDF_INSTANCE_TEXELS * 4, 0.0f);
+    for (std::size_t i = 0; i < instances_.size(); ++i) {
+        float* r = &records_[i * SG_SDF_INSTANCE_TEXELS * 4];
+        const Instance& in = instances_[i];
+        if (in.brick == nullptr) {
+            r[6 * 4 + 3] = -1.0f;  // no sphere: the march skips it
+            continue;
+        }
+        const FieldBrick& b = *in.brick;
+        // Camera-relative world -> local, composed in double so the float rows stay exact far
+        // from the origin.
+        glm::dmat4 csFromLocal = in.worldFromLocal;
+        csFromLocal[3] -= glm::dvec4(wsCamera, 0.0);
+        const glm::dmat4 localFromCs = glm::inverse(csFromLocal);
+        for (int row = 0; row < 3; ++row) {
+            for (int col = 0; col < 4; ++col) r[row * 4 + col] = static_cast<float>(localFromCs[col][row]);
+        }
+        r[12] = b.firstCentre.x, r[13] = b.firstCentre.y, r[14] = b.firstCentre.z, r[15] = b.voxelSize;
+        r[16] = b.lastCentre.x, r[17] = b.lastCentre.y, r[18] = b.lastCentre.z, r[19] = static_cast<float>(in.scale);
+        r[20] = static_cast<float>(b.origin.x), r[21] = static_cast<float>(b.origin.y);
+        r[22] = static_cast<float>(b.origin.z), r[23] = b.sheet ? 1.0f : 0.0f;
+        // The bounding sphere of the field's box (what a ray must meet to see a distance under
+        // the box's own lower bound).
+        const glm::dvec3 lo = glm::dvec3(b.firstCentre) - 0.5 * static_cast<double>(b.voxelSize);
+        const glm::dvec3 hi = glm::dvec3(b.lastCentre) + 0.5 * static_cast<double>(b.voxelSize);
+        const glm::dvec3 centre = glm::dvec3(csFromLocal * glm::dvec4(0.5 * (lo + hi), 1.0));
+        const double radius = 0.5 * glm::length(hi - lo) * in.scale;
+        r[24] = static_cast<float>(centre.x), r[25] = static_cast<float>(centre.y);
+        r[26] = static_cast<float>(centre.z), r[27] = static_cast<float>(radius);
+        // The mesh's own bounds (local): beyond the field's centres the distance to them is a
+        // lower bound far tighter than the field's padded box (exact above a plane).
+        r[28] = b.meshBounds.min.x, r[29] = b.meshBounds.min.y, r[30] = b.meshBounds.min.z;
+        r[32] = b.meshBounds.max.x, r[33] = b.meshBounds.max.y, r[34] = b.meshBounds.max.z;
+    }
+    const std::size_t floats = std::max<std::size_t>(records_.size(), 4);
+    if (!bufferTexture_ || floats > bufferFloats_) {
+        bufferFloats_ = std::max(floats, 2 * bufferFloats_);
+        buffer_ = makeBuffer("Shadow/distance-field instances", static_cast<GLsizeiptr>(bufferFloats_ * sizeof(float)),
+                             nullptr, GL_DYNAMIC_STORAGE_BIT);
+        bufferTexture_ = makeTexture("Shadow/distance-field instances", GL_TEXTURE_BUFFER);
+        gl.TextureBuffer(bufferTexture_.get(), GL_RGBA32F, buffer_.get());
+    }
+    if (!records_.empty()) {
+        gl.NamedBufferSubData(buffer_.get(), 0, static_cast<GLsizeiptr>(records_.size() * sizeof(float)),
+                              records_.data());
+    }
+    checkGlError("uploading the distance-field instances");
+    uploaded_ = true;
+    uploadedFor_ = wsCamera;
+    return bufferTexture_.get();
+}
+
+long long DistanceFieldAtlas::bytes() const {
+    return static_cast<long long>(atlasSize_.x) * atlasSize_.y * atlasSize_.z * 4 +
+           static_cast<long long>(bufferFloats_ * sizeof(float));
+}
+
+}  // namespace shadow::gpu
