@@ -16,9 +16,9 @@
 // the last two distances the closest approach between the samples, y = d^2 / (2 d_prev) along
 // the ray and sqrt(d^2 - y^2) across it.
 //
-// Costs follow what the ray can meet: before marching, each of the light's field casters is
-// tested by its bounding sphere against the ray segment, and only the SG_SDF_MAX_NEAR nearest
-// that it meets are sampled per step; the march ends where the ray leaves the last of them, at
+// Costs follow what the ray can meet: before marching, the light's clusters of field casters and
+// then the casters of the clusters the ray meets are tested by bounding sphere against the ray
+// segment, and only the SG_SDF_MAX_NEAR nearest casters it meets are sampled per step; the march ends where the ray leaves the last of them, at
 // the light, after `sdfSteps` steps, or in full umbra. Casters without a field (a game's own
 // draws, non-uniform scales) stay in the light's shadow map: one hard tap, multiplied in.
 //
@@ -30,6 +30,10 @@
 //   5    xyz: the atlas texel of the brick's first voxel, w: 1 for an unsigned (open) field
 //   6    xyz: bounding sphere centre (camera-relative, m), w: its radius (m); < 0 for none
 //   7, 8 xyz: the mesh's own bounds (local), min and max
+// After every instance, each light's clusters of up to SG_SDF_CLUSTER instances (consecutive in
+// the Morton order of their centres), at the same stride:
+//   0    xyz: the sphere around the cluster's spheres (camera-relative, m), w: radius; < 0 none
+//   1    x: the cluster's first instance, y: its instance count
 #ifndef SG_SHADOW_SDF
 #define SG_SHADOW_SDF
 #include "shadow_taps.glsl"
@@ -61,6 +65,19 @@ float sg_sdfDistance(int instance, vec3 p) {
         d = max(length(outside), d - away);
     }
     return d * last.w;
+}
+
+// Where the segment origin + t dir, t in [0, tEnd], meets `sphere` (xyz centre, w radius): the
+// (entry, exit) t, or exit -1 when it does not (or the sphere is none, w < 0).
+vec2 sg_sdfRayEnters(vec3 origin, vec3 dir, float tEnd, vec4 sphere) {
+    if (sphere.w < 0.0) return vec2(0.0, -1.0);
+    vec3 oc = origin - sphere.xyz;
+    float b = dot(oc, dir);
+    float h = b * b - (dot(oc, oc) - sphere.w * sphere.w);
+    if (h < 0.0) return vec2(0.0, -1.0);
+    h = sqrt(h);
+    float t0 = -b - h, t1 = -b + h;
+    return t1 < 0.0 || t0 > tEnd ? vec2(0.0, -1.0) : vec2(t0, t1);
 }
 
 // The part of the emitter's disk beyond a straight edge at signed distance u of its radius.
@@ -105,21 +122,29 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
     // A point-sized emitter (tan e = 0) is a cone of 1e-6: the hard shadow, without 0/0.
     float tanE = max(sun ? tan(max(L.emitterSize, 0.0)) : max(L.emitterSize, 0.0) / max(tEnd, 1e-6), 1e-6);
 
-    // The field casters the ray segment meets, by bounding sphere: the nearest SG_SDF_MAX_NEAR.
+    // The field casters the ray segment meets, by bounding sphere, cluster by cluster: the
+    // nearest SG_SDF_MAX_NEAR.
     int near[SG_SDF_MAX_NEAR];
     float enter[SG_SDF_MAX_NEAR];
     int count = 0;
     float tStop = 0.0;
-    for (int i = 0; i < L.sdfCount; ++i) {
-        vec4 sphere = sg_sdfRecord(L.sdfFirst + i, 6);
-        if (sphere.w < 0.0) continue;
-        vec3 oc = origin - sphere.xyz;
-        float b = dot(oc, dir);
-        float h = b * b - (dot(oc, oc) - sphere.w * sphere.w);
-        if (h < 0.0) continue;
-        h = sqrt(h);
-        float t0 = -b - h, t1 = -b + h;
-        if (t1 < 0.0 || t0 > tEnd) continue;
+    int clusters = (L.sdfCount + SG_SDF_CLUSTER - 1) / SG_SDF_CLUSTER;
+    int cluster = -1;
+    int i = 0, end = 0;
+    while (true) {
+        if (i >= end) {  // the next cluster the ray meets, or done
+            for (++cluster; cluster < clusters; ++cluster) {
+                if (sg_sdfRayEnters(origin, dir, tEnd, sg_sdfRecord(L.sdfClusterFirst + cluster, 0)).y >= 0.0) break;
+            }
+            if (cluster >= clusters) break;
+            vec4 range = sg_sdfRecord(L.sdfClusterFirst + cluster, 1);
+            i = int(range.x);
+            end = i + int(range.y);
+        }
+        int instance = i++;
+        vec2 span = sg_sdfRayEnters(origin, dir, tEnd, sg_sdfRecord(instance, 6));
+        if (span.y < 0.0) continue;
+        float t0 = span.x, t1 = span.y;
         tStop = max(tStop, t1);
         int slotK = count;
         if (count < SG_SDF_MAX_NEAR) {
@@ -129,7 +154,7 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
             for (int k = 1; k < SG_SDF_MAX_NEAR; ++k) slotK = enter[k] > enter[slotK] ? k : slotK;
             if (enter[slotK] <= t0) continue;
         }
-        near[slotK] = L.sdfFirst + i;
+        near[slotK] = instance;
         enter[slotK] = t0;
     }
     tStop = min(tStop, tEnd);

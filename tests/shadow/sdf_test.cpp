@@ -72,7 +72,7 @@ TEST(DistanceFieldShadows, APointSizedEmitterCastsTheGeometricShadow) {
         const test::GeometryAgreement m =
             test::compareWithGeometry(frame.images, frame.images.visibility[0], plan, light, boxes, band, 0.7);
         report(std::string("sdf, ") + c.name + ": ground pixels disagreeing with ray casting",
-                           static_cast<double>(m.mismatches) / std::max(m.groundPixels, 1));
+               static_cast<double>(m.mismatches) / std::max(m.groundPixels, 1));
         EXPECT_GT(m.shadowedPixels, m.groundPixels / 100) << c.name << ": no shadow in view";
         EXPECT_LT(static_cast<double>(m.outsideBand) / std::max(m.groundPixels, 1), 0.001) << c.name;
         EXPECT_EQ(test::countNonFinite(frame.images.visibility[0]), 0) << c.name;
@@ -146,8 +146,8 @@ TEST(DistanceFieldShadows, ACasterWithoutAFieldCastsThroughTheLightsMap) {
     EXPECT_GT(darkWhere([](const glm::dvec3& p) { return p.x > 0.6; }), 100) << "the cube, from its field";
     // The squashed box's shadow, from its scaled field, is its scaled footprint: 0.9 x 0.6 m
     // seen from 4 m at 0.3-0.7 m up (the shadow is wider than the box by 4 / (4 - h)).
-    const test::GroundCounts squashed = test::countGround(
-        frame.images, 0, [](const glm::dvec3& p) { return std::abs(p.x) < 0.75 && p.z > 0.6; });
+    const test::GroundCounts squashed =
+        test::countGround(frame.images, 0, [](const glm::dvec3& p) { return std::abs(p.x) < 0.75 && p.z > 0.6; });
     EXPECT_GT(squashed.dark, 100) << "the squashed box's shadow";
 }
 
@@ -160,9 +160,8 @@ TEST(DistanceFieldShadows, PlatesPenumbraAgainstTheRayTracedTruth) {
     if (!std::filesystem::exists(bin + "/shadow_reference")) GTEST_SKIP() << "a build without the reference";
     test::TempDir tmp;
     const std::string size = " --size 320x180 --out ";
-    const test::ProcessRun truth = test::runProgram(bin + "/shadow_reference",
-                                                    "builtin:plates --samples 256" + size + (tmp / "truth"),
-                                                    tmp / "reference.log");
+    const test::ProcessRun truth = test::runProgram(
+        bin + "/shadow_reference", "builtin:plates --samples 256" + size + (tmp / "truth"), tmp / "reference.log");
     ASSERT_EQ(truth.exitCode, 0) << truth.output;
     auto measure = [&](const std::string& technique) {
         const std::string out = tmp / technique;
@@ -170,8 +169,8 @@ TEST(DistanceFieldShadows, PlatesPenumbraAgainstTheRayTracedTruth) {
             bin + "/shadow_render", "builtin:plates --aov visibility,position --technique " + technique + size + out,
             tmp / "render.log");
         EXPECT_EQ(render.exitCode, 0) << render.output;
-        const test::ProcessRun compare =
-            test::runProgram(bin + "/shadow_compare", test::shellQuoted(out) + " " + (tmp / "truth"), tmp / "compare.log");
+        const test::ProcessRun compare = test::runProgram(
+            bin + "/shadow_compare", test::shellQuoted(out) + " " + (tmp / "truth"), tmp / "compare.log");
         EXPECT_EQ(compare.exitCode, 0) << compare.output;
         const nlohmann::json j = nlohmann::json::parse(compare.output, nullptr, false);
         return j.is_discarded() ? nlohmann::json{} : j["lights"][0];

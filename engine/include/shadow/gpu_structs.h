@@ -33,7 +33,7 @@ SG_INT sdfCount;               // sdf: its field casters
 SG_INT sdfSteps;               // sdf: most march steps
 SG_FLOAT sdfStartOffset;       // sdf: m along the normal and the ray before the march starts
 SG_FLOAT sdfMinStep;           // sdf: shortest step (m)
-SG_FLOAT reserved0;            // (std140 padding to 16 bytes)
+SG_INT sdfClusterFirst;        // sdf: its first cluster of SG_SDF_CLUSTER field casters
 SG_FLOAT reserved1;
 SG_FLOAT reserved2;
 SG_END_STRUCT

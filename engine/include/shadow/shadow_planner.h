@@ -79,6 +79,9 @@ struct ShadowLightPlan {
     /// Index of `fieldCasters[0]` among every light's field casters, in scene-light order:
     /// where the shader finds its instances (`ShadowMaps::fieldInstances`).
     int fieldFirst = 0;
+    /// Index of its first cluster of field casters (SG_SDF_CLUSTER consecutive ones with their
+    /// bounding sphere) in the same buffer, after every light's field casters.
+    int fieldClusterFirst = 0;
 
     /// True when the light has a shadow map this frame.
     [[nodiscard]] bool hasMap() const { return !layers.empty(); }

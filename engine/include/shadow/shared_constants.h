@@ -70,6 +70,8 @@
 #define SG_SDF_INSTANCE_TEXELS 9
 // Most field casters one pixel's march reads: the nearest of those whose bounds its ray meets.
 #define SG_SDF_MAX_NEAR 8
+// Field casters of a light grouped under one bounding sphere, which a ray tests first.
+#define SG_SDF_CLUSTER 16
 
 // Units the shadow mask reads the game's depth and normal textures from (after the three arrays).
 #define SG_UNIT_MASK_DEPTH 24

@@ -39,6 +39,7 @@ void packShadow(const ShadowLightPlan& plan, const glm::dvec3& wsCamera, int fir
     g.kernel = static_cast<int>(s.kernel);
     g.lightBleedReduction = s.lightBleedReduction;
     g.sdfFirst = plan.fieldFirst;
+    g.sdfClusterFirst = plan.fieldClusterFirst;
     g.sdfCount = static_cast<int>(plan.fieldCasters.size());
     g.sdfSteps = s.sdfSteps;
     g.sdfStartOffset = s.sdfStartOffset;

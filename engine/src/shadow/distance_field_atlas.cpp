@@ -38,9 +38,9 @@ public:
     UnpackDefaults& operator=(const UnpackDefaults&) = delete;
 
 private:
-    static constexpr std::array<GLenum, 8> kNames{GL_UNPACK_ALIGNMENT,    GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT,
-                                                  GL_UNPACK_SKIP_PIXELS,  GL_UNPACK_SKIP_ROWS,  GL_UNPACK_SKIP_IMAGES,
-                                                  GL_UNPACK_SWAP_BYTES,   GL_UNPACK_LSB_FIRST};
+    static constexpr std::array<GLenum, 8> kNames{GL_UNPACK_ALIGNMENT,   GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT,
+                                                  GL_UNPACK_SKIP_PIXELS, GL_UNPACK_SKIP_ROWS,  GL_UNPACK_SKIP_IMAGES,
+                                                  GL_UNPACK_SWAP_BYTES,  GL_UNPACK_LSB_FIRST};
     static constexpr std::array<GLint, 8> kDefaults{4, 0, 0, 0, 0, 0, GL_FALSE, GL_FALSE};
     std::array<GLint, 8> saved_{};
     GLint buffer_ = 0;
@@ -165,6 +165,7 @@ void DistanceFieldAtlas::update(const ShadowFrame& frame, const World& world, st
     // Forget the fields of meshes gone (their address may come back for another mesh).
     std::erase_if(entries_, [](const auto& e) { return e.second.mesh.expired(); });
     instances_.clear();
+    ranges_.clear();
     for (const ShadowLightPlan& plan : frame.lights) {
         for (Entity caster : plan.fieldCasters) {
             Instance instance;
@@ -189,15 +190,44 @@ void DistanceFieldAtlas::update(const ShadowFrame& frame, const World& world, st
                     instance.scale = std::min({rest.x, rest.y, rest.z});
                 }
             }
+            if (instance.brick != nullptr) {
+                const FieldBrick& b = *instance.brick;
+                const glm::dvec3 lo = glm::dvec3(b.firstCentre) - 0.5 * static_cast<double>(b.voxelSize);
+                const glm::dvec3 hi = glm::dvec3(b.lastCentre) + 0.5 * static_cast<double>(b.voxelSize);
+                instance.wsCentre = glm::dvec3(instance.worldFromLocal * glm::dvec4(0.5 * (lo + hi), 1.0));
+                // The field's space may carry what is left of a non-uniform scale: the largest.
+                const glm::dvec3 s = axisScales(instance.worldFromLocal);
+                instance.radius = 0.5 * glm::length(hi - lo) * std::max({s.x, s.y, s.z});
+            }
             instances_.push_back(instance);
         }
+        // Near casters next to each other, so that a cluster's sphere is tight: by the Morton
+        // order of their centres over the light's casters' bounds.
+        const auto begin = instances_.begin() + plan.fieldFirst;
+        DAabb bounds;
+        for (auto it = begin; it != instances_.end(); ++it) bounds.extend(it->wsCentre);
+        const glm::dvec3 extent = glm::max(bounds.extent(), glm::dvec3(1e-9));
+        auto morton = [&](const Instance& in) {
+            const glm::dvec3 unit = glm::clamp((in.wsCentre - bounds.min) / extent, 0.0, 1.0);
+            std::uint64_t code = 0;
+            for (int bit = 20; bit >= 0; --bit) {
+                for (int a = 0; a < 3; ++a) {
+                    code = code << 1 | ((static_cast<std::uint64_t>(unit[a] * 2097151.0) >> bit) & 1u);
+                }
+            }
+            return code;
+        };
+        std::sort(begin, instances_.end(), [&](const Instance& a, const Instance& b) { return morton(a) < morton(b); });
+        ranges_.push_back({plan.fieldFirst, static_cast<int>(plan.fieldCasters.size()), plan.fieldClusterFirst});
     }
+    clusterCount_ = 0;
+    for (const Range& r : ranges_) clusterCount_ += (r.count + SG_SDF_CLUSTER - 1) / SG_SDF_CLUSTER;
     uploaded_ = false;
 }
 
 GLuint DistanceFieldAtlas::instances(const glm::dvec3& wsCamera) {
     if (uploaded_ && uploadedFor_ == wsCamera) return bufferTexture_.get();
-    records_.assign(instances_.size() * SG_SDF_INSTANCE_TEXELS * 4, 0.0f);
+    records_.assign((instances_.size() + static_cast<std::size_t>(clusterCount_)) * SG_SDF_INSTANCE_TEXELS * 4, 0.0f);
     for (std::size_t i = 0; i < instances_.size(); ++i) {
         float* r = &records_[i * SG_SDF_INSTANCE_TEXELS * 4];
         const Instance& in = instances_[i];
@@ -220,16 +250,40 @@ GLuint DistanceFieldAtlas::instances(const glm::dvec3& wsCamera) {
         r[22] = static_cast<float>(b.origin.z), r[23] = b.sheet ? 1.0f : 0.0f;
         // The bounding sphere of the field's box (what a ray must meet to see a distance under
         // the box's own lower bound).
-        const glm::dvec3 lo = glm::dvec3(b.firstCentre) - 0.5 * static_cast<double>(b.voxelSize);
-        const glm::dvec3 hi = glm::dvec3(b.lastCentre) + 0.5 * static_cast<double>(b.voxelSize);
-        const glm::dvec3 centre = glm::dvec3(csFromLocal * glm::dvec4(0.5 * (lo + hi), 1.0));
-        const double radius = 0.5 * glm::length(hi - lo) * in.scale;
+        const glm::dvec3 centre = in.wsCentre - wsCamera;
         r[24] = static_cast<float>(centre.x), r[25] = static_cast<float>(centre.y);
-        r[26] = static_cast<float>(centre.z), r[27] = static_cast<float>(radius);
+        r[26] = static_cast<float>(centre.z), r[27] = static_cast<float>(in.radius);
         // The mesh's own bounds (local): beyond the field's centres the distance to them is a
         // lower bound far tighter than the field's padded box (exact above a plane).
         r[28] = b.meshBounds.min.x, r[29] = b.meshBounds.min.y, r[30] = b.meshBounds.min.z;
         r[32] = b.meshBounds.max.x, r[33] = b.meshBounds.max.y, r[34] = b.meshBounds.max.z;
+    }
+    // Each light's clusters: record texel 0 the sphere around its casters' spheres (camera-
+    // relative), texel 1 the index of its first caster and their count.
+    for (const Range& range : ranges_) {
+        for (int c = 0; c * SG_SDF_CLUSTER < range.count; ++c) {
+            float* r = &records_[static_cast<std::size_t>(range.cluster + c) * SG_SDF_INSTANCE_TEXELS * 4];
+            const int first = range.first + c * SG_SDF_CLUSTER;
+            const int count = std::min(SG_SDF_CLUSTER, range.count - c * SG_SDF_CLUSTER);
+            DAabb box;
+            for (int i = first; i < first + count; ++i) {
+                const Instance& in = instances_[static_cast<std::size_t>(i)];
+                if (in.radius >= 0.0) {
+                    box.extend(in.wsCentre - glm::dvec3(in.radius));
+                    box.extend(in.wsCentre + glm::dvec3(in.radius));
+                }
+            }
+            double radius = -1.0;
+            const glm::dvec3 centre = box.empty() ? glm::dvec3(0.0) : box.center();
+            for (int i = first; i < first + count; ++i) {
+                const Instance& in = instances_[static_cast<std::size_t>(i)];
+                if (in.radius >= 0.0) radius = std::max(radius, glm::length(in.wsCentre - centre) + in.radius);
+            }
+            const glm::dvec3 cs = centre - wsCamera;
+            r[0] = static_cast<float>(cs.x), r[1] = static_cast<float>(cs.y), r[2] = static_cast<float>(cs.z);
+            r[3] = static_cast<float>(radius);
+            r[4] = static_cast<float>(first), r[5] = static_cast<float>(count);
+        }
     }
     const std::size_t floats = std::max<std::size_t>(records_.size(), 4);
     if (!bufferTexture_ || floats > bufferFloats_) {

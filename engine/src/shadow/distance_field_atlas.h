@@ -29,7 +29,7 @@ struct FieldBrick {
     glm::vec3 lastCentre{0.0f};
     float voxelSize = 0.0f;
     bool sheet = false;  ///< no voxel inside (an open mesh): a zero-thickness sheet to the march
-    Aabb meshBounds;         ///< of the mesh's positions (local)
+    Aabb meshBounds;     ///< of the mesh's positions (local)
 };
 
 class DistanceFieldAtlas {
@@ -62,6 +62,14 @@ private:
         const FieldBrick* brick = nullptr;
         glm::dmat4 worldFromLocal{1.0};  ///< from the field's space (the mesh's, scaled for a scaled field)
         double scale = 1.0;              ///< metres per unit of the field's space
+        glm::dvec3 wsCentre{0.0};        ///< of its field's box (world)
+        double radius = -1.0;            ///< of the sphere around its field's box (m); < 0 for none
+    };
+    /// A light's instances: [first, first + count) of `instances_`, its clusters from `cluster`.
+    struct Range {
+        int first = 0;
+        int count = 0;
+        int cluster = 0;
     };
     /// A mesh, and the scale baked into its field (1, 1, 1 for a uniform scale, which the
     /// instance applies).
@@ -95,6 +103,8 @@ private:
     double bakeSeconds_ = 0.0;
 
     std::vector<Instance> instances_;
+    std::vector<Range> ranges_;
+    int clusterCount_ = 0;
     std::vector<float> records_;
     Buffer buffer_;
     Texture bufferTexture_;

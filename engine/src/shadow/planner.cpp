@@ -1,5 +1,6 @@
 // ShadowPlanner: the CPU "decide" phase of the shadow system (see shadow_planner.h).
 #include <shadow/shadow_planner.h>
+#include <shadow/shared_constants.h>
 
 #include "core/camera.h"
 #include "shadow/frustum.h"
@@ -346,6 +347,12 @@ const ShadowFrame& ShadowPlanner::prepare(const World& world, const CameraView& 
         plan.fieldFirst = fields;
         fields += static_cast<int>(plan.fieldCasters.size());
         frame_.techniquesInUse |= 1u << static_cast<unsigned>(plan.technique());
+    }
+    // The clusters of SG_SDF_CLUSTER field casters each, after every instance, in the same order.
+    int clusters = fields;
+    for (ShadowLightPlan& plan : frame_.lights) {
+        plan.fieldClusterFirst = clusters;
+        clusters += (static_cast<int>(plan.fieldCasters.size()) + SG_SDF_CLUSTER - 1) / SG_SDF_CLUSTER;
     }
     // Forget lights that are gone so their memory does not grow without bound.
     std::erase_if(memory_, [&](const auto& m) {
