@@ -17,6 +17,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -56,9 +57,10 @@ Header parseHeader(const unsigned char* p) {
     Header h;
     h.version = getU32(p + 8);
     for (int a = 0; a < 3; ++a) {
-        h.size[a] = static_cast<std::int32_t>(getU32(p + 12 + 4 * a));
-        h.box.min[a] = getF32(p + 24 + 4 * a);
-        h.box.max[a] = getF32(p + 36 + 4 * a);
+        const std::ptrdiff_t at = std::ptrdiff_t{4} * a;
+        h.size[a] = static_cast<std::int32_t>(getU32(p + 12 + at));
+        h.box.min[a] = getF32(p + 24 + at);
+        h.box.max[a] = getF32(p + 36 + at);
     }
     h.voxelSize = getF32(p + 48);
     h.dataBytes = getU64(p + 52);

@@ -74,40 +74,48 @@ TriangleBvh::TriangleBvh(std::vector<Triangle> triangles) : triangles_(std::move
     }
     nodes_.reserve(2 * (triangles_.size() / kLeafTriangles + 1));
     nodes_.emplace_back();
-    build(0, 0, static_cast<std::uint32_t>(order.size()), centroids, order);
+    build(static_cast<std::uint32_t>(order.size()), centroids, order);
     std::vector<Triangle> sorted(triangles_.size());
     for (std::size_t i = 0; i < order.size(); ++i) sorted[i] = triangles_[order[i]];
     triangles_ = std::move(sorted);
 }
 
 // Median splits keep the tree balanced: its depth is about log2(triangles / kLeafTriangles),
-// which bounds the recursion here and the search's stack.
-void TriangleBvh::build(std::uint32_t node, std::uint32_t begin, std::uint32_t end,
-                        const std::vector<glm::vec3>& centroids, std::vector<std::uint32_t>& order) {
-    Aabb box;
-    Aabb centroidBox;
-    for (std::uint32_t i = begin; i < end; ++i) {
-        box.extend(triangleBounds(triangles_[order[i]]));
-        centroidBox.extend(centroids[order[i]]);
+// which bounds the work list here and the search's stack.
+void TriangleBvh::build(std::uint32_t count, const std::vector<glm::vec3>& centroids,
+                        std::vector<std::uint32_t>& order) {
+    struct Task {
+        std::uint32_t node, begin, end;
+    };
+    std::vector<Task> tasks{{0, 0, count}};
+    while (!tasks.empty()) {
+        const Task t = tasks.back();
+        tasks.pop_back();
+        Aabb box;
+        Aabb centroidBox;
+        for (std::uint32_t i = t.begin; i < t.end; ++i) {
+            box.extend(triangleBounds(triangles_[order[i]]));
+            centroidBox.extend(centroids[order[i]]);
+        }
+        nodes_[t.node].box = box;
+        if (t.end - t.begin <= kLeafTriangles) {
+            nodes_[t.node].first = t.begin;
+            nodes_[t.node].count = t.end - t.begin;
+            continue;
+        }
+        const glm::vec3 extent = centroidBox.extent();
+        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+        const std::uint32_t mid = t.begin + (t.end - t.begin) / 2;
+        std::nth_element(order.begin() + t.begin, order.begin() + mid, order.begin() + t.end,
+                         [&](std::uint32_t l, std::uint32_t r) { return centroids[l][axis] < centroids[r][axis]; });
+        const auto left = static_cast<std::uint32_t>(nodes_.size());
+        nodes_[t.node].first = left;
+        nodes_[t.node].count = 0;
+        nodes_.emplace_back();
+        nodes_.emplace_back();
+        tasks.push_back({left + 1, mid, t.end});
+        tasks.push_back({left, t.begin, mid});
     }
-    nodes_[node].box = box;
-    if (end - begin <= kLeafTriangles) {
-        nodes_[node].first = begin;
-        nodes_[node].count = end - begin;
-        return;
-    }
-    const glm::vec3 extent = centroidBox.extent();
-    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-    const std::uint32_t mid = begin + (end - begin) / 2;
-    std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
-                     [&](std::uint32_t l, std::uint32_t r) { return centroids[l][axis] < centroids[r][axis]; });
-    const auto left = static_cast<std::uint32_t>(nodes_.size());
-    nodes_[node].first = left;
-    nodes_[node].count = 0;
-    nodes_.emplace_back();
-    nodes_.emplace_back();
-    build(left, begin, mid, centroids, order);
-    build(left + 1, mid, end, centroids, order);
 }
 
 TriangleBvh::Nearest TriangleBvh::nearest(const glm::dvec3& p, std::uint32_t hint) const {

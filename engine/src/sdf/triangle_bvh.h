@@ -55,9 +55,8 @@ private:
         std::uint32_t count = 0;
     };
 
-    /// Fills `nodes_[node]` over the triangles `order[begin, end)`, reordering that range.
-    void build(std::uint32_t node, std::uint32_t begin, std::uint32_t end, const std::vector<glm::vec3>& centroids,
-               std::vector<std::uint32_t>& order);
+    /// Fills `nodes_` over the triangles `order[0, count)`, reordering it (a work list, not recursion).
+    void build(std::uint32_t count, const std::vector<glm::vec3>& centroids, std::vector<std::uint32_t>& order);
     std::vector<Node> nodes_;
     std::vector<Triangle> triangles_;
 };

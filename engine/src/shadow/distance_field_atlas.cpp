@@ -10,6 +10,7 @@
 #include <array>
 #include <chrono>
 #include <functional>
+#include <span>
 #include <cmath>
 #include <string>
 
@@ -137,13 +138,15 @@ const FieldBrick* DistanceFieldAtlas::brickOf(const std::shared_ptr<const MeshDa
         computeBounds(scaled);
     }
     const MeshData& source = stretched ? scaled : *mesh;
-    Result<DistanceField> field = bakeDistanceField(source, settings);
+    std::optional<Result<DistanceField>> baked;
+    baked.emplace(bakeDistanceField(source, settings));
     // Too wide or too deep for the atlas: fewer voxels (an eighth halves every axis).
-    while (field && (field->size.x > kAtlasEdge || field->size.y > kAtlasEdge || field->size.z > maxSize_) &&
+    while (*baked && ((*baked)->size.x > kAtlasEdge || (*baked)->size.y > kAtlasEdge || (*baked)->size.z > maxSize_) &&
            settings.voxelBudget / 8 >= kMinDistanceFieldVoxels) {
         settings.voxelBudget /= 8;
-        field = bakeDistanceField(source, settings);
+        baked.emplace(bakeDistanceField(source, settings));
     }
+    const Result<DistanceField>& field = *baked;
     bakeSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ++baked_;
     const bool fits = field && field->size.x <= kAtlasEdge && field->size.y <= kAtlasEdge &&
@@ -161,122 +164,123 @@ const FieldBrick* DistanceFieldAtlas::brickOf(const std::shared_ptr<const MeshDa
     return it->second.brick ? &*it->second.brick : nullptr;
 }
 
+DistanceFieldAtlas::Instance DistanceFieldAtlas::instanceOf(const World& world, Entity caster, const std::string& who,
+                                                            std::vector<Warning>& warnings) {
+    Instance instance;
+    const Mesh* mesh = world.tryGet<Mesh>(caster);
+    const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
+    if (mesh == nullptr || mesh->data == nullptr || wt == nullptr) return instance;
+    const glm::dvec3 s = axisScales(wt->worldFromLocal);
+    if (uniform(s)) {
+        instance.brick = brickOf(mesh->data, glm::vec3(1.0f), who, warnings);
+        instance.worldFromLocal = wt->worldFromLocal;
+        instance.scale = (s.x + s.y + s.z) / 3.0;
+    } else {
+        // The field's space is the mesh scaled by `baked`, the scale rounded to steps of 1/64
+        // of an octave (so that a scale animated by a hair does not bake again); the instance
+        // keeps the rotation, the translation and what is left of the scale, within 1.1 % of
+        // 1 on each axis, whose smallest is a lower bound of the distances' own scale.
+        const glm::dvec3 baked = glm::exp2(glm::round(glm::log2(s) * 64.0) / 64.0);
+        const glm::dvec3 rest = s / baked;
+        instance.brick = brickOf(mesh->data, glm::vec3(baked), who, warnings);
+        instance.worldFromLocal = wt->worldFromLocal * glm::scale(glm::dmat4(1.0), 1.0 / baked);
+        instance.scale = std::min({rest.x, rest.y, rest.z});
+    }
+    if (instance.brick != nullptr) {
+        const FieldBrick& b = *instance.brick;
+        const glm::dvec3 lo = glm::dvec3(b.firstCentre) - 0.5 * static_cast<double>(b.voxelSize);
+        const glm::dvec3 hi = glm::dvec3(b.lastCentre) + 0.5 * static_cast<double>(b.voxelSize);
+        instance.wsCentre = glm::dvec3(instance.worldFromLocal * glm::dvec4(0.5 * (lo + hi), 1.0));
+        // The field's space may carry what is left of a non-uniform scale: the largest.
+        const glm::dvec3 left = axisScales(instance.worldFromLocal);
+        instance.radius = 0.5 * glm::length(hi - lo) * std::max({left.x, left.y, left.z});
+    }
+    return instance;
+}
+
+void DistanceFieldAtlas::sortSpatially(std::size_t first) {
+    // Near casters next to each other, so that a cluster's sphere is tight: by the Morton order
+    // of their centres over the bounds of the centres.
+    const auto begin = instances_.begin() + static_cast<std::ptrdiff_t>(first);
+    DAabb bounds;
+    for (auto it = begin; it != instances_.end(); ++it) bounds.extend(it->wsCentre);
+    const glm::dvec3 extent = glm::max(bounds.extent(), glm::dvec3(1e-9));
+    auto morton = [&](const Instance& in) {
+        const glm::dvec3 unit = glm::clamp((in.wsCentre - bounds.min) / extent, 0.0, 1.0);
+        std::uint64_t code = 0;
+        for (int bit = 20; bit >= 0; --bit) {
+            for (int a = 0; a < 3; ++a)
+                code = code << 1 | ((static_cast<std::uint64_t>(unit[a] * 2097151.0) >> bit) & 1u);
+        }
+        return code;
+    };
+    std::sort(begin, instances_.end(), [&](const Instance& a, const Instance& b) { return morton(a) < morton(b); });
+}
+
 void DistanceFieldAtlas::update(const ShadowFrame& frame, const World& world, std::vector<Warning>& warnings) {
     // Forget the fields of meshes gone (their address may come back for another mesh).
     std::erase_if(entries_, [](const auto& e) { return e.second.mesh.expired(); });
     instances_.clear();
     ranges_.clear();
-    for (const ShadowLightPlan& plan : frame.lights) {
-        for (Entity caster : plan.fieldCasters) {
-            Instance instance;
-            const Mesh* mesh = world.tryGet<Mesh>(caster);
-            const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
-            if (mesh != nullptr && mesh->data != nullptr && wt != nullptr) {
-                const glm::dvec3 s = axisScales(wt->worldFromLocal);
-                if (uniform(s)) {
-                    instance.brick = brickOf(mesh->data, glm::vec3(1.0f), plan.name, warnings);
-                    instance.worldFromLocal = wt->worldFromLocal;
-                    instance.scale = (s.x + s.y + s.z) / 3.0;
-                } else {
-                    // The field's space is the mesh scaled by `baked`, the scale rounded to steps
-                    // of 1/64 of an octave (so that a scale animated by a hair does not bake
-                    // again); the instance keeps the rotation, the translation and what is left
-                    // of the scale, within 1.1 % of 1 on each axis, whose smallest is a lower
-                    // bound of the distances' own scale.
-                    const glm::dvec3 baked = glm::exp2(glm::round(glm::log2(s) * 64.0) / 64.0);
-                    const glm::dvec3 rest = s / baked;
-                    instance.brick = brickOf(mesh->data, glm::vec3(baked), plan.name, warnings);
-                    instance.worldFromLocal = wt->worldFromLocal * glm::scale(glm::dmat4(1.0), 1.0 / baked);
-                    instance.scale = std::min({rest.x, rest.y, rest.z});
-                }
-            }
-            if (instance.brick != nullptr) {
-                const FieldBrick& b = *instance.brick;
-                const glm::dvec3 lo = glm::dvec3(b.firstCentre) - 0.5 * static_cast<double>(b.voxelSize);
-                const glm::dvec3 hi = glm::dvec3(b.lastCentre) + 0.5 * static_cast<double>(b.voxelSize);
-                instance.wsCentre = glm::dvec3(instance.worldFromLocal * glm::dvec4(0.5 * (lo + hi), 1.0));
-                // The field's space may carry what is left of a non-uniform scale: the largest.
-                const glm::dvec3 s = axisScales(instance.worldFromLocal);
-                instance.radius = 0.5 * glm::length(hi - lo) * std::max({s.x, s.y, s.z});
-            }
-            instances_.push_back(instance);
-        }
-        // Near casters next to each other, so that a cluster's sphere is tight: by the Morton
-        // order of their centres over the light's casters' bounds.
-        const auto begin = instances_.begin() + plan.fieldFirst;
-        DAabb bounds;
-        for (auto it = begin; it != instances_.end(); ++it) bounds.extend(it->wsCentre);
-        const glm::dvec3 extent = glm::max(bounds.extent(), glm::dvec3(1e-9));
-        auto morton = [&](const Instance& in) {
-            const glm::dvec3 unit = glm::clamp((in.wsCentre - bounds.min) / extent, 0.0, 1.0);
-            std::uint64_t code = 0;
-            for (int bit = 20; bit >= 0; --bit) {
-                for (int a = 0; a < 3; ++a) {
-                    code = code << 1 | ((static_cast<std::uint64_t>(unit[a] * 2097151.0) >> bit) & 1u);
-                }
-            }
-            return code;
-        };
-        std::sort(begin, instances_.end(), [&](const Instance& a, const Instance& b) { return morton(a) < morton(b); });
-        ranges_.push_back({plan.fieldFirst, static_cast<int>(plan.fieldCasters.size()), plan.fieldClusterFirst});
-    }
     clusterCount_ = 0;
-    for (const Range& r : ranges_) clusterCount_ += (r.count + SG_SDF_CLUSTER - 1) / SG_SDF_CLUSTER;
+    for (const ShadowLightPlan& plan : frame.lights) {
+        for (Entity caster : plan.fieldCasters) instances_.push_back(instanceOf(world, caster, plan.name, warnings));
+        sortSpatially(static_cast<std::size_t>(plan.fieldFirst));
+        const Range range{plan.fieldFirst, static_cast<int>(plan.fieldCasters.size()), plan.fieldClusterFirst};
+        ranges_.push_back(range);
+        clusterCount_ += (range.count + SG_SDF_CLUSTER - 1) / SG_SDF_CLUSTER;
+    }
     uploaded_ = false;
 }
 
-GLuint DistanceFieldAtlas::instances(const glm::dvec3& wsCamera) {
-    if (uploaded_ && uploadedFor_ == wsCamera) return bufferTexture_.get();
-    records_.assign((instances_.size() + static_cast<std::size_t>(clusterCount_)) * SG_SDF_INSTANCE_TEXELS * 4, 0.0f);
-    for (std::size_t i = 0; i < instances_.size(); ++i) {
-        float* r = &records_[i * SG_SDF_INSTANCE_TEXELS * 4];
-        const Instance& in = instances_[i];
-        if (in.brick == nullptr) {
-            r[6 * 4 + 3] = -1.0f;  // no sphere: the march skips it
-            continue;
-        }
-        const FieldBrick& b = *in.brick;
-        // Camera-relative world -> local, composed in double so the float rows stay exact far
-        // from the origin.
-        glm::dmat4 csFromLocal = in.worldFromLocal;
-        csFromLocal[3] -= glm::dvec4(wsCamera, 0.0);
-        const glm::dmat4 localFromCs = glm::inverse(csFromLocal);
-        for (int row = 0; row < 3; ++row) {
-            for (int col = 0; col < 4; ++col) r[row * 4 + col] = static_cast<float>(localFromCs[col][row]);
-        }
-        r[12] = b.firstCentre.x, r[13] = b.firstCentre.y, r[14] = b.firstCentre.z, r[15] = b.voxelSize;
-        r[16] = b.lastCentre.x, r[17] = b.lastCentre.y, r[18] = b.lastCentre.z, r[19] = static_cast<float>(in.scale);
-        r[20] = static_cast<float>(b.origin.x), r[21] = static_cast<float>(b.origin.y);
-        r[22] = static_cast<float>(b.origin.z), r[23] = b.sheet ? 1.0f : 0.0f;
-        // The bounding sphere of the field's box (what a ray must meet to see a distance under
-        // the box's own lower bound).
-        const glm::dvec3 centre = in.wsCentre - wsCamera;
-        r[24] = static_cast<float>(centre.x), r[25] = static_cast<float>(centre.y);
-        r[26] = static_cast<float>(centre.z), r[27] = static_cast<float>(in.radius);
-        // The mesh's own bounds (local): beyond the field's centres the distance to them is a
-        // lower bound far tighter than the field's padded box (exact above a plane).
-        r[28] = b.meshBounds.min.x, r[29] = b.meshBounds.min.y, r[30] = b.meshBounds.min.z;
-        r[32] = b.meshBounds.max.x, r[33] = b.meshBounds.max.y, r[34] = b.meshBounds.max.z;
+void DistanceFieldAtlas::writeInstance(float* r, const Instance& in, const glm::dvec3& wsCamera) {
+    if (in.brick == nullptr) {
+        r[6 * 4 + 3] = -1.0f;  // no sphere: the march skips it
+        return;
     }
-    // Each light's clusters: record texel 0 the sphere around its casters' spheres (camera-
-    // relative), texel 1 the index of its first caster and their count.
+    const FieldBrick& b = *in.brick;
+    // Camera-relative world -> local, composed in double so the float rows stay exact far from
+    // the origin.
+    glm::dmat4 csFromLocal = in.worldFromLocal;
+    csFromLocal[3] -= glm::dvec4(wsCamera, 0.0);
+    const glm::dmat4 localFromCs = glm::inverse(csFromLocal);
+    for (int row = 0; row < 3; ++row) {
+        for (int col = 0; col < 4; ++col) r[row * 4 + col] = static_cast<float>(localFromCs[col][row]);
+    }
+    r[12] = b.firstCentre.x, r[13] = b.firstCentre.y, r[14] = b.firstCentre.z, r[15] = b.voxelSize;
+    r[16] = b.lastCentre.x, r[17] = b.lastCentre.y, r[18] = b.lastCentre.z, r[19] = static_cast<float>(in.scale);
+    r[20] = static_cast<float>(b.origin.x), r[21] = static_cast<float>(b.origin.y);
+    r[22] = static_cast<float>(b.origin.z), r[23] = b.sheet ? 1.0f : 0.0f;
+    // The bounding sphere of the field's box (what a ray must meet to see a distance under the
+    // box's own lower bound).
+    const glm::dvec3 centre = in.wsCentre - wsCamera;
+    r[24] = static_cast<float>(centre.x), r[25] = static_cast<float>(centre.y);
+    r[26] = static_cast<float>(centre.z), r[27] = static_cast<float>(in.radius);
+    // The mesh's own bounds (local): beyond the field's centres the distance to them is a lower
+    // bound far tighter than the field's padded box (exact above a plane).
+    r[28] = b.meshBounds.min.x, r[29] = b.meshBounds.min.y, r[30] = b.meshBounds.min.z;
+    r[32] = b.meshBounds.max.x, r[33] = b.meshBounds.max.y, r[34] = b.meshBounds.max.z;
+}
+
+void DistanceFieldAtlas::writeClusters(const glm::dvec3& wsCamera) {
+    // Record texel 0: the sphere around the cluster's casters' spheres (camera-relative);
+    // texel 1: the index of its first caster and their count.
     for (const Range& range : ranges_) {
         for (int c = 0; c * SG_SDF_CLUSTER < range.count; ++c) {
             float* r = &records_[static_cast<std::size_t>(range.cluster + c) * SG_SDF_INSTANCE_TEXELS * 4];
             const int first = range.first + c * SG_SDF_CLUSTER;
             const int count = std::min(SG_SDF_CLUSTER, range.count - c * SG_SDF_CLUSTER);
+            const auto members =
+                std::span(instances_).subspan(static_cast<std::size_t>(first), static_cast<std::size_t>(count));
             DAabb box;
-            for (int i = first; i < first + count; ++i) {
-                const Instance& in = instances_[static_cast<std::size_t>(i)];
-                if (in.radius >= 0.0) {
-                    box.extend(in.wsCentre - glm::dvec3(in.radius));
-                    box.extend(in.wsCentre + glm::dvec3(in.radius));
-                }
+            for (const Instance& in : members) {
+                if (in.radius < 0.0) continue;
+                box.extend(in.wsCentre - glm::dvec3(in.radius));
+                box.extend(in.wsCentre + glm::dvec3(in.radius));
             }
             double radius = -1.0;
             const glm::dvec3 centre = box.empty() ? glm::dvec3(0.0) : box.center();
-            for (int i = first; i < first + count; ++i) {
-                const Instance& in = instances_[static_cast<std::size_t>(i)];
+            for (const Instance& in : members) {
                 if (in.radius >= 0.0) radius = std::max(radius, glm::length(in.wsCentre - centre) + in.radius);
             }
             const glm::dvec3 cs = centre - wsCamera;
@@ -285,6 +289,15 @@ GLuint DistanceFieldAtlas::instances(const glm::dvec3& wsCamera) {
             r[4] = static_cast<float>(first), r[5] = static_cast<float>(count);
         }
     }
+}
+
+GLuint DistanceFieldAtlas::instances(const glm::dvec3& wsCamera) {
+    if (uploaded_ && uploadedFor_ == wsCamera) return bufferTexture_.get();
+    records_.assign((instances_.size() + static_cast<std::size_t>(clusterCount_)) * SG_SDF_INSTANCE_TEXELS * 4, 0.0f);
+    for (std::size_t i = 0; i < instances_.size(); ++i) {
+        writeInstance(&records_[i * SG_SDF_INSTANCE_TEXELS * 4], instances_[i], wsCamera);
+    }
+    writeClusters(wsCamera);
     const std::size_t floats = std::max<std::size_t>(records_.size(), 4);
     if (!bufferTexture_ || floats > bufferFloats_) {
         bufferFloats_ = std::max(floats, 2 * bufferFloats_);

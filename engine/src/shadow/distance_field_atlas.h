@@ -88,6 +88,12 @@ private:
 
     const FieldBrick* brickOf(const std::shared_ptr<const MeshData>& mesh, const glm::vec3& scale,
                               const std::string& who, std::vector<Warning>& warnings);
+    /// The record of field caster `caster` (its field baked on first use).
+    Instance instanceOf(const World& world, Entity caster, const std::string& who, std::vector<Warning>& warnings);
+    /// Sorts `instances_` from `first` to the end by the Morton order of their centres.
+    void sortSpatially(std::size_t first);
+    static void writeInstance(float* record, const Instance& in, const glm::dvec3& wsCamera);
+    void writeClusters(const glm::dvec3& wsCamera);
     FieldBrick place(const DistanceField& field);
     void grow(int depth);
 

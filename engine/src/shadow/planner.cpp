@@ -210,6 +210,21 @@ void takeFieldCasters(const World& world, ShadowLightPlan& plan, std::vector<War
     warnings.push_back({WarningCode::CasterWithoutField, plan.name, msg.str()});
 }
 
+/// Where each light's field casters and their clusters stand in the shader's instance buffer:
+/// every light's casters in scene-light order, then every light's clusters of SG_SDF_CLUSTER.
+void numberFieldCasters(std::vector<ShadowLightPlan>& lights) {
+    int fields = 0;
+    for (ShadowLightPlan& plan : lights) {
+        plan.fieldFirst = fields;
+        fields += static_cast<int>(plan.fieldCasters.size());
+    }
+    int clusters = fields;
+    for (ShadowLightPlan& plan : lights) {
+        plan.fieldClusterFirst = clusters;
+        clusters += (static_cast<int>(plan.fieldCasters.size()) + SG_SDF_CLUSTER - 1) / SG_SDF_CLUSTER;
+    }
+}
+
 /// One `OpenCaster` warning for a light storing a second depth whose layers hold casters not
 /// known to be closed.
 void warnOpenCasters(const World& world, const ShadowLightPlan& plan, std::vector<Warning>& warnings) {
@@ -338,22 +353,14 @@ const ShadowFrame& ShadowPlanner::prepare(const World& world, const CameraView& 
         markDirty(world, plan);
         warnOpenCasters(world, plan, frame_.warnings);
     }
-    int fields = 0;  // every light's field casters, in scene-light order
     for (ShadowLightPlan& plan : frame_.lights) {
         if (plan.mapSize == 0) {
             plan.layers.clear();  // kept by describeLight in case it had a map
             plan.fieldCasters.clear();
         }
-        plan.fieldFirst = fields;
-        fields += static_cast<int>(plan.fieldCasters.size());
         frame_.techniquesInUse |= 1u << static_cast<unsigned>(plan.technique());
     }
-    // The clusters of SG_SDF_CLUSTER field casters each, after every instance, in the same order.
-    int clusters = fields;
-    for (ShadowLightPlan& plan : frame_.lights) {
-        plan.fieldClusterFirst = clusters;
-        clusters += (static_cast<int>(plan.fieldCasters.size()) + SG_SDF_CLUSTER - 1) / SG_SDF_CLUSTER;
-    }
+    numberFieldCasters(frame_.lights);
     // Forget lights that are gone so their memory does not grow without bound.
     std::erase_if(memory_, [&](const auto& m) {
         return std::none_of(frame_.lights.begin(), frame_.lights.end(),
