@@ -40,10 +40,23 @@ struct Config {
     int blockerSamples = 16;
     FilterKernel kernel = FilterKernel::Vogel;
     float lightBleedReduction = 0.0f;
+    DepthMode depthMode = DepthMode::Nearest;  ///< midpoint and second with zero constant and slope bias
+    int sdfSteps = 48;
+
+    /// The series of the chart it belongs to: its technique, and the depth mode when not nearest.
+    [[nodiscard]] std::string series() const {
+        return std::string(techniqueName(technique)) +
+               (depthMode == DepthMode::Nearest ? "" : std::string("-") + depthModeName(depthMode));
+    }
 
     [[nodiscard]] std::string label() const {
         std::ostringstream s;
+        if (technique == ShadowTechnique::Sdf) {
+            s << "sdf steps" << sdfSteps;
+            return s.str();
+        }
         s << techniqueName(technique) << " map" << mapSize;
+        if (depthMode != DepthMode::Nearest) s << " " << depthModeName(depthMode);
         if (technique == ShadowTechnique::Pcf) s << " taps" << pcfSamples;
         if (technique == ShadowTechnique::Pcss || technique == ShadowTechnique::PcssTextbook) {
             s << " taps" << blockerSamples << "+" << pcfSamples;
@@ -78,6 +91,13 @@ std::vector<Config> sweep() {
     for (ShadowTechnique t : {ShadowTechnique::Msm, ShadowTechnique::MsmSoft}) {
         for (int size : {512, 1024, 2048}) out.push_back({t, size, 1, 1, FilterKernel::Vogel, 0.0f});
     }
+    // Second-depth maps without bias, and the distance-field march at three step counts.
+    out.push_back({ShadowTechnique::Hard, 1024, 1, 1, FilterKernel::Vogel, 0.0f, DepthMode::Midpoint});
+    out.push_back({ShadowTechnique::Pcf, 1024, 16, 1, FilterKernel::Vogel, 0.0f, DepthMode::Midpoint});
+    out.push_back({ShadowTechnique::Pcss, 1024, 16, 16, FilterKernel::Vogel, 0.0f, DepthMode::Midpoint});
+    for (int steps : {24, 48, 96}) {
+        out.push_back({ShadowTechnique::Sdf, 1024, 1, 1, FilterKernel::Vogel, 0.0f, DepthMode::Nearest, steps});
+    }
     return out;
 }
 
@@ -99,6 +119,9 @@ void applyConfig(Scene& scene, const Config& c) {
         s.blockerSamples = c.blockerSamples;
         s.kernel = c.kernel;
         s.lightBleedReduction = c.lightBleedReduction;
+        s.depthMode = c.depthMode;
+        if (c.depthMode != DepthMode::Nearest) s.constantBias = s.slopeBias = 0.0f;
+        s.sdfSteps = c.sdfSteps;
     });
 }
 
@@ -319,18 +342,19 @@ void writePlot(const std::string& out, const std::vector<Row>& rows) {
     for (const Row& r : rows) {
         if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
     }
-    const std::vector<ShadowTechnique> techniques = {
-        ShadowTechnique::Hard, ShadowTechnique::Pcf,  ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook,
-        ShadowTechnique::Vsm,  ShadowTechnique::Vssm, ShadowTechnique::Msm,  ShadowTechnique::MsmSoft};
+    std::vector<std::string> series;  // one line of the chart each, in the sweep's order
+    for (const Row& r : rows) {
+        if (std::find(series.begin(), series.end(), r.config.series()) == series.end()) series.push_back(r.config.series());
+    }
     for (const std::string& s : scenes) {
-        for (ShadowTechnique t : techniques) {
+        for (const std::string& name : series) {
             std::vector<const Row*> sel;
             for (const Row& r : rows) {
-                if (r.scene == s && r.config.technique == t) sel.push_back(&r);
+                if (r.scene == s && r.config.series() == name) sel.push_back(&r);
             }
             std::sort(sel.begin(), sel.end(),
                       [](const Row* a, const Row* b) { return a->frameMs.median < b->frameMs.median; });
-            std::ofstream f(out + "/plot/" + s + "_" + techniqueName(t) + ".dat");
+            std::ofstream f(out + "/plot/" + s + "_" + name + ".dat");
             for (const Row* r : sel)
                 f << r->frameMs.median << ' ' << r->errors.rmse << ' ' << r->errors.penumbraRmse << '\n';
         }
@@ -355,9 +379,9 @@ void writePlot(const std::string& out, const std::vector<Row>& rows) {
             gp << "set ylabel '" << (metric == 0 ? "RMSE of visibility" : "RMSE in the true penumbra") << "'\n";
             gp << "plot ";
             const int col = metric == 0 ? 2 : 3;
-            for (ShadowTechnique t : techniques) {
-                gp << "'plot/" << s << "_" << techniqueName(t) << ".dat' using 1:" << col << " with linespoints title '"
-                   << techniqueName(t) << "', ";
+            for (const std::string& name : series) {
+                gp << "'plot/" << s << "_" << name << ".dat' using 1:" << col << " with linespoints title '" << name
+                   << "', ";
             }
             gp << "'plot/" << s << "_pareto.dat' using 1:" << col
                << " with lines dashtype 2 linewidth 2 linecolor 'black' title 'Pareto front (RMSE)'\n";
