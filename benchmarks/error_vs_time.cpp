@@ -344,7 +344,8 @@ void writePlot(const std::string& out, const std::vector<Row>& rows) {
     }
     std::vector<std::string> series;  // one line of the chart each, in the sweep's order
     for (const Row& r : rows) {
-        if (std::find(series.begin(), series.end(), r.config.series()) == series.end()) series.push_back(r.config.series());
+        if (std::find(series.begin(), series.end(), r.config.series()) == series.end())
+            series.push_back(r.config.series());
     }
     for (const std::string& s : scenes) {
         for (const std::string& name : series) {

@@ -62,9 +62,12 @@ Result<DebugView> parseDebug(const std::string& name) {
     if (name == "blocker") return DebugView::BlockerDepth;
     if (name == "penumbra") return DebugView::Penumbra;
     if (name == "visibility") return DebugView::Visibility;
+    if (name == "steps") return DebugView::MarchSteps;
+    if (name == "closest") return DebugView::Closest;
     if (name == "shadowmap") return DebugView::None;  // written from the maps themselves
     return Error{ErrorCode::InvalidArgument,
-                 "--debug '" + name + "': unknown view (known: shadowmap, cascade, blocker, penumbra, visibility)"};
+                 "--debug '" + name +
+                     "': unknown view (known: shadowmap, cascade, blocker, penumbra, visibility, steps, closest)"};
 }
 
 /// Writes every layer of every shadow map as linear depth (EXR, metres) and a grey PNG.
@@ -225,7 +228,7 @@ int main(int argc, char** argv) {
                    "override every shadowed light's depth mode: nearest|midpoint|second (midpoint and second "
                    "also set constant and slope bias to 0)");
     app.add_option("--aov", o.aov, "outputs: color,visibility,position,depth");
-    app.add_option("--debug", o.debug, "debug view: shadowmap|cascade|blocker|penumbra|visibility");
+    app.add_option("--debug", o.debug, "debug view: shadowmap|cascade|blocker|penumbra|visibility|steps|closest");
     app.add_option("--debug-light", o.debugLight, "scene light index the debug view shows");
     app.add_option("--exposure", o.exposure, "exposure of color.png (default: log-average luminance to 0.18)");
     app.add_flag("--frame-images", o.frameImages, "write every frame as frames/color_<k>.png");

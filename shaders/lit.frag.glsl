@@ -57,6 +57,8 @@ vec3 debugColor = vec3(0.0);
         if (SG_DEBUG_VIEW == SG_DEBUG_BLOCKER_DEPTH) debugColor = vec3(sg_debugBlockerDepth);       \
         if (SG_DEBUG_VIEW == SG_DEBUG_PENUMBRA) debugColor = vec3(sg_debugPenumbra);                \
         if (SG_DEBUG_VIEW == SG_DEBUG_VISIBILITY) debugColor = vec3(v);                           \
+        if (SG_DEBUG_VIEW == SG_DEBUG_MARCH_STEPS) debugColor = vec3(sg_debugMarchSteps / float(max(L.sdfSteps, 1))); \
+        if (SG_DEBUG_VIEW == SG_DEBUG_CLOSEST) debugColor = vec3(0.5 + 0.5 * sg_debugClosest);     \
     }
 #else
 #define SG_DEBUG_CAPTURE(i, v)

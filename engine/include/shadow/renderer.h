@@ -31,6 +31,8 @@ enum class DebugView {
     BlockerDepth,  ///< PCSS average blocker depth (m) of the debug light
     Penumbra,      ///< PCSS penumbra half-width (m) of the debug light
     Visibility,    ///< visibility of the debug light
+    MarchSteps,    ///< sdf: steps the debug light's march took, over its `sdfSteps` (grey, 1 = all)
+    Closest,       ///< sdf: the march's smallest clearance over the cone, -1 (black) to 1 (white)
 };
 
 /// What to render.

@@ -34,6 +34,8 @@ int debugViewId(DebugView v) {
         case DebugView::BlockerDepth: return SG_DEBUG_BLOCKER_DEPTH;
         case DebugView::Penumbra: return SG_DEBUG_PENUMBRA;
         case DebugView::Visibility: return SG_DEBUG_VISIBILITY;
+        case DebugView::MarchSteps: return SG_DEBUG_MARCH_STEPS;
+        case DebugView::Closest: return SG_DEBUG_CLOSEST;
     }
     return SG_DEBUG_NONE;
 }
