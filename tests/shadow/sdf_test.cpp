@@ -186,5 +186,41 @@ TEST(DistanceFieldShadows, PlatesPenumbraAgainstTheRayTracedTruth) {
     EXPECT_EQ(sdf["counts"]["nonFinite"].get<int>(), 0);
 }
 
+// Contact: the contact suite's plate, 1 mm thick and 1 mm above the ground, under a sun
+// straight down. A march starts `sdfStartOffset` off the receiver, so it passes over a caster
+// nearer than that: with the default 2 cm the plate casts nothing (measured: every ground pixel
+// under it lit); with an offset under the gap it casts its whole shadow, and the open ground
+// around it stays lit.
+TEST(DistanceFieldShadows, ACasterNearerThanTheStartOffsetNeedsASmallerOffset) {
+    auto darkUnderPlate = [](float startOffset, double& litAround) {
+        Scene scene;
+        test::addGround(scene, 1.0f);
+        test::addBox(scene, "plate", {0.0, 0.0015, 0.0}, {0.3, 0.0005, 0.3});
+        Shadow s = test::shadowWith(ShadowTechnique::Sdf, 1024);
+        s.sdfStartOffset = startOffset;
+        addLight(scene, "sun", test::pointSizedLight(LightType::Directional), s, {0.0, 3.0, 0.0}, {0, -1, 0});
+        addCamera(scene, "camera", Camera{}, {0.0, -2.0, 0.3}, {0.0, 0.0, 0.0});  // from below
+        test::glContext();
+        FrameRunner runner;
+        const test::RenderedFrame frame = test::renderFrame(runner, scene, 192, 192);
+        const test::GroundCounts under = test::countGround(
+            frame.images, 0, [](const glm::dvec3& p) { return std::abs(p.x) < 0.25 && std::abs(p.z) < 0.25; });
+        const test::GroundCounts around = test::countGround(
+            frame.images, 0, [](const glm::dvec3& p) { return std::max(std::abs(p.x), std::abs(p.z)) > 0.35; });
+        EXPECT_GT(under.ground, 1000);
+        EXPECT_GT(around.ground, 1000);
+        litAround = 1.0 - around.darkFraction();
+        return under.darkFraction();
+    };
+    double litAround = 0.0;
+    const double defaultOffset = darkUnderPlate(Shadow{}.sdfStartOffset, litAround);
+    report("sdf, plate 1 mm above the ground, start offset 2 cm: dark under the plate", defaultOffset);
+    const double small = darkUnderPlate(0.0005f, litAround);
+    report("sdf, plate 1 mm above the ground, start offset 0.5 mm: dark under the plate", small);
+    report("sdf, start offset 0.5 mm: open ground lit around the plate", litAround);
+    EXPECT_GE(small, 0.99);
+    EXPECT_GE(litAround, 0.999);
+}
+
 }  // namespace
 }  // namespace shadow
