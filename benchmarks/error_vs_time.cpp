@@ -119,8 +119,7 @@ void applyConfig(Scene& scene, const Config& c) {
         s.blockerSamples = c.blockerSamples;
         s.kernel = c.kernel;
         s.lightBleedReduction = c.lightBleedReduction;
-        s.depthMode = c.depthMode;
-        if (c.depthMode != DepthMode::Nearest) s.constantBias = s.slopeBias = 0.0f;
+        samples::applyDepthMode(s, c.depthMode);
         s.sdfSteps = c.sdfSteps;
     });
 }

@@ -115,6 +115,11 @@ Spread spreadOf(std::vector<double> values) {
     return s;
 }
 
+void applyDepthMode(Shadow& s, DepthMode mode) {
+    s.depthMode = mode;
+    if (mode != DepthMode::Nearest) s.constantBias = s.slopeBias = 0.0f;
+}
+
 Result<ShadowTechnique> parseTechnique(const std::string& name) {
     if (const auto t = techniqueFromName(name)) return *t;
     return Error{ErrorCode::InvalidArgument, "unknown technique '" + name + "' (known: " + techniqueNameList() + ")"};

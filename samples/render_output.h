@@ -61,4 +61,8 @@ struct Spread {
 /// Parses a technique name; error names the value.
 [[nodiscard]] Result<ShadowTechnique> parseTechnique(const std::string& name);
 
+/// Sets `s` to depth mode `mode` as the modes are meant to be used: midpoint and second with
+/// zero constant and slope bias (the surface behind the first is the margin), nearest as set.
+void applyDepthMode(Shadow& s, DepthMode mode);
+
 }  // namespace shadow::samples

@@ -142,10 +142,7 @@ int run(const Options& o) {
         scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.technique = *technique; });
     }
     if (depthMode) {
-        scene.world.view<Shadow>().each([&](Entity, Shadow& s) {
-            s.depthMode = *depthMode;
-            if (*depthMode != DepthMode::Nearest) s.constantBias = s.slopeBias = 0.0f;  // as the modes are meant
-        });
+        scene.world.view<Shadow>().each([&](Entity, Shadow& s) { samples::applyDepthMode(s, *depthMode); });
     }
     Result<Entity> chosen = samples::chooseCamera(scene, o.camera, o.time);
     if (!chosen) return fail(kExitBadInput, chosen.error().message);

@@ -15,4 +15,13 @@ vec3 sg_safeNormalize(vec3 v, vec3 fallback) {
     return len > 1e-20 ? v / len : fallback;
 }
 
+// Two unit vectors perpendicular to unit `axis` and to each other (a frame across a ray or a
+// plane), built from the coordinate axis least aligned with it.
+void sg_perpendicularBasis(vec3 axis, out vec3 t1, out vec3 t2) {
+    vec3 a = abs(axis);
+    vec3 helper = (a.x <= a.y && a.x <= a.z) ? vec3(1, 0, 0) : (a.y <= a.z ? vec3(0, 1, 0) : vec3(0, 0, 1));
+    t1 = normalize(cross(axis, helper));
+    t2 = cross(axis, t1);
+}
+
 #endif

@@ -221,10 +221,8 @@ sg_Receiver sg_makeReceiver(sg_GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 
     r.depthBias = L.constantBias + policy.slopeBiasShare * L.slopeBias * r.texelMetres * r.slope + floatError;
 
     // Lateral axes perpendicular to the ray, then slid along the ray onto the tangent plane.
-    vec3 a = abs(r.toLight);
-    vec3 helper = (a.x <= a.y && a.x <= a.z) ? vec3(1, 0, 0) : (a.y <= a.z ? vec3(0, 1, 0) : vec3(0, 0, 1));
-    vec3 t1 = normalize(cross(r.toLight, helper));
-    vec3 t2 = cross(r.toLight, t1);
+    vec3 t1, t2;
+    sg_perpendicularBasis(r.toLight, t1, t2);
     float nDotL = dot(wsNormal, r.toLight);
     // Keep the stretch finite at grazing light: beyond sg_kMaxPlaneSlope the plane is treated as that steep.
     float denom = sign(nDotL) * max(abs(nDotL), 1.0 / sqrt(1.0 + sg_kMaxPlaneSlope * sg_kMaxPlaneSlope));

@@ -98,11 +98,8 @@ float sg_sdfSheetClearance(int instance, vec3 p, vec3 dir, float radius) {
     vec3 n = vec3(sg_sdfDistance(instance, before + vec3(h, 0, 0)) - sg_sdfDistance(instance, before - vec3(h, 0, 0)),
                   sg_sdfDistance(instance, before + vec3(0, h, 0)) - sg_sdfDistance(instance, before - vec3(0, h, 0)),
                   sg_sdfDistance(instance, before + vec3(0, 0, h)) - sg_sdfDistance(instance, before - vec3(0, 0, h)));
-    n = sg_safeNormalize(n, dir);
-    vec3 a = abs(n);
-    vec3 helper = (a.x <= a.y && a.x <= a.z) ? vec3(1, 0, 0) : (a.y <= a.z ? vec3(0, 1, 0) : vec3(0, 0, 1));
-    vec3 t1 = normalize(cross(n, helper));
-    vec3 t2 = cross(n, t1);
+    vec3 t1, t2;
+    sg_perpendicularBasis(sg_safeNormalize(n, dir), t1, t2);
     float farthest = 0.0;
     for (int k = 0; k < 8; ++k) {
         float angle = 0.78539816 * float(k);

@@ -3,12 +3,14 @@
 // Header-only: test sources are globbed per folder.
 #pragma once
 
+#include <shadow/components.h>
 #include <shadow/warnings.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <filesystem>
+#include <initializer_list>
 #include <fstream>
 #include <ostream>
 #include <sstream>
@@ -28,6 +30,17 @@ inline void PrintTo(const Warning& w, std::ostream* os) {
 }  // namespace shadow
 
 namespace shadow::test {
+
+/// The techniques of `techniques` this build offers, in order: pcss-textbook only in builds with
+/// SHADOW_BASELINE_TECHNIQUES (elsewhere a light asking for it gets PCSS and a warning).
+template <typename Range = std::initializer_list<ShadowTechnique>>
+std::vector<ShadowTechnique> offered(const Range& techniques) {
+    std::vector<ShadowTechnique> out;
+    for (ShadowTechnique t : techniques) {
+        if (techniqueAvailable(t)) out.push_back(t);
+    }
+    return out;
+}
 
 /// How many of `warnings` have `code` and name `element`.
 [[nodiscard]] inline long countWarnings(const std::vector<Warning>& warnings, WarningCode code,

@@ -243,14 +243,7 @@ TEST(Planner, SecondDepthModesWarnOnceAboutCastersNotKnownToBeClosed) {
     // The scene's ground plane is open, its boxes closed; a game's caster is closed only on its
     // word. A point light sees all of them.
     TestScene t;
-    ShadowCasterDraw own;
-    own.localBounds.extend(glm::vec3(-0.3f));
-    own.localBounds.extend(glm::vec3(0.3f));
-    own.vertexArray = GlVertexArray{7};
-    own.indexCount = 36;
-    const Entity game = t.scene.world.create();
-    t.scene.world.emplace<Transform>(game, at({0.0, 1.5, 2.0}));
-    t.scene.world.emplace<ShadowCasterDraw>(game, own);
+    const Entity game = test::addGameCaster(t.scene, {0.0, 1.5, 2.0});
     Shadow s = hard();
     s.depthMode = DepthMode::Midpoint;
     const Entity bulb = addLight(t.scene, "bulb", lightOf(LightType::Point), s, {0, 3, 0}, {0, -1, 0});
@@ -290,15 +283,7 @@ TEST(Planner, ReadsAConstWorldAndLeavesItAsItWas) {
     // The decide phase takes the world as const: what it remembers between frames (which layers
     // are dirty) is its own. A caster the game marked changed stays marked (the game resets it).
     CachingScene t;
-    ShadowCasterDraw own;
-    own.localBounds.extend(glm::vec3(-0.3f));
-    own.localBounds.extend(glm::vec3(0.3f));
-    own.vertexArray = GlVertexArray{7};
-    own.indexCount = 36;
-    own.changedThisFrame = true;
-    const Entity skinned = t.scene.world.create();
-    t.scene.world.emplace<Transform>(skinned, at({2.0, 3.0, 0.0}));
-    t.scene.world.emplace<ShadowCasterDraw>(skinned, own);
+    const Entity skinned = test::addGameCaster(t.scene, {2.0, 3.0, 0.0}, true);
     (void)t.update();
     const CameraView view = t.update();  // a settled frame: nothing moved since the last
     const World& world = t.scene.world;
@@ -329,10 +314,9 @@ TEST(Planner, MemoryBudgetCountsEachTechniquesFilterChain) {
     // One spot asking for 16384^2 (the GL limit) under the default 1 GiB: a hard map (1 GiB of
     // depth) fits as asked; every technique that adds a filter chain is halved until depth and
     // chain fit, so that it renders instead of running out of memory.
-    for (const ShadowTechnique technique :
-         {ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook,
-          ShadowTechnique::Vsm, ShadowTechnique::Vssm, ShadowTechnique::Msm, ShadowTechnique::MsmSoft}) {
-        if (!techniqueAvailable(technique)) continue;  // pcss-textbook: only with SHADOW_BASELINE_TECHNIQUES
+    for (const ShadowTechnique technique : test::offered(
+             {ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook,
+              ShadowTechnique::Vsm, ShadowTechnique::Vssm, ShadowTechnique::Msm, ShadowTechnique::MsmSoft})) {
         TestScene t;
         Shadow s = hard();
         s.technique = technique;

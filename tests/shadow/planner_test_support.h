@@ -109,6 +109,21 @@ inline const ShadowLightPlan* planOf(const ShadowFrame& frame, const std::string
 }
 
 /// Whether `e` is in `v`.
+/// A game's own caster (`ShadowCasterDraw`: a 0.6 m cube's bounds, a made-up vertex array of 36
+/// indices) at `position`; the planner never draws, so no GL object is needed.
+inline Entity addGameCaster(Scene& scene, const glm::dvec3& position, bool changedThisFrame = false) {
+    ShadowCasterDraw own;
+    own.localBounds.extend(glm::vec3(-0.3f));
+    own.localBounds.extend(glm::vec3(0.3f));
+    own.vertexArray = GlVertexArray{7};
+    own.indexCount = 36;
+    own.changedThisFrame = changedThisFrame;
+    const Entity e = scene.world.create();
+    scene.world.emplace<Transform>(e, at(position));
+    scene.world.emplace<ShadowCasterDraw>(e, own);
+    return e;
+}
+
 inline bool contains(const std::vector<Entity>& v, Entity e) { return std::find(v.begin(), v.end(), e) != v.end(); }
 
 }  // namespace shadow::test

@@ -126,10 +126,9 @@ TEST(ShadowSystem, MapMemoryInTheStatsIsWhatTheBudgetCounts) {
     // stats.json's mapBytes + filterChainBytes per light, as allocated, equal the planner's
     // shadowMapBytes: the budget counts what the maps take.
     test::glContext();
-    for (const ShadowTechnique technique :
-         {ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook,
-          ShadowTechnique::Vsm, ShadowTechnique::Vssm, ShadowTechnique::Msm, ShadowTechnique::MsmSoft}) {
-        if (!techniqueAvailable(technique)) continue;  // pcss-textbook: only with SHADOW_BASELINE_TECHNIQUES
+    for (const ShadowTechnique technique : test::offered(
+             {ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook,
+              ShadowTechnique::Vsm, ShadowTechnique::Vssm, ShadowTechnique::Msm, ShadowTechnique::MsmSoft})) {
         Scene scene = test::threeLightScene();
         scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.technique = technique; });
         FrameRunner runner;

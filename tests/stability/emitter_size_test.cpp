@@ -73,8 +73,7 @@ TEST(Stability, PcssWithAZeroEmitterIsTheHardShadow) {
     const test::RenderedFrame ownHard = render(hard);
     Scene classic = hardWithClassicBias();
     const test::RenderedFrame classicHard = render(classic);
-    for (ShadowTechnique technique : {ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook}) {
-        if (!techniqueAvailable(technique)) continue;  // pcss-textbook: only with SHADOW_BASELINE_TECHNIQUES
+    for (ShadowTechnique technique : test::offered({ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook})) {
         const test::RenderedFrame& reference = technique == ShadowTechnique::Pcss ? ownHard : classicHard;
         Scene zero = spotOverBox(0.0f, technique);
         const test::RenderedFrame frame = render(zero);
@@ -106,8 +105,7 @@ TEST(Stability, PcssWithAZeroEmitterIsTheHardShadow) {
 TEST(Stability, HugeEmitterKeepsTheFilterRadiusClamped) {
     // 100 m and the clamp's limit 1000 m: far larger than the blocker's 2.5 m from the light.
     for (float radius : {100.0f, 1000.0f}) {
-        for (ShadowTechnique technique : {ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook}) {
-            if (!techniqueAvailable(technique)) continue;  // pcss-textbook: only with SHADOW_BASELINE_TECHNIQUES
+        for (ShadowTechnique technique : test::offered({ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook})) {
             Scene scene = spotOverBox(radius, technique);
             test::glContext();
             FrameRunner runner;

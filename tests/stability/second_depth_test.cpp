@@ -245,24 +245,16 @@ TEST(Stability, MidpointDepthKeepsTheShadowOfAThinPlateJustAboveTheGround) {
         for (ShadowTechnique technique : kTechniques) {
             apply(scene, technique, kSettings[2]);
             const test::RenderedFrame frame = test::renderFrame(runner, scene, 192, 192);
-            int under = 0;
-            int dark = 0;
-            const FrameImages& im = frame.images;
-            for (int y = 0; y < im.position.height; ++y) {
-                for (int x = 0; x < im.position.width; ++x) {
-                    if (!test::isGroundPixel(im, x, y)) continue;
-                    const glm::dvec3 p = test::positionAt(im, x, y);
-                    const glm::dvec3 q = p - dir * ((0.001 + 0.5 * kThickness) / -dir.y);
-                    if (std::abs(q.x) > kHalf - 0.05 || std::abs(q.z) > kHalf - 0.05) continue;
-                    ++under;
-                    dark += im.visibility[0].at(x, y, 0) < 0.5f ? 1 : 0;
-                }
-            }
-            const double fraction = under > 0 ? static_cast<double>(dark) / under : 0.0;
+            // The ground under the plate's inner part, along the light (5 cm inside its edges).
+            const test::GroundCounts under = test::countGround(frame.images, 0, [&](const glm::dvec3& p) {
+                const glm::dvec3 q = p - dir * ((0.001 + 0.5 * kThickness) / -dir.y);
+                return std::abs(q.x) <= kHalf - 0.05 && std::abs(q.z) <= kHalf - 0.05;
+            });
+            const double fraction = under.darkFraction();
             test::reportFigure(std::string("thin plate 1 mm above the ground, ") + c.name + ", " +
                                    techniqueName(technique) + ", midpoint, zero bias: dark fraction under the plate",
                                fraction);
-            ASSERT_GT(under, 1000) << c.name;
+            ASSERT_GT(under.ground, 1000) << c.name;
             EXPECT_GE(fraction, 0.99) << c.name << ", " << techniqueName(technique);
             EXPECT_EQ(test::countWarnings(frame.stats.warnings, WarningCode::OpenCaster, "light"), 1);
         }

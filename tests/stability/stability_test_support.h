@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "shadow/soft_test_support.h"
+#include "test_support.h"
 
 namespace shadow::test {
 
@@ -23,15 +24,8 @@ inline constexpr std::array<ShadowTechnique, 8> kShadowTechniques{
     ShadowTechnique::Hard, ShadowTechnique::Pcf,  ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook,
     ShadowTechnique::Vsm,  ShadowTechnique::Vssm, ShadowTechnique::Msm,  ShadowTechnique::MsmSoft};
 
-/// The techniques of kShadowTechniques this build offers: pcss-textbook only where the build has
-/// SHADOW_BASELINE_TECHNIQUES (elsewhere a light asking for it gets PCSS and a warning).
-inline std::vector<ShadowTechnique> offeredShadowTechniques() {
-    std::vector<ShadowTechnique> offered;
-    for (ShadowTechnique t : kShadowTechniques) {
-        if (techniqueAvailable(t)) offered.push_back(t);
-    }
-    return offered;
-}
+/// The techniques of kShadowTechniques this build offers (`offered`).
+inline std::vector<ShadowTechnique> offeredShadowTechniques() { return offered(kShadowTechniques); }
 
 /// Whether `t` reads a depth moments chain (VSM, VSSM, MSM, MSM-soft): a bound over a filter
 /// region, which some extreme cases hold to their own measured bounds.

@@ -13,12 +13,19 @@ namespace shadow {
 // Non-finite positions are left out of the box: one bad vertex must not make the bounds of a
 // whole mesh NaN (culling would then drop or keep it arbitrarily). Importers reject them
 // anyway; this only protects meshes built in code.
-void computeBounds(MeshData& mesh) {
-    mesh.bounds = Aabb{};
-    for (const glm::vec3& p : mesh.positions) {
-        if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) mesh.bounds.extend(p);
+namespace {
+
+Aabb finiteBounds(const std::vector<glm::vec3>& positions) {
+    Aabb box;
+    for (const glm::vec3& p : positions) {
+        if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) box.extend(p);
     }
+    return box;
 }
+
+}  // namespace
+
+void computeBounds(MeshData& mesh) { mesh.bounds = finiteBounds(mesh.positions); }
 
 // Welds positions that round to the same point of a grid a millionth of the mesh's extent
 // apart (so a flat-shaded mesh's repeated vertices, and a generated sphere's pole vertices that
@@ -26,10 +33,7 @@ void computeBounds(MeshData& mesh) {
 // twice.
 void computeClosed(MeshData& mesh) {
     const std::size_t vertexCount = mesh.positions.size();
-    Aabb box;
-    for (const glm::vec3& p : mesh.positions) {
-        if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) box.extend(p);
-    }
+    const Aabb box = finiteBounds(mesh.positions);
     const glm::vec3 extent = box.empty() ? glm::vec3(0.0f) : box.extent();
     const double cell = std::max(1e-6 * std::max({extent.x, extent.y, extent.z}), 1e-12);
     auto key = [cell](const glm::vec3& p) {

@@ -205,16 +205,15 @@ void DistanceFieldAtlas::sortSpatially(std::size_t first) {
     DAabb bounds;
     for (auto it = begin; it != instances_.end(); ++it) bounds.extend(it->wsCentre);
     const glm::dvec3 extent = glm::max(bounds.extent(), glm::dvec3(1e-9));
-    auto morton = [&](const Instance& in) {
-        const glm::dvec3 unit = glm::clamp((in.wsCentre - bounds.min) / extent, 0.0, 1.0);
-        std::uint64_t code = 0;
+    for (auto it = begin; it != instances_.end(); ++it) {  // each code once, not per comparison
+        const glm::dvec3 unit = glm::clamp((it->wsCentre - bounds.min) / extent, 0.0, 1.0);
+        it->morton = 0;
         for (int bit = 20; bit >= 0; --bit) {
             for (int a = 0; a < 3; ++a)
-                code = code << 1 | ((static_cast<std::uint64_t>(unit[a] * 2097151.0) >> bit) & 1u);
+                it->morton = it->morton << 1 | ((static_cast<std::uint64_t>(unit[a] * 2097151.0) >> bit) & 1u);
         }
-        return code;
-    };
-    std::sort(begin, instances_.end(), [&](const Instance& a, const Instance& b) { return morton(a) < morton(b); });
+    }
+    std::sort(begin, instances_.end(), [](const Instance& a, const Instance& b) { return a.morton < b.morton; });
 }
 
 void DistanceFieldAtlas::update(const ShadowFrame& frame, const World& world, std::vector<Warning>& warnings) {

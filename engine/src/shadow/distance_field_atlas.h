@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <unordered_map>
@@ -64,6 +65,7 @@ private:
         double scale = 1.0;              ///< metres per unit of the field's space
         glm::dvec3 wsCentre{0.0};        ///< of its field's box (world)
         double radius = -1.0;            ///< of the sphere around its field's box (m); < 0 for none
+        std::uint64_t morton = 0;        ///< its place in its light's spatial order (`sortSpatially`)
     };
     /// A light's instances: [first, first + count) of `instances_`, its clusters from `cluster`.
     struct Range {
