@@ -7,19 +7,25 @@
 // a straight edge at u = d / (t tan e) of its radius. The smallest u along the ray gives the
 // visibility, the disk's area beyond that edge (1 at u >= 1, 1/2 at the geometric edge u = 0, 0
 // at u <= -1): penumbrae in the same physical units as PCSS, straddling the hard edge as the
-// ray-traced truth's do. The ray goes on through a closed caster (its field is negative inside,
-// steps are |d|), so u goes below 0 in the umbra; an open caster is a sheet (its field is
-// unsigned), which a ray that comes within the shortest step of it counts as crossed (u = -1).
+// ray-traced truth's do. A spot's disk, seen off its axis, is taken as the disk of equal area.
+//
+// Inside a closed caster (its field negative) the field's magnitude is the way to the nearest
+// face, not to the silhouette's edge, so there u comes from the field across the ray around the
+// sample (sg_sdfInsideClearance); an open caster is a sheet (its field is unsigned), and a caster
+// thinner than a voxel may have no inside at all: a ray that comes within the shortest step of a
+// sheet, or whose distance falls to a minimum within a voxel of a caster whose gradient then
+// turns over, has crossed it, and u comes from the edge around the crossing in its plane.
 //
 // The seeds' estimate, min k d / t, bands and leaks where the ray passes a corner or a thin
 // caster between two samples; this follows the improved estimate (Aaltonen, GDC 2018): from
-// the last two distances the closest approach between the samples, y = d^2 / (2 d_prev) along
-// the ray and sqrt(d^2 - y^2) across it.
+// the last two distances the closest approach between the samples, where the spheres free of
+// casters around both meet (y = d^2 / (2 d_prev) back along the ray for a step of d_prev).
 //
 // Costs follow what the ray can meet: before marching, the light's clusters of field casters and
-// then the casters of the clusters the ray meets are tested by bounding sphere against the ray
-// segment, and only the SG_SDF_MAX_NEAR nearest casters it meets are sampled per step; the march ends where the ray leaves the last of them, at
-// the light, after `sdfSteps` steps, or in full umbra. Casters without a field (a game's own
+// then the casters of the clusters the cone meets are tested by bounding sphere against the cone
+// around the ray segment (a flat caster the ray leaves behind is dropped), and only the
+// SG_SDF_MAX_NEAR nearest casters it meets are sampled per step; the march ends where the ray
+// leaves the last of them, at the light, after `sdfSteps` steps, or in full umbra. Casters without a field (a game's own
 // draws, non-uniform scales) stay in the light's shadow map: one hard tap, multiplied in.
 //
 // Instance records (SG_SDF_INSTANCE_TEXELS vec4 of the buffer texture per field caster, written
@@ -67,17 +73,38 @@ float sg_sdfDistance(int instance, vec3 p) {
     return d * last.w;
 }
 
-// Where the segment origin + t dir, t in [0, tEnd], meets `sphere` (xyz centre, w radius): the
-// (entry, exit) t, or exit -1 when it does not (or the sphere is none, w < 0).
-vec2 sg_sdfRayEnters(vec3 origin, vec3 dir, float tEnd, vec4 sphere) {
+// Where the cone around the segment origin + t dir, t in [0, tEnd], of radius t tanE at t, meets
+// `sphere` (xyz centre, w radius): the (entry, exit) t, or exit -1 when it does not (or the
+// sphere is none, w < 0). A caster that the ray itself passes by but the cone reaches still
+// takes light from the emitter: the sphere grows by the cone's radius at its far side (and a
+// hair for rounding), so that the march also samples it.
+vec2 sg_sdfConeEnters(vec3 origin, vec3 dir, float tEnd, float tanE, vec4 sphere) {
     if (sphere.w < 0.0) return vec2(0.0, -1.0);
     vec3 oc = origin - sphere.xyz;
     float b = dot(oc, dir);
-    float h = b * b - (dot(oc, oc) - sphere.w * sphere.w);
+    float radius = (sphere.w + (max(-b, 0.0) + sphere.w) * tanE) * 1.001;
+    float h = b * b - (dot(oc, oc) - radius * radius);
     if (h < 0.0) return vec2(0.0, -1.0);
     h = sqrt(h);
     float t0 = -b - h, t1 = -b + h;
     return t1 < 0.0 || t0 > tEnd ? vec2(0.0, -1.0) : vec2(t0, t1);
+}
+
+// Whether caster `instance` is flat (its mesh has no extent along a local axis: a ground, a
+// wall, a card) and the cone leaves its plane behind: the ray's origin is on one side and the
+// ray heads away from the plane more steeply than the cone's half-angle. Such a caster is never
+// met, and a receiver on a ground would otherwise spend its first steps climbing off the
+// ground's own field (a step is the distance to it, growing by the sine of the light's
+// elevation per step): at 15 degrees, some 30 of the march's steps.
+bool sg_sdfFlatAndBehind(int instance, vec3 origin, vec3 dir, float tanE) {
+    vec3 lo = sg_sdfRecord(instance, 7).xyz;
+    vec3 hi = sg_sdfRecord(instance, 8).xyz;
+    int axis = lo.x == hi.x ? 0 : (lo.y == hi.y ? 1 : (lo.z == hi.z ? 2 : -1));
+    if (axis < 0) return false;
+    vec4 row = sg_sdfRecord(instance, axis);  // the local coordinate along `axis`, as a plane
+    float above = dot(row, vec4(origin, 1.0)) - lo[axis];
+    float away = dot(row.xyz, dir);
+    return above * away > 0.0 && abs(away) > tanE * length(row.xyz);
 }
 
 // The part of the emitter's disk beyond a straight edge at signed distance u of its radius.
@@ -86,26 +113,64 @@ float sg_sdfVisibleFraction(float u) {
     return 1.0 - (acos(u) - u * sqrt(1.0 - u * u)) / 3.14159265;
 }
 
-// A ray crossing a sheet (an open caster, whose unsigned field has no inside) at `p`: how far
-// inside the sheet's edge it crosses, over the cone's radius `radius` there, as a negative u.
-// The sheet's plane comes from the field's gradient a little before the crossing; of eight
-// points at `radius` around `p` in that plane, the one farthest from the sheet puts the edge at
-// radius - d from `p` (beyond its edge, a sheet's field is the distance to the edge); a crossing
-// deeper than the cone's radius is -1 (umbra).
-float sg_sdfSheetClearance(int instance, vec3 p, vec3 dir, float radius) {
-    float h = 0.25 * radius + 1e-4;
-    vec3 before = p - dir * (2.0 * h);
-    vec3 n = vec3(sg_sdfDistance(instance, before + vec3(h, 0, 0)) - sg_sdfDistance(instance, before - vec3(h, 0, 0)),
-                  sg_sdfDistance(instance, before + vec3(0, h, 0)) - sg_sdfDistance(instance, before - vec3(0, h, 0)),
-                  sg_sdfDistance(instance, before + vec3(0, 0, h)) - sg_sdfDistance(instance, before - vec3(0, 0, h)));
+// The edge nearest `p` in the plane through `p` square to `axis`, as u: of eight points at
+// `radius` around `p` in that plane, the one farthest from the caster (field value f) puts the
+// edge at radius - f from `p` on the caster's side (u < 0), or f - radius beyond it (u > 0)
+// (exact for a straight edge, beyond which the field is the distance to it); all eight on the
+// caster is -1 (the edge beyond the cone).
+float sg_sdfEdgeAround(int instance, vec3 p, vec3 axis, float radius) {
     vec3 t1, t2;
-    sg_perpendicularBasis(sg_safeNormalize(n, dir), t1, t2);
+    sg_perpendicularBasis(axis, t1, t2);
     float farthest = 0.0;
     for (int k = 0; k < 8; ++k) {
         float angle = 0.78539816 * float(k);
         farthest = max(farthest, sg_sdfDistance(instance, p + radius * (cos(angle) * t1 + sin(angle) * t2)));
     }
-    return -clamp((radius - farthest) / max(radius, 1e-6), 0.0, 1.0);
+    return clamp((farthest - radius) / max(radius, 1e-6), -1.0, 1.0);
+}
+
+// Edge of one voxel of caster `instance`'s field, in metres.
+float sg_sdfVoxelMetres(int instance) { return sg_sdfRecord(instance, 3).w * sg_sdfRecord(instance, 4).w; }
+
+// The field's gradient (unnormalised) at `p`, by central differences `h` apart.
+vec3 sg_sdfGradient(int instance, vec3 p, float h) {
+    return vec3(sg_sdfDistance(instance, p + vec3(h, 0, 0)) - sg_sdfDistance(instance, p - vec3(h, 0, 0)),
+                sg_sdfDistance(instance, p + vec3(0, h, 0)) - sg_sdfDistance(instance, p - vec3(0, h, 0)),
+                sg_sdfDistance(instance, p + vec3(0, 0, h)) - sg_sdfDistance(instance, p - vec3(0, 0, h)));
+}
+
+// A ray crossing a sheet (an open caster, whose unsigned field has no inside) at `p`: how far
+// inside the sheet's edge it crosses, over the cone's radius `radius` there, as a negative u:
+// the edge around `p` in the sheet's plane, which comes from the field's gradient a little
+// before the crossing.
+float sg_sdfSheetClearance(int instance, vec3 p, vec3 dir, float radius) {
+    float h = 0.25 * radius + 1e-4;
+    vec3 n = sg_sdfGradient(instance, p - dir * (2.0 * h), h);
+    return sg_sdfEdgeAround(instance, p, sg_safeNormalize(n, dir), radius);
+}
+
+// The ray's distance to caster `instance` came to a minimum within a voxel of it at `p`: a
+// sheet, or a caster thinner than a voxel (a 1 mm plate in a field of 1 cm voxels, whose
+// interpolated field need not go negative), crossed at a slant between two samples, or a
+// surface passed close by. A crossing turns the field's gradient over (it points back along the
+// ray before and ahead after, from opposite sides of one plane); then the crossing's edge test
+// (as for a sheet), else 1 (the samples' own clearance stands).
+float sg_sdfThinCrossing(int instance, vec3 p, vec3 dir, float radius, float voxel) {
+    float h = max(0.5 * voxel, 1e-4);
+    vec3 before = sg_sdfGradient(instance, p - dir * (2.0 * h), h);
+    vec3 after = sg_sdfGradient(instance, p + dir * (2.0 * h), h);
+    if (dot(before, after) >= 0.0) return 1.0;
+    return sg_sdfEdgeAround(instance, p, sg_safeNormalize(before, dir), radius);
+}
+
+// A ray inside a closed caster at `p` (field `d` < 0 there): how far the ray would have to move
+// sideways to leave the caster's cross-section, over the cone's radius `radius`, as a negative
+// u. The field's magnitude inside is the distance to the nearest surface, which in a thin caster
+// is half its thickness, not the way to its edge: a plate 2 cm thick would put every ray that
+// crosses it within 1 cm of lit, and the umbra side of every penumbra would be too light. So: the
+// edge around `p` across the ray; `p` deeper than the radius is -1 (umbra) without a sample.
+float sg_sdfInsideClearance(int instance, vec3 p, vec3 dir, float d, float radius) {
+    return -d >= radius ? -1.0 : sg_sdfEdgeAround(instance, p, dir, radius);
 }
 
 float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
@@ -116,10 +181,15 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
     bool sun = L.type == SG_LIGHT_DIRECTIONAL;
     vec3 dir = sun ? -L.wsDirection : sg_safeNormalize(L.csPosition - origin, r.toLight);
     float tEnd = sun ? 1e30 : length(L.csPosition - origin);
-    // A point-sized emitter (tan e = 0) is a cone of 1e-6: the hard shadow, without 0/0.
-    float tanE = max(sun ? tan(max(L.emitterSize, 0.0)) : max(L.emitterSize, 0.0) / max(tEnd, 1e-6), 1e-6);
+    // A point-sized emitter (tan e = 0) is a cone of 1e-6: the hard shadow, without 0/0. A
+    // spot's emitter is a disk square to its axis, seen from off the axis as an ellipse whose
+    // short axis is cos(angle off the axis) of its radius: the cone takes the disk of the same
+    // area (radius sqrt(cos) of the emitter's).
+    float emitter = max(L.emitterSize, 0.0);
+    if (L.type == SG_LIGHT_SPOT) emitter *= sqrt(clamp(dot(-dir, L.wsDirection), 0.0, 1.0));
+    float tanE = max(sun ? tan(emitter) : emitter / max(tEnd, 1e-6), 1e-6);
 
-    // The field casters the ray segment meets, by bounding sphere, cluster by cluster: the
+    // The field casters the cone around the ray segment meets, by bounding sphere, cluster by cluster: the
     // nearest SG_SDF_MAX_NEAR.
     int near[SG_SDF_MAX_NEAR];
     float enter[SG_SDF_MAX_NEAR];
@@ -131,7 +201,7 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
     while (true) {
         if (i >= end) {  // the next cluster the ray meets, or done
             for (++cluster; cluster < clusters; ++cluster) {
-                if (sg_sdfRayEnters(origin, dir, tEnd, sg_sdfRecord(L.sdfClusterFirst + cluster, 0)).y >= 0.0) break;
+                if (sg_sdfConeEnters(origin, dir, tEnd, tanE, sg_sdfRecord(L.sdfClusterFirst + cluster, 0)).y >= 0.0) break;
             }
             if (cluster >= clusters) break;
             vec4 range = sg_sdfRecord(L.sdfClusterFirst + cluster, 1);
@@ -139,8 +209,8 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
             end = i + int(range.y);
         }
         int instance = i++;
-        vec2 span = sg_sdfRayEnters(origin, dir, tEnd, sg_sdfRecord(instance, 6));
-        if (span.y < 0.0) continue;
+        vec2 span = sg_sdfConeEnters(origin, dir, tEnd, tanE, sg_sdfRecord(instance, 6));
+        if (span.y < 0.0 || sg_sdfFlatAndBehind(instance, origin, dir, tanE)) continue;
         float t0 = span.x, t1 = span.y;
         tStop = max(tStop, t1);
         int slotK = count;
@@ -158,7 +228,10 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
 
     float t = L.sdfStartOffset;
     float lowest = 1.0;  // smallest u seen
-    float lastD = 1e30;
+    float lastD = -1.0;  // none yet
+    float lastLastD = -1.0;
+    int lastNear = -1;  // the caster nearest the last sample (outside it), or -1
+    float step = 1.0;
     int steps = 0;
     for (; steps < L.sdfSteps && t < tStop && count > 0; ++steps) {
         vec3 p = origin + dir * t;
@@ -173,18 +246,38 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
         }
         bool sheet = sg_sdfRecord(near[nearest], 5).w > 0.5;
         float u;
-        if (sheet && d < L.sdfMinStep) {
+        if (sheet && d < L.sdfMinStep && d <= lastD) {
             u = sg_sdfSheetClearance(near[nearest], p, dir, t * tanE);
-        } else if (d > 0.0 && lastD < 1e30) {
-            float y = min(d * d / (2.0 * lastD), d);
-            u = sqrt(max(d * d - y * y, 0.0)) / (max(t - y, 1e-6) * tanE);
+        } else if (d < 0.0) {
+            u = sg_sdfInsideClearance(near[nearest], p, dir, d, t * tanE);
         } else {
             u = d / (t * tanE);
+            // The closest approach between this sample and the last: where the spheres free of
+            // casters around both (radii lastD and d, `step` apart) meet, y back along the ray.
+            // With a step of lastD this is the improved estimate's y = d^2 / (2 lastD); a step
+            // stretched to sdfMinStep may leave a gap between the spheres (y >= d), across
+            // which nothing is known: the sample's own clearance stands.
+            float y = (d * d - lastD * lastD + step * step) / (2.0 * step);
+            if (d > 0.0 && lastD > 0.0 && y > 0.0 && y < d) u = min(u, sqrt(d * d - y * y) / (max(t - y, 1e-6) * tanE));
+        }
+        // A thin caster crossed between the last samples: an unsigned field interpolated across a
+        // sheet between voxel centres does not fall below about half a voxel, nor a plate
+        // thinner than a voxel below zero, so a ray crossing it at a slant steps over it. The
+        // distance falling to a minimum within a voxel marks a crossing or a close pass.
+        if (lastNear >= 0 && d > lastD && lastD <= lastLastD) {
+            float voxel = sg_sdfVoxelMetres(lastNear);
+            if (lastD < voxel) {
+                float tq = t - step;
+                lowest = min(lowest, sg_sdfThinCrossing(lastNear, origin + dir * tq, dir, tq * tanE, voxel));
+            }
         }
         lowest = min(lowest, u);
         if (lowest <= -1.0) break;
-        lastD = max(d, 1e-6);
-        t += max(abs(d), L.sdfMinStep);
+        lastLastD = lastD;
+        lastD = d;
+        lastNear = d >= 0.0 ? near[nearest] : -1;
+        step = max(abs(d), L.sdfMinStep);
+        t += step;
     }
     SG_DEBUG_STORE(sg_debugMarchSteps, float(steps));
     SG_DEBUG_STORE(sg_debugClosest, clamp(lowest, -1.0, 1.0));

@@ -238,9 +238,13 @@ struct Shadow {
     /// ends earlier when it leaves every field caster's bounds, reaches the light or is hit.
     int sdfSteps = 48;
     /// Technique sdf: how far (m) the march starts from the receiver, along its normal and
-    /// along the ray, [0, 1]. Default 0.02: the receiver's own field is within a voxel of zero
-    /// near its surface, and a march starting there would shadow lit surfaces (acne).
-    float sdfStartOffset = 0.02f;
+    /// along the ray, [0, 1]. Default 0.0025. A caster nearer its receiver than this is passed
+    /// over; a march starting closer reads the receiver's own field, whose interpolation error
+    /// near a curved surface is a fraction of a voxel, and darkens lit surfaces (acne). Measured
+    /// on builtin:bunny (fields of 64^3 voxels, voxel 2 cm) against the ray-traced truth: 1 mm
+    /// tripled the acne (0.09-0.15 % of lit pixels), 5 mm and 1 cm let 2-5 times more light into
+    /// the bunny's self-shadows than 2.5 mm, and the former default of 2 cm 9 times more.
+    float sdfStartOffset = 0.0025f;
     /// Technique sdf: the shortest step (m), [1e-4, 1]. Default 0.005. Smaller follows thin
     /// gaps closer, at more steps.
     float sdfMinStep = 0.005f;
