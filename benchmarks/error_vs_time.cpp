@@ -42,9 +42,12 @@ struct Config {
     float lightBleedReduction = 0.0f;
     DepthMode depthMode = DepthMode::Nearest;  ///< midpoint and second with zero constant and slope bias
     int sdfSteps = 48;
+    int fieldVoxels = 64;  ///< sdf: voxels along each field's edge (ShadowLimits::distanceFieldVoxels, cubed)
 
-    /// The series of the chart it belongs to: its technique, and the depth mode when not nearest.
+    /// The series of the chart it belongs to: its technique, and the depth mode when not nearest
+    /// (the field's resolution for sdf).
     [[nodiscard]] std::string series() const {
+        if (technique == ShadowTechnique::Sdf) return "sdf-field" + std::to_string(fieldVoxels);
         return std::string(techniqueName(technique)) +
                (depthMode == DepthMode::Nearest ? "" : std::string("-") + depthModeName(depthMode));
     }
@@ -52,7 +55,7 @@ struct Config {
     [[nodiscard]] std::string label() const {
         std::ostringstream s;
         if (technique == ShadowTechnique::Sdf) {
-            s << "sdf steps" << sdfSteps;
+            s << "sdf field" << fieldVoxels << " steps" << sdfSteps;
             return s.str();
         }
         s << techniqueName(technique) << " map" << mapSize;
@@ -95,8 +98,11 @@ std::vector<Config> sweep() {
     out.push_back({ShadowTechnique::Hard, 1024, 1, 1, FilterKernel::Vogel, 0.0f, DepthMode::Midpoint});
     out.push_back({ShadowTechnique::Pcf, 1024, 16, 1, FilterKernel::Vogel, 0.0f, DepthMode::Midpoint});
     out.push_back({ShadowTechnique::Pcss, 1024, 16, 16, FilterKernel::Vogel, 0.0f, DepthMode::Midpoint});
-    for (int steps : {24, 48, 96}) {
-        out.push_back({ShadowTechnique::Sdf, 1024, 1, 1, FilterKernel::Vogel, 0.0f, DepthMode::Nearest, steps});
+    for (int voxels : {64, 128}) {
+        for (int steps : {24, 48, 96}) {
+            out.push_back(
+                {ShadowTechnique::Sdf, 1024, 1, 1, FilterKernel::Vogel, 0.0f, DepthMode::Nearest, steps, voxels});
+        }
     }
     return out;
 }
@@ -140,6 +146,9 @@ Result<Row> measure(const std::string& spec, const Config& config, const Options
     const Entity camera = scene.cameras.front();
     FrameRunner runner;
     runner.shadows().planner().setCaching(false);  // every frame pays for its shadow maps
+    ShadowLimits limits = runner.shadows().planner().limits();
+    limits.distanceFieldVoxels = config.fieldVoxels * config.fieldVoxels * config.fieldVoxels;
+    runner.shadows().planner().setLimits(limits);
     RenderOptions options;
     options.width = width;
     options.height = height;

@@ -3,7 +3,7 @@
 //   shadow_render SCENE [--out DIR] [--size WxH] [--camera N] [--time T] [--frames N --dt S]
 //                 [--technique NAME] [--depth-mode MODE] [--aov color,visibility,position,depth]
 //                 [--debug NAME] [--debug-light I] [--frame-images] [--no-cache] [--exposure E]
-//                 [--shader-cache DIR]
+//                 [--shader-cache DIR] [--field-voxels N]
 //
 // SCENE is a .gltf/.glb path or builtin:NAME. With --frames N the scene is animated from
 // --time T in steps of --dt S; the images are those of the last frame and the timings in
@@ -47,6 +47,7 @@ struct Options {
     int debugLight = 0;
     bool frameImages = false;
     bool noCache = false;
+    int fieldVoxels = 64;  ///< technique sdf: voxels along each mesh field's edge (cubed: the budget)
     std::string shaderCache;
     std::optional<float> exposure;  ///< absent: from the first frame read back (autoExposure)
 };
@@ -128,6 +129,7 @@ int run(const Options& o) {
     }
     if (!std::isfinite(o.dt)) return fail(kExitBadInput, "--dt: must be a finite number of seconds");
     if (o.frames < 1 || o.frames > 100000) return fail(kExitBadInput, "--frames: must be in [1, 100000]");
+    if (o.fieldVoxels < 16 || o.fieldVoxels > 256) return fail(kExitBadInput, "--field-voxels: must be in [16, 256]");
     if (o.camera && *o.camera < 0)
         return fail(kExitBadInput, "--camera " + std::to_string(*o.camera) + ": must be >= 0");
 
@@ -173,6 +175,9 @@ int run(const Options& o) {
 
     FrameRunner runner;
     runner.shadows().planner().setCaching(!o.noCache);
+    ShadowLimits limits = runner.shadows().planner().limits();
+    limits.distanceFieldVoxels = o.fieldVoxels * o.fieldVoxels * o.fieldVoxels;
+    runner.shadows().planner().setLimits(limits);
     std::vector<FrameStats> frames;
     std::optional<float> exposure = o.exposure;
     if (o.frameImages) std::filesystem::create_directories(o.out + "/frames");
@@ -230,6 +235,9 @@ int main(int argc, char** argv) {
     app.add_option("--exposure", o.exposure, "exposure of color.png (default: log-average luminance to 0.18)");
     app.add_flag("--frame-images", o.frameImages, "write every frame as frames/color_<k>.png");
     app.add_flag("--no-cache", o.noCache, "redraw every shadow layer every frame");
+    app.add_option(
+        "--field-voxels", o.fieldVoxels,
+        "technique sdf: voxels along the edge of each mesh's distance field, [16, 256] (default 64: 64^3 voxels)");
     app.add_option("--shader-cache", o.shaderCache,
                    "folder of linked program binaries, read and written (the driver's own cache aside)");
     try {

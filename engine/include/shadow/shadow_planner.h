@@ -102,6 +102,8 @@ struct ShadowFrame {
     DAabb wsGeometry;
     /// Clamped settings and the memory budget's decisions, one each (codes in warnings.h).
     std::vector<Warning> warnings;
+    /// `ShadowLimits::distanceFieldVoxels`, clamped: the voxels of each mesh's field.
+    int distanceFieldVoxels = 64 * 64 * 64;
 };
 
 /// Limits the planner must respect: the GL implementation's, and the memory the shadow maps
@@ -122,6 +124,12 @@ struct ShadowLimits {
     /// fit. Each decision is a warning. The ranking follows the camera: a light whose map size
     /// changes is reallocated and redrawn that frame. Range: >= 0 (0: no light has a map).
     std::int64_t maxShadowBytes = std::int64_t{1} << 30;
+    /// Technique sdf: most voxels of one mesh's distance field (`DistanceFieldSettings::
+    /// voxelBudget`), [kMinDistanceFieldVoxels, kMaxDistanceFieldVoxels], clamped. Default 64^3
+    /// (1 MiB a field; the Stanford bunny's voxel 2 cm at 1.2 m tall). A field whose longest
+    /// axis would pass the atlas's 128 voxels gets an eighth of the budget, round by round.
+    /// Changing it bakes every field again on the next frame.
+    int distanceFieldVoxels = 64 * 64 * 64;
 };
 
 /// GPU memory (bytes) of the maps of one light with technique `technique`, `layers` layers of

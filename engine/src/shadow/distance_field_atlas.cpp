@@ -86,18 +86,23 @@ void DistanceFieldAtlas::grow(int depth) {
     checkGlError("growing the distance-field atlas");
 }
 
+glm::ivec3 DistanceFieldAtlas::nextPlace(const glm::ivec3& s) const {
+    glm::ivec3 at = cursor_;
+    if (at.x + s.x > kAtlasEdge) at = glm::ivec3(0, at.y + rowHeight_, at.z);  // next row
+    if (at.y + s.y > kAtlasEdge) at = glm::ivec3(0, 0, at.z + slabDepth_);     // next slab
+    return at;
+}
+
 FieldBrick DistanceFieldAtlas::place(const DistanceField& field) {
     const glm::ivec3 s = field.size;
-    if (cursor_.x + s.x > kAtlasEdge) {  // next row
-        cursor_.x = 0;
-        cursor_.y += rowHeight_;
-        rowHeight_ = 0;
-    }
-    if (cursor_.y + s.y > kAtlasEdge) {  // next slab
-        cursor_ = glm::ivec3(0, 0, cursor_.z + slabDepth_);
+    const glm::ivec3 at = nextPlace(s);
+    if (at.z != cursor_.z) {
         rowHeight_ = 0;
         slabDepth_ = 0;
+    } else if (at.y != cursor_.y) {
+        rowHeight_ = 0;
     }
+    cursor_ = at;
     if (cursor_.z + s.z > atlasSize_.z) grow(cursor_.z + s.z);
     FieldBrick b;
     b.origin = cursor_;
@@ -140,17 +145,22 @@ const FieldBrick* DistanceFieldAtlas::brickOf(const std::shared_ptr<const MeshDa
     const MeshData& source = stretched ? scaled : *mesh;
     std::optional<Result<DistanceField>> baked;
     baked.emplace(bakeDistanceField(source, settings));
-    // Too wide or too deep for the atlas: fewer voxels (an eighth halves every axis).
-    while (*baked && ((*baked)->size.x > kAtlasEdge || (*baked)->size.y > kAtlasEdge || (*baked)->size.z > maxSize_) &&
-           settings.voxelBudget / 8 >= kMinDistanceFieldVoxels) {
-        settings.voxelBudget /= 8;
+    // Too wide or too deep for the atlas: fewer voxels, by the cube of the longest axis's excess
+    // (and a little more, for the padding's rounding), until it fits.
+    auto excess = [&](const DistanceField& f) {
+        return std::max({static_cast<double>(f.size.x) / kAtlasEdge, static_cast<double>(f.size.y) / kAtlasEdge,
+                         static_cast<double>(f.size.z) / maxSize_});
+    };
+    while (*baked && excess(**baked) > 1.0 && settings.voxelBudget > kMinDistanceFieldVoxels) {
+        const double shrink = 0.95 / std::pow(excess(**baked), 3.0);
+        settings.voxelBudget = std::max(kMinDistanceFieldVoxels, static_cast<int>(settings.voxelBudget * shrink));
         baked.emplace(bakeDistanceField(source, settings));
     }
     const Result<DistanceField>& field = *baked;
     bakeSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ++baked_;
     const bool fits = field && field->size.x <= kAtlasEdge && field->size.y <= kAtlasEdge &&
-                      cursor_.z + slabDepth_ + field->size.z <= maxSize_;
+                      nextPlace(field->size).z + field->size.z <= maxSize_;
     if (fits) {
         entry.brick = place(*field);
         entry.brick->meshBounds = source.bounds;

@@ -48,6 +48,8 @@ public:
     /// The buffer texture as last uploaded by `instances` (0 before).
     [[nodiscard]] GLuint uploadedInstances() const { return bufferTexture_.get(); }
     [[nodiscard]] GLuint atlas() const { return atlas_.get(); }
+    /// The voxels per field it was made with.
+    [[nodiscard]] int voxelBudget() const { return settings_.voxelBudget; }
     /// GPU memory of the atlas and the instance buffer (bytes).
     [[nodiscard]] long long bytes() const;
     /// Fields baked so far, and the seconds the bakes took in total.
@@ -103,6 +105,8 @@ private:
     std::unordered_map<Key, Entry, KeyHash> entries_;
     Texture atlas_;
     glm::ivec3 atlasSize_{0};
+    /// Where `place` would put a brick of `size` voxels (its first voxel's texel).
+    [[nodiscard]] glm::ivec3 nextPlace(const glm::ivec3& size) const;
     glm::ivec3 cursor_{0};  ///< where the next brick goes: x in the row, y of the row, z of the slab
     int rowHeight_ = 0;
     int slabDepth_ = 0;

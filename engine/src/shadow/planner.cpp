@@ -1,4 +1,5 @@
 // ShadowPlanner: the CPU "decide" phase of the shadow system (see shadow_planner.h).
+#include <shadow/distance_field.h>
 #include <shadow/shadow_planner.h>
 #include <shadow/shared_constants.h>
 
@@ -314,6 +315,8 @@ const ShadowFrame& ShadowPlanner::prepare(const World& world, const CameraView& 
                                           const std::vector<Entity>& lights) {
     frame_.warnings.clear();
     frame_.techniquesInUse = 0;
+    frame_.distanceFieldVoxels =
+        std::clamp(limits_.distanceFieldVoxels, kMinDistanceFieldVoxels, kMaxDistanceFieldVoxels);
     frame_.lights.resize(lights.size());
     SceneGeometry& geometry = scratch_->geometry;
     std::vector<Candidate>& candidates = scratch_->candidates;

@@ -405,7 +405,10 @@ void ShadowMaps::render(const ShadowFrame& frame, const World& world, MeshCache&
         if (plan.hasMap()) g.updateChains(plan);
     }
     stats.shadowScratchBytes = g.scratch.bytes();
-    if (!g.fields && (frame.techniquesInUse & techniqueBit(ShadowTechnique::Sdf)) != 0) g.fields.emplace();
+    if (g.fields && g.fields->voxelBudget() != frame.distanceFieldVoxels) g.fields.reset();  // bake again
+    if (!g.fields && (frame.techniquesInUse & techniqueBit(ShadowTechnique::Sdf)) != 0) {
+        g.fields.emplace(frame.distanceFieldVoxels);
+    }
     if (g.fields) {
         const int baked = g.fields->fieldsBaked();
         const double seconds = g.fields->bakeSeconds();
