@@ -2,7 +2,8 @@
 // set so that the high plate's penumbra on the ground spans 2, 4, ... 64 texels of the light's
 // map, rendered with each soft technique; prints a Markdown table of main-pass and frame medians
 // and, per technique, the widest over the narrowest. PCSS takes more taps as the penumbra widens
-// (up to its pcfSamples); the moment techniques read one mip level whatever the width.
+// (up to its pcfSamples); the moment techniques read one mip level whatever the width; sdf
+// marches the same steps whatever the emitter's size (its map holds no caster).
 //
 //   penumbra_sweep [--size WxH] [--frames N] [--rounds R]
 //
@@ -31,7 +32,7 @@ using namespace shadow;
 
 constexpr std::array kWidthsTexels{2, 4, 8, 16, 32, 64};
 constexpr std::array kTechniques{ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook, ShadowTechnique::Vssm,
-                                 ShadowTechnique::MsmSoft, ShadowTechnique::Vsm};
+                                 ShadowTechnique::MsmSoft, ShadowTechnique::Vsm,  ShadowTechnique::Sdf};
 
 struct Options {
     std::string size = "320x240";

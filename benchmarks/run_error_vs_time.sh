@@ -47,9 +47,10 @@ of four moments (one fetch for the search, four for the penumbra) with the four-
 over it. The moment techniques' shadow column is mostly their chain (mips, or VSSM's table),
 built at the map's full resolution every frame here (caching off). Rows `... midpoint` are
 second-depth maps (`depthMode` midpoint: each layer drawn twice, the mean of the first two
-surfaces stored) with zero constant and slope bias; rows `sdf stepsN` the distance-field march
-at N steps, which draws no map (its shadow column is 0; its fields are baked once, before the
-timed frames).
+surfaces stored) with zero constant and slope bias; rows `sdf fieldN stepsM` the distance-field
+march through fields of N voxels along the edge (`ShadowLimits::distanceFieldVoxels` = N³) at M
+steps, which draws no map (its shadow column is 0; its fields are baked once, before the timed
+frames).
 Every configuration of a scene draws the same depth layers, so no technique's frame can be shorter
 than the scene's fastest frame of all configurations (a hard shadow from the smallest map): the
 last column, textbook time over that frame, bounds the speed-up any filter could show.

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Frame time against penumbra width: builtin:plates with the disk light's radius set so that the
-# high plate's penumbra spans 2-64 texels of its map, with PCSS, the textbook PCSS, VSSM and VSM
+# high plate's penumbra spans 2-64 texels of its map, with PCSS, the textbook PCSS, VSSM, VSM,
+# MSM-soft and the distance-field march (sdf)
 # (build/bin/penumbra_sweep, interleaved rounds). Writes benchmarks/results/penumbra_sweep.md and
 # its section of BENCHMARKS.md.
 #   bash benchmarks/run_penumbra_sweep.sh        (ROUNDS=5 FRAMES=5 to override)
@@ -22,7 +23,10 @@ techniques pay for their chain, built by compute every time the layer is redrawn
 frame: caching off): a full-resolution mip chain (RG32F, RGBA32F for four moments) or VSSM's
 table (RGBA32F, one level, a pass along the rows and one along the columns). That is most of
 their frame at a 2048² map on this CPU rasteriser, and it does not depend on the width (VSM's
-frame, whose filter is fixed, varies as much from run to run).
+frame, whose filter is fixed, varies as much from run to run). `sdf` draws no caster into its
+map and marches from every pixel through the plates' fields: the same steps at every emitter
+size, since a step is the distance to the nearest caster, not a tap of a filter region (the
+first of the widest cones' rays sample both plates where the narrow ones sample one).
 
 ```sh
 bash benchmarks/run_penumbra_sweep.sh

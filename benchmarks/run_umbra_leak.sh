@@ -16,9 +16,15 @@ results=benchmarks/results
 work=$results/tmp/umbra_leak
 mkdir -p "$work"
 ./build/bin/shadow_reference builtin:bunny --out "$work/reference" --size "$size" --samples "$samples" >/dev/null
-techniques="hard pcf pcss vsm vssm msm msm-soft"
+# Each row: its name, and the technique (and depth mode: "pcss-midpoint" is PCSS on midpoint
+# maps without bias).
+techniques="hard pcf pcss pcss-midpoint vsm vssm msm msm-soft sdf"
 for technique in $techniques; do
-  ./build/bin/shadow_render builtin:bunny --technique "$technique" --aov visibility,position --size "$size" \
+  case "$technique" in
+    *-midpoint) flags=(--technique "${technique%-midpoint}" --depth-mode midpoint) ;;
+    *) flags=(--technique "$technique") ;;
+  esac
+  ./build/bin/shadow_render builtin:bunny "${flags[@]}" --aov visibility,position --size "$size" \
     --out "$work/$technique" >/dev/null
   for light in 0 1 2; do
     mkdir -p "$work/$technique-errors-$light"
@@ -28,7 +34,7 @@ for technique in $techniques; do
 done
 # The spot's (light 1) signed error: red where the estimate is lighter than the truth (leak),
 # blue where darker.
-for technique in pcss vssm msm-soft; do
+for technique in pcss vssm msm-soft sdf; do
   cp "$work/$technique-errors-1/error_1.png" "$results/umbra_leak_$technique.png"
 done
 python3 - "$work" "$samples" "$size" > "$results/umbra_leak.md" <<'PY'
@@ -47,7 +53,7 @@ print(f"`builtin:bunny` at {size}, reference {samples} rays per pixel and light.
 print()
 print("| technique | light | umbra pixels | leak > 0.5 | leak > 0.1 | interior pixels | interior leak > 0.1 | false shadow | RMSE |")
 print("|---|---|---|---|---|---|---|---|---|")
-for technique in ["hard", "pcf", "pcss", "vsm", "vssm", "msm", "msm-soft"]:
+for technique in ["hard", "pcf", "pcss", "pcss-midpoint", "vsm", "vssm", "msm", "msm-soft", "sdf"]:
     for i, name in enumerate(names):
         l = json.load(open(f"{work}/{technique}-{i}.json"))["lights"][i]
         print(f"| {technique} | {name} | {l['counts']['umbra']} | {100 * l['leakFraction']:.2f} % | "
@@ -72,12 +78,16 @@ umbra on the bunny's far side lets light in (red). Overlapping casters at differ
 through VSM's and VSSM's one-sided Chebyshev bound (`lightBleedReduction` trades it for darker,
 narrower penumbrae); four moments leak less there. Where they win: planar receivers under
 planar casters (`builtin:plates`, the Error against time section), where the blocker depth
-from the moments is exact and the filter costs the same whatever the penumbra's width.
+from the moments is exact and the filter costs the same whatever the penumbra's width. `sdf`
+(64³ fields) lets light in where the bunny shadows itself within a few voxels of its surface
+(the march starts `sdfStartOffset` off the receiver, and the field there is within a fraction
+of a voxel of the truth) and errs dark at the corners of wide penumbrae (one straight edge per
+ray); `pcss-midpoint` stores the midpoint of the first two surfaces and needs no bias.
 Signed error of the spot (light 1) against the truth, red lighter, blue darker:
 
-| PCSS | VSSM | MSM-soft |
-|---|---|---|
-| ![pcss](benchmarks/results/umbra_leak_pcss.png) | ![vssm](benchmarks/results/umbra_leak_vssm.png) | ![msm-soft](benchmarks/results/umbra_leak_msm-soft.png) |
+| PCSS | VSSM | MSM-soft | sdf |
+|---|---|---|---|
+| ![pcss](benchmarks/results/umbra_leak_pcss.png) | ![vssm](benchmarks/results/umbra_leak_vssm.png) | ![msm-soft](benchmarks/results/umbra_leak_msm-soft.png) | ![sdf](benchmarks/results/umbra_leak_sdf.png) |
 
 MD
   cat "$results/umbra_leak.md"

@@ -10,11 +10,13 @@
 // ray-traced truth's do. A spot's disk, seen off its axis, is taken as the disk of equal area.
 //
 // Inside a closed caster (its field negative) the field's magnitude is the way to the nearest
-// face, not to the silhouette's edge, so there u comes from the field across the ray around the
-// sample (sg_sdfInsideClearance); an open caster is a sheet (its field is unsigned), and a caster
-// thinner than a voxel may have no inside at all: a ray that comes within the shortest step of a
-// sheet, or whose distance falls to a minimum within a voxel of a caster whose gradient then
-// turns over, has crossed it, and u comes from the edge around the crossing in its plane.
+// face, not to the silhouette's edge, so there the visible fraction comes from the field across
+// the ray around the sample (sg_sdfInsideClearance); an open caster is a sheet (its field is
+// unsigned), and a caster thinner than a voxel may have no inside at all: a ray that comes
+// within the shortest step of a sheet, or whose distance falls to a minimum within a voxel of a
+// caster whose gradient then turns over, has crossed it, and the visible fraction comes from the
+// edges around the crossing in its plane (up to two: a corner). The visibility is the smaller of
+// the crossings' and the one of the smallest u outside.
 //
 // The seeds' estimate, min k d / t, bands and leaks where the ray passes a corner or a thin
 // caster between two samples; this follows the improved estimate (Aaltonen, GDC 2018): from
@@ -113,20 +115,32 @@ float sg_sdfVisibleFraction(float u) {
     return 1.0 - (acos(u) - u * sqrt(1.0 - u * u)) / 3.14159265;
 }
 
-// The edge nearest `p` in the plane through `p` square to `axis`, as u: of eight points at
-// `radius` around `p` in that plane, the one farthest from the caster (field value f) puts the
-// edge at radius - f from `p` on the caster's side (u < 0), or f - radius beyond it (u > 0)
-// (exact for a straight edge, beyond which the field is the distance to it); all eight on the
-// caster is -1 (the edge beyond the cone).
-float sg_sdfEdgeAround(int instance, vec3 p, vec3 axis, float radius) {
+// The emitter's visible fraction past the caster's edges around `p`, in the plane through `p`
+// square to `axis`, the cone's radius there `radius`. Of eight points at `radius` around `p` in
+// that plane, the one farthest from the caster (field value f) puts an edge at radius - f from
+// `p` on the caster's side (u < 0), or f - radius beyond it (u > 0): exact for a straight edge,
+// beyond which the field is the distance to it; all eight on the caster is umbra. Where `p` is
+// on the caster's side, the farther of the two points square to that direction finds a second
+// edge (a corner of the caster: the cone's disk passes the first edge and the second), and the
+// two cover the emitter as two independent half-planes, 1 - (1 - V1)(1 - V2) visible (exact at
+// a right-angled corner through `p`, V1 where there is no second edge: f 0 there). One straight
+// edge per ray took a plate's corner for a whole edge and darkened the corners of penumbrae as
+// wide as the plate.
+float sg_sdfEdgesAround(int instance, vec3 p, vec3 axis, float radius) {
     vec3 t1, t2;
     sg_perpendicularBasis(axis, t1, t2);
-    float farthest = 0.0;
+    float f[8];
+    int best = 0;
     for (int k = 0; k < 8; ++k) {
         float angle = 0.78539816 * float(k);
-        farthest = max(farthest, sg_sdfDistance(instance, p + radius * (cos(angle) * t1 + sin(angle) * t2)));
+        f[k] = sg_sdfDistance(instance, p + radius * (cos(angle) * t1 + sin(angle) * t2));
+        best = f[k] > f[best] ? k : best;
     }
-    return clamp((farthest - radius) / max(radius, 1e-6), -1.0, 1.0);
+    float r = max(radius, 1e-6);
+    float v1 = sg_sdfVisibleFraction((f[best] - radius) / r);
+    if (f[best] >= radius) return v1;
+    float v2 = sg_sdfVisibleFraction((max(f[(best + 2) & 7], f[(best + 6) & 7]) - radius) / r);
+    return 1.0 - (1.0 - v1) * (1.0 - v2);
 }
 
 // Edge of one voxel of caster `instance`'s field, in metres.
@@ -139,14 +153,13 @@ vec3 sg_sdfGradient(int instance, vec3 p, float h) {
                 sg_sdfDistance(instance, p + vec3(0, 0, h)) - sg_sdfDistance(instance, p - vec3(0, 0, h)));
 }
 
-// A ray crossing a sheet (an open caster, whose unsigned field has no inside) at `p`: how far
-// inside the sheet's edge it crosses, over the cone's radius `radius` there, as a negative u:
-// the edge around `p` in the sheet's plane, which comes from the field's gradient a little
-// before the crossing.
+// A ray crossing a sheet (an open caster, whose unsigned field has no inside) at `p`: the
+// emitter's visible fraction past the edges around `p` in the sheet's plane, which comes from
+// the field's gradient a little before the crossing.
 float sg_sdfSheetClearance(int instance, vec3 p, vec3 dir, float radius) {
     float h = 0.25 * radius + 1e-4;
     vec3 n = sg_sdfGradient(instance, p - dir * (2.0 * h), h);
-    return sg_sdfEdgeAround(instance, p, sg_safeNormalize(n, dir), radius);
+    return sg_sdfEdgesAround(instance, p, sg_safeNormalize(n, dir), radius);
 }
 
 // The ray's distance to caster `instance` came to a minimum within a voxel of it at `p`: a
@@ -154,23 +167,23 @@ float sg_sdfSheetClearance(int instance, vec3 p, vec3 dir, float radius) {
 // interpolated field need not go negative), crossed at a slant between two samples, or a
 // surface passed close by. A crossing turns the field's gradient over (it points back along the
 // ray before and ahead after, from opposite sides of one plane); then the crossing's edge test
-// (as for a sheet), else 1 (the samples' own clearance stands).
+// (as for a sheet), else 1 (the samples' own clearance stands): a visible fraction.
 float sg_sdfThinCrossing(int instance, vec3 p, vec3 dir, float radius, float voxel) {
     float h = max(0.5 * voxel, 1e-4);
     vec3 before = sg_sdfGradient(instance, p - dir * (2.0 * h), h);
     vec3 after = sg_sdfGradient(instance, p + dir * (2.0 * h), h);
     if (dot(before, after) >= 0.0) return 1.0;
-    return sg_sdfEdgeAround(instance, p, sg_safeNormalize(before, dir), radius);
+    return sg_sdfEdgesAround(instance, p, sg_safeNormalize(before, dir), radius);
 }
 
-// A ray inside a closed caster at `p` (field `d` < 0 there): how far the ray would have to move
-// sideways to leave the caster's cross-section, over the cone's radius `radius`, as a negative
-// u. The field's magnitude inside is the distance to the nearest surface, which in a thin caster
+// A ray inside a closed caster at `p` (field `d` < 0 there): the emitter's visible fraction past
+// the edges of the caster's cross-section, the way the ray would have to move sideways to leave
+// it. The field's magnitude inside is the distance to the nearest surface, which in a thin caster
 // is half its thickness, not the way to its edge: a plate 2 cm thick would put every ray that
 // crosses it within 1 cm of lit, and the umbra side of every penumbra would be too light. So: the
-// edge around `p` across the ray; `p` deeper than the radius is -1 (umbra) without a sample.
+// edges around `p` across the ray; `p` deeper than the radius is umbra without a sample.
 float sg_sdfInsideClearance(int instance, vec3 p, vec3 dir, float d, float radius) {
-    return -d >= radius ? -1.0 : sg_sdfEdgeAround(instance, p, dir, radius);
+    return -d >= radius ? 0.0 : sg_sdfEdgesAround(instance, p, dir, radius);
 }
 
 float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
@@ -227,7 +240,8 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
     tStop = min(tStop, tEnd);
 
     float t = L.sdfStartOffset;
-    float lowest = 1.0;  // smallest u seen
+    float lowest = 1.0;   // smallest u seen outside the casters
+    float crossed = 1.0;  // smallest visible fraction where the ray crossed a caster
     float lastD = -1.0;  // none yet
     float lastLastD = -1.0;
     int lastNear = -1;  // the caster nearest the last sample (outside it), or -1
@@ -247,9 +261,11 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
         bool sheet = sg_sdfRecord(near[nearest], 5).w > 0.5;
         float u;
         if (sheet && d < L.sdfMinStep && d <= lastD) {
-            u = sg_sdfSheetClearance(near[nearest], p, dir, t * tanE);
+            u = 1.0;
+            crossed = min(crossed, sg_sdfSheetClearance(near[nearest], p, dir, t * tanE));
         } else if (d < 0.0) {
-            u = sg_sdfInsideClearance(near[nearest], p, dir, d, t * tanE);
+            u = 1.0;
+            crossed = min(crossed, sg_sdfInsideClearance(near[nearest], p, dir, d, t * tanE));
         } else {
             u = d / (t * tanE);
             // The closest approach between this sample and the last: where the spheres free of
@@ -268,11 +284,11 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
             float voxel = sg_sdfVoxelMetres(lastNear);
             if (lastD < voxel) {
                 float tq = t - step;
-                lowest = min(lowest, sg_sdfThinCrossing(lastNear, origin + dir * tq, dir, tq * tanE, voxel));
+                crossed = min(crossed, sg_sdfThinCrossing(lastNear, origin + dir * tq, dir, tq * tanE, voxel));
             }
         }
         lowest = min(lowest, u);
-        if (lowest <= -1.0) break;
+        if (lowest <= -1.0 || crossed <= 0.0) break;
         lastLastD = lastD;
         lastD = d;
         lastNear = d >= 0.0 ? near[nearest] : -1;
@@ -280,8 +296,10 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
         t += step;
     }
     SG_DEBUG_STORE(sg_debugMarchSteps, float(steps));
-    SG_DEBUG_STORE(sg_debugClosest, clamp(lowest, -1.0, 1.0));
-    return sg_sdfVisibleFraction(lowest);
+    float visible = min(sg_sdfVisibleFraction(lowest), crossed);
+    // The debug view's clearance: u outside, and a crossing's fraction mapped onto [-1, 1].
+    SG_DEBUG_STORE(sg_debugClosest, min(clamp(lowest, -1.0, 1.0), 2.0 * crossed - 1.0));
+    return visible;
 }
 
 float sg_sdfVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
