@@ -11,7 +11,7 @@
 //
 // Inside a closed caster (its field negative) the field's magnitude is the way to the nearest
 // face, not to the silhouette's edge, so there the visible fraction comes from the field across
-// the ray around the sample (sg_sdfInsideClearance); an open caster is a sheet (its field is
+// the ray around the sample (sg_sdfCrossing); an open caster is a sheet (its field is
 // unsigned), and a caster thinner than a voxel may have no inside at all: a ray that comes
 // within the shortest step of a sheet, or whose distance falls to a minimum within a voxel of a
 // caster whose gradient then turns over, has crossed it, and the visible fraction comes from the
@@ -145,8 +145,12 @@ float sg_sdfEdgesAround(int instance, vec3 p, vec3 axis, float radius) {
     float r = max(radius, 1e-6);
     float v1 = sg_sdfVisibleFraction((farthest - radius) / r);
     if (farthest >= radius || v1 <= 0.0) return v1;
-    vec3 side = cross(axis, towards);
-    float second = max(sg_sdfDistance(instance, p + radius * side), sg_sdfDistance(instance, p - radius * side));
+    vec3 side = cross(axis, towards) * radius;
+    float second = -1e30;
+    for (int k = 0; k < 2 + sg_runtimeZero(); ++k) {
+        second = max(second, sg_sdfDistance(instance, p + side));
+        side = -side;
+    }
     float v2 = sg_sdfVisibleFraction((second - radius) / r);
     return 1.0 - (1.0 - v1) * (1.0 - v2);
 }
@@ -155,43 +159,51 @@ float sg_sdfEdgesAround(int instance, vec3 p, vec3 axis, float radius) {
 float sg_sdfVoxelMetres(int instance) { return sg_sdfRecord(instance, 3).w * sg_sdfRecord(instance, 4).w; }
 
 // The field's gradient (unnormalised) at `p`, by central differences `h` apart.
+// (Loops kept loops: every inlined call of sg_sdfDistance is code a game's shader compiles once
+// per visibility call.)
 vec3 sg_sdfGradient(int instance, vec3 p, float h) {
-    return vec3(sg_sdfDistance(instance, p + vec3(h, 0, 0)) - sg_sdfDistance(instance, p - vec3(h, 0, 0)),
-                sg_sdfDistance(instance, p + vec3(0, h, 0)) - sg_sdfDistance(instance, p - vec3(0, h, 0)),
-                sg_sdfDistance(instance, p + vec3(0, 0, h)) - sg_sdfDistance(instance, p - vec3(0, 0, h)));
+    vec3 g = vec3(0.0);
+    for (int k = 0; k < 6 + sg_runtimeZero(); ++k) {
+        vec3 e = vec3(k / 2 == 0, k / 2 == 1, k / 2 == 2) * ((k & 1) == 0 ? h : -h);
+        g += sign(e) * sg_sdfDistance(instance, p + e);
+    }
+    return g;
 }
 
-// A ray crossing a sheet (an open caster, whose unsigned field has no inside) at `p`: the
-// emitter's visible fraction past the edges around `p` in the sheet's plane, which comes from
-// the field's gradient a little before the crossing.
-float sg_sdfSheetClearance(int instance, vec3 p, vec3 dir, float radius) {
-    float h = 0.25 * radius + 1e-4;
-    vec3 n = sg_sdfGradient(instance, p - dir * (2.0 * h), h);
-    return sg_sdfEdgesAround(instance, p, sg_safeNormalize(n, dir), radius);
-}
+// Kinds of a crossing of the ray through a caster (sg_sdfCrossing).
+const int SG_SDF_SHEET = 0;   // within sdfMinStep of a sheet (an open caster, an unsigned field)
+const int SG_SDF_INSIDE = 1;  // inside a closed caster (its field negative)
+const int SG_SDF_THIN = 2;    // the distance at a minimum within a voxel of a caster
 
-// The ray's distance to caster `instance` came to a minimum within a voxel of it at `p`: a
-// sheet, or a caster thinner than a voxel (a 1 mm plate in a field of 1 cm voxels, whose
-// interpolated field need not go negative), crossed at a slant between two samples, or a
-// surface passed close by. A crossing turns the field's gradient over (it points back along the
-// ray before and ahead after, from opposite sides of one plane); then the crossing's edge test
-// (as for a sheet), else 1 (the samples' own clearance stands): a visible fraction.
-float sg_sdfThinCrossing(int instance, vec3 p, vec3 dir, float radius, float voxel) {
-    float h = max(0.5 * voxel, 1e-4);
-    vec3 before = sg_sdfGradient(instance, p - dir * (2.0 * h), h);
-    vec3 after = sg_sdfGradient(instance, p + dir * (2.0 * h), h);
-    if (dot(before, after) >= 0.0) return 1.0;
-    return sg_sdfEdgesAround(instance, p, sg_safeNormalize(before, dir), radius);
-}
-
-// A ray inside a closed caster at `p` (field `d` < 0 there): the emitter's visible fraction past
-// the edges of the caster's cross-section, the way the ray would have to move sideways to leave
-// it. The field's magnitude inside is the distance to the nearest surface, which in a thin caster
-// is half its thickness, not the way to its edge: a plate 2 cm thick would put every ray that
-// crosses it within 1 cm of lit, and the umbra side of every penumbra would be too light. So: the
-// edges around `p` across the ray; `p` deeper than the radius is umbra without a sample.
-float sg_sdfInsideClearance(int instance, vec3 p, vec3 dir, float d, float radius) {
-    return -d >= radius ? 0.0 : sg_sdfEdgesAround(instance, p, dir, radius);
+// The emitter's visible fraction where the ray crosses caster `instance` at `p` (the cone's
+// radius there `radius`), 1 when it turns out not to cross:
+//  - a sheet: the edges around `p` in the sheet's plane, whose normal is the field's gradient a
+//    little before the crossing;
+//  - inside a closed caster: the field's magnitude there is the way to the nearest face, not to
+//    the silhouette's edge (a plate 2 cm thick would put every ray through it within 1 cm of
+//    lit, and the umbra side of every penumbra would be too light), so the edges around `p`
+//    across the ray; `p` deeper than the radius is umbra without a sample;
+//  - a minimum of the distance within a voxel (`voxel`, m): a sheet, or a caster thinner than a
+//    voxel (a 1 mm plate in a field of 1 cm voxels, whose interpolated field need not go
+//    negative), crossed at a slant between two samples, or a surface passed close by. A
+//    crossing turns the field's gradient over (it points back along the ray before and ahead
+//    after, from opposite sides of one plane); then as for a sheet.
+float sg_sdfCrossing(int kind, int instance, vec3 p, vec3 dir, float d, float radius, float voxel) {
+    if (kind == SG_SDF_INSIDE && -d >= radius) return 0.0;
+    vec3 axis = dir;
+    if (kind != SG_SDF_INSIDE) {
+        float h = kind == SG_SDF_SHEET ? 0.25 * radius + 1e-4 : max(0.5 * voxel, 1e-4);
+        vec3 before = vec3(0.0);
+        vec3 after = vec3(0.0);
+        for (int j = 0; j < (kind == SG_SDF_THIN ? 2 : 1) + sg_runtimeZero(); ++j) {
+            vec3 g = sg_sdfGradient(instance, p + dir * (j == 0 ? -2.0 * h : 2.0 * h), h);
+            if (j == 0) before = g;
+            else after = g;
+        }
+        if (kind == SG_SDF_THIN && dot(before, after) >= 0.0) return 1.0;
+        axis = sg_safeNormalize(before, dir);
+    }
+    return sg_sdfEdgesAround(instance, p, axis, radius);
 }
 
 float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
@@ -267,13 +279,16 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
             }
         }
         bool sheet = sg_sdfRecord(near[nearest], 5).w > 0.5;
-        float u;
+        float u = 1.0;
+        int kind = -1;  // a crossing at this step (SG_SDF_*), or none
+        int crossing = near[nearest];
+        vec3 at = p;
+        float tAt = t;
+        float voxel = 0.0;
         if (sheet && d < L.sdfMinStep && d <= lastD) {
-            u = 1.0;
-            crossed = min(crossed, sg_sdfSheetClearance(near[nearest], p, dir, t * tanE));
+            kind = SG_SDF_SHEET;
         } else if (d < 0.0) {
-            u = 1.0;
-            crossed = min(crossed, sg_sdfInsideClearance(near[nearest], p, dir, d, t * tanE));
+            kind = SG_SDF_INSIDE;
         } else {
             u = d / (t * tanE);
             // The closest approach between this sample and the last: where the spheres free of
@@ -288,13 +303,16 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
         // sheet between voxel centres does not fall below about half a voxel, nor a plate
         // thinner than a voxel below zero, so a ray crossing it at a slant steps over it. The
         // distance falling to a minimum within a voxel marks a crossing or a close pass.
-        if (lastNear >= 0 && d > lastD && lastD <= lastLastD) {
-            float voxel = sg_sdfVoxelMetres(lastNear);
+        if (kind < 0 && lastNear >= 0 && d > lastD && lastD <= lastLastD) {
+            voxel = sg_sdfVoxelMetres(lastNear);
             if (lastD < voxel) {
-                float tq = t - step;
-                crossed = min(crossed, sg_sdfThinCrossing(lastNear, origin + dir * tq, dir, tq * tanE, voxel));
+                kind = SG_SDF_THIN;
+                crossing = lastNear;
+                tAt = t - step;
+                at = origin + dir * tAt;
             }
         }
+        if (kind >= 0) crossed = min(crossed, sg_sdfCrossing(kind, crossing, at, dir, d, tAt * tanE, voxel));
         lowest = min(lowest, u);
         if (lowest <= -1.0 || crossed <= 0.0) break;
         lastLastD = lastD;
