@@ -31,8 +31,8 @@ namespace {
 using namespace shadow;
 
 constexpr std::array kWidthsTexels{2, 4, 8, 16, 32, 64};
-constexpr std::array kTechniques{ShadowTechnique::Pcss, ShadowTechnique::PcssTextbook, ShadowTechnique::Vssm,
-                                 ShadowTechnique::MsmSoft, ShadowTechnique::Vsm,  ShadowTechnique::Sdf};
+constexpr std::array kTechniques{ShadowTechnique::Pcss,    ShadowTechnique::PcssTextbook, ShadowTechnique::Vssm,
+                                 ShadowTechnique::MsmSoft, ShadowTechnique::Vsm,          ShadowTechnique::Sdf};
 
 struct Options {
     std::string size = "320x240";
