@@ -1,9 +1,38 @@
 // CPU cost of the per-frame systems on the default scene: animation, transforms, and the
-// shadow system's decide phase (no GL). Google Benchmark; run build/bin/cpu_systems_bench.
+// shadow system's decide phase (no GL); and the decide phase of a game-sized scene, 1, 64 and
+// 256 shadowed lights over 10 000 instances, with the heap allocations it makes per frame in
+// steady state. Google Benchmark; run build/bin/cpu_systems_bench.
 #include <shadow/scene.h>
 #include <shadow/shadow_system.h>
 
 #include <benchmark/benchmark.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <cmath>
+#include <new>
+#include <string>
+
+namespace {
+std::atomic<long long> gAllocations{0};
+}  // namespace
+
+// Every allocation of the process, counted (the decide phase's are read around its call). The
+// replacements pair malloc with free, which GCC cannot tell from a mismatch once it sees both.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+#endif
+void* operator new(std::size_t size) {
+    gAllocations.fetch_add(1, std::memory_order_relaxed);
+    if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+    throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 
 namespace {
 
@@ -41,6 +70,58 @@ void BM_ShadowPrepare(benchmark::State& state) {
     }
 }
 BENCHMARK(BM_ShadowPrepare);
+
+/// `instances` boxes on a square grid 2 m apart over a ground, and `lights` lights 3 m above
+/// them (spot, point and, one in eight, a directional light, in turn; hard shadows, 512^2 maps),
+/// a camera above one corner looking across: what a game's level streams in.
+Scene gameSizedScene(int lights, int instances) {
+    Scene scene;
+    const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(instances))));
+    addMeshInstance(scene.world, "ground", makePlaneMesh(static_cast<float>(side)), Transform{});
+    const auto box = makeBoxMesh(glm::vec3(0.3f));
+    for (int i = 0; i < instances; ++i) {
+        Transform t;
+        t.translation = {2.0 * (i % side) - side, 0.3, 2.0 * (i / side) - side};
+        addMeshInstance(scene.world, "box " + std::to_string(i), box, t);
+    }
+    for (int i = 0; i < lights; ++i) {
+        Light light;
+        light.type = i % 8 == 7 ? LightType::Directional : (i % 2 == 0 ? LightType::Spot : LightType::Point);
+        light.range = 6.0f;
+        light.outerConeAngle = 0.8f;
+        light.innerConeAngle = 0.6f;
+        Shadow shadow;
+        shadow.mapSize = 512;
+        const int cell = (i * 7919) % (side * side);  // spread over the grid
+        const glm::dvec3 at{2.0 * (cell % side) - side, 3.0, 2.0 * (cell / side) - side};
+        addLight(scene, "light " + std::to_string(i), light, shadow, at, glm::normalize(glm::dvec3(0.2, -1.0, 0.1)));
+    }
+    addCamera(scene, "camera", Camera{}, {-side, 12.0, -side}, {0.0, 0.0, 0.0});
+    return scene;
+}
+
+// The decide phase of a frame in which nothing moved (the common frame of a game: maps kept),
+// with the allocations it made.
+void BM_ShadowPrepareGameSized(benchmark::State& state) {
+    Scene scene = gameSizedScene(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+    (void)updateTransforms(scene.world);
+    const CameraView view = makeCameraView(scene.world, scene.cameras.front(), 16.0f / 9.0f);
+    ShadowPlanner planner;
+    for (int warm = 0; warm < 3; ++warm) (void)planner.prepare(scene.world, view, scene.lights);
+    long long allocations = 0;
+    for (auto _ : state) {
+        const long long before = gAllocations.load(std::memory_order_relaxed);
+        benchmark::DoNotOptimize(planner.prepare(scene.world, view, scene.lights).lights.size());
+        allocations += gAllocations.load(std::memory_order_relaxed) - before;
+    }
+    state.counters["allocations/frame"] =
+        benchmark::Counter(static_cast<double>(allocations) / static_cast<double>(state.iterations()));
+}
+BENCHMARK(BM_ShadowPrepareGameSized)
+    ->Args({1, 10000})
+    ->Args({64, 10000})
+    ->Args({256, 10000})
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
