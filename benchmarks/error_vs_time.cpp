@@ -146,9 +146,7 @@ Result<Row> measure(const std::string& spec, const Config& config, const Options
     const Entity camera = scene.cameras.front();
     FrameRunner runner;
     runner.shadows().planner().setCaching(false);  // every frame pays for its shadow maps
-    ShadowLimits limits = runner.shadows().planner().limits();
-    limits.distanceFieldVoxels = config.fieldVoxels * config.fieldVoxels * config.fieldVoxels;
-    runner.shadows().planner().setLimits(limits);
+    samples::setFieldEdge(runner.shadows().planner(), config.fieldVoxels);
     RenderOptions options;
     options.width = width;
     options.height = height;

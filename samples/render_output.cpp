@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <nlohmann/json.hpp>
+#include <shadow/distance_field.h>
 #include <shadow/program_cache.h>
 
 #include <algorithm>
@@ -113,6 +114,15 @@ Spread spreadOf(std::vector<double> values) {
     s.min = values.front();
     s.max = values.back();
     return s;
+}
+
+static_assert(kMinFieldEdge * kMinFieldEdge * kMinFieldEdge == kMinDistanceFieldVoxels);
+static_assert(kMaxFieldEdge * kMaxFieldEdge * kMaxFieldEdge == kMaxDistanceFieldVoxels);
+
+void setFieldEdge(ShadowPlanner& planner, int edge) {
+    ShadowLimits limits = planner.limits();
+    limits.distanceFieldVoxels = edge * edge * edge;
+    planner.setLimits(limits);
 }
 
 void applyDepthMode(Shadow& s, DepthMode mode) {

@@ -5,6 +5,7 @@
 #include <shadow/renderer.h>
 #include <shadow/result.h>
 #include <shadow/scene.h>
+#include <shadow/shadow_planner.h>
 #include <shadow/stats.h>
 
 #include <optional>
@@ -60,6 +61,15 @@ struct Spread {
 
 /// Parses a technique name; error names the value.
 [[nodiscard]] Result<ShadowTechnique> parseTechnique(const std::string& name);
+
+/// The range of `--field-voxels`, voxels along a distance field's edge: the cube roots of the
+/// bake's limits (kMinDistanceFieldVoxels, kMaxDistanceFieldVoxels).
+inline constexpr int kMinFieldEdge = 16;
+inline constexpr int kMaxFieldEdge = 256;
+
+/// Gives `planner` fields of `edge`^3 voxels (`ShadowLimits::distanceFieldVoxels`), its other
+/// limits kept.
+void setFieldEdge(ShadowPlanner& planner, int edge);
 
 /// Sets `s` to depth mode `mode` as the modes are meant to be used: midpoint and second with
 /// zero constant and slope bias (the surface behind the first is the margin), nearest as set.

@@ -3,7 +3,7 @@
 //   shadow_render SCENE [--out DIR] [--size WxH] [--camera N] [--time T] [--frames N --dt S]
 //                 [--technique NAME] [--depth-mode MODE] [--aov color,visibility,position,depth]
 //                 [--debug NAME] [--debug-light I] [--frame-images] [--no-cache] [--exposure E]
-//                 [--shader-cache DIR] [--field-voxels N]
+//                 [--shader-cache DIR] [--field-voxels N] [--sdf-start-offset M]
 //
 // SCENE is a .gltf/.glb path or builtin:NAME. With --frames N the scene is animated from
 // --time T in steps of --dt S; the images are those of the last frame and the timings in
@@ -47,7 +47,8 @@ struct Options {
     int debugLight = 0;
     bool frameImages = false;
     bool noCache = false;
-    int fieldVoxels = 64;  ///< technique sdf: voxels along each mesh field's edge (cubed: the budget)
+    int fieldVoxels = 64;                 ///< technique sdf: voxels along each mesh field's edge (cubed: the budget)
+    std::optional<float> sdfStartOffset;  ///< absent: each light keeps its own
     std::string shaderCache;
     std::optional<float> exposure;  ///< absent: from the first frame read back (autoExposure)
 };
@@ -129,7 +130,13 @@ int run(const Options& o) {
     }
     if (!std::isfinite(o.dt)) return fail(kExitBadInput, "--dt: must be a finite number of seconds");
     if (o.frames < 1 || o.frames > 100000) return fail(kExitBadInput, "--frames: must be in [1, 100000]");
-    if (o.fieldVoxels < 16 || o.fieldVoxels > 256) return fail(kExitBadInput, "--field-voxels: must be in [16, 256]");
+    if (o.fieldVoxels < samples::kMinFieldEdge || o.fieldVoxels > samples::kMaxFieldEdge) {
+        return fail(kExitBadInput, "--field-voxels: must be in [" + std::to_string(samples::kMinFieldEdge) + ", " +
+                                       std::to_string(samples::kMaxFieldEdge) + "]");
+    }
+    if (o.sdfStartOffset && !(*o.sdfStartOffset >= 0.0f && *o.sdfStartOffset <= 1.0f)) {
+        return fail(kExitBadInput, "--sdf-start-offset: must be a number of metres in [0, 1]");
+    }
     if (o.camera && *o.camera < 0)
         return fail(kExitBadInput, "--camera " + std::to_string(*o.camera) + ": must be >= 0");
 
@@ -145,6 +152,9 @@ int run(const Options& o) {
     }
     if (depthMode) {
         scene.world.view<Shadow>().each([&](Entity, Shadow& s) { samples::applyDepthMode(s, *depthMode); });
+    }
+    if (o.sdfStartOffset) {
+        scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.sdfStartOffset = *o.sdfStartOffset; });
     }
     Result<Entity> chosen = samples::chooseCamera(scene, o.camera, o.time);
     if (!chosen) return fail(kExitBadInput, chosen.error().message);
@@ -175,9 +185,7 @@ int run(const Options& o) {
 
     FrameRunner runner;
     runner.shadows().planner().setCaching(!o.noCache);
-    ShadowLimits limits = runner.shadows().planner().limits();
-    limits.distanceFieldVoxels = o.fieldVoxels * o.fieldVoxels * o.fieldVoxels;
-    runner.shadows().planner().setLimits(limits);
+    samples::setFieldEdge(runner.shadows().planner(), o.fieldVoxels);
     std::vector<FrameStats> frames;
     std::optional<float> exposure = o.exposure;
     if (o.frameImages) std::filesystem::create_directories(o.out + "/frames");
@@ -238,6 +246,8 @@ int main(int argc, char** argv) {
     app.add_option(
         "--field-voxels", o.fieldVoxels,
         "technique sdf: voxels along the edge of each mesh's distance field, [16, 256] (default 64: 64^3 voxels)");
+    app.add_option("--sdf-start-offset", o.sdfStartOffset,
+                   "technique sdf: override every light's sdfStartOffset (m), [0, 1]");
     app.add_option("--shader-cache", o.shaderCache,
                    "folder of linked program binaries, read and written (the driver's own cache aside)");
     try {

@@ -260,7 +260,7 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
     tStop = min(tStop, tEnd);
 
     float t = L.sdfStartOffset;
-    float lowest = 1.0;   // smallest u seen outside the casters
+    float lowest = 1.0;   // smallest u seen outside the casters (>= 0)
     float crossed = 1.0;  // smallest visible fraction where the ray crossed a caster
     float lastD = -1.0;  // none yet
     float lastLastD = -1.0;
@@ -278,14 +278,13 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
                 nearest = k;
             }
         }
-        bool sheet = sg_sdfRecord(near[nearest], 5).w > 0.5;
         float u = 1.0;
         int kind = -1;  // a crossing at this step (SG_SDF_*), or none
         int crossing = near[nearest];
         vec3 at = p;
         float tAt = t;
         float voxel = 0.0;
-        if (sheet && d < L.sdfMinStep && d <= lastD) {
+        if (d >= 0.0 && d < L.sdfMinStep && d <= lastD && sg_sdfRecord(near[nearest], 5).w > 0.5) {  // a sheet
             kind = SG_SDF_SHEET;
         } else if (d < 0.0) {
             kind = SG_SDF_INSIDE;
@@ -314,7 +313,7 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
         }
         if (kind >= 0) crossed = min(crossed, sg_sdfCrossing(kind, crossing, at, dir, d, tAt * tanE, voxel));
         lowest = min(lowest, u);
-        if (lowest <= -1.0 || crossed <= 0.0) break;
+        if (crossed <= 0.0) break;
         lastLastD = lastD;
         lastD = d;
         lastNear = d >= 0.0 ? near[nearest] : -1;
@@ -324,7 +323,7 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
     SG_DEBUG_STORE(sg_debugMarchSteps, float(steps));
     float visible = min(sg_sdfVisibleFraction(lowest), crossed);
     // The debug view's clearance: u outside, and a crossing's fraction mapped onto [-1, 1].
-    SG_DEBUG_STORE(sg_debugClosest, min(clamp(lowest, -1.0, 1.0), 2.0 * crossed - 1.0));
+    SG_DEBUG_STORE(sg_debugClosest, min(min(lowest, 1.0), 2.0 * crossed - 1.0));
     return visible;
 }
 

@@ -247,6 +247,12 @@ TEST(ShadowRenderCli, BadInputExitsWithCode2AndWritesNothing) {
         {"exposure negative", "--exposure -1", "builtin:default", "--exposure"},
         {"exposure infinite", "--exposure inf", "builtin:default", "--exposure"},
         {"flag with a malformed value", "--no-cache=maybe", "builtin:default", "--no-cache"},
+        {"field voxels too few", "--field-voxels 8", "builtin:default", "--field-voxels"},
+        {"field voxels too many", "--field-voxels 512", "builtin:default", "--field-voxels"},
+        {"field voxels not an integer", "--field-voxels x", "builtin:default", "--field-voxels"},
+        {"start offset negative", "--sdf-start-offset -1", "builtin:default", "--sdf-start-offset"},
+        {"start offset NaN", "--sdf-start-offset nan", "builtin:default", "--sdf-start-offset"},
+        {"start offset over 1 m", "--sdf-start-offset 2", "builtin:default", "--sdf-start-offset"},
         {"unknown flag", "--bogus", "builtin:default", "--bogus"},
         {"extra argument", "extra", "builtin:default", "extra"},
     };

@@ -127,7 +127,8 @@ struct ShadowLimits {
     /// Technique sdf: most voxels of one mesh's distance field (`DistanceFieldSettings::
     /// voxelBudget`), [kMinDistanceFieldVoxels, kMaxDistanceFieldVoxels], clamped. Default 64^3
     /// (1 MiB a field; the Stanford bunny's voxel 2 cm at 1.2 m tall). A field whose longest
-    /// axis would pass the atlas's 128 voxels gets an eighth of the budget, round by round.
+    /// axis would pass the atlas's 128 voxels is baked again with its budget cut by the cube of
+    /// that excess, until it fits (or reaches the minimum and is refused with a warning).
     /// Changing it bakes every field again on the next frame.
     int distanceFieldVoxels = 64 * 64 * 64;
 };
