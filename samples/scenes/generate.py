@@ -566,12 +566,12 @@ def shuttle_keys(start, end, duration, keys=16, phase=0.0):
     return loop_times(duration, keys), values
 
 
-def roll_keys(start_x, end_x, radius, duration, keys, base):
+def roll_keys(start_x, end_x, radius, duration, keys, base, phase=0.0):
     """Rotation keys of a wheel of `radius` on a body moving as `shuttle_keys` does along X.
     Keys close enough that each step turns less than half a turn (slerp takes the short way)."""
     values = []
     for k in range(keys + 1):
-        u = 0.5 - 0.5 * math.cos(2.0 * math.pi * k / keys)
+        u = 0.5 - 0.5 * math.cos(2.0 * math.pi * k / keys + phase)
         angle = -(end_x - start_x) * u / radius
         values.append(quat_mul(base, quat_axis_angle((0, 1, 0), angle)))
     return loop_times(duration, keys), values
@@ -592,7 +592,7 @@ def courtyard():
     swinging lantern and a sliding cart under eight coloured lights and a dim moon."""
     g = Gltf("courtyard")
     stone = g.material("sandstone", (0.72, 0.52, 0.36), 0.85)
-    paving = g.material("paving", (0.46, 0.42, 0.40), 0.9)
+    paving = g.material("paving", (0.58, 0.47, 0.38), 0.9)
     plaster = g.material("ochre plaster", (0.80, 0.58, 0.30), 0.9)
     plaster2 = g.material("rose plaster", (0.70, 0.36, 0.32), 0.9)
     bronze = g.material("bronze", (0.80, 0.55, 0.25), 0.35, 0.9)
@@ -613,9 +613,9 @@ def courtyard():
 
     g.node("ground", mesh=ground)
     # Walls: north (back), west and east, leaving the south open to the camera.
-    g.node("north wall", mesh=wall_a, t=(0, 3.0, -9.0), s=(20.0, 6.0, 0.6))
-    g.node("west wall", mesh=wall_b, t=(-10.0, 2.5, -2.0), s=(0.6, 5.0, 14.0))
-    g.node("east wall", mesh=wall_a, t=(10.0, 2.0, -3.0), s=(0.6, 4.0, 12.0))
+    g.node("north wall", mesh=wall_a, t=(0, 4.0, -9.0), s=(20.0, 8.0, 0.6))
+    g.node("west wall", mesh=wall_b, t=(-10.0, 3.5, -2.0), s=(0.6, 7.0, 14.0))
+    g.node("east wall", mesh=wall_b, t=(10.0, 3.0, -1.0), s=(0.6, 6.0, 16.0))
     # The arcade along the west side: columns carrying arches and a beam above them.
     for k in range(5):
         z = -7.0 + 3.0 * k
@@ -627,7 +627,12 @@ def courtyard():
     # Steps and benches: low casters for the ground lights.
     g.node("step", mesh=stone_box, t=(2.0, 0.15, -7.6), s=(6.0, 0.3, 2.2))
     g.node("bench west", mesh=stone_box, t=(-3.2, 0.25, 3.0), s=(0.6, 0.5, 2.2))
-    g.node("bench east", mesh=stone_box, t=(6.5, 0.25, -2.0), s=(2.2, 0.5, 0.6))
+    g.node("bench east", mesh=stone_box, t=(7.6, 0.25, -1.5), s=(2.2, 0.5, 0.6))
+    barrel = g.mesh("barrel", [(lathe([(0.3, 0.0), (0.36, 0.45), (0.3, 0.9)], 14), wood)])
+    for k, (x, z) in enumerate(((8.8, 1.2), (8.9, 2.0), (8.0, 1.6))):
+        g.node("barrel %d" % k, mesh=barrel, t=(x, 0.0, z))
+    g.node("crate", mesh=g.mesh("crate", [(unit, teal)]), t=(8.6, 0.35, 3.2), s=(0.7, 0.7, 0.7),
+           r=quat_axis_angle((0, 1, 0), 0.3))
 
     # The sculpture: two interlocked rings on a plinth, turning.
     g.node("plinth", mesh=stone_box, t=(1.0, 0.5, -2.0), s=(1.4, 1.0, 1.4))
@@ -644,20 +649,20 @@ def courtyard():
 
     # The lantern: an iron arm from the east wall, a chain pivot swinging, a lamp that casts
     # nothing itself (its light sits inside it).
-    g.node("lantern arm", mesh=g.mesh("iron bar", [(unit, iron)]), t=(9.2, 3.6, 0.0), s=(1.6, 0.08, 0.08))
-    pivot = g.node("lantern pivot", t=(8.5, 3.6, 0.0))
+    g.node("lantern arm", mesh=g.mesh("iron bar", [(unit, iron)]), t=(8.9, 3.2, 1.8), s=(1.6, 0.08, 0.08))
+    pivot = g.node("lantern pivot", t=(8.2, 3.2, 1.8))
     g.animate(pivot, "rotation", *swing_keys((1, 0, 0.3), 0.45, duration, keys=24, cycles=3))
     g.node("lantern chain", parent=pivot, mesh=g.mesh("iron bar", []), t=(0, -0.45, 0), s=(0.03, 0.9, 0.03))
     lamp = g.mesh("lantern", [(merge(box(0.14, 0.2, 0.14), transformed(box(0.2, 0.03, 0.2), (0, 0.22, 0))),
                                glass)])
     g.node("lantern lamp", parent=pivot, mesh=lamp, t=(0, -1.1, 0), extras={"shadow": {"cast": False}})
-    g.light("lantern light", "point", (1.0, 0.62, 0.28), 12.0,
+    g.light("lantern light", "point", (1.0, 0.62, 0.28), 8.0,
             shadow_settings("pcss", 1024, radius=0.12), eye=(0, -1.1, 0), parent=pivot, range_=14.0)
 
     # The cart: a body on four wheels sliding along the south side, wheels turning.
     cart = g.node("cart", t=(-2.0, 0.0, 4.2))
     cart_start, cart_end = (-2.5, 0.0, 4.2), (5.0, 0.0, 4.2)
-    g.animate(cart, "translation", *shuttle_keys(cart_start, cart_end, duration, keys=96))
+    g.animate(cart, "translation", *shuttle_keys(cart_start, cart_end, duration, keys=96, phase=0.5 * math.pi))
     g.node("cart body", parent=cart, mesh=g.mesh("cart body", [(unit, wood)]), t=(0, 0.75, 0), s=(1.8, 0.5, 1.0))
     g.node("cart load", parent=cart, mesh=g.mesh("cart load", [(unit, red)]), t=(0.2, 1.2, 0), s=(0.9, 0.4, 0.7))
     wheel = g.mesh("wheel", [(transformed(cylinder(0.35, 0.1, 14), (0, -0.05, 0)), iron)])
@@ -666,28 +671,33 @@ def courtyard():
         # The wheels roll without slipping: turned by -distance / radius about their axle
         # (local +Y, world +Z once the cylinder is laid on its side).
         base = quat_axis_angle((1, 0, 0), math.pi / 2)
-        g.animate(hub, "rotation", *roll_keys(cart_start[0], cart_end[0], 0.35, duration, keys=96, base=base))
+        g.animate(hub, "rotation", *roll_keys(cart_start[0], cart_end[0], 0.35, duration, keys=96, base=base,
+                                                    phase=0.5 * math.pi))
         g.node("wheel %d rim" % k, parent=hub, mesh=wheel)
 
     # Lights: a dim moon and eight coloured lamps, mixed techniques, one without shadows.
-    g.light("moon", "directional", (0.55, 0.65, 1.0), 0.25,
+    g.light("moon", "directional", (0.55, 0.65, 1.0), 0.08,
             shadow_settings("pcf", 2048, angularRadius=0.01, cascades=2, pcfRadius=0.06, shadowDistance=40.0),
-            direction=(-0.3, -0.6, -0.5))
-    g.light("sculpture spot", "spot", (1.0, 0.55, 0.25), 90.0, shadow_settings("pcss", 2048, radius=0.25),
-            eye=(6.0, 5.5, 3.0), target=(1.0, 0.5, -2.5), range_=30.0, inner=0.35, outer=0.55)
-    g.light("arcade spot", "spot", (0.35, 0.6, 1.0), 70.0, shadow_settings("pcss", 2048, radius=0.15),
-            eye=(2.5, 5.0, 5.0), target=(-6.0, 1.0, -2.0), range_=30.0, inner=0.45, outer=0.7)
-    g.light("wall wash", "spot", (0.9, 0.25, 0.6), 50.0, shadow_settings("pcf", 1024, pcfRadius=0.04),
-            eye=(-3.0, 0.3, 1.5), target=(2.0, 3.5, -9.0), range_=25.0, inner=0.3, outer=0.5)
-    g.light("step lamp", "point", (0.35, 1.0, 0.45), 6.0, shadow_settings("hard", 1024),
-            eye=(4.5, 0.9, -6.2), range_=10.0)
-    g.light("arcade lamp", "point", (1.0, 0.8, 0.5), 5.0, shadow_settings("pcss", 1024, radius=0.08),
-            eye=(-7.8, 2.6, -4.0), range_=10.0)
-    g.light("cart spot", "spot", (1.0, 0.9, 0.7), 40.0, shadow_settings("hard", 1024),
-            eye=(8.0, 4.0, 7.0), target=(1.5, 0.5, 4.0), range_=25.0, inner=0.25, outer=0.4)
-    g.light("fill", "point", (0.4, 0.45, 1.0), 4.0, shadow_settings("none"), eye=(0.0, 4.0, 8.0), range_=20.0)
+            direction=(-0.35, -0.6, -0.5))
+    # From behind the sculpture: the rings' shadow turning on the ground in front of it.
+    g.light("sculpture spot", "spot", (1.0, 0.55, 0.25), 150.0, shadow_settings("pcss", 2048, radius=0.3),
+            eye=(-1.5, 7.0, -7.0), target=(2.2, 0.0, 1.5), range_=30.0, inner=0.28, outer=0.42)
+    # Throws the columns' shadows through the arches on the west wall.
+    g.light("arcade spot", "spot", (0.35, 0.6, 1.0), 110.0, shadow_settings("pcss", 2048, radius=0.15),
+            eye=(3.0, 4.5, 4.0), target=(-8.0, 1.5, -3.0), range_=30.0, inner=0.35, outer=0.55)
+    # Low in front of the sculpture: its shadow, magnified, on the north wall.
+    g.light("wall wash", "spot", (0.9, 0.25, 0.6), 60.0, shadow_settings("pcf", 1024, pcfRadius=0.04),
+            eye=(1.0, 0.5, 2.8), target=(1.0, 3.5, -9.0), range_=25.0, inner=0.3, outer=0.45)
+    g.light("step lamp", "point", (0.35, 1.0, 0.45), 5.0, shadow_settings("hard", 1024),
+            eye=(4.5, 0.9, -6.2), range_=8.0)
+    g.light("arcade lamp", "point", (1.0, 0.75, 0.45), 5.0, shadow_settings("pcss", 1024, radius=0.08),
+            eye=(-7.8, 2.6, -2.5), range_=9.0)
+    # Over the cart's path from the front: its hard shadow slides along behind it.
+    g.light("cart spot", "spot", (1.0, 0.9, 0.7), 60.0, shadow_settings("hard", 1024),
+            eye=(1.2, 6.0, 9.0), target=(1.2, 0.0, 3.6), range_=25.0, inner=0.45, outer=0.6)
+    g.light("fill", "point", (0.4, 0.45, 1.0), 1.0, shadow_settings("none"), eye=(0.0, 4.0, 8.0), range_=20.0)
 
-    g.camera("camera", eye=(7.5, 4.2, 11.0), target=(-0.5, 1.2, -2.5), yfov=0.85, zfar=100.0)
+    g.camera("camera", eye=(7.0, 3.0, 9.0), target=(-0.5, 1.3, -2.5), yfov=0.9, zfar=100.0)
     return g
 
 
@@ -697,7 +707,7 @@ def sunfield():
     g = Gltf("sunfield")
     grass = g.material("meadow", (0.32, 0.48, 0.16), 0.95)
     road = g.material("dust road", (0.62, 0.50, 0.36), 0.95)
-    sky = g.material("sky", (0.45, 0.62, 0.95), 1.0)
+    sky = g.material("sky", (0.35, 0.55, 1.0), 1.0)
     bark = g.material("bark", (0.36, 0.22, 0.12), 0.9)
     leaves = [g.material("leaves %d" % k, c, 0.8) for k, c in
               enumerate(((0.18, 0.45, 0.12), (0.28, 0.52, 0.10), (0.45, 0.55, 0.12)))]
@@ -708,10 +718,13 @@ def sunfield():
 
     g.node("ground", mesh=g.mesh("ground", [(plane(300.0, 300.0, 6), grass)]))
     g.node("road", mesh=g.mesh("road", [(transformed(plane(6.0, 300.0, 1), (0, 0.02, 0)), road)]), t=(4.0, 0, 0))
-    # The sky: a hemisphere seen from inside, lit by the sun, neither casting nor receiving.
+    # The sky: a hemisphere seen from inside, neither casting nor receiving. Its normals lean
+    # toward the sun, so that it is lit evenly, brighter toward the sun, and never black.
+    sun_direction = (-1.0, -0.42, -0.55)
+    to_sun = scale(normalize(sun_direction), -1.0)
     dome = lathe([(400.0 * math.cos(math.pi / 2 * k / 8), 400.0 * math.sin(math.pi / 2 * k / 8) - 20.0)
                   for k in range(9)], 32, caps=False)
-    dome["normals"] = [scale(n, -1.0) for n in dome["normals"]]
+    dome["normals"] = [normalize(add(scale(to_sun, 1.6), scale(n, -1.0))) for n in dome["normals"]]
     dome["indices"] = [i for t in range(0, len(dome["indices"]), 3)
                        for i in (dome["indices"][t], dome["indices"][t + 2], dome["indices"][t + 1])]
     g.node("sky", mesh=g.mesh("sky", [(dome, sky)]), extras={"shadow": {"cast": False, "receive": False}})
@@ -733,7 +746,7 @@ def sunfield():
     def free(x, z, clearance):
         if abs(x - 4.0) < 4.0 + clearance:  # keep the road clear
             return False
-        if abs(x) < 3.0 and -6.0 < z < 6.0:  # and the camera's own spot
+        if x * x + (z - 4.0) ** 2 < 14.0 ** 2:  # and the camera's foreground (the near group's)
             return False
         return all((x - px) ** 2 + (z - pz) ** 2 > (clearance + pr) ** 2 for px, pz, pr in placed)
 
@@ -766,7 +779,8 @@ def sunfield():
     truck = merge(transformed(box(), (0, 1.4, 0), (2.4, 2.2, 5.0)), transformed(box(), (0, 1.1, 3.2), (2.4, 1.6, 1.4)))
     truck_mesh = g.mesh("truck", [(truck, paints[0])])
     truck_a = g.node("truck a", mesh=truck_mesh, t=(5.5, 0, -20))
-    g.animate(truck_a, "translation", *shuttle_keys((5.5, 0, -12.0), (5.5, 0, -90.0), duration, keys=24))
+    g.animate(truck_a, "translation", *shuttle_keys((5.5, 0, -16.0), (5.5, 0, -90.0), duration, keys=24,
+                                                    phase=0.5 * math.pi))
     truck_b = g.node("truck b", mesh=truck_mesh, t=(2.5, 0, -60), r=quat_axis_angle((0, 1, 0), math.pi))
     g.animate(truck_b, "translation", *shuttle_keys((2.5, 0, -110.0), (2.5, 0, -30.0), duration, keys=24))
     mill_x, mill_z = -14.0, -38.0
@@ -786,7 +800,7 @@ def sunfield():
     g.light("sun", "directional", (1.0, 0.86, 0.66), 5.0,
             shadow_settings("pcss", 2048, angularRadius=0.012, cascades=4, cascadeSplitLambda=0.8,
                             shadowDistance=160.0),
-            direction=(-1.0, -0.42, -0.55))
+            direction=sun_direction)
     g.camera("camera", eye=(0.5, 1.7, 4.0), target=(-1.5, 1.2, -40.0), yfov=0.7, znear=0.2, zfar=600.0)
     return g
 
@@ -796,18 +810,18 @@ def contact():
     platform under a large spot emitter (PCSS), camera close."""
     g = Gltf("contact")
     floor = g.material("terracotta floor", (0.78, 0.45, 0.30), 0.9)
-    disc = g.material("slate turntable", (0.30, 0.40, 0.48), 0.7)
+    disc = g.material("teal turntable", (0.20, 0.46, 0.50), 0.7)
     pole_m = g.material("yellow pole", (0.95, 0.75, 0.15), 0.4)
     plank_m = g.material("blue plank", (0.20, 0.40, 0.80), 0.6)
     ball_m = g.material("red ball", (0.85, 0.15, 0.15), 0.3)
     cube_m = g.material("green cube", (0.25, 0.70, 0.35), 0.6)
 
-    g.node("floor", mesh=g.mesh("floor", [(plane(12.0, 12.0, 2), floor)]))
+    g.node("floor", mesh=g.mesh("floor", [(plane(40.0, 40.0, 2), floor)]))
     table = g.node("turntable", t=(0, 0, 0))
     g.animate(table, "rotation", *spin_keys((0, 1, 0), 24.0))
     g.node("disc", parent=table, mesh=g.mesh("disc", [(cylinder(1.6, 0.04, 48), disc)]))
     top = 0.04
-    g.node("pole", parent=table, mesh=g.mesh("pole", [(cylinder(0.025, 1.8, 12), pole_m)]), t=(-0.45, top, 0.2))
+    g.node("pole", parent=table, mesh=g.mesh("pole", [(cylinder(0.03, 1.6, 12), pole_m)]), t=(-0.45, top, 0.2))
     # The plank leans 35 degrees off the vertical, one bottom edge resting on the disc.
     lean = math.radians(35.0)
     length, thick = 1.4, 0.025
@@ -821,10 +835,10 @@ def contact():
            r=quat_axis_angle((0, 1, 0), 0.5))
 
     g.light("big softbox", "spot", (1.0, 0.88, 0.72), 60.0,
-            shadow_settings("pcss", 2048, radius=0.45, blockerSamples=24, pcfSamples=32),
-            eye=(1.3, 3.2, 0.9), target=(0.0, 0.0, 0.0), range_=20.0, inner=0.6, outer=0.9)
+            shadow_settings("pcss", 2048, radius=0.5, blockerSamples=24, pcfSamples=32),
+            eye=(1.1, 3.0, 0.5), target=(-0.2, 0.0, -0.3), range_=20.0, inner=0.8, outer=1.1)
     g.light("cool fill", "point", (0.45, 0.6, 1.0), 2.5, shadow_settings("none"), eye=(-2.5, 1.8, 2.5), range_=15.0)
-    g.camera("camera", eye=(0.4, 1.05, 2.3), target=(-0.05, 0.3, 0.0), yfov=0.75, znear=0.05, zfar=30.0)
+    g.camera("camera", eye=(0.5, 1.7, 1.9), target=(-0.2, 0.1, -0.3), yfov=0.8, znear=0.05, zfar=30.0)
     return g
 
 
@@ -870,7 +884,7 @@ def character():
                enumerate(((0.85, 0.25, 0.45), (0.30, 0.65, 0.85), (0.95, 0.60, 0.15)))]
     rock = g.material("rock", (0.40, 0.45, 0.38), 0.9)
 
-    g.node("floor", mesh=g.mesh("floor", [(plane(16.0, 16.0, 2), floor)]))
+    g.node("floor", mesh=g.mesh("floor", [(plane(40.0, 40.0, 2), floor)]))
     g.node("stage", mesh=g.mesh("stage", [(cylinder(2.6, 0.15, 40), stage)]))
     g.node("rock a", mesh=g.mesh("rock", [(box(), rock)]), t=(-2.4, 0.35, -1.5), s=(0.8, 0.7, 0.9),
            r=quat_axis_angle((0.2, 1, 0.1), 0.7))
@@ -912,10 +926,10 @@ def character():
 
     g.light("sun", "directional", (1.0, 0.92, 0.80), 2.5,
             shadow_settings("pcf", 2048, angularRadius=0.01, cascades=2, pcfRadius=0.04, shadowDistance=30.0),
-            direction=(0.5, -1.0, -0.6))
-    g.light("stage spot", "spot", (1.0, 0.55, 0.85), 70.0, shadow_settings("pcss", 2048, radius=0.2),
+            direction=(0.75, -0.8, -0.45))
+    g.light("stage spot", "spot", (1.0, 0.55, 0.85), 120.0, shadow_settings("pcss", 2048, radius=0.2),
             eye=(-3.0, 5.0, 3.0), target=(0.0, 0.8, 0.0), range_=25.0, inner=0.35, outer=0.55)
-    g.camera("camera", eye=(2.8, 2.6, 6.2), target=(0.0, 1.1, 0.0), yfov=0.75, zfar=60.0)
+    g.camera("camera", eye=(2.4, 3.4, 5.2), target=(0.2, 0.6, -0.6), yfov=0.8, zfar=60.0)
     return g
 
 
@@ -930,15 +944,19 @@ def fence():
     g = Gltf("fence")
     ground_tex = g.texture("checker", checker_png(128, 8, (196, 164, 120), (120, 150, 96)))
     lattice_tex = g.texture("lattice", lattice_png(128, 4, 0.06, (235, 225, 205)))
-    leaf_tex = g.texture("leaf", leaf_png(64, (90, 180, 60)), wrap=CLAMP_TO_EDGE)
-    ground = g.material("checker ground", (1.0, 1.0, 1.0), 0.9, texture=ground_tex)
-    lattice = g.material("lattice", (0.95, 0.80, 0.60), 0.7, texture=lattice_tex, mask=True, double_sided=True)
-    leaf = g.material("leaf", (0.85, 1.0, 0.7), 0.6, texture=leaf_tex, mask=True, double_sided=True)
+    leaf_tex = g.texture("leaf", leaf_png(64, (215, 250, 190)), wrap=CLAMP_TO_EDGE)
+    # The factors multiply the textures; alone (a loader without textures) they are the colours.
+    ground = g.material("checker ground", (0.78, 0.68, 0.52), 0.9, texture=ground_tex)
+    lattice = g.material("lattice", (0.85, 0.32, 0.22), 0.7, texture=lattice_tex, mask=True, double_sided=True)
+    leaf = g.material("leaf", (0.40, 0.78, 0.25), 0.6, texture=leaf_tex, mask=True, double_sided=True)
     post = g.material("post", (0.45, 0.28, 0.16), 0.8)
     branch = g.material("branch", (0.35, 0.22, 0.12), 0.9)
     pot = g.material("pot", (0.75, 0.35, 0.20), 0.7)
+    hedge = g.material("hedge", (0.22, 0.45, 0.20), 0.9)
 
     g.node("ground", mesh=g.mesh("ground", [(plane(20.0, 20.0, 2, uv_repeat=5.0), ground, True)]))
+    # A hedge behind the fence, to catch the spot's lattice shadows.
+    g.node("hedge", mesh=g.mesh("hedge", [(box(), hedge)]), t=(0.0, 1.6, -3.2), s=(12.0, 3.2, 1.0))
     panel = g.mesh("lattice panel", [(card(1.8, 1.5), lattice, True)])
     post_mesh = g.mesh("post", [(box(), post)])
     duration = 8.0
@@ -953,8 +971,8 @@ def fence():
 
     # A branch over the front with leaf cards hanging from it, each on its own stalk swaying.
     g.node("planter", mesh=g.mesh("planter", [(lathe([(0.3, 0.0), (0.4, 0.5)], 16), pot)]), t=(2.2, 0, 1.3))
-    g.node("stem", mesh=g.mesh("stem", [(cylinder(0.04, 2.3, 8), branch)]), t=(2.2, 0.4, 1.3))
-    bough = g.node("bough", mesh=g.mesh("bough", [(cylinder(0.03, 2.6, 8), branch)]), t=(2.2, 2.6, 1.3),
+    g.node("stem", mesh=g.mesh("stem", [(cylinder(0.04, 1.6, 8), branch)]), t=(2.2, 0.4, 1.3))
+    bough = g.node("bough", mesh=g.mesh("bough", [(cylinder(0.03, 2.6, 8), branch)]), t=(2.2, 1.95, 1.3),
                    r=quat_axis_angle((0, 0, 1), math.radians(75.0)))
     g.animate(bough, "rotation", *swing_keys((1, 0, 0), 0.08, duration, keys=16,
                                              base=quat_axis_angle((0, 0, 1), math.radians(75.0))))
@@ -962,21 +980,21 @@ def fence():
     rng = Lcg(7)
     for k in range(9):
         along = 0.25 + 0.26 * k
-        stalk = g.node("leaf %d stalk" % k, parent=bough, t=(0.0, along, 0.0),
-                       r=quat_axis_angle((0, 0, 1), math.radians(-75.0)))
+        # Undo the bough's tilt, turn the card about the vertical, hang it upside down.
         yaw = rng.uniform(-1.0, 1.0)
-        base = quat_mul(quat_axis_angle((0, 1, 0), yaw), quat_axis_angle((1, 0, 0), math.pi + rng.uniform(-0.6, 0.6)))
+        hang = quat_mul(quat_axis_angle((0, 1, 0), yaw), quat_axis_angle((1, 0, 0), math.pi + rng.uniform(-0.6, 0.6)))
+        base = quat_mul(quat_axis_angle((0, 0, 1), math.radians(-75.0)), hang)
+        stalk = g.node("leaf %d stalk" % k, parent=bough, t=(0.0, along, 0.0), r=base)
         g.animate(stalk, "rotation", *swing_keys((1, 0, 0), 0.25, duration, keys=16, phase=1.3 * k, cycles=2,
-                                                 base=quat_mul(quat_axis_angle((0, 0, 1), math.radians(-75.0)),
-                                                               base)))
+                                                 base=base))
         g.node("leaf %d" % k, parent=stalk, mesh=leaf_mesh)
 
     g.light("sun", "directional", (1.0, 0.9, 0.75), 4.0,
             shadow_settings("pcss", 2048, angularRadius=0.015, cascades=2, shadowDistance=25.0),
             direction=(-0.45, -0.8, 0.55))
-    g.light("spot", "spot", (0.5, 0.7, 1.0), 50.0, shadow_settings("pcf", 2048, pcfRadius=0.03),
-            eye=(-3.5, 3.5, -4.5), target=(0.5, 0.0, 1.5), range_=25.0, inner=0.4, outer=0.6)
-    g.camera("camera", eye=(1.0, 2.2, 6.5), target=(0.0, 0.7, 0.0), yfov=0.8, zfar=60.0)
+    g.light("spot", "spot", (0.75, 0.85, 1.0), 80.0, shadow_settings("pcf", 2048, pcfRadius=0.03),
+            eye=(-3.5, 3.2, 4.0), target=(0.3, 0.8, -1.5), range_=25.0, inner=0.4, outer=0.6)
+    g.camera("camera", eye=(1.2, 1.7, 6.0), target=(0.2, 1.0, -0.5), yfov=0.8, zfar=60.0)
     return g
 
 
