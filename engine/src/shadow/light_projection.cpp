@@ -9,6 +9,8 @@
 #include <array>
 #include <cassert>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 namespace shadow {
 namespace {
@@ -19,6 +21,13 @@ double quantizeUp(double x) {
     if (!(x > 0.0)) return 1e-6;
     const double step = std::exp2(std::floor(std::log2(x)) - 4.0);
     return std::ceil(x / step) * step;
+}
+
+/// Rounds `x` > 0 down to a multiple of the same step as `quantizeUp`.
+double quantizeDown(double x) {
+    if (!(x > 0.0)) return x;
+    const double step = std::exp2(std::floor(std::log2(x)) - 4.0);
+    return std::floor(x / step) * step;
 }
 
 /// Light-space bounds of a world box under the affine `lightFromWorld`.
@@ -104,6 +113,123 @@ std::array<glm::dvec3, 8> sliceCorners(const CameraView& cam, double a, double b
     return out;
 }
 
+/// The camera frustum in view space (x right, y up, looking along -z; view depth d = -z), from
+/// the near plane to `far`: planes (n, w), inside where dot(n, p) + w >= 0, and what testing a
+/// world box against them needs.
+struct ViewVolume {
+    glm::dmat4 viewFromWorld{1.0};
+    std::array<glm::dvec4, 6> vsPlanes{};  ///< near, far, left, right, bottom, top
+    /// Per plane, |n . world axis i in view space|: a world box of half-size h reaches
+    /// dot(h, planeReach[p]) either side of its centre along that plane's normal.
+    std::array<glm::dvec3, 6> planeReach{};
+    glm::dvec3 depthReach{0.0};             ///< the same along the view axis
+    std::array<glm::dvec3, 8> wsCorners{};  ///< sliceCorners(near, far)
+    double near = 0.0;
+    double far = 0.0;
+};
+
+ViewVolume viewVolume(const CameraView& cam, double far) {
+    ViewVolume v;
+    v.viewFromWorld = cam.viewFromWorld;
+    v.near = cam.znear;
+    v.far = far;
+    const double ty = std::tan(0.5 * static_cast<double>(cam.yfov));
+    const double tx = ty * static_cast<double>(cam.aspect);
+    v.vsPlanes = {glm::dvec4(0.0, 0.0, -1.0, -v.near), glm::dvec4(0.0, 0.0, 1.0, far), glm::dvec4(1.0, 0.0, -tx, 0.0),
+                  glm::dvec4(-1.0, 0.0, -tx, 0.0),     glm::dvec4(0.0, 1.0, -ty, 0.0), glm::dvec4(0.0, -1.0, -ty, 0.0)};
+    const glm::dmat3 vsAxes(cam.viewFromWorld);  // column i: world axis i in view space
+    for (std::size_t p = 0; p < v.vsPlanes.size(); ++p) {
+        for (int i = 0; i < 3; ++i) v.planeReach[p][i] = std::abs(glm::dot(glm::dvec3(v.vsPlanes[p]), vsAxes[i]));
+    }
+    for (int i = 0; i < 3; ++i) v.depthReach[i] = std::abs(vsAxes[i].z);
+    v.wsCorners = sliceCorners(cam, v.near, far);
+    return v;
+}
+
+/// A convex polygon being clipped: a quad gains at most one vertex per plane, so six planes
+/// leave at most ten.
+struct ClipPolygon {
+    std::array<glm::dvec3, 12> vertices{};
+    int count = 0;
+};
+
+/// The part of `in` inside `plane` (Sutherland-Hodgman).
+ClipPolygon clipAgainst(const ClipPolygon& in, const glm::dvec4& plane) {
+    ClipPolygon out;
+    const int capacity = static_cast<int>(out.vertices.size());
+    for (int i = 0; i < in.count; ++i) {
+        const glm::dvec3& a = in.vertices[static_cast<std::size_t>(i)];
+        const glm::dvec3& b = in.vertices[static_cast<std::size_t>((i + 1) % in.count)];
+        const double sa = glm::dot(glm::dvec3(plane), a) + plane.w;
+        const double sb = glm::dot(glm::dvec3(plane), b) + plane.w;
+        if (sa >= 0.0 && out.count < capacity) out.vertices[static_cast<std::size_t>(out.count++)] = a;
+        if ((sa >= 0.0) != (sb >= 0.0) && out.count < capacity) {
+            out.vertices[static_cast<std::size_t>(out.count++)] = a + (b - a) * (sa / (sa - sb));
+        }
+    }
+    return out;
+}
+
+/// The view-depth interval of a box that crosses the planes of `straddled` (a bit per plane):
+/// every vertex of box ∩ frustum is a vertex of a box face clipped to the frustum, or a corner
+/// of the frustum inside the box (the camera inside a receiver's box), and a depth's extremes
+/// over a convex polytope lie at its vertices.
+std::optional<DepthInterval> clippedDepth(const ViewVolume& v, const DAabb& box, const glm::dvec3& vsCenter,
+                                          const glm::dvec3& half, unsigned straddled) {
+    const glm::dmat3 vsAxes(v.viewFromWorld);
+    std::array<glm::dvec3, 8> corners{};
+    for (int i = 0; i < 8; ++i) {
+        corners[static_cast<std::size_t>(i)] = vsCenter + vsAxes[0] * ((i & 1) != 0 ? half.x : -half.x) +
+                                               vsAxes[1] * ((i & 2) != 0 ? half.y : -half.y) +
+                                               vsAxes[2] * ((i & 4) != 0 ? half.z : -half.z);
+    }
+    // Faces -x, +x, -y, +y, -z, +z by corner index, each in cyclic order.
+    static constexpr std::array<std::array<int, 4>, 6> kFaces{
+        {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}}};
+    DepthInterval range{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    for (const std::array<int, 4>& face : kFaces) {
+        ClipPolygon polygon;
+        for (int k : face)
+            polygon.vertices[static_cast<std::size_t>(polygon.count++)] = corners[static_cast<std::size_t>(k)];
+        for (std::size_t p = 0; p < v.vsPlanes.size() && polygon.count > 0; ++p) {
+            if ((straddled & (1u << p)) != 0) polygon = clipAgainst(polygon, v.vsPlanes[p]);
+        }
+        for (int i = 0; i < polygon.count; ++i) {
+            const double depth = -polygon.vertices[static_cast<std::size_t>(i)].z;
+            range.nearest = std::min(range.nearest, depth);
+            range.farthest = std::max(range.farthest, depth);
+        }
+    }
+    for (std::size_t c = 0; c < v.wsCorners.size(); ++c) {
+        const glm::dvec3& p = v.wsCorners[c];
+        if (glm::all(glm::greaterThanEqual(p, box.min)) && glm::all(glm::lessThanEqual(p, box.max))) {
+            const double depth = (c & 4) != 0 ? v.far : v.near;
+            range.nearest = std::min(range.nearest, depth);
+            range.farthest = std::max(range.farthest, depth);
+        }
+    }
+    if (!(range.nearest <= range.farthest)) return std::nullopt;
+    return range;
+}
+
+/// The view-depth interval of the part of `box` inside the volume, if any. Most boxes are wholly
+/// outside one plane or wholly inside all six (exact tests for a box against a plane, from its
+/// centre and its reach along the normal); only the rest are clipped.
+std::optional<DepthInterval> depthInside(const ViewVolume& v, const DAabb& box) {
+    const glm::dvec3 half = 0.5 * box.extent();
+    const glm::dvec3 vsCenter(v.viewFromWorld * glm::dvec4(box.center(), 1.0));
+    unsigned straddled = 0;
+    for (std::size_t p = 0; p < v.vsPlanes.size(); ++p) {
+        const double side = glm::dot(glm::dvec3(v.vsPlanes[p]), vsCenter) + v.vsPlanes[p].w;
+        const double reach = glm::dot(half, v.planeReach[p]);
+        if (side + reach < 0.0) return std::nullopt;
+        if (side - reach < 0.0) straddled |= 1u << p;
+    }
+    if (straddled != 0) return clippedDepth(v, box, vsCenter, half, straddled);
+    const double reach = glm::dot(half, v.depthReach);
+    return DepthInterval{-vsCenter.z - reach, -vsCenter.z + reach};
+}
+
 /// Casters' light-space boxes overlapping the light-space column [lo, hi] in x and y.
 void zRangeOfColumn(const glm::dmat4& rotation, const SceneGeometry& g, const glm::dvec2& lo, const glm::dvec2& hi,
                     double& zTop, double& zBottom) {
@@ -165,24 +291,44 @@ void cascadeDepthRange(const glm::dmat4& rotation, const SceneGeometry& g, const
     zBottom = (std::ceil(zBottom / step) - 1.0) * step;
 }
 
-void planDirectional(const ShadowLightPlan& plan, const LightPose& pose, const CameraView& cam, const SceneGeometry& g,
-                     std::vector<ShadowLayerPlan>& layers) {
-    const Shadow& s = plan.settings;
-    const glm::dmat4 rotation = lookAlong(glm::dvec3(0.0), pose.wsDirection);
-    const double reach =
-        std::min(s.shadowDistance > 0.0f ? std::min<double>(s.shadowDistance, cam.zfar) : cam.zfar, kMaxShadowReach);
+/// The view depths a sun's cascades split, within `reach`. Where receivers are visible on
+/// screen (`SceneGeometry::visible`), their range: every cascade then holds receivers the camera
+/// sees, none is spent on the empty sky past the ground's far edge or on the space before the
+/// nearest visible ground. Its ends are rounded outwards to steps of 1/16 of their power of two
+/// (quantizeDown, quantizeUp): the range is exact to rounding noise, but a camera that moves or
+/// turns a little keeps the same splits (and so the same cascade squares and reused layers);
+/// they change in steps of at most 6 %, the size of a step of the squares' own quantized edge.
+/// With no receiver visible (or the range unmeasured) the cascades reach from the receivers'
+/// bounding box's nearest point to its farthest corner, the distances along rays instead of the
+/// camera's axis: still where a shadow can first be seen once the camera turns to them.
+DepthInterval cascadeSpan(const CameraView& cam, const SceneGeometry& g, double reach) {
     const double znear = cam.znear;
+    if (const std::optional<DepthInterval> visible = visibleDepthRange(g.visible, reach)) {
+        // visibleDepthRange keeps near <= nearest <= farthest <= reach.
+        const double nearest = std::min(std::max(quantizeDown(visible->nearest), znear), visible->nearest);
+        return {nearest, std::min(quantizeUp(visible->farthest), reach)};
+    }
     // No receiver lies beyond the farthest corner of their bounds: do not spread texels there.
     const double toFarthestReceiver = farthestCorner(cam.wsPosition, g.receivers);
     const double distance = std::clamp(toFarthestReceiver, std::min(2.0 * znear, reach), reach);
     // Nor nearer than the nearest receiver: cascades start where shadows can first be seen.
     const double nearest =
         std::clamp(distanceToBox(cam.wsPosition, g.receivers), std::min(znear, 0.5 * distance), 0.5 * distance);
+    return {nearest, distance};
+}
+
+void planDirectional(const ShadowLightPlan& plan, const LightPose& pose, const CameraView& cam, const SceneGeometry& g,
+                     std::vector<ShadowLayerPlan>& layers) {
+    const Shadow& s = plan.settings;
+    const glm::dmat4 rotation = lookAlong(glm::dvec3(0.0), pose.wsDirection);
+    const double reach =
+        std::min(s.shadowDistance > 0.0f ? std::min<double>(s.shadowDistance, cam.zfar) : cam.zfar, kMaxShadowReach);
     const glm::dvec3 lsCamera(rotation * glm::dvec4(cam.wsPosition, 1.0));
     assert(s.cascades >= 1 && s.cascades <= SG_MAX_CASCADES);  // clamped by the planner
     std::array<double, SG_MAX_CASCADES + 1> splitStorage{};
     const std::span<double> splits(splitStorage.data(), static_cast<std::size_t>(s.cascades) + 1);
-    cascadeSplits(nearest, distance, s.cascadeSplitLambda, splits);
+    const DepthInterval span = cascadeSpan(cam, g, reach);
+    cascadeSplits(span.nearest, span.farthest, s.cascadeSplitLambda, splits);
     const DAabb lsReceivers = toLightSpace(rotation, g.receivers);
 
     layers.resize(static_cast<std::size_t>(s.cascades));
@@ -256,6 +402,8 @@ void perspectiveLayer(const glm::dvec3& position, const glm::dvec3& direction, d
 
 void gatherGeometry(const World& world, SceneGeometry& out) {
     out.casters.clear();
+    out.receiverBoxes.clear();
+    out.visible.measured = false;
     out.receivers = DAabb{};
     out.everything = DAabb{};
     world.view<Mesh, WorldTransform, WorldBounds>().each(
@@ -264,7 +412,10 @@ void gatherGeometry(const World& world, SceneGeometry& out) {
             if (!wt.finite || wb.box.empty() || mesh.data == nullptr || mesh.data->indices.empty()) return;
             out.everything.extend(wb.box);
             if (mesh.castShadows) out.casters.push_back({e, wb.box});
-            if (mesh.receiveShadows) out.receivers.extend(wb.box);
+            if (mesh.receiveShadows) {
+                out.receiverBoxes.push_back(wb.box);
+                out.receivers.extend(wb.box);
+            }
         });
     // The game's own casters: bounds from their object bounds, as updateTransforms does for meshes.
     world.view<ShadowCasterDraw, WorldTransform>().each(
@@ -277,6 +428,38 @@ void gatherGeometry(const World& world, SceneGeometry& out) {
     // Views walk back to front; entity order keeps caster lists comparable frame to frame.
     std::sort(out.casters.begin(), out.casters.end(),
               [](const BoundedEntity& a, const BoundedEntity& b) { return a.entity < b.entity; });
+}
+
+void measureVisibleReceivers(const CameraView& camera, SceneGeometry& geometry) {
+    VisibleReceivers& out = geometry.visible;
+    if (out.measured) return;
+    out.measured = true;
+    out.boxes.clear();
+    out.boxes.reserve(geometry.receiverBoxes.size());
+    out.all = {1.0, 0.0};
+    const ViewVolume volume = viewVolume(camera, std::min<double>(camera.zfar, kMaxShadowReach));
+    DepthInterval all{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    for (const DAabb& box : geometry.receiverBoxes) {
+        const std::optional<DepthInterval> depth = depthInside(volume, box);
+        // Not finite only for a camera whose own fields are not (the frustum's planes).
+        if (!depth || !std::isfinite(depth->nearest) || !std::isfinite(depth->farthest)) continue;
+        out.boxes.push_back(*depth);
+        all.nearest = std::min(all.nearest, depth->nearest);
+        all.farthest = std::max(all.farthest, depth->farthest);
+    }
+    if (!out.boxes.empty()) out.all = all;
+}
+
+std::optional<DepthInterval> visibleDepthRange(const VisibleReceivers& visible, double reach) {
+    const DepthInterval& all = visible.all;
+    if (!visible.measured || !(all.nearest <= all.farthest) || !(all.nearest <= reach)) return std::nullopt;
+    if (all.farthest <= reach) return all;
+    // The reach ends inside the receivers' range: fit up to the farthest visible within it.
+    DepthInterval range{all.nearest, all.nearest};
+    for (const DepthInterval& box : visible.boxes) {
+        if (box.nearest <= reach) range.farthest = std::max(range.farthest, std::min(box.farthest, reach));
+    }
+    return range;
 }
 
 LightPose lightPose(const WorldTransform& wt) {

@@ -7,6 +7,7 @@
 #include "core/camera.h"
 #include "shadow/frustum.h"
 
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -27,16 +28,44 @@ struct BoundedEntity {
     DAabb bounds;
 };
 
+/// A range of view depth (m along the camera's axis, the depth cascades split).
+struct DepthInterval {
+    double nearest = 0.0;
+    double farthest = 0.0;
+};
+
+/// Where the receivers are visible on screen: the view depths of their boxes clipped to the
+/// camera frustum (near plane to the far plane, at most `kMaxShadowReach`). Exact for the boxes
+/// (not for the surfaces inside them, nor for occlusion); what directional cascades split.
+struct VisibleReceivers {
+    bool measured = false;  ///< set by `measureVisibleReceivers`, cleared by `gatherGeometry`
+    /// One interval per receiver box that meets the frustum, in no particular order: a light
+    /// whose shadowDistance ends inside a gap between receivers fits up to the last of them.
+    std::vector<DepthInterval> boxes;
+    DepthInterval all{1.0, 0.0};  ///< the union's bounds; nearest > farthest when none is visible
+};
+
 /// The scene's shadow-relevant geometry for one frame.
 struct SceneGeometry {
     std::vector<BoundedEntity> casters;  ///< finite meshes with castShadows, entity order
-    DAabb receivers;                     ///< union of finite meshes with receiveShadows
+    std::vector<DAabb> receiverBoxes;    ///< finite meshes with receiveShadows, each
+    DAabb receivers;                     ///< union of `receiverBoxes`
     DAabb everything;                    ///< union of all finite meshes
+    VisibleReceivers visible;            ///< `measureVisibleReceivers`, for directional lights
 };
 
 /// Collects casters and receivers from meshes with finite world transforms and triangles into
-/// `out`, reusing its storage.
+/// `out`, reusing its storage; `out.visible` is left unmeasured.
 void gatherGeometry(const World& world, SceneGeometry& out);
+
+/// Measures `geometry.visible` for `camera` once per `gatherGeometry` (later calls return at
+/// once): each receiver box clipped against the camera frustum, without allocating once the
+/// storage has grown to the receivers' count. Call before planning directional lights; without
+/// it their cascades fall back to the distances to the receivers' bounding box.
+void measureVisibleReceivers(const CameraView& camera, SceneGeometry& geometry);
+
+/// The view-depth range of the receivers visible within `reach` (m of view depth), if any.
+[[nodiscard]] std::optional<DepthInterval> visibleDepthRange(const VisibleReceivers& visible, double reach);
 
 /// Where a light is and where it points, in world space.
 struct LightPose {

@@ -351,6 +351,8 @@ const ShadowFrame& ShadowPlanner::prepare(const World& world, const CameraView& 
             plan.mapSize = 0;
             continue;
         }
+        // Once a frame, and only in a frame with a sun: where receivers are visible on screen.
+        if (plan.light.type == LightType::Directional) measureVisibleReceivers(camera, geometry);
         planLayers(plan, {plan.wsPosition, plan.wsDirection}, camera, geometry, plan.layers);
         if (plan.settings.technique == ShadowTechnique::Sdf) takeFieldCasters(world, plan, frame_.warnings);
         markDirty(world, plan);
