@@ -4,28 +4,51 @@
 #include <shadow/window.h>
 
 #include <array>
+#include <utility>
 
 namespace shadow {
 namespace {
 
-int glfwKey(Window::Key key) {
+/// The keys that stand for `key` (GLFW_KEY_UNKNOWN when it has only one).
+std::pair<int, int> glfwKeys(Window::Key key) {
     switch (key) {
-        case Window::Key::Forward: return GLFW_KEY_W;
-        case Window::Key::Back: return GLFW_KEY_S;
-        case Window::Key::Left: return GLFW_KEY_A;
-        case Window::Key::Right: return GLFW_KEY_D;
-        case Window::Key::Up: return GLFW_KEY_E;
-        case Window::Key::Down: return GLFW_KEY_Q;
-        case Window::Key::NextTechnique: return GLFW_KEY_T;
-        case Window::Key::Pause: return GLFW_KEY_SPACE;
-        case Window::Key::Escape: return GLFW_KEY_ESCAPE;
+        case Window::Key::Forward: return {GLFW_KEY_W, GLFW_KEY_UNKNOWN};
+        case Window::Key::Back: return {GLFW_KEY_S, GLFW_KEY_UNKNOWN};
+        case Window::Key::Left: return {GLFW_KEY_A, GLFW_KEY_UNKNOWN};
+        case Window::Key::Right: return {GLFW_KEY_D, GLFW_KEY_UNKNOWN};
+        case Window::Key::Up: return {GLFW_KEY_E, GLFW_KEY_UNKNOWN};
+        case Window::Key::Down: return {GLFW_KEY_Q, GLFW_KEY_UNKNOWN};
+        case Window::Key::NextTechnique: return {GLFW_KEY_T, GLFW_KEY_UNKNOWN};
+        case Window::Key::Pause: return {GLFW_KEY_SPACE, GLFW_KEY_UNKNOWN};
+        case Window::Key::Escape: return {GLFW_KEY_ESCAPE, GLFW_KEY_UNKNOWN};
+        case Window::Key::Screenshot: return {GLFW_KEY_P, GLFW_KEY_UNKNOWN};
+        case Window::Key::ToggleUi: return {GLFW_KEY_F1, GLFW_KEY_UNKNOWN};
+        case Window::Key::CameraMode: return {GLFW_KEY_C, GLFW_KEY_UNKNOWN};
+        case Window::Key::Fast: return {GLFW_KEY_LEFT_SHIFT, GLFW_KEY_RIGHT_SHIFT};
     }
-    return GLFW_KEY_UNKNOWN;
+    return {GLFW_KEY_UNKNOWN, GLFW_KEY_UNKNOWN};
+}
+
+int glfwButton(Window::Button button) {
+    switch (button) {
+        case Window::Button::Left: return GLFW_MOUSE_BUTTON_LEFT;
+        case Window::Button::Right: return GLFW_MOUSE_BUTTON_RIGHT;
+        case Window::Button::Middle: return GLFW_MOUSE_BUTTON_MIDDLE;
+    }
+    return GLFW_MOUSE_BUTTON_LEFT;
 }
 
 class GlfwWindow final : public Window {
 public:
-    explicit GlfwWindow(GLFWwindow* window) : window_(window) {}
+    /// Installs the scroll and drop callbacks, which reach this object through the window's user
+    /// pointer (so the object must not move: it lives behind a unique_ptr).
+    explicit GlfwWindow(GLFWwindow* window) : window_(window) {
+        glfwSetWindowUserPointer(window_, this);
+        glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) { self(w).scroll_ += dy; });
+        glfwSetDropCallback(window_, [](GLFWwindow* w, int count, const char** paths) {
+            for (int i = 0; i < count; ++i) self(w).dropped_.emplace_back(paths[i]);
+        });
+    }
     ~GlfwWindow() override {
         glfwDestroyWindow(window_);
         glfwTerminate();
@@ -39,10 +62,15 @@ public:
     }
     [[nodiscard]] const char* backend() const override { return "glfw"; }
     [[nodiscard]] bool shouldClose() const override { return glfwWindowShouldClose(window_) != 0; }
+    void requestClose() override { glfwSetWindowShouldClose(window_, GLFW_TRUE); }
     void swapBuffers() override { glfwSwapBuffers(window_); }
     void pollEvents() override { glfwPollEvents(); }
     void framebufferSize(int& width, int& height) const override { glfwGetFramebufferSize(window_, &width, &height); }
-    [[nodiscard]] bool keyDown(Key key) const override { return glfwGetKey(window_, glfwKey(key)) == GLFW_PRESS; }
+    [[nodiscard]] bool keyDown(Key key) const override {
+        const auto [first, second] = glfwKeys(key);
+        return glfwGetKey(window_, first) == GLFW_PRESS ||
+               (second != GLFW_KEY_UNKNOWN && glfwGetKey(window_, second) == GLFW_PRESS);
+    }
     [[nodiscard]] bool keyPressed(Key key) override {
         const auto i = static_cast<std::size_t>(key);
         const bool down = keyDown(key);
@@ -50,10 +78,22 @@ public:
         wasDown_[i] = down;
         return pressed;
     }
+    [[nodiscard]] bool buttonDown(Button button) const override {
+        return glfwGetMouseButton(window_, glfwButton(button)) == GLFW_PRESS;
+    }
+    void cursorPosition(double& x, double& y) const override { glfwGetCursorPos(window_, &x, &y); }
+    [[nodiscard]] double takeScroll() override { return std::exchange(scroll_, 0.0); }
+    [[nodiscard]] std::vector<std::string> takeDroppedPaths() override { return std::exchange(dropped_, {}); }
+    void setTitle(const std::string& title) override { glfwSetWindowTitle(window_, title.c_str()); }
+    [[nodiscard]] void* nativeHandle() const override { return window_; }
 
 private:
+    static GlfwWindow& self(GLFWwindow* w) { return *static_cast<GlfwWindow*>(glfwGetWindowUserPointer(w)); }
+
     GLFWwindow* window_;
-    std::array<bool, 9> wasDown_{};
+    std::array<bool, kKeyCount> wasDown_{};
+    double scroll_ = 0.0;
+    std::vector<std::string> dropped_;
 };
 
 }  // namespace
