@@ -19,11 +19,17 @@
 
 in vec3 vCsPosition;
 in vec3 vWsNormal;
+in vec2 vTexcoord;
 
 uniform int uReceiveShadows;
 uniform vec3 uAlbedo;
 uniform vec3 uSpecular;
 uniform float uShininess;
+// The material's base-colour texture (sRGB, so read linear; 1x1 white without one): it tints the
+// diffuse albedo, and the specular by uMetallic. A cut-out's holes never reach this pass (the
+// depth pre-pass leaves them out, depth_prepass.frag.glsl).
+layout(binding = SG_UNIT_BASE_COLOR) uniform sampler2D uBaseColor;
+uniform float uMetallic;
 uniform vec3 uAmbient;        // added by the first pass only
 uniform vec3 uCameraForward;  // unit, world space
 
@@ -106,12 +112,13 @@ void main() {
     s.geoNormal = shadowSide.geoNormal;
     s.curvature = shadowSide.curvature;
     s.normal = shadowSide.normal;  // two-sided: the side facing the camera
-    s.albedo = uAlbedo;
-    s.specular = uSpecular;
+    vec3 base = texture(uBaseColor, vTexcoord).rgb;
+    s.albedo = uAlbedo * base;
+    s.specular = uSpecular * mix(vec3(1.0), base, uMetallic);
     s.shininess = uShininess;
 
     float viewDistance = dot(vCsPosition, uCameraForward);
-    vec3 color = uAmbient * uAlbedo;
+    vec3 color = uAmbient * s.albedo;
 #ifdef SG_WRITE_AOVS
     float visibility[SG_MAX_LIGHTS_PER_PASS] = float[](1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0);
 #endif

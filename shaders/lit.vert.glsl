@@ -1,6 +1,5 @@
 // Main pass and depth pre-pass: camera-relative positions keep float precision far from the origin.
-layout(location = 0) in vec3 inPosition;
-layout(location = 1) in vec3 inNormal;
+#include "mesh_vertex.glsl"
 
 uniform mat4 uCsFromLocal;      // object -> camera-relative world
 uniform mat3 uNormalFromLocal;  // inverse transpose of its upper 3x3
@@ -8,12 +7,15 @@ uniform mat4 uClipFromCs;       // camera-relative world -> clip
 
 out vec3 vCsPosition;
 out vec3 vWsNormal;
+out vec2 vTexcoord;
 // The depth pre-pass and the lit pass must rasterise the same depths (EQUAL test).
 invariant gl_Position;
 
 void main() {
-    vec4 cs = uCsFromLocal * vec4(inPosition, 1.0);
+    mat4 skin = sg_skinMatrix();
+    vec4 cs = uCsFromLocal * (skin * vec4(inPosition, 1.0));
     vCsPosition = cs.xyz;
-    vWsNormal = uNormalFromLocal * inNormal;
+    vWsNormal = uNormalFromLocal * (mat3(skin) * inNormal);
+    vTexcoord = inTexcoord;
     gl_Position = uClipFromCs * cs;
 }

@@ -9,8 +9,14 @@
 // SG_DEPTH_MIDPOINT stores the mean of the two, which grows with the second depth, so the same
 // depth test keeps the right surface. Where no surface lies behind the first the layer keeps
 // its clear value, the far depth.
+//
+// With SG_ALPHA_TESTED (a cut-out caster, `Material::cutout`) its holes are left out, by the same
+// test as the main pass (alpha_test.glsl).
 #include "shadow_common.glsl"
 #include "shared_constants.h"
+// Read with SG_ALPHA_TESTED only (an include may not stand under a condition).
+#include "alpha_test.glsl"
+in vec2 vTexcoord;
 
 in vec3 vLsPosition;
 
@@ -37,6 +43,11 @@ void main() {
     float depth = sg_lightSpaceDepth(vLsPosition, uOrthographic != 0) / uDepthScale;
 #ifdef SG_DEPTH_BEHIND_FIRST
     float slope = fwidth(depth);  // outside the branch: derivatives need every fragment of the quad
+#endif
+#ifdef SG_ALPHA_TESTED
+    if (sg_isHole(vTexcoord)) discard;
+#endif
+#ifdef SG_DEPTH_BEHIND_FIRST
     if (uFirstPass == 0) {
         float nearest = texelFetch(uNearest, ivec2(gl_FragCoord.xy), 0).r;
         if (depth <= nearest + SG_BEHIND_ULPS * max(1.0, nearest) + SG_BEHIND_TEXEL_FRACTION * slope) discard;

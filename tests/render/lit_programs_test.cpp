@@ -119,9 +119,13 @@ TEST(LitPrograms, TheCacheBuildsEachVariantOnce) {
     EXPECT_EQ(compiled, 3) << "another technique in a slot is another program";
     EXPECT_EQ(cache.size(), 3u);
 
-    const DepthPrepassProgram prepass = buildDepthPrepass();
+    const DepthPrepassProgram prepass = buildDepthPrepass(false);
     EXPECT_NE(prepass.program.get(), 0u);
     EXPECT_GE(prepass.mesh.clipFromCs, 0);
+    EXPECT_LT(prepass.alphaCutoff, 0) << "the opaque pre-pass has no alpha test";
+    const DepthPrepassProgram cutout = buildDepthPrepass(true);
+    EXPECT_NE(cutout.program.get(), 0u);
+    EXPECT_GE(cutout.alphaCutoff, 0) << "the alpha-tested pre-pass reads the cutoff";
     EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 

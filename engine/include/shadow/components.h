@@ -8,6 +8,8 @@
 #include <shadow/math.h>
 #include <shadow/techniques.h>
 
+#include <glm/gtc/type_precision.hpp>
+
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -61,8 +63,19 @@ struct MeshData {
     std::string name;
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;      // one per position
+    /// One per position or none: glTF's TEXCOORD_0 ((0,0) the first texel of the image's first
+    /// row). Read by a material's `baseColorTexture`; without them it samples texel (0,0).
+    std::vector<glm::vec2> texcoords;
     std::vector<std::uint32_t> indices;  // triangle list
     Aabb bounds;                         // of `positions`
+    /// Skinning (a `Skin` on the instance): one per position or none. `joints` index the
+    /// instance's `Skin::joints`; `weights` are non-negative and sum to 1 (the loader
+    /// normalises them).
+    std::vector<glm::u16vec4> joints;
+    std::vector<glm::vec4> weights;
+    /// Per joint index, the bounds of the positions it moves (weight > 0), in the mesh's own
+    /// space (`computeJointBounds`): what a pose's bounds are computed from.
+    std::vector<Aabb> jointBounds;
     /// Every edge, matched by position, is shared by exactly two triangles: a watertight surface
     /// (see `computeClosed`). The second-depth modes (`DepthMode`) need closed casters.
     bool closed = false;
@@ -70,6 +83,8 @@ struct MeshData {
 
 /// Computes `bounds` from `positions`.
 void computeBounds(MeshData& mesh);
+/// Computes `jointBounds` from `positions`, `joints` and `weights` (empty without them).
+void computeJointBounds(MeshData& mesh);
 /// Computes `closed`: vertices at the same position count as one (a mesh with flat normals
 /// repeats them per face), degenerate triangles are ignored, and every remaining edge must
 /// belong to exactly two triangles.
@@ -90,16 +105,66 @@ struct WorldBounds {
     DAabb box;
 };
 
-/// Blinn-Phong material.
+/// An 8-bit RGBA image on the CPU, a material's texture: colour in sRGB, alpha linear. Shared
+/// by the materials that use it; uploaded once (with mipmaps) by the renderer.
+struct Texture {
+    enum class Wrap : std::uint8_t { Repeat, ClampToEdge, MirroredRepeat };
+    std::string name;
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> rgba;  ///< width * height * 4 bytes, the image's first row first
+    Wrap wrapS = Wrap::Repeat;
+    Wrap wrapT = Wrap::Repeat;
+};
+
+/// How a material's alpha (`alpha` times the texture's) is used, as glTF's `alphaMode`.
+enum class AlphaMode : std::uint8_t {
+    Opaque,  ///< alpha ignored
+    Mask,    ///< a cut-out: nothing where alpha < `alphaCutoff`, in every pass and the reference
+    Blend,   ///< drawn as a cut-out at `alphaCutoff` (0.5 from glTF): the module does not blend
+};
+
+/// Blinn-Phong material, with glTF's base-colour texture and alpha modes.
 struct Material {
     glm::vec3 albedo{0.8f};     ///< diffuse reflectance, linear RGB in [0,1]
     glm::vec3 specular{0.04f};  ///< specular reflectance, linear RGB in [0,1]
     float shininess = 32.0f;    ///< Blinn-Phong exponent, [1, 4096]
+    /// Multiplies `albedo`, and `specular` by `metallic` (metals reflect their colour), per pixel.
+    std::shared_ptr<const Texture> baseColorTexture;
+    float metallic = 0.0f;  ///< [0, 1], how much the texture tints `specular`
+    float alpha = 1.0f;     ///< base alpha in [0, 1], times the texture's
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f;  ///< Mask and Blend: surfaces with alpha below it are holes
     /// Seen from both sides (open surfaces). A closed mesh sets false, so that the main pass culls
     /// its back faces: on a CPU rasteriser that halves the triangles it sets up (BENCHMARKS.md,
     /// fragment costs). Shadow passes draw both sides either way.
     bool doubleSided = true;
+
+    /// Whether some of it may be a hole: alpha is tested (Mask or Blend) against a cutoff that
+    /// some alpha can fall below.
+    [[nodiscard]] bool cutout() const {
+        return alphaMode != AlphaMode::Opaque && alphaCutoff > 0.0f &&
+               (baseColorTexture != nullptr || alpha < alphaCutoff);
+    }
 };
+
+/// Skinning of a mesh instance (glTF `skins`): its vertices follow `joints` by the mesh's
+/// `MeshData::joints`/`weights`. The instance's own transform is not applied (glTF): a vertex
+/// goes to sum_j w_j * jointWorld_j * inverseBind_j * v. `updateTransforms` poses it each frame
+/// (the matrices below, the instance's `WorldBounds`, and its moved flag when a joint moved).
+struct Skin {
+    std::vector<Entity> joints;              ///< entities with a `Transform`
+    std::vector<glm::dmat4> inverseBind;     ///< one per joint (identity when the file has none)
+    /// Written by `updateTransforms`: the frame the pose is drawn in (a translation near the
+    /// skeleton, so that float matrices keep their precision far from the origin), and per joint
+    /// frame-from-mesh-space = inverse(worldFromFrame) * jointWorld * inverseBind.
+    glm::dmat4 worldFromFrame{1.0};
+    std::vector<glm::mat4> frameFromMesh;
+    bool posed = false;  ///< false while a joint is missing or not finite: the mesh is not drawn
+};
+
+/// The skinned position of vertex `i` of `mesh` in `skin`'s frame (`Skin::worldFromFrame`).
+[[nodiscard]] glm::vec3 skinnedPosition(const MeshData& mesh, const Skin& skin, std::size_t i);
 
 enum class LightType : std::uint8_t { Directional, Spot, Point };
 

@@ -19,7 +19,7 @@ namespace gpu {
 struct MeshCacheAccess;
 }
 
-/// Each `MeshData` is uploaded once, on first use, and kept while its `MeshData` lives: the
+/// Each `MeshData` (and each material `Texture`) is uploaded once, on first use, and kept while its `MeshData` lives: the
 /// GPU copies of meshes no longer alive are freed by `collect`, which the cache's owner calls once
 /// a frame (see the header comment). Requires a current OpenGL 4.5 context with `loadGl` done;
 /// `bind` throws `GlError` when an upload fails. An error the host left pending in the context
@@ -54,6 +54,11 @@ private:
     int bindInPass(const std::shared_ptr<const MeshData>& mesh);
     /// `collect` inside an engine call, which has read the host's errors already.
     std::size_t collectInPass();
+    /// Binds `texture` (uploaded with mipmaps on first use, sRGB) to texture unit `unit`; a 1x1
+    /// white texture for none.
+    void bindTextureInPass(const std::shared_ptr<const Texture>& texture, unsigned unit);
+    /// Uploads `skin`'s joint matrices and binds them to SG_BINDING_JOINTS for the next draw.
+    void bindSkinInPass(const Skin& skin);
     /// The warnings `warnings` returns, for an engine call to move into its `FrameStats`.
     std::vector<Warning>& pending();
 

@@ -73,6 +73,11 @@
 // Field casters of a light grouped under one bounding sphere, which a ray tests first.
 #define SG_SDF_CLUSTER 16
 
+// The module's own mesh programs (main pass, shadow pass): a material's base-colour texture's
+// unit, and the shader-storage binding of a skinned mesh's joint matrices.
+#define SG_UNIT_BASE_COLOR 28
+#define SG_BINDING_JOINTS 3
+
 // Units the shadow mask reads the game's depth and normal textures from (after the three arrays).
 #define SG_UNIT_MASK_DEPTH 24
 #define SG_UNIT_MASK_NORMAL 25

@@ -68,6 +68,10 @@ namespace shadow::gpu {
     X(PFNGLVERTEXARRAYELEMENTBUFFERPROC, VertexArrayElementBuffer)         \
     X(PFNGLENABLEVERTEXARRAYATTRIBPROC, EnableVertexArrayAttrib)           \
     X(PFNGLVERTEXARRAYATTRIBFORMATPROC, VertexArrayAttribFormat)           \
+    X(PFNGLVERTEXARRAYATTRIBIFORMATPROC, VertexArrayAttribIFormat)         \
+    X(PFNGLTEXTURESUBIMAGE2DPROC, TextureSubImage2D)                       \
+    X(PFNGLGENERATETEXTUREMIPMAPPROC, GenerateTextureMipmap)               \
+    X(PFNGLINVALIDATEBUFFERDATAPROC, InvalidateBufferData)                 \
     X(PFNGLVERTEXARRAYATTRIBBINDINGPROC, VertexArrayAttribBinding)         \
     X(PFNGLCREATETEXTURESPROC, CreateTextures)                             \
     X(PFNGLDELETETEXTURESPROC, DeleteTextures)                             \

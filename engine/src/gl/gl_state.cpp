@@ -1,5 +1,7 @@
 #include "gl/gl_state.h"
 
+#include <shadow/shared_constants.h>
+
 #include "gl/objects.h"
 
 #include <shadow/context.h>
@@ -160,6 +162,11 @@ GlState captureGlState(std::span<const GLint> units, std::span<const GLint> unif
     gl.GetIntegerv(GL_ACTIVE_TEXTURE, &s.activeTexture);
     gl.GetIntegerv(GL_UNIFORM_BUFFER_BINDING, &s.uniformBuffer);
     captureBindings(s, units, uniformBindings, imageUnits);
+    gl.GetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &s.storageBuffer);
+    s.jointStorage.index = SG_BINDING_JOINTS;
+    gl.GetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, SG_BINDING_JOINTS, &s.jointStorage.buffer);
+    gl.GetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, SG_BINDING_JOINTS, &s.jointStorage.start);
+    gl.GetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, SG_BINDING_JOINTS, &s.jointStorage.size);
     return s;
 }
 
@@ -259,8 +266,16 @@ void restoreBindings(const GlState& s, std::uint64_t mark) {
                             texture != 0 ? b.layered : GL_FALSE, texture != 0 ? b.layer : 0,
                             static_cast<GLenum>(b.access), static_cast<GLenum>(b.format));
     }
+    const GLuint joints = stillNamed(GL_BUFFER, s.jointStorage.buffer, mark);
+    if (joints != 0 && s.jointStorage.size > 0) {
+        gl.BindBufferRange(GL_SHADER_STORAGE_BUFFER, SG_BINDING_JOINTS, joints,
+                           static_cast<GLintptr>(s.jointStorage.start), static_cast<GLsizeiptr>(s.jointStorage.size));
+    } else {
+        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SG_BINDING_JOINTS, joints);
+    }
     // Indexed binds also set the generic binding: it goes back last.
     gl.BindBuffer(GL_UNIFORM_BUFFER, stillNamed(GL_BUFFER, s.uniformBuffer, mark));
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, stillNamed(GL_BUFFER, s.storageBuffer, mark));
 }
 
 }  // namespace

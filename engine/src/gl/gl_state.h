@@ -10,7 +10,8 @@
 // op, sRGB writes, primitive restart, the multisample coverage operations, polygon smoothing,
 // user clip distances). Readbacks also set and restore every pixel-pack parameter and read
 // colour clamping. Texture units (every target, and the sampler), uniform-buffer binding points
-// and image units are captured for the ones a call names. Left alone, because no pass depends
+// and image units are captured for the ones a call names; the joint matrices' storage binding
+// always. Left alone, because no pass depends
 // on them: the stencil functions and masks (no framebuffer of the engine has stencil), the
 // blend colour (no pass blends with a constant), line and point state (fill only), dithering,
 // hints, the provoking vertex (no flat inputs), and conditional rendering or transform
@@ -164,6 +165,10 @@ struct GlState {
     };
     std::array<UniformBinding, 4> uniformBindings{};
     std::size_t uniformBindingCount = 0;
+    /// The shader-storage binding the mesh programs read joint matrices from (SG_BINDING_JOINTS),
+    /// always captured, and the generic GL_SHADER_STORAGE_BUFFER binding.
+    UniformBinding jointStorage{};
+    GLint storageBuffer = 0;
     struct ImageBinding {
         GLint unit = 0;
         GLint texture = 0;

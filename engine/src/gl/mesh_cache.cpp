@@ -5,29 +5,106 @@
 #include "gl/no_throw.h"
 #include "gl/objects.h"
 
+#include <shadow/shared_constants.h>
+
+#include <algorithm>
 #include <unordered_map>
 
 namespace shadow {
 
 namespace {
-/// Interleaved vertex of the GPU meshes.
+/// Interleaved vertex of the GPU meshes (attributes 0-2).
 struct GpuVertex {
     glm::vec3 position;
     glm::vec3 normal;
+    glm::vec2 texcoord;
+};
+
+/// A skinned mesh's second vertex stream (attributes 3-4).
+struct GpuSkinVertex {
+    glm::u16vec4 joints;
+    glm::vec4 weights;
 };
 
 struct GpuMesh {
     std::weak_ptr<const MeshData> source;  // tells a reused address from the mesh uploaded
     gpu::VertexArray vao;
     gpu::Buffer vertices;
+    gpu::Buffer skinVertices;
     gpu::Buffer indices;
     int indexCount = 0;
+};
+
+struct GpuTexture {
+    std::weak_ptr<const Texture> source;
+    gpu::Texture texture;
+};
+
+GLint wrapMode(Texture::Wrap wrap) {
+    switch (wrap) {
+        case Texture::Wrap::ClampToEdge: return GL_CLAMP_TO_EDGE;
+        case Texture::Wrap::MirroredRepeat: return GL_MIRRORED_REPEAT;
+        default: return GL_REPEAT;
+    }
+}
+
+/// Mip levels of a full chain for an image of `width` x `height`.
+int mipLevels(int width, int height) {
+    int levels = 1;
+    while ((std::max(width, height) >> levels) > 0) ++levels;
+    return levels;
+}
+
+gpu::Texture uploadTexture(const Texture& t) {
+    gpu::Texture texture = gpu::makeTexture("Texture/" + t.name, GL_TEXTURE_2D);
+    const GLuint name = texture.get();
+    gl.TextureStorage2D(name, mipLevels(t.width, t.height), GL_SRGB8_ALPHA8, t.width, t.height);
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl.TextureSubImage2D(name, 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl.GenerateTextureMipmap(name);
+    gl.TextureParameteri(name, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    gl.TextureParameteri(name, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl.TextureParameteri(name, GL_TEXTURE_WRAP_S, wrapMode(t.wrapS));
+    gl.TextureParameteri(name, GL_TEXTURE_WRAP_T, wrapMode(t.wrapT));
+    return texture;
+}
+
+/// A ring of joint matrices: each skinned draw's matrices go after the last draw's, so that no
+/// upload overwrites what a queued draw still reads; a full ring starts again at its beginning.
+struct JointRing {
+    static constexpr GLsizeiptr kMinBytes = GLsizeiptr{256} << 10U;
+    gpu::Buffer buffer;
+    GLsizeiptr capacity = 0;
+    GLsizeiptr cursor = 0;
+    GLsizeiptr alignment = 256;
+
+    void bind(const std::vector<glm::mat4>& matrices) {
+        const auto bytes = static_cast<GLsizeiptr>(matrices.size() * sizeof(glm::mat4));
+        if (bytes > capacity) {
+            GLint align = 0;
+            gl.GetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
+            alignment = std::max<GLsizeiptr>(align, 16);
+            capacity = std::max({2 * capacity, bytes, kMinBytes});
+            buffer = gpu::makeBuffer("Skin/joints", capacity, nullptr, GL_DYNAMIC_STORAGE_BIT);
+            cursor = 0;
+        } else if (cursor + bytes > capacity) {
+            gl.InvalidateBufferData(buffer.get());
+            cursor = 0;
+        }
+        gl.NamedBufferSubData(buffer.get(), cursor, bytes, matrices.data());
+        gl.BindBufferRange(GL_SHADER_STORAGE_BUFFER, SG_BINDING_JOINTS, buffer.get(), cursor, bytes);
+        cursor += (bytes + alignment - 1) / alignment * alignment;
+    }
 };
 }  // namespace
 
 struct MeshCache::Impl {
     // Keyed by the MeshData address: MeshData is immutable and shared while instances live.
     std::unordered_map<const MeshData*, GpuMesh> meshes;
+    std::unordered_map<const Texture*, GpuTexture> textures;  ///< likewise, by Texture address
+    gpu::Texture white;  ///< 1x1 white: what an untextured material samples
+    JointRing joints;
     std::vector<Warning> pending;  ///< host errors found by calls without a FrameStats
 };
 
@@ -54,8 +131,32 @@ std::size_t MeshCache::collect() {
 }
 
 std::size_t MeshCache::collectInPass() {
+    std::erase_if(impl_->textures, [](const auto& entry) { return entry.second.source.expired(); });
     return std::erase_if(impl_->meshes, [](const auto& entry) { return entry.second.source.expired(); });
 }
+
+void MeshCache::bindTextureInPass(const std::shared_ptr<const Texture>& texture, unsigned unit) {
+    if (texture == nullptr || texture->width < 1 || texture->height < 1 ||
+        texture->rgba.size() < static_cast<std::size_t>(texture->width) * static_cast<std::size_t>(texture->height) * 4U) {
+        if (!impl_->white) {
+            const Texture white{"white", 1, 1, {255, 255, 255, 255}};
+            impl_->white = uploadTexture(white);
+        }
+        gl.BindTextureUnit(unit, impl_->white.get());
+        return;
+    }
+    auto it = impl_->textures.find(texture.get());
+    if (it != impl_->textures.end() && it->second.source.lock() != texture) {
+        impl_->textures.erase(it);  // the old texture died and its address was reused
+        it = impl_->textures.end();
+    }
+    if (it == impl_->textures.end()) {
+        it = impl_->textures.emplace(texture.get(), GpuTexture{texture, uploadTexture(*texture)}).first;
+    }
+    gl.BindTextureUnit(unit, it->second.texture.get());
+}
+
+void MeshCache::bindSkinInPass(const Skin& skin) { impl_->joints.bind(skin.frameFromMesh); }
 
 int MeshCache::bind(const std::shared_ptr<const MeshData>& mesh) {
     gpu::reportHostGlErrors("MeshCache::bind", impl_->pending, gpu::kMaxPendingWarnings);
@@ -74,6 +175,7 @@ int MeshCache::bindInPass(const std::shared_ptr<const MeshData>& meshPtr) {
         for (std::size_t i = 0; i < vertices.size(); ++i) {
             vertices[i].position = mesh.positions[i];
             vertices[i].normal = i < mesh.normals.size() ? mesh.normals[i] : glm::vec3(0, 1, 0);
+            vertices[i].texcoord = i < mesh.texcoords.size() ? mesh.texcoords[i] : glm::vec2(0.0f);
         }
         GpuMesh g;
         g.source = meshPtr;
@@ -95,6 +197,22 @@ int MeshCache::bindInPass(const std::shared_ptr<const MeshData>& meshPtr) {
         gl.EnableVertexArrayAttrib(vao, 1);
         gl.VertexArrayAttribFormat(vao, 1, 3, GL_FLOAT, GL_FALSE, offsetof(GpuVertex, normal));
         gl.VertexArrayAttribBinding(vao, 1, 0);
+        gl.EnableVertexArrayAttrib(vao, 2);
+        gl.VertexArrayAttribFormat(vao, 2, 2, GL_FLOAT, GL_FALSE, offsetof(GpuVertex, texcoord));
+        gl.VertexArrayAttribBinding(vao, 2, 0);
+        if (mesh.joints.size() == mesh.positions.size() && mesh.weights.size() == mesh.positions.size()) {
+            std::vector<GpuSkinVertex> skin(mesh.positions.size());
+            for (std::size_t i = 0; i < skin.size(); ++i) skin[i] = {mesh.joints[i], mesh.weights[i]};
+            g.skinVertices = gpu::makeBuffer(label + "/skin",
+                                             static_cast<GLsizeiptr>(skin.size() * sizeof(GpuSkinVertex)), skin.data(), 0);
+            gl.VertexArrayVertexBuffer(vao, 1, g.skinVertices.get(), 0, sizeof(GpuSkinVertex));
+            gl.EnableVertexArrayAttrib(vao, 3);
+            gl.VertexArrayAttribIFormat(vao, 3, 4, GL_UNSIGNED_SHORT, offsetof(GpuSkinVertex, joints));
+            gl.VertexArrayAttribBinding(vao, 3, 1);
+            gl.EnableVertexArrayAttrib(vao, 4);
+            gl.VertexArrayAttribFormat(vao, 4, 4, GL_FLOAT, GL_FALSE, offsetof(GpuSkinVertex, weights));
+            gl.VertexArrayAttribBinding(vao, 4, 1);
+        }
         g.indexCount = static_cast<int>(mesh.indices.size());
         it = impl_->meshes.emplace(&mesh, std::move(g)).first;
     }

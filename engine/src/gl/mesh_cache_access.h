@@ -15,6 +15,12 @@ namespace shadow::gpu {
 struct MeshCacheAccess {
     /// `MeshCache::bind` without reading the host's errors.
     static int bind(MeshCache& cache, const std::shared_ptr<const MeshData>& mesh) { return cache.bindInPass(mesh); }
+    /// Binds a material's texture (white for none) to texture unit `unit`.
+    static void bindTexture(MeshCache& cache, const std::shared_ptr<const shadow::Texture>& texture, unsigned unit) {
+        cache.bindTextureInPass(texture, unit);
+    }
+    /// Binds a posed skin's joint matrices for the next draw (SG_BINDING_JOINTS).
+    static void bindSkin(MeshCache& cache, const Skin& skin) { cache.bindSkinInPass(skin); }
     /// `MeshCache::collect` without reading the host's errors.
     static std::size_t collect(MeshCache& cache) { return cache.collectInPass(); }
     /// The cache's pending warnings (`MeshCache::warnings`), to move into a frame's stats.

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,12 +19,21 @@ namespace {
 constexpr double kRelativeEpsilon = 1e-5;
 constexpr double kMinEpsilon = 1e-7;  // m
 
+/// A cut-out material's alpha test (`Material::cutout`), the rule of shaders/alpha_test.glsl.
+struct AlphaTest {
+    std::shared_ptr<const Texture> texture;  ///< null: the base alpha alone
+    float alpha = 1.0f;
+    float cutoff = 0.5f;
+};
+
 /// One mesh instance in world space, its triangles in the buffers Embree shares.
 struct FlatMesh {
     std::vector<float> vertices;  ///< xyz per vertex relative to the scene origin, plus padding
     std::vector<std::uint32_t> indices;
     bool casts = true;
     bool receives = true;
+    std::optional<AlphaTest> alphaTest;  ///< a cut-out's: hits in its holes are ignored
+    std::shared_ptr<const MeshData> data;  ///< its texture coordinates, for the alpha test
 };
 
 /// A mesh instance picked for the BVHs, before flattening.
@@ -33,7 +43,73 @@ struct Instance {
     std::shared_ptr<const MeshData> data;
     bool casts = true;
     bool receives = true;
+    const Skin* skin = nullptr;  ///< a posed skin: its vertices go through it (the world outlives the build)
+    std::optional<AlphaTest> alphaTest;
 };
+
+/// Texel coordinate `i` of an edge of `size` texels, wrapped by `wrap`.
+int wrapTexel(int i, int size, Texture::Wrap wrap) {
+    switch (wrap) {
+        case Texture::Wrap::ClampToEdge: return std::clamp(i, 0, size - 1);
+        case Texture::Wrap::MirroredRepeat: {
+            const int period = 2 * size;
+            const int m = ((i % period) + period) % period;
+            return m < size ? m : period - 1 - m;
+        }
+        default: return ((i % size) + size) % size;
+    }
+}
+
+/// The texture's alpha at `uv`, bilinear over the full-resolution image (the GPU's level 0).
+float sampleAlpha(const Texture& t, glm::vec2 uv) {
+    const float x = uv.x * static_cast<float>(t.width) - 0.5f;
+    const float y = uv.y * static_cast<float>(t.height) - 0.5f;
+    if (!std::isfinite(x) || !std::isfinite(y)) return 1.0f;
+    const float fx = std::floor(x);
+    const float fy = std::floor(y);
+    // Far outside [0, 1] float loses the fraction: the texel at the wrapped integer stands alone.
+    const double big = 1 << 24;
+    const int x0 = static_cast<int>(std::fmod(static_cast<double>(fx), big));
+    const int y0 = static_cast<int>(std::fmod(static_cast<double>(fy), big));
+    const float ax = x - fx;
+    const float ay = y - fy;
+    const auto texel = [&](int i, int j) {
+        const int u = wrapTexel(i, t.width, t.wrapS);
+        const int v = wrapTexel(j, t.height, t.wrapT);
+        return static_cast<float>(t.rgba[(static_cast<std::size_t>(v) * static_cast<std::size_t>(t.width) +
+                                          static_cast<std::size_t>(u)) * 4U + 3U]) / 255.0f;
+    };
+    const float top = texel(x0, y0) * (1.0f - ax) + texel(x0 + 1, y0) * ax;
+    const float bottom = texel(x0, y0 + 1) * (1.0f - ax) + texel(x0 + 1, y0 + 1) * ax;
+    return top * (1.0f - ay) + bottom * ay;
+}
+
+/// Whether the hit at barycentrics (u, v) of triangle `primitive` of `mesh` falls in a hole.
+bool inHole(const FlatMesh& mesh, unsigned primitive, float u, float v) {
+    const AlphaTest& test = *mesh.alphaTest;
+    float alpha = test.alpha;
+    const std::vector<glm::vec2>& uv = mesh.data->texcoords;
+    if (test.texture != nullptr) {
+        glm::vec2 at(0.0f);
+        if (uv.size() == mesh.data->positions.size()) {
+            const std::uint32_t* tri = &mesh.indices[3U * primitive];
+            at = (1.0f - u - v) * uv[tri[0]] + u * uv[tri[1]] + v * uv[tri[2]];
+        }
+        alpha *= sampleAlpha(*test.texture, at);
+    }
+    return alpha < test.cutoff;
+}
+
+/// Embree's filter for cut-out geometry: a hit in a hole is no hit.
+void alphaFilter(const RTCFilterFunctionNArguments* args) {
+    const auto* mesh = static_cast<const FlatMesh*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] == 0) continue;
+        const float u = RTCHitN_u(args->hit, args->N, i);
+        const float v = RTCHitN_v(args->hit, args->N, i);
+        if (inHole(*mesh, RTCHitN_primID(args->hit, args->N, i), u, v)) args->valid[i] = 0;
+    }
+}
 
 std::string meshName(const World& world, Entity e, const MeshData& data) {
     if (const Name* n = world.tryGet<Name>(e); n != nullptr && !n->value.empty()) return n->value;
@@ -74,8 +150,14 @@ std::vector<Instance> gatherInstances(World& world) {
     std::vector<Instance> instances;
     world.view<Mesh, WorldTransform>().each([&](Entity e, Mesh& mesh, WorldTransform& wt) {
         if (!wt.finite || mesh.data == nullptr || mesh.data->indices.empty()) return;
-        instances.push_back(
-            {meshName(world, e, *mesh.data), wt.worldFromLocal, mesh.data, mesh.castShadows, mesh.receiveShadows});
+        const Skin* skin = world.tryGet<Skin>(e);
+        if (skin != nullptr && !skin->posed) return;
+        std::optional<AlphaTest> alphaTest;
+        if (const Material* m = world.tryGet<Material>(e); m != nullptr && m->cutout()) {
+            alphaTest = AlphaTest{m->baseColorTexture, m->alpha, m->alphaCutoff};
+        }
+        instances.push_back({meshName(world, e, *mesh.data), skin != nullptr ? skin->worldFromFrame : wt.worldFromLocal,
+                             mesh.data, mesh.castShadows, mesh.receiveShadows, skin, std::move(alphaTest)});
     });
     // The view walks its pool back to front; keep a stable, readable order (creation order).
     std::reverse(instances.begin(), instances.end());
@@ -90,7 +172,12 @@ Result<std::vector<std::vector<glm::dvec3>>> worldPositions(const std::vector<In
         if (Status s = validate(instance); !s) return s.error();
         std::vector<glm::dvec3>& ws = wsPositions.emplace_back();
         ws.reserve(instance.data->positions.size());
-        for (const glm::vec3& p : instance.data->positions) {
+        const MeshData& d = *instance.data;
+        const bool skinned = instance.skin != nullptr && d.joints.size() == d.positions.size() &&
+                             d.weights.size() == d.positions.size();
+        for (std::size_t i = 0; i < d.positions.size(); ++i) {
+            // A skinned vertex is posed as the vertex shader poses it (shaders/mesh_vertex.glsl).
+            const glm::vec3 p = skinned ? skinnedPosition(d, *instance.skin, i) : d.positions[i];
             ws.emplace_back(instance.worldFromLocal * glm::dvec4(glm::dvec3(p), 1.0));
             bounds.extend(ws.back());
         }
@@ -126,6 +213,11 @@ struct RayScene::Impl {
         RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
         rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, mesh.vertices.data(), 0,
                                    3 * sizeof(float), (mesh.vertices.size() - 4) / 3);
+        if (mesh.alphaTest) {
+            rtcSetGeometryUserData(g, const_cast<FlatMesh*>(&mesh));  // NOLINT(cppcoreguidelines-pro-type-const-cast): Embree's void*
+            rtcSetGeometryIntersectFilterFunction(g, alphaFilter);
+            rtcSetGeometryOccludedFilterFunction(g, alphaFilter);
+        }
         rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(), 0,
                                    3 * sizeof(std::uint32_t), mesh.indices.size() / 3);
         rtcCommitGeometry(g);
@@ -156,6 +248,8 @@ struct RayScene::Impl {
         FlatMesh& mesh = meshes.emplace_back();
         mesh.casts = instance.casts;
         mesh.receives = instance.receives;
+        mesh.alphaTest = instance.alphaTest;
+        mesh.data = instance.data;
         // Embree reads vertices with 16-byte loads: pad the last one.
         mesh.vertices.reserve(ws.size() * 3 + 4);
         for (const glm::dvec3& p : ws) {

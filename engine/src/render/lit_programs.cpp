@@ -22,6 +22,7 @@ MeshUniforms meshUniforms(GLuint program) {
     m.csFromLocal = gl.GetUniformLocation(program, "uCsFromLocal");
     m.normalFromLocal = gl.GetUniformLocation(program, "uNormalFromLocal");
     m.clipFromCs = gl.GetUniformLocation(program, "uClipFromCs");
+    m.skinned = gl.GetUniformLocation(program, "uSkinned");
     return m;
 }
 
@@ -36,6 +37,7 @@ LitProgram buildLit(const LitVariant& variant) {
     p.albedo = loc("uAlbedo");
     p.specular = loc("uSpecular");
     p.shininess = loc("uShininess");
+    p.metallic = loc("uMetallic");
     p.ambient = loc("uAmbient");
     p.cameraForward = loc("uCameraForward");
     return p;
@@ -92,10 +94,14 @@ LitProgram& LitProgramCache::get(const LitVariant& variant, int& compiled) {
     return it->second;
 }
 
-DepthPrepassProgram buildDepthPrepass() {
+DepthPrepassProgram buildDepthPrepass(bool alphaTested) {
     DepthPrepassProgram p;
-    p.program = gpu::buildProgram({"Main/DepthPrepass", "lit.vert.glsl", "depth_prepass.frag.glsl", {}});
+    p.program = gpu::buildProgram({alphaTested ? "Main/DepthPrepass/alpha" : "Main/DepthPrepass", "lit.vert.glsl",
+                                   "depth_prepass.frag.glsl",
+                                   alphaTested ? std::vector<std::string>{"SG_ALPHA_TESTED"} : std::vector<std::string>{}});
     p.mesh = meshUniforms(p.program.get());
+    p.alpha = gl.GetUniformLocation(p.program.get(), "uAlpha");
+    p.alphaCutoff = gl.GetUniformLocation(p.program.get(), "uAlphaCutoff");
     return p;
 }
 

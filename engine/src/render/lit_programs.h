@@ -12,20 +12,23 @@ namespace shadow::render {
 
 /// Uniform locations shared by the pre-pass and the lit programs (lit.vert.glsl).
 struct MeshUniforms {
-    GLint csFromLocal = -1, normalFromLocal = -1, clipFromCs = -1;
+    GLint csFromLocal = -1, normalFromLocal = -1, clipFromCs = -1, skinned = -1;
 };
 
 /// A compiled lit variant and its uniform locations.
 struct LitProgram {
     gpu::Program program;
     MeshUniforms mesh;
-    GLint receiveShadows = -1, albedo = -1, specular = -1, shininess = -1, ambient = -1, cameraForward = -1;
+    GLint receiveShadows = -1, albedo = -1, specular = -1, shininess = -1, metallic = -1, ambient = -1,
+          cameraForward = -1;
 };
 
-/// The depth pre-pass program: the lit vertex shader and no fragment work.
+/// A depth pre-pass program: the lit vertex shader and no fragment work, or (alpha-tested, for
+/// cut-out materials) the alpha test alone.
 struct DepthPrepassProgram {
     gpu::Program program;
     MeshUniforms mesh;
+    GLint alpha = -1, alphaCutoff = -1;  ///< the alpha-tested program's
 };
 
 /// The GL label of a variant, e.g. "Main/Lit[spot:pcss,point:hard,AOV]".
@@ -48,6 +51,6 @@ private:
     std::map<LitVariant, LitProgram> programs_;
 };
 
-DepthPrepassProgram buildDepthPrepass();
+DepthPrepassProgram buildDepthPrepass(bool alphaTested);
 
 }  // namespace shadow::render

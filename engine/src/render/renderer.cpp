@@ -85,7 +85,8 @@ struct Renderer::Impl {
     MeshCache meshes;                ///< owned and collected here (Renderer::meshes)
     gpu::ShaderResources resources;  ///< the samplers and kernel the lit passes bind
     render::LitProgramCache programs;
-    std::optional<render::DepthPrepassProgram> prepass;  ///< built on first use
+    std::optional<render::DepthPrepassProgram> prepass;        ///< built on first use
+    std::optional<render::DepthPrepassProgram> prepassCutout;  ///< alpha-tested; built on first use
     render::RenderTargets targets;
     std::vector<PassLights> passes;
     std::vector<const render::LitProgram*> passPrograms;  ///< per pass, into `programs` (stable)
@@ -93,6 +94,7 @@ struct Renderer::Impl {
     PassBlocks lightBlocks, layerBlocks;
     GLint uniformAlignment = 256;
     std::size_t lightCount = 0;  ///< scene lights of the last frame
+    bool prepassRan = false;     ///< this frame: asked for, or needed by a cut-out material
     bool softwareRenderer = false;
     gpu::PassTimer timer;          ///< the main passes'
     std::vector<Warning> pending;  ///< host errors found by calls without a FrameStats
@@ -104,13 +106,14 @@ struct Renderer::Impl {
     /// every later frame at 29-39 ms instead of 24-26.
     void preparePrograms(const RenderOptions& options, FrameStats& stats);
     void uploadPasses();
-    /// Draws every visible mesh with `uniforms`; `perMesh` sets the material uniforms.
-    /// Draws every visible mesh (those whose bounds meet `reach`, unless it is null) with
-    /// `uniforms`; `perMesh` sets the material uniforms.
+    /// Draws every visible mesh (those whose bounds meet `reach`, unless it is null), a skinned
+    /// one in its pose; `perMesh(mesh, material)` sets the material's uniforms and texture and
+    /// returns the program to draw it with (made current here when it changes).
     template <typename PerMesh>
-    void drawMeshes(const World& world, const CameraView& cam, GLuint program, const render::MeshUniforms& uniforms,
-                    const DAabb* reach, PerMesh&& perMesh, int& draws);
-    void depthPrepass(const World& world, const CameraView& cam, const MainCamera& mc, FrameStats& stats);
+    void drawMeshes(const World& world, const CameraView& cam, const DAabb* reach, PerMesh&& perMesh, int& draws);
+    /// The depth pre-pass; `cutouts`: the scene has cut-out materials, whose holes it leaves out.
+    void depthPrepass(const World& world, const CameraView& cam, const MainCamera& mc, bool cutouts,
+                      FrameStats& stats);
     void litPass(const World& world, const CameraView& cam, const MainCamera& mc, std::size_t index,
                  const ShadowMaps& maps, const RenderOptions& options, FrameStats& stats);
 };
@@ -142,11 +145,11 @@ void Renderer::Impl::uploadPasses() {
 }
 
 template <typename PerMesh>
-void Renderer::Impl::drawMeshes(const World& world, const CameraView& cam, GLuint program,
-                                const render::MeshUniforms& uniforms, const DAabb* reach, PerMesh&& perMesh,
+void Renderer::Impl::drawMeshes(const World& world, const CameraView& cam, const DAabb* reach, PerMesh&& perMesh,
                                 int& draws) {
     bool culling = false;
     gl.Disable(GL_CULL_FACE);
+    GLuint current = 0;
     world.view<Mesh, WorldTransform, Material>().each([&](Entity e, const Mesh& mesh, const WorldTransform& wt,
                                                           const Material& m) {
         if (!wt.finite || mesh.data == nullptr || mesh.data->indices.empty()) return;
@@ -165,14 +168,24 @@ void Renderer::Impl::drawMeshes(const World& world, const CameraView& cam, GLuin
                 gl.Disable(GL_CULL_FACE);
             }
         }
-        const glm::dmat3 linear(wt.worldFromLocal);
+        const Skin* skin = world.tryGet<Skin>(e);
+        if (skin != nullptr && !skin->posed) return;
+        // A skinned mesh is drawn in its skin's frame, its own transform not applied (glTF).
+        const glm::dmat4& worldFromLocal = skin != nullptr ? skin->worldFromFrame : wt.worldFromLocal;
+        const glm::dmat3 linear(worldFromLocal);
         if (!(std::abs(glm::determinant(linear)) > 1e-30)) return;  // collapsed to zero area: nothing to see
-        glm::dmat4 csFromLocal = wt.worldFromLocal;
+        const auto [program, uniforms] = perMesh(mesh, m);
+        if (program != current) {
+            gl.UseProgram(program);
+            current = program;
+        }
+        glm::dmat4 csFromLocal = worldFromLocal;
         csFromLocal[3] -= glm::dvec4(cam.wsPosition, 0.0);
-        gl.ProgramUniformMatrix4fv(program, uniforms.csFromLocal, 1, GL_FALSE, glm::value_ptr(glm::mat4(csFromLocal)));
+        gl.ProgramUniformMatrix4fv(program, uniforms->csFromLocal, 1, GL_FALSE, glm::value_ptr(glm::mat4(csFromLocal)));
         const glm::mat3 normalFromLocal(glm::transpose(glm::inverse(linear)));
-        gl.ProgramUniformMatrix3fv(program, uniforms.normalFromLocal, 1, GL_FALSE, glm::value_ptr(normalFromLocal));
-        perMesh(mesh, m);
+        gl.ProgramUniformMatrix3fv(program, uniforms->normalFromLocal, 1, GL_FALSE, glm::value_ptr(normalFromLocal));
+        gl.ProgramUniform1i(program, uniforms->skinned, skin != nullptr ? 1 : 0);
+        if (skin != nullptr) gpu::MeshCacheAccess::bindSkin(meshes, *skin);
         const int indices = gpu::MeshCacheAccess::bind(meshes, mesh.data);
         gl.DrawElements(GL_TRIANGLES, indices, GL_UNSIGNED_INT, nullptr);
         ++draws;
@@ -180,19 +193,32 @@ void Renderer::Impl::drawMeshes(const World& world, const CameraView& cam, GLuin
     gl.Disable(GL_CULL_FACE);
 }
 
-void Renderer::Impl::depthPrepass(const World& world, const CameraView& cam, const MainCamera& mc, FrameStats& stats) {
-    if (!prepass) {
-        prepass = render::buildDepthPrepass();
-        ++stats.programsCompiled;
+void Renderer::Impl::depthPrepass(const World& world, const CameraView& cam, const MainCamera& mc, bool cutouts,
+                                  FrameStats& stats) {
+    for (auto [program, alphaTested] : {std::pair{&prepass, false}, std::pair{&prepassCutout, true}}) {
+        if (alphaTested && !cutouts) continue;
+        if (!*program) {
+            *program = render::buildDepthPrepass(alphaTested);
+            ++stats.programsCompiled;
+        }
+        gl.ProgramUniformMatrix4fv((*program)->program.get(), (*program)->mesh.clipFromCs, 1, GL_FALSE,
+                                   glm::value_ptr(mc.clipFromCs));
     }
-    const GLuint id = prepass->program.get();
-    gl.UseProgram(id);
-    gl.ProgramUniformMatrix4fv(id, prepass->mesh.clipFromCs, 1, GL_FALSE, glm::value_ptr(mc.clipFromCs));
     gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl.DepthMask(GL_TRUE);
     gl.DepthFunc(GL_LESS);
     drawMeshes(
-        world, cam, id, prepass->mesh, nullptr, [](const Mesh&, const Material&) {}, stats.mainDrawCalls);
+        world, cam, nullptr,
+        [this](const Mesh&, const Material& m) {
+            using Choice = std::pair<GLuint, const render::MeshUniforms*>;
+            if (!m.cutout()) return Choice{prepass->program.get(), &prepass->mesh};
+            const render::DepthPrepassProgram& p = *prepassCutout;
+            gl.ProgramUniform1f(p.program.get(), p.alpha, m.alpha);
+            gl.ProgramUniform1f(p.program.get(), p.alphaCutoff, m.alphaCutoff);
+            gpu::MeshCacheAccess::bindTexture(meshes, m.baseColorTexture, SG_UNIT_BASE_COLOR);
+            return Choice{p.program.get(), &p.mesh};
+        },
+        stats.mainDrawCalls);
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
@@ -208,7 +234,7 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
     gpu::bindShadowResources(resources, maps, pass.sceneLight, ShadowBindingPoints{});
     // The first lit pass resolves visibility itself unless a pre-pass did; the passes after it
     // shade the same surfaces (equal depth, no depth writes) and add their light.
-    const bool resolvesDepth = index == 0 && !options.depthPrepass;
+    const bool resolvesDepth = index == 0 && !prepassRan;
     gl.DepthMask(resolvesDepth ? GL_TRUE : GL_FALSE);
     gl.DepthFunc(resolvesDepth ? GL_LESS : GL_EQUAL);
     if (index > 0) {
@@ -229,12 +255,15 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
     const glm::vec3 ambient = index == 0 ? options.ambient : glm::vec3(0.0f);
     gl.ProgramUniform3fv(id, p.ambient, 1, glm::value_ptr(ambient));
     drawMeshes(
-        world, cam, id, p.mesh, scissored && !pass.unbounded ? &pass.wsReach : nullptr,
-        [&p, id](const Mesh& mesh, const Material& m) {
+        world, cam, scissored && !pass.unbounded ? &pass.wsReach : nullptr,
+        [this, &p, id](const Mesh& mesh, const Material& m) {
             gl.ProgramUniform1i(id, p.receiveShadows, mesh.receiveShadows ? 1 : 0);
             gl.ProgramUniform3fv(id, p.albedo, 1, glm::value_ptr(m.albedo));
             gl.ProgramUniform3fv(id, p.specular, 1, glm::value_ptr(m.specular));
             gl.ProgramUniform1f(id, p.shininess, std::clamp(m.shininess, 1.0f, 4096.0f));
+            gl.ProgramUniform1f(id, p.metallic, std::clamp(m.metallic, 0.0f, 1.0f));
+            gpu::MeshCacheAccess::bindTexture(meshes, m.baseColorTexture, SG_UNIT_BASE_COLOR);
+            return std::pair<GLuint, const render::MeshUniforms*>{id, &p.mesh};
         },
         stats.mainDrawCalls);
     gl.Disable(GL_BLEND);
@@ -244,15 +273,16 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
 namespace {
 
 /// The texture units and uniform-buffer binding points the lit passes bind.
-/// The three sampler arrays' units and the distance-field technique's two.
-constexpr std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS + 2> litTextureUnits() {
-    std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS + 2> units{};
-    std::iota(units.begin(), units.end() - 2, 0);
-    units[units.size() - 2] = SG_UNIT_SDF_ATLAS;
-    units[units.size() - 1] = SG_UNIT_SDF_INSTANCES;
+/// The three sampler arrays' units, the distance-field technique's two and the base colour's.
+constexpr std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS + 3> litTextureUnits() {
+    std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS + 3> units{};
+    std::iota(units.begin(), units.end() - 3, 0);
+    units[units.size() - 3] = SG_UNIT_SDF_ATLAS;
+    units[units.size() - 2] = SG_UNIT_SDF_INSTANCES;
+    units[units.size() - 1] = SG_UNIT_BASE_COLOR;
     return units;
 }
-constexpr std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS + 2> kLitTextureUnits = litTextureUnits();
+constexpr std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS + 3> kLitTextureUnits = litTextureUnits();
 constexpr std::array<GLint, 3> kLitUniformBindings{SG_BINDING_LIGHTS, SG_BINDING_LAYERS, SG_BINDING_KERNELS};
 
 }  // namespace
@@ -310,9 +340,14 @@ void Renderer::render(const World& world, const CameraView& camera, const Shadow
     gl.CullFace(GL_BACK);
     gl.Enable(GL_DEPTH_TEST);
     r.targets.clear();
-    if (options.depthPrepass) {
+    // A cut-out material needs the pre-pass: it leaves the holes out, so that the lit passes,
+    // whose cost a discard would raise for every pixel on a CPU rasteriser, need no alpha test.
+    bool cutouts = false;
+    world.view<Mesh, Material>().each([&](Entity, const Mesh&, const Material& m) { cutouts = cutouts || m.cutout(); });
+    r.prepassRan = options.depthPrepass || cutouts;
+    if (r.prepassRan) {
         gpu::ScopedPass timed(timer, "Main/DepthPrepass");
-        r.depthPrepass(world, camera, mc, stats);
+        r.depthPrepass(world, camera, mc, cutouts, stats);
     }
     {
         gpu::ScopedPass timed(timer, "Main/Lit");

@@ -289,4 +289,73 @@ Result<std::vector<std::uint32_t>> readIndices(const tinygltf::Model& model, int
     return out;
 }
 
+namespace {
+/// Float VEC`N`, or a normalized unsigned 8/16-bit integer one (TEXCOORD_n, WEIGHTS_n).
+template <typename Vec, int N>
+Result<std::vector<Vec>> readUnsignedNormalized(const tinygltf::Model& model, int accessor, const Format& format,
+                                                const std::string& where) {
+    auto span = checkedSpan(model, accessor, format, where);
+    if (!span) return span.error();
+    if (span->componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !span->normalized) {
+        return elementError(span->name, "integer components must be normalized");
+    }
+    return decodeFinite<Vec, N>(*span);
+}
+}  // namespace
+
+Result<std::vector<glm::vec2>> readTexcoords(const tinygltf::Model& model, int accessor, const std::string& where) {
+    const Format format{
+        {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+        TINYGLTF_TYPE_VEC2,
+        "FLOAT VEC2 or a normalized UNSIGNED_BYTE/UNSIGNED_SHORT VEC2"};
+    return readUnsignedNormalized<glm::vec2, 2>(model, accessor, format, where);
+}
+
+Result<std::vector<glm::vec4>> readWeights(const tinygltf::Model& model, int accessor, const std::string& where) {
+    const Format format{
+        {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+        TINYGLTF_TYPE_VEC4,
+        "FLOAT VEC4 or a normalized UNSIGNED_BYTE/UNSIGNED_SHORT VEC4"};
+    return readUnsignedNormalized<glm::vec4, 4>(model, accessor, format, where);
+}
+
+Result<std::vector<glm::u16vec4>> readJoints(const tinygltf::Model& model, int accessor, std::size_t jointCount,
+                                             const std::string& where) {
+    const Format format{{TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                        TINYGLTF_TYPE_VEC4,
+                        "UNSIGNED_BYTE or UNSIGNED_SHORT VEC4"};
+    auto span = checkedSpan(model, accessor, format, where);
+    if (!span) return span.error();
+    const bool bytes = span->componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    std::vector<glm::u16vec4> out(span->count);
+    for (std::size_t i = 0; i < span->count; ++i) {
+        const unsigned char* element = span->data + i * span->stride;
+        for (int c = 0; c < 4; ++c) {
+            const std::uint16_t j = bytes ? load<std::uint8_t>(element + c) : load<std::uint16_t>(element + 2 * c);
+            if (j >= jointCount) {
+                return elementError(span->name, "element " + std::to_string(i) + " names joint " + std::to_string(j) +
+                                                    " of a skin with " + std::to_string(jointCount));
+            }
+            out[i][c] = j;
+        }
+    }
+    return out;
+}
+
+Result<std::vector<glm::dmat4>> readMat4(const tinygltf::Model& model, int accessor, const std::string& where) {
+    const Format format{{TINYGLTF_COMPONENT_TYPE_FLOAT}, TINYGLTF_TYPE_MAT4, "FLOAT MAT4"};
+    auto span = checkedSpan(model, accessor, format, where);
+    if (!span) return span.error();
+    std::vector<glm::dmat4> out(span->count);
+    for (std::size_t i = 0; i < span->count; ++i) {
+        const unsigned char* element = span->data + i * span->stride;
+        for (int c = 0; c < 16; ++c) {
+            const float v = load<float>(element + 4 * c);
+            if (!std::isfinite(v)) return elementError(span->name, "element " + std::to_string(i) + " not finite");
+            out[i][c / 4][c % 4] = v;  // column-major, as glTF stores it
+        }
+    }
+    return out;
+}
+
 }  // namespace shadow::gltf

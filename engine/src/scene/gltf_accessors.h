@@ -9,6 +9,7 @@
 #pragma once
 
 #include <shadow/math.h>
+#include <glm/gtc/type_precision.hpp>
 #include <shadow/result.h>
 #include <tiny_gltf.h>
 
@@ -34,5 +35,21 @@ namespace shadow::gltf {
 /// Triangle indices: UNSIGNED_BYTE/SHORT/INT SCALAR, every value < `vertexCount`.
 [[nodiscard]] Result<std::vector<std::uint32_t>> readIndices(const tinygltf::Model& model, int accessor,
                                                              std::size_t vertexCount, const std::string& where);
+
+/// TEXCOORD_n: float VEC2, or normalized unsigned 8/16-bit integers. All finite.
+[[nodiscard]] Result<std::vector<glm::vec2>> readTexcoords(const tinygltf::Model& model, int accessor,
+                                                           const std::string& where);
+
+/// WEIGHTS_n: float VEC4, or normalized unsigned 8/16-bit integers. All finite; not normalised.
+[[nodiscard]] Result<std::vector<glm::vec4>> readWeights(const tinygltf::Model& model, int accessor,
+                                                         const std::string& where);
+
+/// JOINTS_n: unsigned 8/16-bit integer VEC4, every value < `jointCount` (the skin's joints).
+[[nodiscard]] Result<std::vector<glm::u16vec4>> readJoints(const tinygltf::Model& model, int accessor,
+                                                           std::size_t jointCount, const std::string& where);
+
+/// Float MAT4 elements (a skin's inverseBindMatrices), column-major, all finite.
+[[nodiscard]] Result<std::vector<glm::dmat4>> readMat4(const tinygltf::Model& model, int accessor,
+                                                       const std::string& where);
 
 }  // namespace shadow::gltf

@@ -15,7 +15,11 @@
 // with several, each primitive becomes a child entity `<node>/primitive<k>`. Instances of one
 // glTF mesh share its `MeshData`.
 //
-// Not supported (ignored): skins, morph targets, textures (images are never decoded),
+// Materials keep their base-colour texture (decoded when a material uses it, gltf_textures)
+// and alpha mode; skins become a `Skin` on the mesh's entities, its joints the entities of the
+// joint nodes (posed by `updateTransforms`).
+//
+// Not supported (ignored): morph targets, textures other than base colour, KHR_texture_transform,
 // orthographic cameras (an error when a node uses one).
 //
 // Each step lives in a file of its topic: gltf_parse (bytes to a tinygltf model), gltf_nodes
@@ -31,6 +35,7 @@
 #include <optional>
 #include <string_view>
 
+#include "scene/gltf_accessors.h"
 #include "scene/gltf_animation.h"
 #include "scene/gltf_cameras.h"
 #include "scene/gltf_lights.h"
@@ -53,7 +58,13 @@ struct Importer {
     std::vector<gltf::LightDefinition> lights;
     std::vector<Animation> animations;
     std::vector<std::optional<std::vector<gltf::MeshPart>>> meshes;  // built on first use
+    gltf::TextureImporter textures{model};
+    std::vector<Entity> entityOfNode;  ///< null for nodes outside the chosen scene
+    /// Entities carrying a mesh of a skinned node, with that node: skinned once every node is.
+    std::vector<std::pair<Entity, std::size_t>> skinned;
     Scene scene;
+
+    Importer(const tinygltf::Model& m, const GltfLoadOptions& o) : model(m), options(o) {}
 
     Result<Entity> createEntity(const std::string& name, const Transform& transform) {
         // World::create asserts when out of slots; a file must not be able to trigger that.
@@ -69,7 +80,7 @@ struct Importer {
 
     Result<const std::vector<gltf::MeshPart>*> meshParts(std::size_t index) {
         if (!meshes[index]) {
-            auto parts = gltf::importMesh(model, index);
+            auto parts = gltf::importMesh(model, index, textures);
             if (!parts) return parts.error();
             meshes[index] = std::move(*parts);
         }
@@ -88,6 +99,7 @@ struct Importer {
         const auto attach = [&](Entity target, const gltf::MeshPart& part) {
             scene.world.emplace<Mesh>(target, Mesh{part.data, flags->cast, flags->receive});
             scene.world.emplace<Material>(target, part.material);
+            if (node.skin >= 0) skinned.emplace_back(target, nodeIndex);
         };
         if ((*parts)->size() == 1) {
             attach(e, (**parts)[0]);
@@ -134,6 +146,7 @@ struct Importer {
         transform.parent = parent;
         auto e = createEntity(name, transform);
         if (!e) return e.error();
+        entityOfNode[i] = *e;
         if (node.camera >= 0) {
             auto camera = gltf::importCamera(model, static_cast<std::size_t>(node.camera));
             if (!camera) return camera.error();
@@ -149,6 +162,56 @@ struct Importer {
             scene.world.emplace<Animation>(*e, animations[i]);
         }
         return e;
+    }
+
+    /// The `Skin` of `nodes[nodeIndex]` (which has one), for `target`, one of its mesh entities.
+    Status addSkin(Entity target, std::size_t nodeIndex) {
+        const auto skinIndex = static_cast<std::size_t>(model.nodes[nodeIndex].skin);
+        const std::string where = indexed("nodes", nodeIndex) + ".skin";
+        if (skinIndex >= model.skins.size()) {
+            return gltf::elementError(where, "skin " + std::to_string(skinIndex) + " does not exist");
+        }
+        const tinygltf::Skin& source = model.skins[skinIndex];
+        const std::string skinWhere = indexed("skins", skinIndex);
+        if (source.joints.empty()) return gltf::elementError(skinWhere + ".joints", "is empty");
+        Skin skin;
+        for (const int joint : source.joints) {
+            if (joint < 0 || static_cast<std::size_t>(joint) >= entityOfNode.size() ||
+                entityOfNode[static_cast<std::size_t>(joint)].isNull()) {
+                return gltf::elementError(skinWhere + ".joints",
+                                          "node " + std::to_string(joint) + " is not a node of the scene");
+            }
+            skin.joints.push_back(entityOfNode[static_cast<std::size_t>(joint)]);
+        }
+        skin.inverseBind.assign(skin.joints.size(), glm::dmat4(1.0));
+        if (source.inverseBindMatrices >= 0) {
+            auto matrices = gltf::readMat4(model, source.inverseBindMatrices, skinWhere + ".inverseBindMatrices");
+            if (!matrices) return matrices.error();
+            if (matrices->size() < skin.joints.size()) {
+                return gltf::elementError(skinWhere + ".inverseBindMatrices",
+                                          "has " + std::to_string(matrices->size()) + " matrices for " +
+                                              std::to_string(skin.joints.size()) + " joints");
+            }
+            std::copy_n(matrices->begin(), skin.joints.size(), skin.inverseBind.begin());
+        }
+        const MeshData& data = *scene.world.get<Mesh>(target).data;
+        if (data.joints.empty()) {
+            return gltf::elementError(where, "is set, but mesh \"" + data.name + "\" has no JOINTS_0/WEIGHTS_0");
+        }
+        if (data.jointBounds.size() > skin.joints.size()) {
+            return gltf::elementError(where, "mesh \"" + data.name + "\" weights joint " +
+                                                 std::to_string(data.jointBounds.size() - 1) + " of a skin with " +
+                                                 std::to_string(skin.joints.size()));
+        }
+        scene.world.emplace<Skin>(target, std::move(skin));
+        return Ok{};
+    }
+
+    Status addSkins() {
+        for (const auto& [target, node] : skinned) {
+            if (auto st = addSkin(target, node); !st) return st;
+        }
+        return Ok{};
     }
 
     /// Depth-first, pre-order, without recursion (node chains may be deep).
@@ -180,7 +243,7 @@ struct Importer {
 
 /// Everything after parsing; errors and warnings carry the element but not yet the file name.
 Result<Scene> buildScene(const tinygltf::Model& model, const std::string& name, const GltfLoadOptions& options) {
-    Importer importer{model, options, {}, {}, {}, {}, {}};
+    Importer importer(model, options);
     auto lights = gltf::importLights(model, options.strictShadowSettings, importer.scene.warnings);
     if (!lights) return lights.error();
     importer.lights = std::move(*lights);
@@ -197,8 +260,10 @@ Result<Scene> buildScene(const tinygltf::Model& model, const std::string& name, 
     if (!animations) return animations.error();
     importer.animations = std::move(*animations);
     importer.meshes.resize(model.meshes.size());
+    importer.entityOfNode.assign(model.nodes.size(), Entity::null());
     importer.scene.name = name;
     if (auto st = importer.instantiateAll(*roots); !st) return st.error();
+    if (auto st = importer.addSkins(); !st) return st.error();
     return std::move(importer.scene);
 }
 

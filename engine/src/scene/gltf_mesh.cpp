@@ -56,9 +56,54 @@ Status readTriangleIndices(const tinygltf::Model& model, const tinygltf::Primiti
     return Ok{};
 }
 
+Status readTexcoordSet(const tinygltf::Model& model, const tinygltf::Primitive& primitive, int set,
+                       const std::string& where, MeshData& mesh) {
+    const std::string semantic = "TEXCOORD_" + std::to_string(set);
+    const auto it = primitive.attributes.find(semantic);
+    if (it == primitive.attributes.end()) return Ok{};  // the texture is sampled at (0, 0)
+    const std::string uvWhere = where + ".attributes." + semantic;
+    auto uv = readTexcoords(model, it->second, uvWhere);
+    if (!uv) return uv.error();
+    if (uv->size() != mesh.positions.size()) {
+        return elementError(uvWhere, "has " + std::to_string(uv->size()) + " elements, POSITION has " +
+                                         std::to_string(mesh.positions.size()));
+    }
+    mesh.texcoords = std::move(*uv);
+    return Ok{};
+}
+
+/// JOINTS_0 and WEIGHTS_0 (both or neither); a skin checks the joint indices against its own
+/// joints when a node uses the mesh.
+Status readSkinning(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const std::string& where,
+                    MeshData& mesh) {
+    const auto joints = primitive.attributes.find("JOINTS_0");
+    const auto weights = primitive.attributes.find("WEIGHTS_0");
+    if (joints == primitive.attributes.end() && weights == primitive.attributes.end()) return Ok{};
+    if (joints == primitive.attributes.end() || weights == primitive.attributes.end()) {
+        return elementError(where, "has one of JOINTS_0 and WEIGHTS_0 without the other");
+    }
+    auto j = readJoints(model, joints->second, 65536, where + ".attributes.JOINTS_0");
+    if (!j) return j.error();
+    auto w = readWeights(model, weights->second, where + ".attributes.WEIGHTS_0");
+    if (!w) return w.error();
+    if (j->size() != mesh.positions.size() || w->size() != mesh.positions.size()) {
+        return elementError(where, "JOINTS_0 and WEIGHTS_0 must have one element per POSITION (" +
+                                       std::to_string(mesh.positions.size()) + ")");
+    }
+    for (glm::vec4& weight : *w) {
+        weight = glm::max(weight, glm::vec4(0.0f));
+        const float sum = weight.x + weight.y + weight.z + weight.w;
+        weight = sum > 0.0f ? weight / sum : glm::vec4(1.0f, 0.0f, 0.0f, 0.0f);
+    }
+    mesh.joints = std::move(*j);
+    mesh.weights = std::move(*w);
+    return Ok{};
+}
+
 /// The mesh of one primitive; nullopt when it draws nothing (another mode, or empty).
 Result<std::optional<MeshPart>> importPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
-                                                const std::string& where, std::string name) {
+                                                const std::string& where, std::string name,
+                                                TextureImporter& textures) {
     // -1 is what tinygltf leaves in a Model built in code; the file default is TRIANGLES.
     if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
         return std::optional<MeshPart>{};
@@ -79,14 +124,20 @@ Result<std::optional<MeshPart>> importPrimitive(const tinygltf::Model& model, co
     if (auto st = readTriangleIndices(model, primitive, where, *mesh); !st) return st.error();
     if (mesh->indices.empty()) return std::optional<MeshPart>{};
 
-    auto material = importMaterial(model, primitive.material, where + ".material");
+    int texCoord = 0;
+    auto material = importMaterial(model, primitive.material, where + ".material", textures, texCoord);
     if (!material) return material.error();
+    if (material->baseColorTexture != nullptr) {
+        if (auto st = readTexcoordSet(model, primitive, texCoord, where, *mesh); !st) return st.error();
+    }
+    if (auto st = readSkinning(model, primitive, where, *mesh); !st) return st.error();
     if (mesh->normals.empty()) {
         makeFlatNormals(*mesh);
     } else {
         computeBounds(*mesh);
     }
     computeClosed(*mesh);
+    computeJointBounds(*mesh);
     return std::optional<MeshPart>{MeshPart{std::move(mesh), *material}};
 }
 
@@ -108,7 +159,8 @@ Result<float> readUnitFactor(double value, const std::string& where) {
 
 }  // namespace
 
-Result<std::vector<MeshPart>> importMesh(const tinygltf::Model& model, std::size_t meshIndex) {
+Result<std::vector<MeshPart>> importMesh(const tinygltf::Model& model, std::size_t meshIndex,
+                                         TextureImporter& textures) {
     const tinygltf::Mesh& mesh = model.meshes[meshIndex];
     const std::string meshWhere = indexed("meshes", meshIndex);
     const std::string baseName = mesh.name.empty() ? "mesh" + std::to_string(meshIndex) : mesh.name;
@@ -116,30 +168,61 @@ Result<std::vector<MeshPart>> importMesh(const tinygltf::Model& model, std::size
     for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
         std::string name = mesh.primitives.size() == 1 ? baseName : baseName + "/primitive" + std::to_string(p);
         auto part =
-            importPrimitive(model, mesh.primitives[p], meshWhere + "." + indexed("primitives", p), std::move(name));
+            importPrimitive(model, mesh.primitives[p], meshWhere + "." + indexed("primitives", p), std::move(name),
+                            textures);
         if (!part) return part.error();
         if (part->has_value()) parts.push_back(std::move(**part));
     }
     return parts;
 }
 
-Result<Material> importMaterial(const tinygltf::Model& model, int index, const std::string& where) {
+Result<Material> importMaterial(const tinygltf::Model& model, int index, const std::string& where,
+                                TextureImporter& textures, int& texCoord) {
+    texCoord = 0;
     if (index < 0) return Material{};
     if (static_cast<std::size_t>(index) >= model.materials.size()) {
         return elementError(where, "material " + std::to_string(index) + " does not exist");
     }
-    const std::string pbrWhere = indexed("materials", static_cast<std::size_t>(index)) + ".pbrMetallicRoughness";
-    const tinygltf::PbrMetallicRoughness& pbr = model.materials[static_cast<std::size_t>(index)].pbrMetallicRoughness;
+    const std::string materialWhere = indexed("materials", static_cast<std::size_t>(index));
+    const std::string pbrWhere = materialWhere + ".pbrMetallicRoughness";
+    const tinygltf::Material& material = model.materials[static_cast<std::size_t>(index)];
+    const tinygltf::PbrMetallicRoughness& pbr = material.pbrMetallicRoughness;
     auto base = readBaseColor(pbr, pbrWhere + ".baseColorFactor");
     if (!base) return base.error();
+    auto alpha = readUnitFactor(pbr.baseColorFactor.size() == 4 ? pbr.baseColorFactor[3] : 1.0,
+                                pbrWhere + ".baseColorFactor");
+    if (!alpha) return alpha.error();
     auto metallic = readUnitFactor(pbr.metallicFactor, pbrWhere + ".metallicFactor");
     if (!metallic) return metallic.error();
     auto roughness = readUnitFactor(pbr.roughnessFactor, pbrWhere + ".roughnessFactor");
     if (!roughness) return roughness.error();
+    auto cutoff = readUnitFactor(material.alphaCutoff, materialWhere + ".alphaCutoff");
+    if (!cutoff) return cutoff.error();
 
     Material out;
-    out.albedo = *base;
+    out.albedo = *base * (1.0f - *metallic);
     out.specular = glm::mix(glm::vec3(0.04f), *base, *metallic);
+    out.metallic = *metallic;
+    out.alpha = *alpha;
+    out.alphaCutoff = material.alphaMode == "BLEND" ? 0.5f : *cutoff;
+    if (material.alphaMode == "MASK") {
+        out.alphaMode = AlphaMode::Mask;
+    } else if (material.alphaMode == "BLEND") {
+        out.alphaMode = AlphaMode::Blend;
+    } else if (!material.alphaMode.empty() && material.alphaMode != "OPAQUE") {
+        return elementError(materialWhere + ".alphaMode",
+                            "must be OPAQUE, MASK or BLEND, not \"" + material.alphaMode + "\"");
+    }
+    if (pbr.baseColorTexture.index >= 0) {
+        const std::string textureWhere = pbrWhere + ".baseColorTexture";
+        if (pbr.baseColorTexture.texCoord < 0 || pbr.baseColorTexture.texCoord > 7) {
+            return elementError(textureWhere + ".texCoord", "must be in [0, 7]");
+        }
+        auto texture = textures.get(pbr.baseColorTexture.index, textureWhere);
+        if (!texture) return texture.error();
+        out.baseColorTexture = *texture;
+        texCoord = pbr.baseColorTexture.texCoord;
+    }
     // Blinn-Phong exponent whose lobe matches a GGX lobe of roughness r (alpha = r^2):
     // n = 2 / alpha^2 - 2 (Walter et al. 2007, section 5.2).
     const float alpha2 = std::max(std::pow(*roughness, 4.0f), 1e-4f);

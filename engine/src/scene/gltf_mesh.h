@@ -5,6 +5,8 @@
 #include <shadow/result.h>
 #include <tiny_gltf.h>
 
+#include "scene/gltf_textures.h"
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,10 +22,16 @@ struct MeshPart {
 /// The drawable parts of `meshes[meshIndex]`, one per TRIANGLES primitive with at least one
 /// triangle; primitives of other modes are skipped (the engine draws triangles only).
 /// Primitives without NORMAL get flat normals; those without indices get sequential ones.
-[[nodiscard]] Result<std::vector<MeshPart>> importMesh(const tinygltf::Model& model, std::size_t meshIndex);
+/// TEXCOORD_n is read where the material's base-colour texture uses it; JOINTS_0 and WEIGHTS_0
+/// where present (weights normalised to sum 1; a vertex without weight follows joint 0).
+[[nodiscard]] Result<std::vector<MeshPart>> importMesh(const tinygltf::Model& model, std::size_t meshIndex,
+                                                       TextureImporter& textures);
 
-/// `materials[index]` mapped from metallic-roughness to Blinn-Phong; the default `Material`
-/// for index -1. `where` names the referring element. Factors are clamped to [0, 1].
-[[nodiscard]] Result<Material> importMaterial(const tinygltf::Model& model, int index, const std::string& where);
+/// `materials[index]` mapped from metallic-roughness to Blinn-Phong (diffuse = base colour x
+/// (1 - metallic), specular = mix(0.04, base colour, metallic)), with its base-colour texture
+/// and alpha mode; the default `Material` for index -1. `where` names the referring element.
+/// Factors are clamped to [0, 1]. `texCoord` receives the TEXCOORD set the texture reads.
+[[nodiscard]] Result<Material> importMaterial(const tinygltf::Model& model, int index, const std::string& where,
+                                              TextureImporter& textures, int& texCoord);
 
 }  // namespace shadow::gltf

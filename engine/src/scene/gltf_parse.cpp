@@ -16,8 +16,13 @@
 namespace shadow::gltf {
 namespace {
 
-/// The engine uses no textures: accept every image without decoding it.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+/// Keeps every image encoded (its bytes, no larger than the file): a material decodes the ones
+/// it uses (gltf_textures.cpp), and an image no material uses costs no decoding.
+bool keepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+    if (bytes != nullptr && size > 0) image->image.assign(bytes, bytes + size);
+    image->width = 0;
+    image->height = 0;
     return true;
 }
 
@@ -169,12 +174,12 @@ bool noFileRead(std::vector<unsigned char>*, std::string* err, const std::string
 }
 
 /// Runs one tinygltf load (`load(loader, model, err, warn)`) with the engine's callbacks:
-/// images skipped, URIs literal, and, for in-memory input, no file access at all. Errors start
+/// images kept encoded, URIs literal, and, for in-memory input, no file access at all. Errors start
 /// with `name`.
 template <typename Load>
 Result<tinygltf::Model> parseModel(const std::string& name, bool filesAllowed, Load load) {
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(&skipImage, nullptr);
+    loader.SetImageLoader(&keepEncodedImage, nullptr);
     if (filesAllowed) {
         loader.SetFsCallbacks({&pathExists, &literalPath, &readRegularFile, &tinygltf::WriteWholeFile, nullptr});
     } else {

@@ -98,6 +98,11 @@ void makeFlatNormals(MeshData& mesh) {
     const std::size_t triangleCount = mesh.indices.size() / 3;
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
+    std::vector<glm::vec2> texcoords;
+    std::vector<glm::u16vec4> joints;
+    std::vector<glm::vec4> weights;
+    const bool textured = mesh.texcoords.size() == vertexCount;
+    const bool skinned = mesh.joints.size() == vertexCount && mesh.weights.size() == vertexCount;
     positions.reserve(triangleCount * 3);
     normals.reserve(triangleCount * 3);
     for (std::size_t t = 0; t < triangleCount; ++t) {
@@ -107,6 +112,11 @@ void makeFlatNormals(MeshData& mesh) {
         for (int k = 0; k < 3; ++k) {
             positions.push_back(mesh.positions[tri[k]]);
             normals.push_back(n);
+            if (textured) texcoords.push_back(mesh.texcoords[tri[k]]);
+            if (skinned) {
+                joints.push_back(mesh.joints[tri[k]]);
+                weights.push_back(mesh.weights[tri[k]]);
+            }
         }
     }
     mesh.indices.resize(positions.size());
@@ -115,7 +125,37 @@ void makeFlatNormals(MeshData& mesh) {
     }
     mesh.positions = std::move(positions);
     mesh.normals = std::move(normals);
+    mesh.texcoords = std::move(texcoords);
+    mesh.joints = std::move(joints);
+    mesh.weights = std::move(weights);
     computeBounds(mesh);
+}
+
+void computeJointBounds(MeshData& mesh) {
+    mesh.jointBounds.clear();
+    const std::size_t n = mesh.positions.size();
+    if (mesh.joints.size() != n || mesh.weights.size() != n) return;
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::vec3& p = mesh.positions[i];
+        if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) continue;
+        for (int k = 0; k < 4; ++k) {
+            if (!(mesh.weights[i][k] > 0.0f)) continue;
+            const std::size_t j = mesh.joints[i][k];
+            if (j >= mesh.jointBounds.size()) mesh.jointBounds.resize(j + 1);
+            mesh.jointBounds[j].extend(mesh.positions[i]);
+        }
+    }
+}
+
+glm::vec3 skinnedPosition(const MeshData& mesh, const Skin& skin, std::size_t i) {
+    const glm::vec4 p(mesh.positions[i], 1.0f);
+    glm::vec4 out(0.0f);
+    for (int k = 0; k < 4; ++k) {
+        const float w = mesh.weights[i][k];
+        const std::size_t j = mesh.joints[i][k];
+        if (w > 0.0f && j < skin.frameFromMesh.size()) out += w * (skin.frameFromMesh[j] * p);
+    }
+    return glm::vec3(out);
 }
 
 }  // namespace shadow

@@ -166,13 +166,16 @@ bool knownClosed(const World& world, Entity caster) {
 /// Whether `caster` can be marched through a distance field: a mesh (its field is baked from
 /// its data) placed by a rotation and a scale along its own axes (a non-uniform scale gets a
 /// field of its own, baked with the scale applied); a shear would break the distance bound the
-/// march steps by.
+/// march steps by. A skinned mesh (its field would be its bind pose) and a cut-out (its field
+/// would have no holes) are not: they cast through the light's map, which poses and cuts them.
 bool hasField(const World& world, Entity caster) {
     const Mesh* mesh = world.tryGet<Mesh>(caster);
     const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
     if (mesh == nullptr || mesh->data == nullptr || mesh->data->indices.empty() || wt == nullptr || !wt->finite) {
         return false;
     }
+    const Material* material = world.tryGet<Material>(caster);
+    if (world.has<Skin>(caster) || (material != nullptr && material->cutout())) return false;
     std::array<glm::dvec3, 3> axes{};
     for (int c = 0; c < 3; ++c) {
         axes[static_cast<std::size_t>(c)] = glm::dvec3(wt->worldFromLocal[c]);
@@ -205,7 +208,7 @@ void takeFieldCasters(const World& world, ShadowLightPlan& plan, std::vector<War
     const Name* name = world.tryGet<Name>(first);
     std::ostringstream msg;
     msg << plan.name << ": technique sdf: " << without << " caster draw" << (without == 1 ? "" : "s")
-        << " without a distance field (a game's own draw or a sheared transform; \""
+        << " without a distance field (a game's own draw, a skinned or cut-out mesh, or a sheared transform; \""
         << (name != nullptr ? name->value : std::string("entity ") + std::to_string(first.index()))
         << "\" first) cast through the light's shadow map";
     warnings.push_back({WarningCode::CasterWithoutField, plan.name, msg.str()});

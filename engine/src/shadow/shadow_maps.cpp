@@ -44,7 +44,8 @@ struct ShadowMapGpu {
 };
 
 /// A depth-only program of the shadow pass, shared by every light type: the nearest depth, or
-/// (`defines` SG_DEPTH_BEHIND_FIRST …) the second pass of a second-depth mode.
+/// (`defines` SG_DEPTH_BEHIND_FIRST …) the second pass of a second-depth mode; with
+/// SG_ALPHA_TESTED, for cut-out casters. Skinned casters go through any of them (uSkinned).
 struct DepthProgram {
     gpu::Program program;
     GLint lightFromLocal = -1;
@@ -52,6 +53,9 @@ struct DepthProgram {
     GLint depthScale = -1;
     GLint orthographic = -1;
     GLint firstPass = -1;  ///< the second-depth programs only
+    GLint skinned = -1;
+    GLint alpha = -1;        ///< the alpha-tested programs only
+    GLint alphaCutoff = -1;  ///< likewise
 
     DepthProgram(std::string label, std::vector<std::string> defines) {
         program = gpu::buildProgram(
@@ -61,6 +65,9 @@ struct DepthProgram {
         depthScale = gl.GetUniformLocation(program.get(), "uDepthScale");
         orthographic = gl.GetUniformLocation(program.get(), "uOrthographic");
         firstPass = gl.GetUniformLocation(program.get(), "uFirstPass");
+        skinned = gl.GetUniformLocation(program.get(), "uSkinned");
+        alpha = gl.GetUniformLocation(program.get(), "uAlpha");
+        alphaCutoff = gl.GetUniformLocation(program.get(), "uAlphaCutoff");
     }
 
     /// Sets the layer's uniforms and makes the program current; `first`: the first of a
@@ -173,9 +180,9 @@ void describe(const ShadowLightPlan& plan, LightShadowStats& ls) {
 
 struct ShadowMaps::Impl {
     DepthProgram depth{"Shadow/Depth", {}};
-    /// The second passes of the second-depth modes, built when a light first uses one.
-    std::optional<DepthProgram> midpoint;
-    std::optional<DepthProgram> second;
+    /// The other depth programs, by depth mode (`DepthMode`) and alpha test (0 opaque, 1 cut-out),
+    /// built when a layer first needs one (the nearest opaque one is `depth`).
+    std::array<std::array<std::optional<DepthProgram>, 2>, 3> others;
     NearestScratch scratch;
     /// The distance fields of the sdf lights' casters, made when a light first uses sdf.
     std::optional<gpu::DistanceFieldAtlas> fields;
@@ -196,8 +203,9 @@ struct ShadowMaps::Impl {
     /// Draws layer `k` of `plan`'s map: its casters, depth only (twice in a second-depth mode).
     void drawLayer(const World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k,
                    LightShadowStats& ls);
-    /// The second pass's program of depth mode `mode` (Midpoint or Second), built on first use.
-    const DepthProgram& behindFirst(DepthMode mode);
+    /// The program of depth mode `mode` (the second pass's for Midpoint and Second), opaque or
+    /// alpha-tested, built on first use.
+    const DepthProgram& program(DepthMode mode, bool cutout);
     /// Brings the filter chain of every layer of `plan` whose map changed up to date.
     void updateChains(const ShadowLightPlan& plan);
 };
@@ -251,44 +259,86 @@ void ShadowMaps::Impl::updateChains(const ShadowLightPlan& plan) {
     }
 }
 
-const DepthProgram& ShadowMaps::Impl::behindFirst(DepthMode mode) {
-    std::optional<DepthProgram>& p = mode == DepthMode::Midpoint ? midpoint : second;
+const DepthProgram& ShadowMaps::Impl::program(DepthMode mode, bool cutout) {
+    if (mode == DepthMode::Nearest && !cutout) return depth;
+    std::optional<DepthProgram>& p = others[static_cast<std::size_t>(mode)][cutout ? 1 : 0];
     if (!p) {
-        if (mode == DepthMode::Midpoint) {
-            p.emplace("Shadow/Depth/midpoint", std::vector<std::string>{"SG_DEPTH_BEHIND_FIRST", "SG_DEPTH_MIDPOINT"});
-        } else {
-            p.emplace("Shadow/Depth/second", std::vector<std::string>{"SG_DEPTH_BEHIND_FIRST"});
+        std::vector<std::string> defines;
+        std::string label = "Shadow/Depth";
+        if (mode != DepthMode::Nearest) defines.emplace_back("SG_DEPTH_BEHIND_FIRST");
+        if (mode == DepthMode::Midpoint) defines.emplace_back("SG_DEPTH_MIDPOINT");
+        if (mode != DepthMode::Nearest) label += mode == DepthMode::Midpoint ? "/midpoint" : "/second";
+        if (cutout) {
+            defines.emplace_back("SG_ALPHA_TESTED");
+            label += "/alpha";
         }
+        p.emplace(std::move(label), std::move(defines));
     }
     return *p;
 }
 
 namespace {
 
-/// Draws every caster of `layer` with `program` (current, its layer uniforms set) into the bound
-/// framebuffer; returns the draw calls made.
-int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& layer, const DepthProgram& program) {
+/// Whether a caster of `layer` is a cut-out (`Material::cutout`): its depth needs the alpha test.
+bool hasCutoutCaster(const World& world, const ShadowLayerPlan& layer) {
+    return std::any_of(layer.casters.begin(), layer.casters.end(), [&](Entity caster) {
+        const Material* m = world.tryGet<Material>(caster);
+        return m != nullptr && m->cutout() && world.has<Mesh>(caster);
+    });
+}
+
+/// Draws every caster of `layer` into the bound framebuffer, with `opaque` (current, its layer
+/// uniforms set) or, for a cut-out caster, `cutout` (set up here when first needed; null when the
+/// layer has none); `first`: the first pass of a second-depth mode. A skinned caster is drawn in
+/// its pose. Returns the draw calls made.
+int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& layer, const DepthProgram& opaque,
+                const DepthProgram* cutout, bool first) {
     const CasterDrawContext context{layer.lightFromWorld,
                                     layer.clipFromLight,
                                     layer.depthScale,
                                     layer.orthographic,
-                                    GlProgram{program.program.get()},
-                                    program.lightFromLocal};
+                                    GlProgram{opaque.program.get()},
+                                    opaque.lightFromLocal};
+    const DepthProgram* current = &opaque;
+    const auto choose = [&](const DepthProgram& p) {
+        if (&p == current) return;
+        p.use(layer, first);
+        current = &p;
+    };
     int drawn = 0;
     for (Entity caster : layer.casters) {
         const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
         if (wt == nullptr || !wt->finite) continue;
         if (const Mesh* mesh = world.tryGet<Mesh>(caster); mesh != nullptr && mesh->data != nullptr) {
-            context.setWorldFromLocal(wt->worldFromLocal);
+            const Skin* skin = world.tryGet<Skin>(caster);
+            if (skin != nullptr && !skin->posed) continue;
+            const Material* m = world.tryGet<Material>(caster);
+            const bool alphaTested = cutout != nullptr && m != nullptr && m->cutout();
+            choose(alphaTested ? *cutout : opaque);
+            const GLuint name = current->program.get();
+            if (alphaTested) {
+                gl.ProgramUniform1f(name, current->alpha, m->alpha);
+                gl.ProgramUniform1f(name, current->alphaCutoff, m->alphaCutoff);
+                gpu::MeshCacheAccess::bindTexture(meshes, m->baseColorTexture, SG_UNIT_BASE_COLOR);
+            }
+            gl.ProgramUniform1i(name, current->skinned, skin != nullptr ? 1 : 0);
+            if (skin != nullptr) gpu::MeshCacheAccess::bindSkin(meshes, *skin);
+            // Composed in double: light-relative float values stay precise far from the origin.
+            const glm::mat4 lightFromLocal(layer.lightFromWorld *
+                                           (skin != nullptr ? skin->worldFromFrame : wt->worldFromLocal));
+            gl.ProgramUniformMatrix4fv(name, current->lightFromLocal, 1, GL_FALSE, glm::value_ptr(lightFromLocal));
             const int count = gpu::MeshCacheAccess::bind(meshes, mesh->data);
             gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
         } else if (const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(caster); own != nullptr) {
+            choose(opaque);
+            gl.ProgramUniform1i(opaque.program.get(), opaque.skinned, 0);
             drawOwnCaster(*own, *wt, context);
         } else {
             continue;
         }
         ++drawn;
     }
+    if (current != &opaque) opaque.use(layer, first);  // what the caller left current
     return drawn;
 }
 
@@ -309,31 +359,29 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
     }
     gl.Viewport(0, 0, map.mapSize, map.mapSize);
     const DepthMode mode = plan.settings.depthMode;
+    const bool cutout = hasCutoutCaster(world, layer);
     if (mode != DepthMode::Nearest) {
         // First pass: the nearest depth, into the scratch the second pass reads, by the second
         // pass's own program (see uFirstPass in shadow_depth.frag.glsl).
         scratch.reserve(map.mapSize);
         gl.BindFramebuffer(GL_FRAMEBUFFER, scratch.framebuffer.get());
         gl.ClearNamedFramebufferfv(scratch.framebuffer.get(), GL_DEPTH, 0, &far);
-        const DepthProgram& program = behindFirst(mode);
+        const DepthProgram& program = this->program(mode, false);
         program.use(layer, true);
-        ls.castersDrawn += drawCasters(world, meshes, layer, program);
+        ls.castersDrawn += drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, true);
     }
     gl.NamedFramebufferTextureLayer(map.framebuffer.get(), GL_DEPTH_ATTACHMENT, map.array.get(), 0,
                                     static_cast<GLint>(k));
     gl.BindFramebuffer(GL_FRAMEBUFFER, map.framebuffer.get());
     gl.ClearNamedFramebufferfv(map.framebuffer.get(), GL_DEPTH, 0, &far);
-    if (mode == DepthMode::Nearest) {
-        depth.use(layer);
-        ls.castersDrawn += drawCasters(world, meshes, layer, depth);
-    } else {
-        const DepthProgram& program = behindFirst(mode);
+    if (mode != DepthMode::Nearest) {
         gl.BindSampler(SG_UNIT_MINMAX_SOURCE, 0);  // the texture's own nearest filtering, no comparison
         gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, scratch.texture.get());
-        program.use(layer);
-        ls.castersDrawn += drawCasters(world, meshes, layer, program);
-        gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
     }
+    const DepthProgram& program = this->program(mode, false);
+    program.use(layer);
+    ls.castersDrawn += drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, false);
+    if (mode != DepthMode::Nearest) gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
     ++ls.layersDrawn;
 }
 
@@ -368,7 +416,7 @@ void ShadowMaps::render(const ShadowFrame& frame, const World& world, MeshCache&
     // What the calls without a FrameStats found since the last frame, in the order found.
     gpu::movePendingWarnings(impl_->pending, stats.warnings);
     gpu::movePendingWarnings(gpu::MeshCacheAccess::pending(meshes), stats.warnings);
-    static constexpr std::array<GLint, 1> kUnits{SG_UNIT_MINMAX_SOURCE};
+    static constexpr std::array<GLint, 2> kUnits{SG_UNIT_MINMAX_SOURCE, SG_UNIT_BASE_COLOR};
     static constexpr std::array<GLint, 1> kImageUnits{SG_IMAGE_MINMAX};
     const gpu::GlStateGuard hostState(kUnits, {}, kImageUnits);
     Impl& g = *impl_;

@@ -1,0 +1,36 @@
+// glTF textures to engine `Texture`s: images decoded (PNG, JPEG: stb_image) on first use by a
+// material, and shared by every material that uses them.
+#pragma once
+
+#include <shadow/components.h>
+#include <shadow/result.h>
+#include <tiny_gltf.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace shadow::gltf {
+
+/// Largest image the loader decodes, in pixels (each side at most `kMaxTextureEdge`): 64 MiB
+/// of RGBA.
+inline constexpr long long kMaxTexturePixels = 16LL << 20U;
+inline constexpr int kMaxTextureEdge = 16384;
+
+/// The textures of one import. The parser keeps images encoded (see gltf_parse.cpp); `get`
+/// decodes one when a material first uses it.
+class TextureImporter {
+public:
+    explicit TextureImporter(const tinygltf::Model& model) : model_(model), textures_(model.textures.size()) {}
+
+    /// `textures[index]`, decoded to RGBA8 with its sampler's wrap modes; `where` names the
+    /// referring element. An image that is missing, not PNG/JPEG, or larger than the limits is an
+    /// error naming it.
+    [[nodiscard]] Result<std::shared_ptr<const Texture>> get(int index, const std::string& where);
+
+private:
+    const tinygltf::Model& model_;
+    std::vector<std::shared_ptr<const Texture>> textures_;  ///< by texture index, once decoded
+};
+
+}  // namespace shadow::gltf

@@ -1,0 +1,34 @@
+// What the module's mesh programs (the main pass's lit.vert.glsl and the shadow pass's
+// shadow_depth.vert.glsl) share: the vertex attributes of a `MeshCache` mesh and skinning.
+//
+// A skinned draw (a `Skin` on the instance) sets uSkinned = 1 and binds the pose's joint matrices
+// (frame-from-mesh, `Skin::frameFromMesh`) at SG_BINDING_JOINTS; its object transform is then the
+// skin's frame (`Skin::worldFromFrame`). One path on the GPU for every pass, so a shadow follows
+// its skin exactly. A rigid draw sets uSkinned = 0 and reads no joint.
+#ifndef SG_MESH_VERTEX
+#define SG_MESH_VERTEX
+#include "shared_constants.h"
+
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inTexcoord;
+layout(location = 3) in uvec4 inJoints;
+layout(location = 4) in vec4 inWeights;
+
+layout(std430, binding = SG_BINDING_JOINTS) readonly buffer sg_JointBlock {
+    mat4 sg_jointFromMesh[];
+};
+uniform int uSkinned;
+
+// The vertex's blend of its joints' matrices (weights sum to 1); the identity for a rigid draw.
+// Normals take its upper 3x3: exact for joints without non-uniform scale.
+mat4 sg_skinMatrix() {
+    if (uSkinned == 0) return mat4(1.0);
+    uint joints = uint(sg_jointFromMesh.length());
+    mat4 m = mat4(0.0);
+    for (int k = 0; k < 4; ++k) {
+        if (inWeights[k] > 0.0 && inJoints[k] < joints) m += inWeights[k] * sg_jointFromMesh[inJoints[k]];
+    }
+    return m;
+}
+#endif
