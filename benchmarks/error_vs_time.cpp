@@ -139,7 +139,7 @@ struct Options {
 };
 
 Result<Row> measure(const std::string& spec, const Config& config, const Options& o, int width, int height) {
-    Result<Scene> loaded = loadScene(spec);
+    Result<Scene> loaded = samples::loadSampleScene(spec);
     if (!loaded) return loaded.error();
     Scene& scene = *loaded;
     applyConfig(scene, config);

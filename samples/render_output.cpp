@@ -1,6 +1,7 @@
 #include "render_output.h"
 
 #include <chrono>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <shadow/distance_field.h>
 #include <shadow/program_cache.h>
@@ -255,6 +256,34 @@ std::string statsJson(const Scene& scene, const std::vector<FrameStats>& frames,
     }
     j["warnings"] = warnings;
     return j.dump(2) + "\n";
+}
+
+std::string sampleScenesDir() {
+    const char* dir = std::getenv("SHADOW_SCENES_DIR");
+    return dir != nullptr && *dir != '\0' ? std::string(dir) : std::string(SHADOW_SCENES_DIR);
+}
+
+std::vector<std::string> sampleSceneNames() {
+    std::vector<std::string> names;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(sampleScenesDir(), ec)) {
+        if (entry.path().extension() == ".gltf") names.push_back(entry.path().stem().string());
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+Result<Scene> loadSampleScene(const std::string& spec) {
+    const bool bareWord = !spec.empty() && spec.find_first_of("/.:") == std::string::npos;
+    if (!bareWord) return loadScene(spec);
+    const std::filesystem::path file = std::filesystem::path(sampleScenesDir()) / (spec + ".gltf");
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(file, ec)) return loadScene(file.string());
+    if (std::filesystem::exists(spec, ec)) return loadScene(spec);
+    std::string known;
+    for (const std::string& name : sampleSceneNames()) known += (known.empty() ? "" : ", ") + name;
+    for (const std::string& name : builtinSceneNames()) known += (known.empty() ? "builtin:" : ", builtin:") + name;
+    return Error{ErrorCode::InvalidArgument, spec + ": no such scene (a .gltf/.glb path, or one of: " + known + ")"};
 }
 
 }  // namespace shadow::samples

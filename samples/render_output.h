@@ -75,4 +75,16 @@ void setFieldEdge(ShadowPlanner& planner, int edge);
 /// zero constant and slope bias (the surface behind the first is the margin), nearest as set.
 void applyDepthMode(Shadow& s, DepthMode mode);
 
+/// The folder of the sample scenes (samples/scenes/*.gltf): $SHADOW_SCENES_DIR when set, else the
+/// source tree's.
+[[nodiscard]] std::string sampleScenesDir();
+
+/// The names of the sample scenes (their files' stems), sorted.
+[[nodiscard]] std::vector<std::string> sampleSceneNames();
+
+/// `loadScene` of SCENE as the CLIs name it: a sample scene's name (`courtyard`), a `.gltf`/`.glb`
+/// path, or `builtin:NAME`. A bare word that names neither a sample scene nor a file is an
+/// error listing the sample scenes and the built-in ones.
+[[nodiscard]] Result<Scene> loadSampleScene(const std::string& spec);
+
 }  // namespace shadow::samples

@@ -163,7 +163,7 @@ int run(Options& o) {
         positions = std::move(*read);
     }
 
-    Result<Scene> loaded = loadScene(o.scene);
+    Result<Scene> loaded = samples::loadSampleScene(o.scene);
     if (!loaded) return fail(kExitBadInput, loaded.error().message);
     Scene& scene = *loaded;
     Result<Entity> camera = samples::chooseCamera(scene, o.camera, o.time);

@@ -5,7 +5,8 @@
 //                 [--debug NAME] [--debug-light I] [--frame-images] [--no-cache] [--exposure E]
 //                 [--shader-cache DIR] [--field-voxels N] [--sdf-start-offset M]
 //
-// SCENE is a .gltf/.glb path or builtin:NAME. With --frames N the scene is animated from
+// SCENE is a sample scene's name (samples/scenes, e.g. courtyard), a .gltf/.glb path or
+// builtin:NAME. With --frames N the scene is animated from
 // --time T in steps of --dt S; the images are those of the last frame and the timings in
 // stats.json are medians over the frames after the first. --frame-images also writes every
 // frame's colour as frames/color_<k>.png. Bad input: one message, exit code 2.
@@ -140,7 +141,7 @@ int run(const Options& o) {
     if (o.camera && *o.camera < 0)
         return fail(kExitBadInput, "--camera " + std::to_string(*o.camera) + ": must be >= 0");
 
-    Result<Scene> loaded = loadScene(o.scene);
+    Result<Scene> loaded = samples::loadSampleScene(o.scene);
     if (!loaded) return fail(kExitBadInput, loaded.error().message);
     Scene& scene = *loaded;
     if (o.debugLight < 0 || (!scene.lights.empty() && o.debugLight >= static_cast<int>(scene.lights.size()))) {

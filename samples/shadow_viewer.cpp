@@ -6,7 +6,7 @@
 //                 [--debug VIEW] [--debug-light I]
 //                 [--script FILE | --frames N [--dt S]] [--screenshot DIR]
 //
-// SCENE is a .gltf/.glb path or builtin:NAME (default builtin:default); a .gltf/.glb dropped on
+// SCENE is a sample scene's name, a .gltf/.glb path or builtin:NAME (default builtin:default); a .gltf/.glb dropped on
 // the window replaces it (a scene that does not load is reported and the old one kept).
 // Interactive controls: README.md, "The viewer". With --script FILE the viewer runs the script
 // (viewer_script.h, docs/viewer.md) and exits; with --frames N it renders N frames from --time T
@@ -318,7 +318,7 @@ int run(const Options& o) {
     app.state.time = o.time;
     app.state.fixedSize = size;
     // The scene before the window, so that bad input costs no window (and needs no display).
-    Result<Scene> probe = loadScene(o.scene);
+    Result<Scene> probe = samples::loadSampleScene(o.scene);
     if (!probe) return fail(kExitBadInput, probe.error().message);
     const int lights = static_cast<int>(probe->lights.size());
     if (o.debugLight < 0 || (lights > 0 && o.debugLight >= lights)) {

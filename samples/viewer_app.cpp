@@ -23,7 +23,7 @@ void TimingHistory::push(const FrameStats& stats, double frameMs) {
 }
 
 Status loadInto(ViewerState& state, const std::string& spec, std::optional<int> camera) {
-    Result<Scene> loaded = loadScene(spec);
+    Result<Scene> loaded = samples::loadSampleScene(spec);
     if (!loaded) return loaded.error();
     Scene& scene = *loaded;
     Result<Entity> chosen = samples::chooseCamera(scene, camera, state.time);

@@ -367,3 +367,33 @@ TEST(ShadowRenderCli, ShaderCacheFolderServesTheSecondRun) {
 
 }  // namespace
 }  // namespace shadow
+
+namespace shadow {
+namespace {
+
+// Every sample scene (samples/scenes) renders headless by its name, animated, with every light
+// of it visible in stats.json and no warning; a name that is no scene is bad input listing them.
+TEST(ShadowRenderCli, SampleScenesRenderByName) {
+    const std::vector<std::string> scenes{"character", "contact", "courtyard", "fence", "sunfield"};
+    for (const std::string& name : scenes) {
+        SCOPED_TRACE(name);
+        TempDir tmp;
+        const std::string out = tmp / "out";
+        const CliRun run = runCli(tmp, name + " --out " + quoted(out) + " --size 96x54 --aov color,visibility " +
+                                           "--frames 2 --dt 0.5");
+        ASSERT_EQ(run.exitCode, 0) << run.output;
+        EXPECT_TRUE(fs::exists(out + "/color.png"));
+        const nlohmann::json stats = readJson(out + "/stats.json");
+        ASSERT_TRUE(stats.is_object());
+        EXPECT_TRUE(stats["warnings"].empty()) << stats["warnings"].dump();
+        EXPECT_TRUE(fs::exists(out + "/visibility_0.exr"));
+    }
+    TempDir tmp;
+    const CliRun bad = runCli(tmp, "no-such-scene --out " + quoted(tmp / "bad"));
+    EXPECT_EQ(bad.exitCode, kExitBadInput);
+    EXPECT_NE(bad.output.find("courtyard"), std::string::npos) << bad.output;
+    EXPECT_TRUE(emptyOrAbsent(tmp / "bad"));
+}
+
+}  // namespace
+}  // namespace shadow
