@@ -379,8 +379,8 @@ TEST(ShadowRenderCli, SampleScenesRenderByName) {
         SCOPED_TRACE(name);
         TempDir tmp;
         const std::string out = tmp / "out";
-        const CliRun run = runCli(tmp, name + " --out " + quoted(out) + " --size 96x54 --aov color,visibility " +
-                                           "--frames 2 --dt 0.5");
+        const CliRun run = runCli(
+            tmp, name + " --out " + quoted(out) + " --size 96x54 --aov color,visibility " + "--frames 2 --dt 0.5");
         ASSERT_EQ(run.exitCode, 0) << run.output;
         EXPECT_TRUE(fs::exists(out + "/color.png"));
         const nlohmann::json stats = readJson(out + "/stats.json");

@@ -35,7 +35,9 @@ TEST(GltfImport, LoadsTriangleMeshWithMaterial) {
     expectVec3(mesh.bounds.min, {0, 0, 0});
     expectVec3(mesh.bounds.max, {1, 1, 0});
     const Material& m = scene->world.get<Material>(e);
-    expectVec3(m.albedo, {0.5, 0.25, 1.0});
+    // Metals have no diffuse: albedo = base colour x (1 - metallic).
+    expectVec3(m.albedo, {0.25, 0.125, 0.5});
+    EXPECT_FLOAT_EQ(m.metallic, 0.5f);
     expectVec3(m.specular, {0.27, 0.145, 0.52});  // mix(0.04, base, 0.5)
     EXPECT_NEAR(m.shininess, 30.0f, 1e-3f);       // 2 / 0.5^4 - 2
 }

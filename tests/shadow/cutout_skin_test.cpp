@@ -76,9 +76,9 @@ Scene cutoutScene(LightType type, ShadowTechnique technique) {
 /// The engine's visibility of light 0 against the reference's, over the ground pixels the
 /// reference shades.
 struct Agreement {
-    int pixels = 0;       ///< ground pixels in the quad's shadow footprint (reference < 0.5 within 3 px)
-    int mismatches = 0;   ///< of those, where the engine's and the reference's sides of 0.5 differ
-    double holeMean = 0;  ///< engine's mean visibility where the reference is lit, inside the footprint
+    int pixels = 0;        ///< ground pixels in the quad's shadow footprint (reference < 0.5 within 3 px)
+    int mismatches = 0;    ///< of those, where the engine's and the reference's sides of 0.5 differ
+    double holeMean = 0;   ///< engine's mean visibility where the reference is lit, inside the footprint
     double solidMean = 0;  ///< engine's mean visibility where the reference is in shadow
     int holes = 0;         ///< footprint pixels the reference sees lit (under hole cells)
     int solids = 0;        ///< footprint pixels the reference sees in shadow
@@ -169,9 +169,9 @@ TEST_P(CutoutShadow, CheckerboardAlphaCastsCheckerboardShadow) {
 std::vector<CutoutCase> cutoutCases() {
     std::vector<CutoutCase> cases;
     for (LightType type : {LightType::Directional, LightType::Spot, LightType::Point}) {
-        for (ShadowTechnique t : {ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss,
-                                  ShadowTechnique::Vsm, ShadowTechnique::Vssm, ShadowTechnique::Msm,
-                                  ShadowTechnique::MsmSoft, ShadowTechnique::Sdf}) {
+        for (ShadowTechnique t :
+             {ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss, ShadowTechnique::Vsm,
+              ShadowTechnique::Vssm, ShadowTechnique::Msm, ShadowTechnique::MsmSoft, ShadowTechnique::Sdf}) {
             cases.push_back({type, t});
         }
     }
@@ -299,8 +299,7 @@ TEST(SkinnedShadow, FollowsTheJointsAndAgreesWithTheReference) {
     FrameRunner runner;
     const RenderedFrame straight = renderFrame(runner, s.scene, kWidth, kHeight);
     const SkinShadow a = measureSkin(s.scene, straight, runner.lastCamera());
-    s.scene.world.get<Transform>(s.elbow).rotation =
-        glm::angleAxis(glm::radians(90.0), glm::dvec3(0.0, 0.0, 1.0));
+    s.scene.world.get<Transform>(s.elbow).rotation = glm::angleAxis(glm::radians(90.0), glm::dvec3(0.0, 0.0, 1.0));
     const RenderedFrame bent = renderFrame(runner, s.scene, kWidth, kHeight);
     const SkinShadow b = measureSkin(s.scene, bent, runner.lastCamera());
     std::printf("straight: %d shadowed (reference %d, %d mismatches); bent: %d (reference %d, %d mismatches)\n",
@@ -335,7 +334,8 @@ TEST(SkinnedShadow, LayersRedrawnOnlyWhenAJointMoved) {
     const MeshData& data = *s.scene.world.get<Mesh>(s.bar).data;
     for (std::size_t i = 0; i < data.positions.size(); ++i) {
         const glm::dvec3 p(skin.worldFromFrame * glm::dvec4(glm::dvec3(skinnedPosition(data, skin, i)), 1.0));
-        EXPECT_TRUE(glm::all(glm::greaterThanEqual(p, box.min - 1e-5)) && glm::all(glm::lessThanEqual(p, box.max + 1e-5)))
+        EXPECT_TRUE(glm::all(glm::greaterThanEqual(p, box.min - 1e-5)) &&
+                    glm::all(glm::lessThanEqual(p, box.max + 1e-5)))
             << "vertex " << i << " outside the posed bounds";
     }
 }

@@ -388,7 +388,15 @@ TEST(SoftShadow, ThinWallShadowGapStaysWithinTheDepthBias) {
     for (double elevationDeg : {45.0, 25.0}) {
         for (ShadowTechnique technique : kTechniques) {
             const BaseGap g = measureBaseGap({kBaseX - wallHalf.x, wallHalf.y, 0.0}, wallHalf, elevationDeg, technique);
-            const double allowed = g.bias * std::cos(elevationDeg * test::kPi / 180.0) + g.texel;
+            // The four-moment techniques add the depth offset of their moment bias (the pull
+            // towards a fixed distribution, shadow_hamburger.glsl), which scales with the layer's
+            // depth range, not with its texels: two texels more. Since the sun's cascades fit the
+            // visible receivers their texels are 1.2 mm, and that offset measures 3.0-3.4 texels
+            // (3.7-4.2 mm) at 45 deg and 5.2-5.6 (6.3-6.9 mm) at 25 deg, where the other
+            // techniques' gap is 1 mm.
+            const bool moments = technique == ShadowTechnique::Msm || technique == ShadowTechnique::MsmSoft;
+            const double allowed =
+                g.bias * std::cos(elevationDeg * test::kPi / 180.0) + (moments ? 3.0 : 1.0) * g.texel;
             std::printf(
                 "[ measured ] thin wall, %s, sun at %.0f deg: mean-profile gap %.4f m = %.2f "
                 "texels "

@@ -62,7 +62,7 @@ struct WorldTransform {
 struct MeshData {
     std::string name;
     std::vector<glm::vec3> positions;
-    std::vector<glm::vec3> normals;      // one per position
+    std::vector<glm::vec3> normals;  // one per position
     /// One per position or none: glTF's TEXCOORD_0 ((0,0) the first texel of the image's first
     /// row). Read by a material's `baseColorTexture`; without them it samples texel (0,0).
     std::vector<glm::vec2> texcoords;
@@ -153,8 +153,8 @@ struct Material {
 /// goes to sum_j w_j * jointWorld_j * inverseBind_j * v. `updateTransforms` poses it each frame
 /// (the matrices below, the instance's `WorldBounds`, and its moved flag when a joint moved).
 struct Skin {
-    std::vector<Entity> joints;              ///< entities with a `Transform`
-    std::vector<glm::dmat4> inverseBind;     ///< one per joint (identity when the file has none)
+    std::vector<Entity> joints;           ///< entities with a `Transform`
+    std::vector<glm::dmat4> inverseBind;  ///< one per joint (identity when the file has none)
     /// Written by `updateTransforms`: the frame the pose is drawn in (a translation near the
     /// skeleton, so that float matrices keep their precision far from the origin), and per joint
     /// frame-from-mesh-space = inverse(worldFromFrame) * jointWorld * inverseBind.

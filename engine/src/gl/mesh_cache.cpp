@@ -103,7 +103,7 @@ struct MeshCache::Impl {
     // Keyed by the MeshData address: MeshData is immutable and shared while instances live.
     std::unordered_map<const MeshData*, GpuMesh> meshes;
     std::unordered_map<const Texture*, GpuTexture> textures;  ///< likewise, by Texture address
-    gpu::Texture white;  ///< 1x1 white: what an untextured material samples
+    gpu::Texture white;                                       ///< 1x1 white: what an untextured material samples
     JointRing joints;
     std::vector<Warning> pending;  ///< host errors found by calls without a FrameStats
 };
@@ -137,7 +137,8 @@ std::size_t MeshCache::collectInPass() {
 
 void MeshCache::bindTextureInPass(const std::shared_ptr<const Texture>& texture, unsigned unit) {
     if (texture == nullptr || texture->width < 1 || texture->height < 1 ||
-        texture->rgba.size() < static_cast<std::size_t>(texture->width) * static_cast<std::size_t>(texture->height) * 4U) {
+        texture->rgba.size() <
+            static_cast<std::size_t>(texture->width) * static_cast<std::size_t>(texture->height) * 4U) {
         if (!impl_->white) {
             const Texture white{"white", 1, 1, {255, 255, 255, 255}};
             impl_->white = uploadTexture(white);
@@ -203,8 +204,8 @@ int MeshCache::bindInPass(const std::shared_ptr<const MeshData>& meshPtr) {
         if (mesh.joints.size() == mesh.positions.size() && mesh.weights.size() == mesh.positions.size()) {
             std::vector<GpuSkinVertex> skin(mesh.positions.size());
             for (std::size_t i = 0; i < skin.size(); ++i) skin[i] = {mesh.joints[i], mesh.weights[i]};
-            g.skinVertices = gpu::makeBuffer(label + "/skin",
-                                             static_cast<GLsizeiptr>(skin.size() * sizeof(GpuSkinVertex)), skin.data(), 0);
+            g.skinVertices = gpu::makeBuffer(
+                label + "/skin", static_cast<GLsizeiptr>(skin.size() * sizeof(GpuSkinVertex)), skin.data(), 0);
             gl.VertexArrayVertexBuffer(vao, 1, g.skinVertices.get(), 0, sizeof(GpuSkinVertex));
             gl.EnableVertexArrayAttrib(vao, 3);
             gl.VertexArrayAttribIFormat(vao, 3, 4, GL_UNSIGNED_SHORT, offsetof(GpuSkinVertex, joints));

@@ -32,7 +32,7 @@ struct FlatMesh {
     std::vector<std::uint32_t> indices;
     bool casts = true;
     bool receives = true;
-    std::optional<AlphaTest> alphaTest;  ///< a cut-out's: hits in its holes are ignored
+    std::optional<AlphaTest> alphaTest;    ///< a cut-out's: hits in its holes are ignored
     std::shared_ptr<const MeshData> data;  ///< its texture coordinates, for the alpha test
 };
 
@@ -61,7 +61,7 @@ int wrapTexel(int i, int size, Texture::Wrap wrap) {
 }
 
 /// The texture's alpha at `uv`, bilinear over the full-resolution image (the GPU's level 0).
-float sampleAlpha(const Texture& t, glm::vec2 uv) {
+float sampleAlpha(const Texture& t, const glm::vec2& uv) {
     const float x = uv.x * static_cast<float>(t.width) - 0.5f;
     const float y = uv.y * static_cast<float>(t.height) - 0.5f;
     if (!std::isfinite(x) || !std::isfinite(y)) return 1.0f;
@@ -77,7 +77,10 @@ float sampleAlpha(const Texture& t, glm::vec2 uv) {
         const int u = wrapTexel(i, t.width, t.wrapS);
         const int v = wrapTexel(j, t.height, t.wrapT);
         return static_cast<float>(t.rgba[(static_cast<std::size_t>(v) * static_cast<std::size_t>(t.width) +
-                                          static_cast<std::size_t>(u)) * 4U + 3U]) / 255.0f;
+                                          static_cast<std::size_t>(u)) *
+                                             4U +
+                                         3U]) /
+               255.0f;
     };
     const float top = texel(x0, y0) * (1.0f - ax) + texel(x0 + 1, y0) * ax;
     const float bottom = texel(x0, y0 + 1) * (1.0f - ax) + texel(x0 + 1, y0 + 1) * ax;
@@ -92,7 +95,7 @@ bool inHole(const FlatMesh& mesh, unsigned primitive, float u, float v) {
     if (test.texture != nullptr) {
         glm::vec2 at(0.0f);
         if (uv.size() == mesh.data->positions.size()) {
-            const std::uint32_t* tri = &mesh.indices[3U * primitive];
+            const std::uint32_t* tri = &mesh.indices[std::size_t{3} * primitive];
             at = (1.0f - u - v) * uv[tri[0]] + u * uv[tri[1]] + v * uv[tri[2]];
         }
         alpha *= sampleAlpha(*test.texture, at);
@@ -173,8 +176,8 @@ Result<std::vector<std::vector<glm::dvec3>>> worldPositions(const std::vector<In
         std::vector<glm::dvec3>& ws = wsPositions.emplace_back();
         ws.reserve(instance.data->positions.size());
         const MeshData& d = *instance.data;
-        const bool skinned = instance.skin != nullptr && d.joints.size() == d.positions.size() &&
-                             d.weights.size() == d.positions.size();
+        const bool skinned =
+            instance.skin != nullptr && d.joints.size() == d.positions.size() && d.weights.size() == d.positions.size();
         for (std::size_t i = 0; i < d.positions.size(); ++i) {
             // A skinned vertex is posed as the vertex shader poses it (shaders/mesh_vertex.glsl).
             const glm::vec3 p = skinned ? skinnedPosition(d, *instance.skin, i) : d.positions[i];
@@ -214,7 +217,8 @@ struct RayScene::Impl {
         rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, mesh.vertices.data(), 0,
                                    3 * sizeof(float), (mesh.vertices.size() - 4) / 3);
         if (mesh.alphaTest) {
-            rtcSetGeometryUserData(g, const_cast<FlatMesh*>(&mesh));  // NOLINT(cppcoreguidelines-pro-type-const-cast): Embree's void*
+            rtcSetGeometryUserData(
+                g, const_cast<FlatMesh*>(&mesh));  // NOLINT(cppcoreguidelines-pro-type-const-cast): Embree's void*
             rtcSetGeometryIntersectFilterFunction(g, alphaFilter);
             rtcSetGeometryOccludedFilterFunction(g, alphaFilter);
         }

@@ -96,9 +96,9 @@ LitProgram& LitProgramCache::get(const LitVariant& variant, int& compiled) {
 
 DepthPrepassProgram buildDepthPrepass(bool alphaTested) {
     DepthPrepassProgram p;
-    p.program = gpu::buildProgram({alphaTested ? "Main/DepthPrepass/alpha" : "Main/DepthPrepass", "lit.vert.glsl",
-                                   "depth_prepass.frag.glsl",
-                                   alphaTested ? std::vector<std::string>{"SG_ALPHA_TESTED"} : std::vector<std::string>{}});
+    p.program = gpu::buildProgram(
+        {alphaTested ? "Main/DepthPrepass/alpha" : "Main/DepthPrepass", "lit.vert.glsl", "depth_prepass.frag.glsl",
+         alphaTested ? std::vector<std::string>{"SG_ALPHA_TESTED"} : std::vector<std::string>{}});
     p.mesh = meshUniforms(p.program.get());
     p.alpha = gl.GetUniformLocation(p.program.get(), "uAlpha");
     p.alphaCutoff = gl.GetUniformLocation(p.program.get(), "uAlphaCutoff");

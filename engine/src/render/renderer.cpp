@@ -112,8 +112,7 @@ struct Renderer::Impl {
     template <typename PerMesh>
     void drawMeshes(const World& world, const CameraView& cam, const DAabb* reach, PerMesh&& perMesh, int& draws);
     /// The depth pre-pass; `cutouts`: the scene has cut-out materials, whose holes it leaves out.
-    void depthPrepass(const World& world, const CameraView& cam, const MainCamera& mc, bool cutouts,
-                      FrameStats& stats);
+    void depthPrepass(const World& world, const CameraView& cam, const MainCamera& mc, bool cutouts, FrameStats& stats);
     void litPass(const World& world, const CameraView& cam, const MainCamera& mc, std::size_t index,
                  const ShadowMaps& maps, const RenderOptions& options, FrameStats& stats);
 };

@@ -331,7 +331,8 @@ Result<std::vector<glm::u16vec4>> readJoints(const tinygltf::Model& model, int a
     for (std::size_t i = 0; i < span->count; ++i) {
         const unsigned char* element = span->data + i * span->stride;
         for (int c = 0; c < 4; ++c) {
-            const std::uint16_t j = bytes ? load<std::uint8_t>(element + c) : load<std::uint16_t>(element + 2 * c);
+            const auto at = static_cast<std::size_t>(c);
+            const std::uint16_t j = bytes ? load<std::uint8_t>(element + at) : load<std::uint16_t>(element + 2 * at);
             if (j >= jointCount) {
                 return elementError(span->name, "element " + std::to_string(i) + " names joint " + std::to_string(j) +
                                                     " of a skin with " + std::to_string(jointCount));
@@ -350,7 +351,7 @@ Result<std::vector<glm::dmat4>> readMat4(const tinygltf::Model& model, int acces
     for (std::size_t i = 0; i < span->count; ++i) {
         const unsigned char* element = span->data + i * span->stride;
         for (int c = 0; c < 16; ++c) {
-            const float v = load<float>(element + 4 * c);
+            const float v = load<float>(element + 4 * static_cast<std::size_t>(c));
             if (!std::isfinite(v)) return elementError(span->name, "element " + std::to_string(i) + " not finite");
             out[i][c / 4][c % 4] = v;  // column-major, as glTF stores it
         }

@@ -102,8 +102,7 @@ Status readSkinning(const tinygltf::Model& model, const tinygltf::Primitive& pri
 
 /// The mesh of one primitive; nullopt when it draws nothing (another mode, or empty).
 Result<std::optional<MeshPart>> importPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
-                                                const std::string& where, std::string name,
-                                                TextureImporter& textures) {
+                                                const std::string& where, std::string name, TextureImporter& textures) {
     // -1 is what tinygltf leaves in a Model built in code; the file default is TRIANGLES.
     if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
         return std::optional<MeshPart>{};
@@ -167,9 +166,8 @@ Result<std::vector<MeshPart>> importMesh(const tinygltf::Model& model, std::size
     std::vector<MeshPart> parts;
     for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
         std::string name = mesh.primitives.size() == 1 ? baseName : baseName + "/primitive" + std::to_string(p);
-        auto part =
-            importPrimitive(model, mesh.primitives[p], meshWhere + "." + indexed("primitives", p), std::move(name),
-                            textures);
+        auto part = importPrimitive(model, mesh.primitives[p], meshWhere + "." + indexed("primitives", p),
+                                    std::move(name), textures);
         if (!part) return part.error();
         if (part->has_value()) parts.push_back(std::move(**part));
     }
@@ -189,8 +187,8 @@ Result<Material> importMaterial(const tinygltf::Model& model, int index, const s
     const tinygltf::PbrMetallicRoughness& pbr = material.pbrMetallicRoughness;
     auto base = readBaseColor(pbr, pbrWhere + ".baseColorFactor");
     if (!base) return base.error();
-    auto alpha = readUnitFactor(pbr.baseColorFactor.size() == 4 ? pbr.baseColorFactor[3] : 1.0,
-                                pbrWhere + ".baseColorFactor");
+    auto alpha =
+        readUnitFactor(pbr.baseColorFactor.size() == 4 ? pbr.baseColorFactor[3] : 1.0, pbrWhere + ".baseColorFactor");
     if (!alpha) return alpha.error();
     auto metallic = readUnitFactor(pbr.metallicFactor, pbrWhere + ".metallicFactor");
     if (!metallic) return metallic.error();

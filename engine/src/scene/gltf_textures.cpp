@@ -49,8 +49,8 @@ Result<Texture> decode(const std::vector<unsigned char>& bytes, const std::strin
     int height = 0;
     int channels = 0;
     if (stbi_info_from_memory(bytes.data(), size, &width, &height, &channels) == 0) {
-        return elementError(name, std::string("is not an image the loader decodes (PNG or JPEG): ") +
-                                      stbi_failure_reason());
+        return elementError(name,
+                            std::string("is not an image the loader decodes (PNG or JPEG): ") + stbi_failure_reason());
     }
     if (width < 1 || height < 1 || width > kMaxTextureEdge || height > kMaxTextureEdge ||
         static_cast<long long>(width) * height > kMaxTexturePixels) {

@@ -96,45 +96,45 @@ struct Resolver {
 /// flag (set when a joint moved). A mesh with a joint missing or not finite is skipped like a
 /// non-finite one.
 void poseSkins(World& world, TransformStats& stats) {
-    world.view<Skin, Mesh, WorldTransform, WorldBounds>().each([&](Entity e, Skin& skin, Mesh& mesh,
-                                                                   WorldTransform& wt, WorldBounds& wb) {
-        skin.posed = false;
-        if (!wt.finite || mesh.data == nullptr) return;
-        const MeshData& data = *mesh.data;
-        skin.frameFromMesh.resize(skin.joints.size());
-        DAabb box;
-        bool finite = !skin.joints.empty();
-        bool moved = false;
-        for (std::size_t j = 0; j < skin.joints.size() && finite; ++j) {
-            const WorldTransform* joint = world.tryGet<WorldTransform>(skin.joints[j]);
-            finite = joint != nullptr && joint->finite;
-            if (!finite) break;
-            moved = moved || joint->movedThisFrame;
-            const glm::dmat4 worldFromMesh =
-                joint->worldFromLocal * (j < skin.inverseBind.size() ? skin.inverseBind[j] : glm::dmat4(1.0));
-            if (j == 0) skin.worldFromFrame = glm::translate(glm::dmat4(1.0), glm::dvec3(joint->worldFromLocal[3]));
-            glm::dmat4 frameFromMesh = worldFromMesh;
-            frameFromMesh[3] -= glm::dvec4(glm::dvec3(skin.worldFromFrame[3]), 0.0);
-            skin.frameFromMesh[j] = glm::mat4(frameFromMesh);
-            if (j < data.jointBounds.size()) box.extend(transformBounds(worldFromMesh, data.jointBounds[j]));
-            finite = isFinite(worldFromMesh);
-        }
-        if (finite && !box.empty()) finite = insideWorld(box.min) && insideWorld(box.max);
-        if (!finite) {
-            wt.finite = false;
-            wt.movedThisFrame = true;
-            wb.box = DAabb{};
-            ++stats.nonFinite;
-            stats.skipped.push_back(e);
-            return;
-        }
-        skin.posed = true;
-        wb.box = box;
-        if (moved && !wt.movedThisFrame) {
-            wt.movedThisFrame = true;
-            ++stats.moved;
-        }
-    });
+    world.view<Skin, Mesh, WorldTransform, WorldBounds>().each(
+        [&](Entity e, Skin& skin, Mesh& mesh, WorldTransform& wt, WorldBounds& wb) {
+            skin.posed = false;
+            if (!wt.finite || mesh.data == nullptr) return;
+            const MeshData& data = *mesh.data;
+            skin.frameFromMesh.resize(skin.joints.size());
+            DAabb box;
+            bool finite = !skin.joints.empty();
+            bool moved = false;
+            for (std::size_t j = 0; j < skin.joints.size() && finite; ++j) {
+                const WorldTransform* joint = world.tryGet<WorldTransform>(skin.joints[j]);
+                finite = joint != nullptr && joint->finite;
+                if (!finite) break;
+                moved = moved || joint->movedThisFrame;
+                const glm::dmat4 worldFromMesh =
+                    joint->worldFromLocal * (j < skin.inverseBind.size() ? skin.inverseBind[j] : glm::dmat4(1.0));
+                if (j == 0) skin.worldFromFrame = glm::translate(glm::dmat4(1.0), glm::dvec3(joint->worldFromLocal[3]));
+                glm::dmat4 frameFromMesh = worldFromMesh;
+                frameFromMesh[3] -= glm::dvec4(glm::dvec3(skin.worldFromFrame[3]), 0.0);
+                skin.frameFromMesh[j] = glm::mat4(frameFromMesh);
+                if (j < data.jointBounds.size()) box.extend(transformBounds(worldFromMesh, data.jointBounds[j]));
+                finite = isFinite(worldFromMesh);
+            }
+            if (finite && !box.empty()) finite = insideWorld(box.min) && insideWorld(box.max);
+            if (!finite) {
+                wt.finite = false;
+                wt.movedThisFrame = true;
+                wb.box = DAabb{};
+                ++stats.nonFinite;
+                stats.skipped.push_back(e);
+                return;
+            }
+            skin.posed = true;
+            wb.box = box;
+            if (moved && !wt.movedThisFrame) {
+                wt.movedThisFrame = true;
+                ++stats.moved;
+            }
+        });
 }
 
 }  // namespace

@@ -368,7 +368,8 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
         gl.ClearNamedFramebufferfv(scratch.framebuffer.get(), GL_DEPTH, 0, &far);
         const DepthProgram& program = this->program(mode, false);
         program.use(layer, true);
-        ls.castersDrawn += drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, true);
+        ls.castersDrawn +=
+            drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, true);
     }
     gl.NamedFramebufferTextureLayer(map.framebuffer.get(), GL_DEPTH_ATTACHMENT, map.array.get(), 0,
                                     static_cast<GLint>(k));
