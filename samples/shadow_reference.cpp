@@ -211,7 +211,7 @@ int run(Options& o) {
 int main(int argc, char** argv) {
     Options o;
     CLI::App app{"Ray-traces every light's visibility (the reference the shadow maps approximate)."};
-    app.add_option("scene", o.scene, "a .gltf/.glb file or builtin:NAME")->required();
+    app.add_option("scene", o.scene, "a sample scene's name, a .gltf/.glb file or builtin:NAME")->required();
     app.add_option("--out", o.out, "output folder (created if missing)");
     CLI::Option* sizeOption =
         app.add_option("--size", o.size, "image size WxH (default 640x360, or that of --positions)");

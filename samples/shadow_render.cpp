@@ -227,7 +227,7 @@ int run(const Options& o) {
 int main(int argc, char** argv) {
     Options o;
     CLI::App app{"Renders a scene with per-light shadows, headless, and writes images, AOVs and stats.json."};
-    app.add_option("scene", o.scene, "a .gltf/.glb file or builtin:NAME")->required();
+    app.add_option("scene", o.scene, "a sample scene's name, a .gltf/.glb file or builtin:NAME")->required();
     app.add_option("--out", o.out, "output folder (created if missing)");
     app.add_option("--size", o.size, "image size WxH");
     app.add_option("--camera", o.camera, "index of the scene camera to use (default: the first)");

@@ -4,10 +4,11 @@
 // holds the depth of what lies behind, which the cut-out surface's fragment does not equal.
 // Read with SG_ALPHA_TESTED only (an include may not stand under a condition).
 #include "alpha_test.glsl"
-in vec2 vTexcoord;
+in vec4 vCsPositionU;  // lit.vert.glsl: position and texture u
+in vec4 vWsNormalV;    // normal and texture v
 
 void main() {
 #ifdef SG_ALPHA_TESTED
-    if (sg_isHole(vTexcoord)) discard;
+    if (sg_isHole(vec2(vCsPositionU.w, vWsNormalV.w))) discard;
 #endif
 }

@@ -1,7 +1,11 @@
-// Blinn-Phong shading of one light, without visibility: the second factor of the split
+// Shading of one light, without visibility: the second factor of the split
 // L_o ~ [integral of V / integral of 1] * [integral of L_i f_r cos] (the seeds' approximated
-// rendering equation). Intensities follow KHR_lights_punctual: candela for point and spot
-// (inverse-square falloff), lux for directional.
+// rendering equation). Lambert diffuse plus a GGX specular lobe (Trowbridge-Reitz distribution,
+// the height-correlated Smith visibility, Schlick's Fresnel from the specular colour), glTF's
+// metallic-roughness model. The material carries its roughness as the Blinn-Phong exponent n of
+// the matching lobe (gltf_mesh.cpp: n = 2 / alpha^2 - 2), so alpha^2 = 2 / (n + 2) here.
+// Intensities follow KHR_lights_punctual: candela for point and spot (inverse-square falloff),
+// lux for directional.
 
 struct Surface {
     vec3 csPosition;
@@ -11,7 +15,7 @@ struct Surface {
     vec3 toViewer;  // unit
     vec3 albedo;
     vec3 specular;
-    float shininess;
+    float shininess;  // the matching Blinn-Phong exponent of the GGX roughness
 };
 
 // Smooth window that brings a light's influence to 0 at `range` (0 = infinite).
@@ -22,7 +26,7 @@ float rangeWindow(float distance, float range) {
 }
 
 // Radiance reflected towards the viewer from light L (visibility not included).
-vec3 shadeBlinnPhong(sg_GpuLight L, Surface s) {
+vec3 shadeSurface(sg_GpuLight L, Surface s) {
     vec3 toLight;
     float attenuation = 1.0;
     if (L.type == SG_LIGHT_DIRECTIONAL) {
@@ -41,7 +45,14 @@ vec3 shadeBlinnPhong(sg_GpuLight L, Surface s) {
     float nDotL = dot(s.normal, toLight);
     if (nDotL <= 0.0 || attenuation <= 0.0) return vec3(0.0);
     vec3 h = normalize(toLight + s.toViewer);
-    float spec = pow(max(dot(s.normal, h), 0.0), s.shininess) * (s.shininess + 8.0) / 8.0;
-    vec3 brdf = s.albedo / 3.14159265 + s.specular * spec / 3.14159265;
+    float nDotV = max(dot(s.normal, s.toViewer), 1e-4);
+    float nDotH = max(dot(s.normal, h), 0.0);
+    float a2 = 2.0 / (s.shininess + 2.0);
+    float q = nDotH * nDotH * (a2 - 1.0) + 1.0;
+    float distribution = a2 / (3.14159265 * q * q);
+    float visibility = 0.5 / (nDotL * sqrt(nDotV * nDotV * (1.0 - a2) + a2) + nDotV * sqrt(nDotL * nDotL * (1.0 - a2) + a2));
+    float f = pow(1.0 - max(dot(s.toViewer, h), 0.0), 5.0);
+    vec3 fresnel = s.specular + (1.0 - s.specular) * f;
+    vec3 brdf = s.albedo / 3.14159265 + distribution * visibility * fresnel;
     return L.radiance * attenuation * nDotL * brdf;
 }

@@ -1,4 +1,4 @@
-// Main pass: the sum over this pass's lights of Blinn-Phong shading times the light's visibility.
+// Main pass: the sum over this pass's lights of Lambert + GGX shading times the light's visibility.
 //
 // The renderer compiles one variant per light configuration of a pass (render/lit_programs.h):
 // SG_PASS_LIGHTS lights, its slots grouped by equal configuration (SG_PASS_GROUPS; per group g
@@ -17,18 +17,18 @@
 #error "main() below shades groups 0-7: one SG_SHADE_ONE/SG_SHADE_MANY choice per possible group"
 #endif
 
-in vec3 vCsPosition;
-in vec3 vWsNormal;
-in vec2 vTexcoord;
+in vec4 vCsPositionU;  // lit.vert.glsl: position and texture u
+in vec4 vWsNormalV;    // normal and texture v
 
 uniform int uReceiveShadows;
 uniform vec3 uAlbedo;
 uniform vec3 uSpecular;
 uniform float uShininess;
-// The material's base-colour texture (sRGB, so read linear; 1x1 white without one): it tints the
+// The material's base-colour texture (sRGB, so read linear): it tints the
 // diffuse albedo, and the specular by uMetallic. A cut-out's holes never reach this pass (the
 // depth pre-pass leaves them out, depth_prepass.frag.glsl).
 layout(binding = SG_UNIT_BASE_COLOR) uniform sampler2D uBaseColor;
+uniform int uTextured;  // 1 with a texture; an untextured material reads none
 uniform float uMetallic;
 uniform vec3 uAmbient;        // added by the first pass only
 uniform vec3 uCameraForward;  // unit, world space
@@ -75,7 +75,7 @@ vec3 debugColor = vec3(0.0);
 #define SG_SHADE_LIGHT(g, slot)                                                                   \
     {                                                                                             \
         sg_GpuLight L = sg_slotLight(slot, SG_GROUP##g##_TYPE, SG_GROUP##g##_TECH, SG_GROUP##g##_KERNEL); \
-        vec3 shading = shadeBlinnPhong(L, s);                                                     \
+        vec3 shading = shadeSurface(L, s);                                                     \
         float v = 1.0;                                                                            \
         if (shadowWanted(SG_GROUP##g##_TECH, shading))                                            \
             v = SG_GROUP##g##_VISIBILITY(slot, L, s.csPosition, s.normal, s.geoNormal, s.curvature, viewDistance); \
@@ -105,6 +105,9 @@ vec3 debugColor = vec3(0.0);
 #endif
 
 void main() {
+    vec3 vCsPosition = vCsPositionU.xyz;
+    vec3 vWsNormal = vWsNormalV.xyz;
+    vec2 vTexcoord = vec2(vCsPositionU.w, vWsNormalV.w);
     Surface s;
     s.csPosition = vCsPosition;
     s.toViewer = normalize(-vCsPosition);  // never zero: the near plane clips the camera's point
@@ -112,7 +115,10 @@ void main() {
     s.geoNormal = shadowSide.geoNormal;
     s.curvature = shadowSide.curvature;
     s.normal = shadowSide.normal;  // two-sided: the side facing the camera
-    vec3 base = texture(uBaseColor, vTexcoord).rgb;
+    // A loop, not an if: llvmpipe runs both sides of an if, but no trip of a loop no pixel needs
+    // (shaders/README.md), so an untextured material pays no fetch.
+    vec3 base = vec3(1.0);
+    for (int i = 0; i < uTextured; ++i) base = texture(uBaseColor, vTexcoord).rgb;  // uniform: derivatives hold
     s.albedo = uAlbedo * base;
     s.specular = uSpecular * mix(vec3(1.0), base, uMetallic);
     s.shininess = uShininess;

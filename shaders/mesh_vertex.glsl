@@ -3,7 +3,7 @@
 //
 // A skinned draw (a `Skin` on the instance) sets uSkinned = 1 and binds the pose's joint matrices
 // (frame-from-mesh, `Skin::frameFromMesh`) at SG_BINDING_JOINTS; its object transform is then the
-// skin's frame (`Skin::worldFromFrame`). One path on the GPU for every pass, so a shadow follows
+// skin's frame (`Skin::worldFromFrame`); uSkinned is 0 or 1. One path on the GPU for every pass, so a shadow follows
 // its skin exactly. A rigid draw sets uSkinned = 0 and reads no joint.
 #ifndef SG_MESH_VERTEX
 #define SG_MESH_VERTEX
@@ -23,11 +23,14 @@ uniform int uSkinned;
 // The vertex's blend of its joints' matrices (weights sum to 1); the identity for a rigid draw.
 // Normals take its upper 3x3: exact for joints without non-uniform scale.
 mat4 sg_skinMatrix() {
-    if (uSkinned == 0) return mat4(1.0);
-    uint joints = uint(sg_jointFromMesh.length());
-    mat4 m = mat4(0.0);
-    for (int k = 0; k < 4; ++k) {
-        if (inWeights[k] > 0.0 && inJoints[k] < joints) m += inWeights[k] * sg_jointFromMesh[inJoints[k]];
+    // Loops, not ifs (a CPU rasteriser runs both sides of an if): a rigid draw takes no trip.
+    mat4 m = mat4(1.0);
+    for (int rigid = 0; rigid < uSkinned; ++rigid) {
+        uint joints = uint(sg_jointFromMesh.length());
+        m = mat4(0.0);
+        for (int k = 0; k < 4; ++k) {
+            if (inWeights[k] > 0.0 && inJoints[k] < joints) m += inWeights[k] * sg_jointFromMesh[inJoints[k]];
+        }
     }
     return m;
 }

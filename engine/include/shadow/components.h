@@ -124,11 +124,14 @@ enum class AlphaMode : std::uint8_t {
     Blend,   ///< drawn as a cut-out at `alphaCutoff` (0.5 from glTF): the module does not blend
 };
 
-/// Blinn-Phong material, with glTF's base-colour texture and alpha modes.
+/// A material of glTF's metallic-roughness model: Lambert diffuse and a GGX specular lobe
+/// (shaders/lighting.glsl), with the base-colour texture and alpha modes.
 struct Material {
     glm::vec3 albedo{0.8f};     ///< diffuse reflectance, linear RGB in [0,1]
     glm::vec3 specular{0.04f};  ///< specular reflectance, linear RGB in [0,1]
-    float shininess = 32.0f;    ///< Blinn-Phong exponent, [1, 4096]
+    /// Roughness, as the exponent n of the Blinn-Phong lobe that matches the GGX lobe of
+    /// alpha^2 = 2 / (n + 2) (glTF roughness r: n = 2 / r^4 - 2), [1, 4096].
+    float shininess = 32.0f;
     /// Multiplies `albedo`, and `specular` by `metallic` (metals reflect their colour), per pixel.
     std::shared_ptr<const Texture> baseColorTexture;
     float metallic = 0.0f;  ///< [0, 1], how much the texture tints `specular`

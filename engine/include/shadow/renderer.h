@@ -1,4 +1,4 @@
-// The forward renderer: Blinn-Phong per light times that light's visibility, summed over the
+// The forward renderer: Lambert + GGX shading per light times that light's visibility, summed over the
 // lights (the split of the seeds' approximated rendering equation), into linear HDR colour;
 // optional AOVs (world position, camera distance, per-light visibility).
 //

@@ -38,6 +38,7 @@ LitProgram buildLit(const LitVariant& variant) {
     p.specular = loc("uSpecular");
     p.shininess = loc("uShininess");
     p.metallic = loc("uMetallic");
+    p.textured = loc("uTextured");
     p.ambient = loc("uAmbient");
     p.cameraForward = loc("uCameraForward");
     return p;

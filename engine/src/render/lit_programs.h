@@ -19,7 +19,7 @@ struct MeshUniforms {
 struct LitProgram {
     gpu::Program program;
     MeshUniforms mesh;
-    GLint receiveShadows = -1, albedo = -1, specular = -1, shininess = -1, metallic = -1, ambient = -1,
+    GLint receiveShadows = -1, albedo = -1, specular = -1, shininess = -1, metallic = -1, textured = -1, ambient = -1,
           cameraForward = -1;
 };
 

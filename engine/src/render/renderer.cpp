@@ -261,6 +261,7 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
             gl.ProgramUniform3fv(id, p.specular, 1, glm::value_ptr(m.specular));
             gl.ProgramUniform1f(id, p.shininess, std::clamp(m.shininess, 1.0f, 4096.0f));
             gl.ProgramUniform1f(id, p.metallic, std::clamp(m.metallic, 0.0f, 1.0f));
+            gl.ProgramUniform1i(id, p.textured, m.baseColorTexture != nullptr ? 1 : 0);
             gpu::MeshCacheAccess::bindTexture(meshes, m.baseColorTexture, SG_UNIT_BASE_COLOR);
             return std::pair<GLuint, const render::MeshUniforms*>{id, &p.mesh};
         },

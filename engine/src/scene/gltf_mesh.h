@@ -1,4 +1,4 @@
-// glTF meshes and materials to engine `MeshData` and Blinn-Phong `Material`s.
+// glTF meshes and materials to engine `MeshData` and `Material`s.
 #pragma once
 
 #include <shadow/components.h>
@@ -27,7 +27,7 @@ struct MeshPart {
 [[nodiscard]] Result<std::vector<MeshPart>> importMesh(const tinygltf::Model& model, std::size_t meshIndex,
                                                        TextureImporter& textures);
 
-/// `materials[index]` mapped from metallic-roughness to Blinn-Phong (diffuse = base colour x
+/// `materials[index]` with its metallic-roughness factors (diffuse = base colour x
 /// (1 - metallic), specular = mix(0.04, base colour, metallic)), with its base-colour texture
 /// and alpha mode; the default `Material` for index -1. `where` names the referring element.
 /// Factors are clamped to [0, 1]. `texCoord` receives the TEXCOORD set the texture reads.
