@@ -10,7 +10,8 @@
 // a covered pixel that is not finite is bad input, one beyond 1e9 m in some coordinate is
 // background, counted in reference.json's pixels.positionsBeyondReach).
 // For every light, --samples stratified shadow rays go to its emitter (engine/src/reference/
-// shadow/reference.h states the choices). Writes into DIR: visibility_<i>.exr, stderr_<i>.exr
+// shadow/reference.h states the choices). Writes into DIR: visibility_<i>.exr (and a grey
+// visibility_<i>.png to look at), stderr_<i>.exr
 // (binomial standard error per pixel), lit_<i>.exr (1 where the light shades the surface), position.exr and reference.json. Progress goes to stderr
 // when it is a terminal. Bad input: one message, exit code 2.
 #include <shadow/scene.h>
@@ -18,6 +19,7 @@
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -128,6 +130,18 @@ Status writeOutputs(const std::string& dir, reference::ReferenceResult& r) {
     images.visibility = std::move(r.visibility);
     const samples::OutputSelection selection{false, true, true, false};
     if (Status s = samples::writeFrameImages(dir, images, selection, 1.0f); !s) return s;
+    for (std::size_t i = 0; i < images.visibility.size(); ++i) {
+        // A picture of the truth to look at: visibility as grey, 0 black and 1 white, linear.
+        const ImageF& v = images.visibility[i];
+        std::vector<std::uint8_t> grey(static_cast<std::size_t>(v.width) * static_cast<std::size_t>(v.height) * 3U);
+        for (std::size_t p = 0; p * 3U < grey.size(); ++p) {
+            const float value = v.pixels[p * static_cast<std::size_t>(v.channels)];
+            const auto byte = static_cast<std::uint8_t>(std::lround(255.0f * std::clamp(value, 0.0f, 1.0f)));
+            grey[3U * p] = grey[3U * p + 1] = grey[3U * p + 2] = byte;
+        }
+        const std::string path = dir + "/visibility_" + std::to_string(i) + ".png";
+        if (Status s = writePng(path, v.width, v.height, 3, grey); !s) return s;
+    }
     for (std::size_t i = 0; i < r.standardError.size(); ++i) {
         const std::string path = dir + "/stderr_" + std::to_string(i) + ".exr";
         if (Status s = writeExr(path, r.standardError[i], {"Y"}); !s) return s;

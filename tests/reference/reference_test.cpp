@@ -250,6 +250,13 @@ TEST(Reference, PositionsModeGivesTheVisibilityOfCameraMode) {
     Result<ImageF> visB = readExr(tmp / "positions/visibility_0.exr", {"Y"});
     Result<ImageF> seA = readExr(tmp / "camera/stderr_0.exr", {"Y"});
     ASSERT_TRUE(posA && posB && visA && visB && seA);
+    // The grey picture of the truth beside its EXR: a PNG of the same size.
+    std::ifstream png(tmp / "camera/visibility_0.png", std::ios::binary);
+    std::string header(24, '\0');
+    ASSERT_TRUE(png.read(header.data(), 24)) << "no visibility_0.png";
+    EXPECT_EQ(header.substr(1, 3), "PNG");
+    EXPECT_EQ(static_cast<unsigned char>(header[19]), 64u) << "PNG width";
+    EXPECT_EQ(static_cast<unsigned char>(header[23]), 48u) << "PNG height";
     ASSERT_EQ(visB->width, 64);
     ASSERT_EQ(visB->height, 48);
     EXPECT_EQ(posA->pixels, posB->pixels);
