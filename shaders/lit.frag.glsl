@@ -59,7 +59,7 @@ vec3 debugColor = vec3(0.0);
 #define SG_DEBUG_CAPTURE(i, v)                                                                    \
     if (i == SG_DEBUG_SLOT) {                                                                     \
         if (SG_DEBUG_VIEW == SG_DEBUG_CASCADE)                                                    \
-            debugColor = vec3(sg_debugCascade == 0, sg_debugCascade == 1, sg_debugCascade >= 2) * 0.8 + 0.2 * v; \
+            debugColor = vec3(sg_debugCascade == 0 || sg_debugCascade == 3, sg_debugCascade == 1 || sg_debugCascade == 3, sg_debugCascade == 2) * 0.8 + 0.2 * v; \
         if (SG_DEBUG_VIEW == SG_DEBUG_BLOCKER_DEPTH) debugColor = vec3(sg_debugBlockerDepth);       \
         if (SG_DEBUG_VIEW == SG_DEBUG_PENUMBRA) debugColor = vec3(sg_debugPenumbra);                \
         if (SG_DEBUG_VIEW == SG_DEBUG_VISIBILITY) debugColor = vec3(v);                           \

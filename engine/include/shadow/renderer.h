@@ -27,7 +27,7 @@ class ShadowSystem;
 /// Debug views of the main pass (`--debug NAME`).
 enum class DebugView {
     None,
-    Cascade,       ///< cascade index of the debug light, tinted
+    Cascade,       ///< cascade of the debug light: 0 red, 1 green, 2 blue, 3 yellow (+ 0.2 x visibility)
     BlockerDepth,  ///< PCSS average blocker depth (m) of the debug light
     Penumbra,      ///< PCSS penumbra half-width (m) of the debug light
     Visibility,    ///< visibility of the debug light
