@@ -34,14 +34,16 @@
 #include <system_error>
 #include <vector>
 
+#include "cli_common.h"
+
 namespace {
 
 using namespace shadow;
 /// Keys in the order written, so a report reads index, headline numbers, then counts.
 using json = nlohmann::ordered_json;
 
-constexpr int kExitBadInput = 2;
-constexpr int kExitFailure = 1;
+using samples::kExitBadInput;
+using samples::kExitFailure;
 
 struct Options {
     std::string estimateDir;
@@ -50,10 +52,7 @@ struct Options {
     std::string mask;
 };
 
-int fail(int code, const std::string& message) {
-    std::cerr << "shadow_compare: " << message << "\n";
-    return code;
-}
+int fail(int code, const std::string& message) { return samples::failAs("shadow_compare", code, message); }
 
 json errorsJson(const VisibilityErrors& e) {
     return {{"rmse", e.rmse},
@@ -289,14 +288,7 @@ int main(int argc, char** argv) {
     app.add_option("--mask", o.mask,
                    "EXR whose A (or Y) channel > 0.5 marks receiver pixels (default: B's "
                    "position.exr, else A's, else every pixel)");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::cerr << "shadow_compare: " << e.what() << "\n(see shadow_compare --help)\n";
-        return kExitBadInput;
-    }
+    if (const std::optional<int> exit = samples::parseCommandLine(app, argc, argv, "shadow_compare")) return *exit;
     try {
         return run(o);
     } catch (const std::exception& e) {

@@ -28,14 +28,15 @@
 #include <regex>
 
 #include <shadow/reference.h>
+#include "cli_common.h"
 #include "render_output.h"
 
 namespace {
 
 using namespace shadow;
 
-constexpr int kExitBadInput = 2;
-constexpr int kExitFailure = 1;
+using samples::kExitBadInput;
+using samples::kExitFailure;
 constexpr const char* kDefaultSize = "640x360";
 
 struct Options {
@@ -51,10 +52,7 @@ struct Options {
     std::uint32_t seed = 1;
 };
 
-int fail(int code, const std::string& message) {
-    std::cerr << "shadow_reference: " << message << "\n";
-    return code;
-}
+int fail(int code, const std::string& message) { return samples::failAs("shadow_reference", code, message); }
 
 /// Prints "tracing NN%" over itself, only when stderr is a terminal.
 std::function<void(int, int)> progressPrinter() {
@@ -235,14 +233,7 @@ int main(int argc, char** argv) {
     app.add_option("--positions", o.positions, "shade the world positions of an engine position.exr");
     app.add_option("--threads", o.threads, "worker threads (0 = all cores)");
     app.add_option("--seed", o.seed, "seed of the sample patterns");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::cerr << "shadow_reference: " << e.what() << "\n(see shadow_reference --help)\n";
-        return kExitBadInput;
-    }
+    if (const std::optional<int> exit = samples::parseCommandLine(app, argc, argv, "shadow_reference")) return *exit;
     o.sizeGiven = sizeOption->count() > 0;
     try {
         return run(o);

@@ -15,6 +15,7 @@
 #include <shadow/program_cache.h>
 #include <shadow/scene.h>
 
+#include "cli_common.h"
 #include "render_output.h"
 
 #include <CLI/CLI.hpp>
@@ -30,8 +31,8 @@ namespace {
 
 using namespace shadow;
 
-constexpr int kExitBadInput = 2;
-constexpr int kExitFailure = 1;
+using samples::kExitBadInput;
+using samples::kExitFailure;
 
 struct Options {
     std::string scene;
@@ -54,10 +55,7 @@ struct Options {
     std::optional<float> exposure;  ///< absent: from the first frame read back (autoExposure)
 };
 
-int fail(int code, const std::string& message) {
-    std::cerr << "shadow_render: " << message << "\n";
-    return code;
-}
+int fail(int code, const std::string& message) { return samples::failAs("shadow_render", code, message); }
 
 Result<DebugView> parseDebug(const std::string& name) {
     if (name.empty()) return DebugView::None;
@@ -251,14 +249,7 @@ int main(int argc, char** argv) {
                    "technique sdf: override every light's sdfStartOffset (m), [0, 1]");
     app.add_option("--shader-cache", o.shaderCache,
                    "folder of linked program binaries, read and written (the driver's own cache aside)");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::cerr << "shadow_render: " << e.what() << "\n(see shadow_render --help)\n";
-        return kExitBadInput;
-    }
+    if (const std::optional<int> exit = samples::parseCommandLine(app, argc, argv, "shadow_render")) return *exit;
     try {
         return run(o);
     } catch (const GlError& e) {

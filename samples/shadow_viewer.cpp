@@ -13,6 +13,7 @@
 // in steps of --dt S and, with --screenshot DIR, writes DIR/color.png (the scene, tone-mapped as
 // shadow_render's color.png) and DIR/color_ui.png (the window with the UI), then exits. Bad input:
 // one message, exit code 2, nothing written.
+#include "cli_common.h"
 #include "render_output.h"
 #include "viewer_app.h"
 #include "viewer_script.h"
@@ -36,8 +37,8 @@ namespace {
 using namespace shadow;
 using namespace shadow::viewer;
 
-constexpr int kExitBadInput = 2;
-constexpr int kExitFailure = 1;
+using samples::kExitBadInput;
+using samples::kExitFailure;
 
 struct Options {
     std::string scene = "builtin:default";
@@ -53,10 +54,7 @@ struct Options {
     std::string screenshotDir;
 };
 
-int fail(int code, const std::string& message) {
-    std::cerr << "shadow_viewer: " << message << "\n";
-    return code;
-}
+int fail(int code, const std::string& message) { return samples::failAs("shadow_viewer", code, message); }
 
 /// The loop's own state: the clock, the mouse drag and Dear ImGui's frame.
 struct App {
@@ -392,14 +390,7 @@ int main(int argc, char** argv) {
                                       "DIR/color_ui.png (the window), then exit");
     script->excludes(frames);
     script->excludes(screenshot);
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::cerr << "shadow_viewer: " << e.what() << "\n(see shadow_viewer --help)\n";
-        return kExitBadInput;
-    }
+    if (const std::optional<int> exit = samples::parseCommandLine(app, argc, argv, "shadow_viewer")) return *exit;
     try {
         return run(o);
     } catch (const GlError& e) {
