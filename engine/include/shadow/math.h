@@ -21,6 +21,7 @@ struct BasicAabb {
     Vec max{std::numeric_limits<Scalar>::lowest()};
 
     [[nodiscard]] bool empty() const { return min.x > max.x || min.y > max.y || min.z > max.z; }
+    bool operator==(const BasicAabb&) const = default;
     void extend(const Vec& p) {
         min = glm::min(min, p);
         max = glm::max(max, p);

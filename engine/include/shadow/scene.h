@@ -84,6 +84,7 @@ struct CameraView {
     float aspect = 1.0f;
     float znear = 0.05f;
     float zfar = 500.0f;
+    friend bool operator==(const CameraView&, const CameraView&) = default;
 };
 
 /// The view of camera `camera` (an entity with `Camera` and `WorldTransform`) for an image of

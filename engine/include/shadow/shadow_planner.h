@@ -181,7 +181,14 @@ private:
         DepthMode depthMode = DepthMode::Nearest;
         std::vector<LayerMemory> layers;
     };
+    /// The layers of `plan`, a light with a map this frame, and which of them are dirty: last
+    /// frame's kept (`keepLayers`), or planned again.
+    void planMap(const World& world, const CameraView& camera, ShadowLightPlan& plan, bool cameraMoved);
     void markDirty(const World& world, ShadowLightPlan& plan);
+    /// Keeps last frame's layers of `plan` when planning them again would give them back (the
+    /// same light with the same inputs, nothing in its reach changed), with the dirty flags
+    /// `markDirty` would give; false when they must be planned.
+    bool keepLayers(const World& world, ShadowLightPlan& plan, bool cameraMoved);
 
     ShadowFrame frame_;
     std::vector<std::pair<Entity, LightMemory>> memory_;

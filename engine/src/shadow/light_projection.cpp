@@ -38,11 +38,6 @@ DAabb toLightSpace(const glm::dmat4& lightFromWorld, const DAabb& box) {
     return out;
 }
 
-/// Whether `plan`'s light reads a summed-area table (VSSM: FilterChainKind::SummedMoments in
-/// filter_chain.h), whose fixed point needs the layers' moment scale. (plan.technique() is None
-/// until the layers exist.)
-bool readsSummedMoments(const ShadowLightPlan& plan) { return plan.settings.technique == ShadowTechnique::Vssm; }
-
 /// The stored depth (lsDepth, m) of the point of `box` farthest from the light of `layer`: the
 /// greatest of its corners' (axial for orthographic layers, the distance from the light for
 /// perspective ones, as shadow_depth.frag.glsl stores).
@@ -57,22 +52,25 @@ double farthestDepth(const ShadowLayerPlan& layer, const DAabb& box) {
     return farthest;
 }
 
+/// The frustum of `layer`'s matrices.
+Frustum frustumOf(const ShadowLayerPlan& layer) {
+    return Frustum::fromMatrix(layer.clipFromLight * layer.lightFromWorld);
+}
+
 /// Sets `layer.casters` to the casters whose bounds meet the layer's frustum, in entity order,
 /// with room for every caster: one moving into the layer later costs no allocation. With
 /// `summedMoments` (a VSSM light) also `layer.momentScale` from the farthest of them
 /// (ShadowLayerPlan::momentScale); other lights keep 1 and skip the corners. Call once the
 /// layer's matrices and depth scale are set.
 void castersIn(const SceneGeometry& g, bool summedMoments, ShadowLayerPlan& layer) {
-    const Frustum f = Frustum::fromMatrix(layer.clipFromLight * layer.lightFromWorld);
-    layer.casters.clear();
+    const Frustum f = frustumOf(layer);
+    const auto meets = [&f](const DAabb& box) { return f.intersects(box); };
     layer.casters.reserve(g.casters.size());
-    double farthest = 0.0;
-    for (const BoundedEntity& c : g.casters) {
-        if (!f.intersects(c.bounds)) continue;
-        layer.casters.push_back(c.entity);
-        if (summedMoments) farthest = std::max(farthest, farthestDepth(layer, c.bounds));
-    }
+    castersMeeting(g, meets, layer.casters);
     if (!summedMoments) return;
+    double farthest = 0.0;
+    forEachCaster(g, meets,
+                  [&](const BoundedEntity& c) { farthest = std::max(farthest, farthestDepth(layer, c.bounds)); });
     // The power of two putting the farthest caster's stored depth in (1/4, 1/2]; at most 2^40
     // (a caster 10^-12 of the range away), at least 1.
     const double stored = std::clamp(farthest / std::max(static_cast<double>(layer.depthScale), 1e-30), 1e-12, 1.0);
@@ -230,15 +228,23 @@ std::optional<DepthInterval> depthInside(const ViewVolume& v, const DAabb& box) 
     return DepthInterval{-vsCenter.z - reach, -vsCenter.z + reach};
 }
 
-/// Casters' light-space boxes overlapping the light-space column [lo, hi] in x and y.
+/// Widens [zBottom, zTop] to the light-space boxes of the casters overlapping the light-space
+/// column [lo, hi] in x and y. The tree skips every node whose box lies beside the column or
+/// within the range found so far: a caster inside it could not widen the range either (both
+/// tests are monotone, and the range only grows), so the range comes out as a walk over every
+/// caster gives it.
 void zRangeOfColumn(const glm::dmat4& rotation, const SceneGeometry& g, const glm::dvec2& lo, const glm::dvec2& hi,
                     double& zTop, double& zBottom) {
-    for (const BoundedEntity& c : g.casters) {
+    const auto mayWiden = [&](const DAabb& box) {
+        const DAabb ls = toLightSpace(rotation, box);
+        const bool beside = ls.max.x < lo.x || ls.min.x > hi.x || ls.max.y < lo.y || ls.min.y > hi.y;
+        return !beside && (ls.max.z > zTop || ls.min.z < zBottom);
+    };
+    forEachCaster(g, mayWiden, [&](const BoundedEntity& c) {
         const DAabb ls = toLightSpace(rotation, c.bounds);
-        if (ls.max.x < lo.x || ls.min.x > hi.x || ls.max.y < lo.y || ls.min.y > hi.y) continue;
         zTop = std::max(zTop, ls.max.z);
         zBottom = std::min(zBottom, ls.min.z);
-    }
+    });
 }
 
 /// The square a cascade covers in the light's view: centre (light-space xy) and edge (m).
@@ -317,10 +323,9 @@ DepthInterval cascadeSpan(const CameraView& cam, const SceneGeometry& g, double 
     return {nearest, distance};
 }
 
-void planDirectional(const ShadowLightPlan& plan, const LightPose& pose, const CameraView& cam, const SceneGeometry& g,
+void planDirectional(const LayerInputs& s, const CameraView& cam, const SceneGeometry& g,
                      std::vector<ShadowLayerPlan>& layers) {
-    const Shadow& s = plan.settings;
-    const glm::dmat4 rotation = lookAlong(glm::dvec3(0.0), pose.wsDirection);
+    const glm::dmat4 rotation = lookAlong(glm::dvec3(0.0), s.pose.wsDirection);
     const double reach =
         std::min(s.shadowDistance > 0.0f ? std::min<double>(s.shadowDistance, cam.zfar) : cam.zfar, kMaxShadowReach);
     const glm::dvec3 lsCamera(rotation * glm::dvec4(cam.wsPosition, 1.0));
@@ -334,7 +339,7 @@ void planDirectional(const ShadowLightPlan& plan, const LightPose& pose, const C
     layers.resize(static_cast<std::size_t>(s.cascades));
     for (int k = 0; k < s.cascades; ++k) {
         const CascadeSquare sq =
-            fitCascadeSquare(cam, splits[k], splits[k + 1], rotation, lsReceivers, lsCamera, plan.mapSize);
+            fitCascadeSquare(cam, splits[k], splits[k + 1], rotation, lsReceivers, lsCamera, s.mapSize);
         const glm::dvec2 lsCenter = sq.lsCenter;
         const double extent = sq.extent;
         double zTop = 0.0;
@@ -351,40 +356,70 @@ void planDirectional(const ShadowLightPlan& plan, const LightPose& pose, const C
         layer.depthScale = static_cast<float>(depthRange);
         layer.depthNear = 0.0f;
         layer.splitFar = static_cast<float>(splits[k + 1]);
-        castersIn(g, readsSummedMoments(plan), layer);
+        castersIn(g, s.summedMoments, layer);
     }
 }
 
-/// Far plane of a perspective light at `position`: its range, or else the whole scene rounded
-/// up to a power of two, so that an object moving at the edge of the scene does not change
-/// every layer's projection (and force a redraw of layers whose casters did not move).
-double perspectiveFar(const ShadowLightPlan& plan, const glm::dvec3& position, const SceneGeometry& g) {
-    if (plan.light.range > 0.0f) return std::clamp<double>(plan.light.range, 1e-3, kMaxShadowReach);
-    const double fitted = std::exp2(std::ceil(std::log2(std::max(farthestCorner(position, g.everything), 1e-3))));
+/// Far plane of a perspective light: its range, or else the whole scene rounded up to a power
+/// of two, so that an object moving at the edge of the scene does not change every layer's
+/// projection (and force a redraw of layers whose casters did not move).
+double perspectiveFar(const LayerInputs& light, const SceneGeometry& g) {
+    if (light.range > 0.0f) return std::clamp<double>(light.range, 1e-3, kMaxShadowReach);
+    const double fitted =
+        std::exp2(std::ceil(std::log2(std::max(farthestCorner(light.pose.wsPosition, g.everything), 1e-3))));
     return std::min(fitted, kMaxShadowReach);
+}
+
+/// What every layer of a spot or point light shares: the tangent of its half-angle (the cone's,
+/// or a cube face's 45 degrees, with two texels of margin on each side so that bilinear taps at
+/// the edge stay inside the map), its far plane and its fixed near plane (0: fitted per layer).
+struct PerspectiveReach {
+    double tanHalf = 1.0;
+    double far = 1.0;
+    double fixedNear = 0.0;
+};
+
+PerspectiveReach perspectiveReach(const LayerInputs& light, const SceneGeometry& g) {
+    const double margin = 1.0 + 4.0 / light.mapSize;
+    const double tanHalf =
+        light.type == LightType::Spot ? std::tan(static_cast<double>(light.outerConeAngle)) * margin : margin;
+    return {tanHalf, perspectiveFar(light, g), light.nearPlane};
+}
+
+/// Whether a layer of `reach` fits its near plane to its casters.
+bool fitsNear(const PerspectiveReach& reach) { return reach.fixedNear <= 0.0; }
+
+/// The frustum a perspective layer looking through `lightFromWorld` fits its near plane in: its
+/// own with the nearest near plane allowed.
+Frustum widestFrustum(const glm::dmat4& lightFromWorld, const PerspectiveReach& reach) {
+    const double minNear = reach.far * 1e-6;
+    return Frustum::fromMatrix(glm::perspective(2.0 * std::atan(reach.tanHalf), 1.0, minNear, reach.far) *
+                               lightFromWorld);
 }
 
 /// The largest power of two not above `x` > 0: a near plane that stays put while the nearest
 /// caster moves a little, so layers whose own casters did not move are not redrawn.
 double powerOfTwoBelow(double x) { return std::exp2(std::floor(std::log2(x))); }
 
-/// One perspective layer looking along `direction`, into `layer`. With `fixedNear` 0 the near
-/// plane is fitted just before the nearest caster in this layer's frustum.
-void perspectiveLayer(const glm::dvec3& position, const glm::dvec3& direction, double tanHalf, double fixedNear,
-                      double far, const SceneGeometry& g, bool summedMoments, ShadowLayerPlan& layer) {
+/// One perspective layer of `light` looking along `direction`, into `layer`. Without a fixed
+/// near plane it is fitted just before the nearest caster in the layer's widest frustum.
+void perspectiveLayer(const LayerInputs& light, const glm::dvec3& direction, const PerspectiveReach& reach,
+                      const SceneGeometry& g, ShadowLayerPlan& layer) {
+    const glm::dvec3& position = light.pose.wsPosition;
+    const double far = reach.far;
+    const double tanHalf = reach.tanHalf;
     const double minNear = far * 1e-6;
     resetLayer(layer);
     layer.orthographic = false;
     layer.lightFromWorld = lookAlong(position, direction);
     const double fov = 2.0 * std::atan(tanHalf);
-    double near = std::min(fixedNear, 0.5 * far);
-    if (fixedNear <= 0.0) {
-        const glm::dmat4 widest = glm::perspective(fov, 1.0, minNear, far) * layer.lightFromWorld;
+    double near = std::min(reach.fixedNear, 0.5 * far);
+    if (fitsNear(reach)) {
         double nearest = far;
-        const Frustum f = Frustum::fromMatrix(widest);
-        for (const BoundedEntity& c : g.casters) {
-            if (f.intersects(c.bounds)) nearest = std::min(nearest, distanceToBox(position, c.bounds));
-        }
+        const Frustum f = widestFrustum(layer.lightFromWorld, reach);
+        forEachCaster(
+            g, [&f](const DAabb& box) { return f.intersects(box); },
+            [&](const BoundedEntity& c) { nearest = std::min(nearest, distanceToBox(position, c.bounds)); });
         // The near plane clips by depth along the axis; a caster at distance d can be as shallow
         // as d times the cosine of the frustum's corner angle.
         const double cornerCos = 1.0 / std::sqrt(1.0 + 2.0 * tanHalf * tanHalf);
@@ -395,40 +430,10 @@ void perspectiveLayer(const glm::dvec3& position, const glm::dvec3& direction, d
     // far-plane corner.
     layer.depthScale = static_cast<float>(far * std::sqrt(1.0 + 2.0 * tanHalf * tanHalf));
     layer.depthNear = static_cast<float>(near);
-    castersIn(g, summedMoments, layer);
+    castersIn(g, light.summedMoments, layer);
 }
 
 }  // namespace
-
-void gatherGeometry(const World& world, SceneGeometry& out) {
-    out.casters.clear();
-    out.receiverBoxes.clear();
-    out.visible.measured = false;
-    out.receivers = DAabb{};
-    out.everything = DAabb{};
-    world.view<Mesh, WorldTransform, WorldBounds>().each(
-        [&](Entity e, const Mesh& mesh, const WorldTransform& wt, const WorldBounds& wb) {
-            // A mesh with no triangles draws nothing: it must not widen any layer's fit either.
-            if (!wt.finite || wb.box.empty() || mesh.data == nullptr || mesh.data->indices.empty()) return;
-            out.everything.extend(wb.box);
-            if (mesh.castShadows) out.casters.push_back({e, wb.box});
-            if (mesh.receiveShadows) {
-                out.receiverBoxes.push_back(wb.box);
-                out.receivers.extend(wb.box);
-            }
-        });
-    // The game's own casters: bounds from their object bounds, as updateTransforms does for meshes.
-    world.view<ShadowCasterDraw, WorldTransform>().each(
-        [&](Entity e, const ShadowCasterDraw& c, const WorldTransform& wt) {
-            if (!wt.finite || !c.drawsSomething() || c.localBounds.empty()) return;
-            const DAabb box = transformBounds(wt.worldFromLocal, c.localBounds);
-            out.everything.extend(box);
-            out.casters.push_back({e, box});
-        });
-    // Views walk back to front; entity order keeps caster lists comparable frame to frame.
-    std::sort(out.casters.begin(), out.casters.end(),
-              [](const BoundedEntity& a, const BoundedEntity& b) { return a.entity < b.entity; });
-}
 
 void measureVisibleReceivers(const CameraView& camera, SceneGeometry& geometry) {
     VisibleReceivers& out = geometry.visible;
@@ -489,30 +494,61 @@ void cascadeSplits(double near, double far, double lambda, std::span<double> spl
     splits.back() = far;
 }
 
-void planLayers(const ShadowLightPlan& plan, const LightPose& pose, const CameraView& camera,
-                const SceneGeometry& geometry, std::vector<ShadowLayerPlan>& layers) {
-    if (plan.light.type == LightType::Directional) {
-        planDirectional(plan, pose, camera, geometry, layers);
+LayerInputs layerInputs(const ShadowLightPlan& plan, const LightPose& pose) {
+    LayerInputs in;
+    in.type = plan.light.type;
+    in.pose = pose;
+    in.mapSize = plan.mapSize;
+    in.range = plan.light.range;
+    in.outerConeAngle = plan.light.outerConeAngle;
+    in.nearPlane = plan.settings.nearPlane;
+    in.cascades = plan.settings.cascades;
+    in.cascadeSplitLambda = plan.settings.cascadeSplitLambda;
+    in.shadowDistance = plan.settings.shadowDistance;
+    in.summedMoments = plan.settings.technique == ShadowTechnique::Vssm;
+    return in;
+}
+
+void planLayers(const LayerInputs& light, const CameraView& camera, const SceneGeometry& geometry,
+                std::vector<ShadowLayerPlan>& layers) {
+    if (light.type == LightType::Directional) {
+        planDirectional(light, camera, geometry, layers);
         return;
     }
-    // Two texels of margin on each side keep bilinear taps at the edge inside the map.
-    const double margin = 1.0 + 4.0 / plan.mapSize;
-    const double tanHalf =
-        plan.light.type == LightType::Spot ? std::tan(static_cast<double>(plan.light.outerConeAngle)) * margin : margin;
-    const double far = perspectiveFar(plan, pose.wsPosition, geometry);
-    const double near = plan.settings.nearPlane;  // 0: fitted per layer
-    if (plan.light.type == LightType::Spot) {
+    const PerspectiveReach reach = perspectiveReach(light, geometry);
+    if (light.type == LightType::Spot) {
         layers.resize(1);
-        perspectiveLayer(pose.wsPosition, pose.wsDirection, tanHalf, near, far, geometry, readsSummedMoments(plan),
-                         layers[0]);
+        perspectiveLayer(light, light.pose.wsDirection, reach, geometry, layers[0]);
         return;
     }
     // Point: cube faces +X, -X, +Y, -Y, +Z, -Z, the order the shader's cubeFace() uses.
     static const glm::dvec3 kFaces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     layers.resize(6);
-    for (std::size_t k = 0; k < 6; ++k) {
-        perspectiveLayer(pose.wsPosition, kFaces[k], tanHalf, near, far, geometry, readsSummedMoments(plan), layers[k]);
+    for (std::size_t k = 0; k < 6; ++k) perspectiveLayer(light, kFaces[k], reach, geometry, layers[k]);
+}
+
+bool layersHold(const LayerInputs& light, bool cameraMoved, const SceneGeometry& geometry,
+                std::span<const ShadowLayerPlan> layers) {
+    const bool geometryChanged = !geometry.changed.empty() || geometry.receiversChanged || geometry.everythingChanged;
+    // A sun's cascades follow the camera and every receiver and caster of the scene.
+    if (light.type == LightType::Directional) return !cameraMoved && !geometryChanged;
+    // Without a range the far plane follows the scene's bounds.
+    if (!(light.range > 0.0f) && geometry.everythingChanged) return false;
+    if (geometry.changed.empty()) return true;
+    // The rest follows the casters its layers' frusta accept: those in the layer's own make its
+    // list, its moment scale and whether it redraws; the nearest in the widest frustum fits the
+    // near plane (and so the matrices). While no changed caster meets either, neither changes.
+    for (const ShadowLayerPlan& layer : layers) {
+        const Frustum own = frustumOf(layer);
+        if (anyChangedMeets(geometry, [&own](const DAabb& box) { return own.intersects(box); })) return false;
     }
+    const PerspectiveReach reach = perspectiveReach(light, geometry);
+    if (!fitsNear(reach)) return true;
+    for (const ShadowLayerPlan& layer : layers) {
+        const Frustum widest = widestFrustum(layer.lightFromWorld, reach);
+        if (anyChangedMeets(geometry, [&widest](const DAabb& box) { return widest.intersects(box); })) return false;
+    }
+    return true;
 }
 
 }  // namespace shadow

@@ -6,6 +6,7 @@
 
 #include "core/camera.h"
 #include "shadow/frustum.h"
+#include "shadow/scene_geometry.h"
 
 #include <optional>
 #include <span>
@@ -22,42 +23,6 @@ inline constexpr float kMaxSpotHalfAngle = 1.4835298642f;
 /// however large the scene's coordinates (a file may place a mesh at 1e38 m; the fuzzer did).
 inline constexpr double kMaxShadowReach = 1e7;
 
-/// A caster or receiver instance with its world bounds.
-struct BoundedEntity {
-    Entity entity;
-    DAabb bounds;
-};
-
-/// A range of view depth (m along the camera's axis, the depth cascades split).
-struct DepthInterval {
-    double nearest = 0.0;
-    double farthest = 0.0;
-};
-
-/// Where the receivers are visible on screen: the view depths of their boxes clipped to the
-/// camera frustum (near plane to the far plane, at most `kMaxShadowReach`). Exact for the boxes
-/// (not for the surfaces inside them, nor for occlusion); what directional cascades split.
-struct VisibleReceivers {
-    bool measured = false;  ///< set by `measureVisibleReceivers`, cleared by `gatherGeometry`
-    /// One interval per receiver box that meets the frustum, in no particular order: a light
-    /// whose shadowDistance ends inside a gap between receivers fits up to the last of them.
-    std::vector<DepthInterval> boxes;
-    DepthInterval all{1.0, 0.0};  ///< the union's bounds; nearest > farthest when none is visible
-};
-
-/// The scene's shadow-relevant geometry for one frame.
-struct SceneGeometry {
-    std::vector<BoundedEntity> casters;  ///< finite meshes with castShadows, entity order
-    std::vector<DAabb> receiverBoxes;    ///< finite meshes with receiveShadows, each
-    DAabb receivers;                     ///< union of `receiverBoxes`
-    DAabb everything;                    ///< union of all finite meshes
-    VisibleReceivers visible;            ///< `measureVisibleReceivers`, for directional lights
-};
-
-/// Collects casters and receivers from meshes with finite world transforms and triangles into
-/// `out`, reusing its storage; `out.visible` is left unmeasured.
-void gatherGeometry(const World& world, SceneGeometry& out);
-
 /// Measures `geometry.visible` for `camera` once per `gatherGeometry` (later calls return at
 /// once): each receiver box clipped against the camera frustum, without allocating once the
 /// storage has grown to the receivers' count. Call before planning directional lights; without
@@ -71,6 +36,7 @@ void measureVisibleReceivers(const CameraView& camera, SceneGeometry& geometry);
 struct LightPose {
     glm::dvec3 wsPosition{0.0};
     glm::dvec3 wsDirection{0.0, 0.0, -1.0};  ///< unit, the node's -Z
+    friend bool operator==(const LightPose&, const LightPose&) = default;
 };
 
 /// The pose of a light's node; its direction is -z of `worldOrientation` (the reference tracer's
@@ -80,13 +46,46 @@ LightPose lightPose(const WorldTransform& wt);
 /// False when the light's range sphere misses the camera frustum (only lights with a range).
 bool lightAffectsView(const Light& light, const LightPose& pose, const Frustum& cameraFrustum);
 
+/// Everything of a light that `planLayers` reads besides the camera and the geometry: the same
+/// inputs over the same geometry (and, for a directional light, the same camera) give the same
+/// layers.
+struct LayerInputs {
+    LightType type = LightType::Point;
+    LightPose pose;
+    int mapSize = 1;                  ///< texels allocated (`ShadowLightPlan::mapSize`)
+    float range = 0.0f;               ///< point, spot: `Light::range` (0: fitted to the scene)
+    float outerConeAngle = 0.0f;      ///< spot: `Light::outerConeAngle`
+    float nearPlane = 0.0f;           ///< point, spot: `Shadow::nearPlane` (0: fitted per layer)
+    int cascades = 1;                 ///< directional: `Shadow::cascades`
+    float cascadeSplitLambda = 0.0f;  ///< directional: `Shadow::cascadeSplitLambda`
+    float shadowDistance = 0.0f;      ///< directional: `Shadow::shadowDistance`
+    /// VSSM (FilterChainKind::SummedMoments in filter_chain.h): the layers' `momentScale` is
+    /// fitted to their casters. (plan.technique() is None until the layers exist.)
+    bool summedMoments = false;
+    friend bool operator==(const LayerInputs&, const LayerInputs&) = default;
+};
+
+/// The layer inputs of the clamped `plan` at `pose`.
+[[nodiscard]] LayerInputs layerInputs(const ShadowLightPlan& plan, const LightPose& pose);
+
 /// Fits the layers of a light into `layers`: cascades (directional), one frustum (spot), six
 /// faces (point), each with the casters that fall in it. Every field of every layer is written
 /// (`dirty` to its default); the storage of the layers' caster lists is reused, and each list
 /// holds room for every caster of `geometry`, so that planning the same light again allocates
 /// nothing.
-void planLayers(const ShadowLightPlan& plan, const LightPose& pose, const CameraView& camera,
-                const SceneGeometry& geometry, std::vector<ShadowLayerPlan>& layers);
+void planLayers(const LayerInputs& light, const CameraView& camera, const SceneGeometry& geometry,
+                std::vector<ShadowLayerPlan>& layers);
+
+/// Whether `planLayers(light, camera, geometry, layers)` would give `layers` back, field for
+/// field, when `layers` is what it gave for the same `light` over the geometry of the last
+/// `gatherGeometry` and, with `cameraMoved` false, the same camera. A directional light's
+/// layers hold when neither the camera nor anything of the geometry changed; a point or spot
+/// light's when no changed caster (`SceneGeometry::changed`) meets one of its layers' frusta or,
+/// where its near planes are fitted, the widest frusta they are fitted in (and, without a range,
+/// the scene's bounds stayed). Its cost grows with the changed casters near the light, not with
+/// the scene.
+[[nodiscard]] bool layersHold(const LayerInputs& light, bool cameraMoved, const SceneGeometry& geometry,
+                              std::span<const ShadowLayerPlan> layers);
 
 /// Cascade split distances (m from the camera) for `splits.size() - 1` cascades over
 /// [near, far]: lambda * logarithmic + (1 - lambda) * uniform (the "practical" scheme), written

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string_view>
 
@@ -306,9 +307,31 @@ void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, co
     clampField(light.innerConeAngle, 0.0f, light.outerConeAngle, who, "innerConeAngle", warnings);
 }
 
+namespace {
+
+/// What a scene light's layers were planned from, kept for the next frame: while none of it
+/// changes (and `layersHold`), the layers stand as they are.
+struct PlannedFrom {
+    Entity entity;
+    bool keepable = false;      ///< planned with a map, caster lists whole (not sdf), caching on
+    bool affectedView = false;  ///< its layer memory holds these layers (markDirty saw them in view)
+    LayerInputs inputs;
+    DepthMode depthMode = DepthMode::Nearest;
+
+    /// The same light with the same inputs to its layers and its layer memory.
+    [[nodiscard]] bool samePlan(const PlannedFrom& o) const {
+        return entity == o.entity && inputs == o.inputs && depthMode == o.depthMode;
+    }
+};
+
+}  // namespace
+
 struct ShadowPlanner::Scratch {
     SceneGeometry geometry;
     std::vector<Candidate> candidates;
+    std::vector<PlannedFrom> planned;      ///< this frame's, by scene light
+    std::vector<PlannedFrom> lastPlanned;  ///< the last frame's
+    std::optional<CameraView> lastCamera;
 };
 
 ShadowPlanner::ShadowPlanner() : scratch_(std::make_unique<Scratch>()) {}
@@ -324,6 +347,10 @@ const ShadowFrame& ShadowPlanner::prepare(const World& world, const CameraView& 
     SceneGeometry& geometry = scratch_->geometry;
     std::vector<Candidate>& candidates = scratch_->candidates;
     gatherGeometry(world, geometry);
+    std::swap(scratch_->planned, scratch_->lastPlanned);
+    scratch_->planned.assign(lights.size(), PlannedFrom{});
+    const bool cameraMoved = scratch_->lastCamera != camera;
+    scratch_->lastCamera = camera;
     frame_.wsGeometry = geometry.everything;
     const Frustum cameraFrustum = Frustum::fromMatrix(cameraClipFromWorld(camera));
 
@@ -354,11 +381,7 @@ const ShadowFrame& ShadowPlanner::prepare(const World& world, const CameraView& 
             plan.mapSize = 0;
             continue;
         }
-        // Once a frame, and only in a frame with a sun: where receivers are visible on screen.
-        if (plan.light.type == LightType::Directional) measureVisibleReceivers(camera, geometry);
-        planLayers(plan, {plan.wsPosition, plan.wsDirection}, camera, geometry, plan.layers);
-        if (plan.settings.technique == ShadowTechnique::Sdf) takeFieldCasters(world, plan, frame_.warnings);
-        markDirty(world, plan);
+        planMap(world, camera, plan, cameraMoved);
         warnOpenCasters(world, plan, frame_.warnings);
     }
     for (ShadowLightPlan& plan : frame_.lights) {
@@ -375,6 +398,38 @@ const ShadowFrame& ShadowPlanner::prepare(const World& world, const CameraView& 
                             [&](const ShadowLightPlan& p) { return p.hasMap() && p.entity == m.first; });
     });
     return frame_;
+}
+
+void ShadowPlanner::planMap(const World& world, const CameraView& camera, ShadowLightPlan& plan, bool cameraMoved) {
+    PlannedFrom& planned = scratch_->planned[static_cast<std::size_t>(plan.sceneIndex)];
+    planned = {plan.entity, caching_ && plan.settings.technique != ShadowTechnique::Sdf, plan.affectsView,
+               layerInputs(plan, {plan.wsPosition, plan.wsDirection}), plan.settings.depthMode};
+    if (keepLayers(world, plan, cameraMoved)) return;
+    // Once a frame, and only in a frame with a sun: where receivers are visible on screen.
+    if (plan.light.type == LightType::Directional) measureVisibleReceivers(camera, scratch_->geometry);
+    planLayers(planned.inputs, camera, scratch_->geometry, plan.layers);
+    if (plan.settings.technique == ShadowTechnique::Sdf) takeFieldCasters(world, plan, frame_.warnings);
+    markDirty(world, plan);
+}
+
+bool ShadowPlanner::keepLayers(const World& world, ShadowLightPlan& plan, bool cameraMoved) {
+    const auto index = static_cast<std::size_t>(plan.sceneIndex);
+    if (index >= scratch_->lastPlanned.size()) return false;
+    const PlannedFrom& last = scratch_->lastPlanned[index];
+    const PlannedFrom& now = scratch_->planned[index];
+    // plan.layers still holds what this scene light was planned to last frame (describeLight).
+    if (!last.keepable || !now.keepable || !last.samePlan(now) ||
+        !layersHold(now.inputs, cameraMoved, scratch_->geometry, plan.layers)) {
+        return false;
+    }
+    if (last.affectedView && plan.affectsView) {
+        // The layer memory holds these very layers, and none of their casters moved (layersHold):
+        // what markDirty would find, without walking the casters.
+        for (ShadowLayerPlan& layer : plan.layers) layer.dirty = false;
+    } else {
+        markDirty(world, plan);
+    }
+    return true;
 }
 
 void ShadowPlanner::markDirty(const World& world, ShadowLightPlan& plan) {
