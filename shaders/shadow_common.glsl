@@ -8,6 +8,14 @@ float sg_lightSpaceDepth(vec3 lsPosition, bool orthographic) {
     return orthographic ? -lsPosition.z : length(lsPosition);
 }
 
+// The powers z, z^2, z^3 and z^4 of a stored depth, clamped to [0, 1] as the depth buffer
+// clamps it: a texel of level 0 of a moment chain (a two-moment chain keeps the first two).
+vec4 sg_depthMoments(float depth) {
+    float z = clamp(depth, 0.0, 1.0);
+    float z2 = z * z;
+    return vec4(z, z2, z2 * z, z2 * z2);
+}
+
 // Unit vector along `v`, or `fallback` when `v` is too short to have a direction (a receiver at
 // the light's own position, a zero normal from a file): normalize(0) is NaN in GLSL.
 vec3 sg_safeNormalize(vec3 v, vec3 fallback) {

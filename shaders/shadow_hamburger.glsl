@@ -1,4 +1,4 @@
-// The Hamburger 4MSM bound of moment shadow maps: the four-moment chain (shadow_moments.comp.glsl with SG_FOUR_MOMENTS) holds
+// The Hamburger 4MSM bound of moment shadow maps: the four-moment chain (shadow_moments.frag.glsl, an RGBA32F chain) holds
 // the means of z, z^2, z^3 and z^4 over every tile of the map, so one trilinear fetch gives a
 // filter region's first four power moments. Of all depth distributions with those moments, the
 // Hamburger 4MSM reconstruction takes the one that puts the most weight in front of the

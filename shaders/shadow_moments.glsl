@@ -1,7 +1,7 @@
 // What every moment technique shares: region moments from a prefiltered chain, Chebyshev's
 // one-sided bound, the variance floor and the receiver's reference depth in stored units.
 //
-// The moments chain (shadow_moments.comp.glsl) holds the means of powers of the stored depth
+// The moments chain (shadow_depth.frag.glsl writes level 0, shadow_moments.frag.glsl the rest) holds the means of powers of the stored depth
 // over every tile of the map, so one trilinear fetch gives a filter region's moments, whatever
 // its width. Chebyshev's one-sided inequality bounds the fraction of the region at least as far
 // as the receiver, P(z >= t) <= var / (var + (t - mean)^2) for t > mean.

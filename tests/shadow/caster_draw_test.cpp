@@ -9,6 +9,7 @@
 #include "gl/gl_api.h"
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -150,6 +151,47 @@ TEST(CasterDraw, ADrawCallbackDrawsItsOwnInstances) {
     FrameStats changed = shadows.frame(own);
     EXPECT_EQ(changed.shadowLayersDrawn, 1);
     EXPECT_EQ(calls, 2);
+}
+
+/// A moment chain's level 0 holds the powers of the depth the map stores (z, z^2 for VSM) even
+/// where a callback drew with colour writes off, as a game program that writes depth alone
+/// would: such a layer's chain is read back from the map, not left to the depth pass.
+TEST(CasterDraw, AMomentChainHoldsTheDepthsACallbackDrew) {
+    test::glContext();
+    const std::shared_ptr<const MeshData> box = boxMesh();
+    GameMesh game(*box);
+    Scene own = baseScene();
+    own.world.get<Shadow>(own.lights[0]).technique = ShadowTechnique::Vsm;
+    ShadowCasterDraw draw;
+    draw.localBounds.extend(glm::vec3(kBoxAt) + game.bounds.min);
+    draw.localBounds.extend(glm::vec3(kBoxAt) + game.bounds.max);
+    draw.draw = [&game](const CasterDrawContext& context) {
+        std::array<GLboolean, 4> mask{};
+        gl.GetBooleanv(GL_COLOR_WRITEMASK, mask.data());
+        gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        gl.BindVertexArray(game.vertexArray);
+        context.setWorldFromLocal(glm::translate(glm::dmat4(1.0), kBoxAt));
+        gl.DrawElements(GL_TRIANGLES, game.indexCount, GL_UNSIGNED_INT, nullptr);
+        gl.ColorMask(mask[0], mask[1], mask[2], mask[3]);
+    };
+    (void)addOwnCaster(own, glm::dvec3(0.0), draw);
+    Shadows shadows;
+    (void)shadows.frame(own);
+
+    const int size = 256;
+    const std::vector<float> depth = shadows.system.maps().readLayerDepth(0, 0);  // metres
+    const float scale = shadows.system.frame().lights[0].layers[0].depthScale;
+    std::vector<float> moments(static_cast<std::size_t>(size) * size * 2);
+    gl.GetTextureSubImage(shadows.system.maps().filterChainOf(0).name, 0, 0, 0, 0, size, size, 1, GL_RG, GL_FLOAT,
+                          static_cast<GLsizei>(moments.size() * sizeof(float)), moments.data());
+    int drawnTexels = 0, wrong = 0;
+    for (std::size_t i = 0; i < depth.size(); ++i) {
+        const double z = static_cast<float>(depth[i] / scale);  // back to stored units
+        if (z < 0.999) ++drawnTexels;
+        if (std::abs(moments[2 * i] - z) > 1e-6 || std::abs(moments[2 * i + 1] - z * z) > 1e-6) ++wrong;
+    }
+    EXPECT_GT(drawnTexels, 1000) << "the box and the ground are in the map";
+    EXPECT_EQ(wrong, 0) << "texels of level 0 that do not hold (z, z^2) of the map";
 }
 
 TEST(CasterDraw, ACasterThatDrawsNothingIsLeftOut) {

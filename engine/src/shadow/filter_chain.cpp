@@ -39,6 +39,20 @@ FilterChain FilterChain::allocate(const std::string& label, FilterChainKind kind
     gl.TextureParameteri(c.texture.get(), GL_TEXTURE_MAG_FILTER, filtered ? GL_LINEAR : GL_NEAREST);
     gl.TextureParameteri(c.texture.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     gl.TextureParameteri(c.texture.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    if (filtered) {
+        for (int layer = 0; layer < layers; ++layer) {
+            GLuint view = 0;
+            gl.GenTextures(1, &view);  // a view takes a name that has no target yet
+            gl.TextureView(view, GL_TEXTURE_2D, c.texture.get(), formatOf(kind), 0, static_cast<GLuint>(levels),
+                           static_cast<GLuint>(layer), 1);
+            // Bilinear within the one level it shows (the mean of 2x2 texels from one fetch).
+            gl.TextureParameteri(view, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+            gl.TextureParameteri(view, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+            gl.TextureParameteri(view, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+            gl.TextureParameteri(view, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+            c.layerViews.emplace_back(view);
+        }
+    }
     gpu::checkGlError("allocating " + label + " filter chain");
     return c;
 }
@@ -60,55 +74,121 @@ FilterChainBuilder::Pass makePass(const std::string& label, const std::string& f
     p.program = gpu::buildComputeProgram(label, file, defines);
     p.layer = gl.GetUniformLocation(p.program.get(), "uLayer");
     p.level = gl.GetUniformLocation(p.program.get(), "uLevel");
+    p.levelsWritten = gl.GetUniformLocation(p.program.get(), "uLevelsWritten");
     p.momentScale = gl.GetUniformLocation(p.program.get(), "uMomentScale");
     return p;
 }
 
 }  // namespace
 
-void FilterChainBuilder::build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale) {
-    const auto kind = static_cast<std::size_t>(chain.kind);
-    std::optional<Programs>& programs = programs_.at(kind);
-    if (!programs) {
-        static constexpr std::array<const char*, 4> kFiles{"shadow_minmax.comp.glsl", "shadow_moments.comp.glsl",
-                                                           "shadow_moments.comp.glsl", "shadow_summed_area.comp.glsl"};
-        static constexpr std::array<const char*, 4> kLabels{"Shadow/MinMax/", "Shadow/Moments/", "Shadow/FourMoments/",
-                                                            "Shadow/SummedMoments/"};
-        std::vector<std::string> defines;
-        if (chain.kind == FilterChainKind::FourMoments) defines.emplace_back("SG_FOUR_MOMENTS");
-        std::vector<std::string> fromDepth = defines;
-        fromDepth.emplace_back("SG_CHAIN_FROM_DEPTH");
-        const std::string label = kLabels.at(kind);
-        programs = Programs{makePass(label + "fromDepth", kFiles.at(kind), fromDepth),
-                            makePass(label + "fromBelow", kFiles.at(kind), defines)};
-    }
+void FilterChainBuilder::build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale,
+                               int fromLevel) {
     gl.BindSampler(SG_UNIT_MINMAX_SOURCE, 0);  // the textures' own nearest filtering, no comparison
-    if (chain.kind == FilterChainKind::SummedMoments) {
-        buildSummedArea(depthArray, chain, mapSize, layer, momentScale);
-        return;
-    }
-    int size = FilterChain::baseSize(chain.kind, mapSize);
-    for (int level = 0; level < chain.levels; ++level, size = std::max(1, size / 2)) {
-        const Pass& pass = level == 0 ? programs->fromDepth : programs->fromBelow;
-        const GLuint program = pass.program.get();
-        gl.UseProgram(program);
-        gl.ProgramUniform1i(program, pass.layer, layer);
-        gl.ProgramUniform1i(program, pass.level, level);
-        // Reads level - 1 of the pyramid (texelFetch, never the level written) or the depth map.
-        gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, level == 0 ? depthArray : chain.texture.get());
-        gl.BindImageTexture(SG_IMAGE_MINMAX, chain.texture.get(), level, GL_FALSE, layer, GL_WRITE_ONLY,
-                            formatOf(chain.kind));
-        const auto groups = static_cast<GLuint>((size + 7) / 8);
-        gl.DispatchCompute(groups, groups, 1);
-        // The next level reads this one; the lit pass samples them all.
-        gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    switch (chain.kind) {
+        case FilterChainKind::MinMax: buildMinMax(depthArray, chain, mapSize, layer); break;
+        case FilterChainKind::Moments:
+        case FilterChainKind::FourMoments: buildMoments(depthArray, chain, mapSize, layer, fromLevel); break;
+        case FilterChainKind::SummedMoments: buildSummedArea(depthArray, chain, mapSize, layer, momentScale); break;
     }
     gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
 }
 
+const FilterChainBuilder::Programs& FilterChainBuilder::computePrograms(FilterChainKind kind) {
+    const bool summed = kind == FilterChainKind::SummedMoments;
+    std::optional<Programs>& programs = computePrograms_.at(summed ? 1 : 0);
+    if (!programs) {
+        const char* file = summed ? "shadow_summed_area.comp.glsl" : "shadow_minmax.comp.glsl";
+        const std::string label = summed ? "Shadow/SummedMoments/" : "Shadow/MinMax/";
+        programs = Programs{makePass(label + "fromDepth", file, {"SG_CHAIN_FROM_DEPTH"}),
+                            makePass(label + "fromBelow", file, {})};
+    }
+    return *programs;
+}
+
+void FilterChainBuilder::buildMinMax(GLuint depthArray, const FilterChain& chain, int mapSize, int layer) {
+    const Programs& programs = computePrograms(FilterChainKind::MinMax);
+    int size = FilterChain::baseSize(chain.kind, mapSize);
+    for (int level = 0; level < chain.levels; level += SG_CHAIN_LEVELS_PER_DISPATCH) {
+        const Pass& pass = level == 0 ? programs.fromDepth : programs.fromBelow;
+        const GLuint program = pass.program.get();
+        const int written = std::min(SG_CHAIN_LEVELS_PER_DISPATCH, chain.levels - level);
+        gl.UseProgram(program);
+        gl.ProgramUniform1i(program, pass.layer, layer);
+        gl.ProgramUniform1i(program, pass.level, level);
+        gl.ProgramUniform1i(program, pass.levelsWritten, written);
+        // Reads level - 1 of the chain (texelFetch, never a level written) or the depth map.
+        gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, level == 0 ? depthArray : chain.texture.get());
+        for (int i = 0; i < SG_CHAIN_LEVELS_PER_DISPATCH; ++i) {
+            gl.BindImageTexture(SG_IMAGE_MINMAX + i, chain.texture.get(), level + std::min(i, written - 1), GL_FALSE,
+                                layer, GL_WRITE_ONLY, formatOf(chain.kind));
+        }
+        // An invocation per 4x4 texels of the first level written, 8x8 invocations a work group.
+        const auto groups = static_cast<GLuint>((size + 31) / 32);
+        gl.DispatchCompute(groups, groups, 1);
+        // The next dispatch reads the last level written; the lit pass samples them all.
+        gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+        for (int i = 0; i < written; ++i) size = std::max(1, size / 2);
+    }
+}
+
+void FilterChainBuilder::buildMoments(GLuint depthArray, const FilterChain& chain, int mapSize, int layer,
+                                      int fromLevel) {
+    const bool four = chain.kind == FilterChainKind::FourMoments;
+    MomentsPrograms& programs = momentsPrograms(four);
+    const GLuint fb = momentsFramebuffer_.get();
+    const GLuint view = chain.layerViews.at(static_cast<std::size_t>(layer)).get();
+    gl.Disable(GL_DEPTH_TEST);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, fb);
+    gl.BindVertexArray(emptyVertexArray_.get());
+    for (int level = fromLevel; level < chain.levels; ++level) {
+        const int size = std::max(1, mapSize >> level);
+        const MomentsPrograms::Pass& pass = level == 0 ? programs.fromDepth : programs.fromBelow;
+        gl.UseProgram(pass.program.get());
+        if (level == 0) {
+            gl.ProgramUniform1i(pass.program.get(), pass.layer, layer);
+            gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, depthArray);
+        } else {
+            // The view shows the level below alone, so the level drawn is not one it samples.
+            gl.TextureParameteri(view, GL_TEXTURE_BASE_LEVEL, level - 1);
+            gl.TextureParameteri(view, GL_TEXTURE_MAX_LEVEL, level - 1);
+            gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, view);
+        }
+        gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, chain.texture.get(), level, layer);
+        gl.Viewport(0, 0, size, size);
+        gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    gl.TextureParameteri(view, GL_TEXTURE_BASE_LEVEL, 0);
+    gl.TextureParameteri(view, GL_TEXTURE_MAX_LEVEL, chain.levels - 1);
+    gl.BindVertexArray(0);
+    gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, 0, 0, 0);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+FilterChainBuilder::MomentsPrograms& FilterChainBuilder::momentsPrograms(bool four) {
+    std::optional<MomentsPrograms>& p = momentsPrograms_.at(four ? 1 : 0);
+    if (!p) {
+        const std::string label = four ? "Shadow/FourMoments/" : "Shadow/Moments/";
+        const auto make = [&](const char* stage, std::vector<std::string> defines) {
+            MomentsPrograms::Pass pass;
+            pass.program = gpu::buildProgram(
+                {label + stage, "fullscreen.vert.glsl", "shadow_moments.frag.glsl", std::move(defines)});
+            pass.layer = gl.GetUniformLocation(pass.program.get(), "uLayer");
+            return pass;
+        };
+        p = MomentsPrograms{make("fromDepth", {"SG_CHAIN_FROM_DEPTH"}), make("fromBelow", {})};
+    }
+    if (!momentsFramebuffer_) {
+        momentsFramebuffer_ = gpu::makeFramebuffer("Shadow/moments framebuffer");
+        GLuint vao = 0;
+        gl.CreateVertexArrays(1, &vao);
+        emptyVertexArray_ = gpu::VertexArray(vao);
+    }
+    return *p;
+}
+
 void FilterChainBuilder::buildSummedArea(GLuint depthArray, const FilterChain& chain, int mapSize, int layer,
                                          float momentScale) {
-    const Programs& programs = *programs_.at(static_cast<std::size_t>(FilterChainKind::SummedMoments));
+    const Programs& programs = computePrograms(FilterChainKind::SummedMoments);
     const auto groups = static_cast<GLuint>((mapSize + kSatGroupSize - 1) / kSatGroupSize);
     // Rows: prefix sums of the quantised moments along x, from the depth map.
     gl.UseProgram(programs.fromDepth.program.get());
@@ -122,7 +202,6 @@ void FilterChainBuilder::buildSummedArea(GLuint depthArray, const FilterChain& c
     gl.UseProgram(programs.fromBelow.program.get());
     gl.DispatchCompute(groups, 1, 1);
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // the lit pass fetches the table
-    gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
 }
 
 }  // namespace shadow

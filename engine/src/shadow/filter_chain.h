@@ -20,6 +20,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace shadow {
 
@@ -29,6 +30,9 @@ struct FilterChain {
     gpu::Texture texture;
     FilterChainKind kind = FilterChainKind::MinMax;
     int levels = 0;
+    /// Moment chains: a 2D view of each layer, all levels (a layer's mipmaps are generated
+    /// through its view, leaving the other layers alone).
+    std::vector<gpu::Texture> layerViews;
 
     /// `chainBaseSize` (map_memory.h).
     [[nodiscard]] static int baseSize(FilterChainKind kind, int mapSize) { return chainBaseSize(kind, mapSize); }
@@ -43,6 +47,11 @@ struct FilterChain {
     [[nodiscard]] bool clearable() const { return kind != FilterChainKind::SummedMoments; }
     /// Every level of `layer` as for a cleared layer, nothing in front of the far plane: all 1.
     void clearLayer(int mapSize, int layer) const;
+    /// Whether the depth pass can write level 0 as it draws a layer (moment chains: the powers of
+    /// the depth it stores, SG_DEPTH_MOMENTS), leaving `build` the levels above.
+    [[nodiscard]] bool drawnWithDepth() const {
+        return kind == FilterChainKind::Moments || kind == FilterChainKind::FourMoments;
+    }
     /// Bytes of GPU memory the chain holds (`chainBytes`, what the memory budget counts).
     [[nodiscard]] long long bytes(int mapSize, int layers) const { return chainBytes(kind, mapSize, layers, levels); }
 };
@@ -52,23 +61,46 @@ class FilterChainBuilder {
 public:
     /// Builds every level of `layer` of `chain` from `depthArray`, a `mapSize`^2 array; a
     /// summed-area table of the moments of min(z momentScale, 1) (ShadowLayerPlan::momentScale).
-    void build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale = 1.0f);
+    /// Moment chains: the levels below `fromLevel` are current already (level 0 written by the
+    /// depth pass, `drawnWithDepth`).
+    void build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale = 1.0f,
+               int fromLevel = 0);
 
     /// A compute program and its uniforms.
     struct Pass {
         gpu::Program program;
-        GLint layer = -1, level = -1, momentScale = -1;
+        GLint layer = -1, level = -1, levelsWritten = -1, momentScale = -1;
     };
 
 private:
+    void buildMinMax(GLuint depthArray, const FilterChain& chain, int mapSize, int layer);
+    void buildMoments(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, int fromLevel);
     void buildSummedArea(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale);
 
-    /// Mip chains: level 0 from the depth map, then each level from the one below. The
-    /// summed-area table: prefix sums along rows from the depth map, then along columns in place.
+    /// Compute builds. The min/max pyramid: levels 0 to 2 from the depth map, then three
+    /// levels at a time from the one below. The summed-area table: prefix sums along rows from
+    /// the depth map, then along columns in place.
     struct Programs {
         Pass fromDepth, fromBelow;
     };
-    std::array<std::optional<Programs>, 4> programs_;  ///< per FilterChainKind
+    /// The compute programs of MinMax or SummedMoments, built on first use.
+    const Programs& computePrograms(FilterChainKind kind);
+    std::array<std::optional<Programs>, 2> computePrograms_;  ///< [summed-area table]
+
+    /// Moment chains: a full-screen draw per level, level 0 from the depth map, the others from
+    /// the level below; two or four moments alike (the chain's format keeps what it holds).
+    struct MomentsPrograms {
+        struct Pass {
+            gpu::Program program;
+            GLint layer = -1;
+        };
+        Pass fromDepth, fromBelow;
+    };
+    /// The moment programs (and the framebuffer they draw through), built on first use.
+    MomentsPrograms& momentsPrograms(bool four);
+    std::array<std::optional<MomentsPrograms>, 2> momentsPrograms_;  ///< [four moments]
+    gpu::Framebuffer momentsFramebuffer_;
+    gpu::VertexArray emptyVertexArray_;
 };
 
 }  // namespace shadow

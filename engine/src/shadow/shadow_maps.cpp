@@ -39,6 +39,9 @@ struct ShadowMapGpu {
     /// chain matches its map.
     std::optional<FilterChain> chain;
     std::vector<bool> chainCurrent;
+    /// Per layer: level 0 of its moment chain was written by the depth pass as the layer was
+    /// last drawn (`FilterChain::drawnWithDepth`), so the chain's build starts at level 1.
+    std::vector<bool> chainBaseDrawn;
     /// Made this frame (a new light, or a new map size or layer count): its texture name changed.
     bool allocatedThisFrame = true;
 };
@@ -180,9 +183,10 @@ void describe(const ShadowLightPlan& plan, LightShadowStats& ls) {
 
 struct ShadowMaps::Impl {
     DepthProgram depth{"Shadow/Depth", {}};
-    /// The other depth programs, by depth mode (`DepthMode`) and alpha test (0 opaque, 1 cut-out),
-    /// built when a layer first needs one (the nearest opaque one is `depth`).
-    std::array<std::array<std::optional<DepthProgram>, 2>, 3> others;
+    /// The other depth programs, by depth mode (`DepthMode`), alpha test (0 opaque, 1 cut-out)
+    /// and moments (1: also writes level 0 of a moment chain), built when a layer first needs one
+    /// (the nearest opaque one without moments is `depth`).
+    std::array<std::array<std::array<std::optional<DepthProgram>, 2>, 2>, 3> others;
     NearestScratch scratch;
     /// The distance fields of the sdf lights' casters, made when a light first uses sdf.
     std::optional<gpu::DistanceFieldAtlas> fields;
@@ -204,8 +208,8 @@ struct ShadowMaps::Impl {
     void drawLayer(const World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k,
                    LightShadowStats& ls);
     /// The program of depth mode `mode` (the second pass's for Midpoint and Second), opaque or
-    /// alpha-tested, built on first use.
-    const DepthProgram& program(DepthMode mode, bool cutout);
+    /// alpha-tested, writing the moments of its depth or not, built on first use.
+    const DepthProgram& program(DepthMode mode, bool cutout, bool moments = false);
     /// Brings the filter chain of every layer of `plan` whose map changed up to date.
     void updateChains(const ShadowLightPlan& plan);
 };
@@ -235,6 +239,7 @@ void ShadowMaps::Impl::syncMaps(const ShadowFrame& frame) {
                    !map->chain || map->chain->kind != *kind || map->chain->levels != levels) {
             map->chain = FilterChain::allocate("Shadow/" + plan.name, *kind, map->mapSize, map->layers, levels);
             map->chainCurrent.assign(static_cast<std::size_t>(map->layers), false);
+            map->chainBaseDrawn.assign(static_cast<std::size_t>(map->layers), false);
         }
         maps[i].second = std::move(map);
     }
@@ -253,15 +258,16 @@ void ShadowMaps::Impl::updateChains(const ShadowLightPlan& plan) {
         } else {
             formatPassName(passName, plan, map.chain->kind == FilterChainKind::MinMax ? "minmax" : "moments", k);
             const gpu::ScopedPass pass(timer, passName);
-            chains.build(map.array.get(), *map.chain, map.mapSize, static_cast<int>(k), plan.layers[k].momentScale);
+            chains.build(map.array.get(), *map.chain, map.mapSize, static_cast<int>(k), plan.layers[k].momentScale,
+                         map.chainBaseDrawn[k] ? 1 : 0);
         }
         map.chainCurrent[k] = true;
     }
 }
 
-const DepthProgram& ShadowMaps::Impl::program(DepthMode mode, bool cutout) {
-    if (mode == DepthMode::Nearest && !cutout) return depth;
-    std::optional<DepthProgram>& p = others[static_cast<std::size_t>(mode)][cutout ? 1 : 0];
+const DepthProgram& ShadowMaps::Impl::program(DepthMode mode, bool cutout, bool moments) {
+    if (mode == DepthMode::Nearest && !cutout && !moments) return depth;
+    std::optional<DepthProgram>& p = others[static_cast<std::size_t>(mode)][cutout ? 1 : 0][moments ? 1 : 0];
     if (!p) {
         std::vector<std::string> defines;
         std::string label = "Shadow/Depth";
@@ -272,12 +278,43 @@ const DepthProgram& ShadowMaps::Impl::program(DepthMode mode, bool cutout) {
             defines.emplace_back("SG_ALPHA_TESTED");
             label += "/alpha";
         }
+        if (moments) {
+            defines.emplace_back("SG_DEPTH_MOMENTS");
+            label += "/moments";
+        }
         p.emplace(std::move(label), std::move(defines));
     }
     return *p;
 }
 
 namespace {
+
+/// Whether a caster of `layer` is drawn by the game's callback (`ShadowCasterDraw::draw`, with no
+/// mesh to draw instead), which may use a program of its own that writes depth alone.
+bool hasCallbackCaster(const World& world, const ShadowLayerPlan& layer) {
+    return std::any_of(layer.casters.begin(), layer.casters.end(), [&](Entity caster) {
+        const Mesh* mesh = world.tryGet<Mesh>(caster);
+        const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(caster);
+        return (mesh == nullptr || mesh->data == nullptr) && own != nullptr && own->draw != nullptr;
+    });
+}
+
+/// Makes layer `layer` of level 0 of `chain` the colour target of `framebuffer`, cleared to the
+/// moments of the far depth (all 1), with colour writes on.
+void attachMoments(GLuint framebuffer, GLuint chain, GLint layer) {
+    gl.NamedFramebufferTextureLayer(framebuffer, GL_COLOR_ATTACHMENT0, chain, 0, layer);
+    gl.NamedFramebufferDrawBuffer(framebuffer, GL_COLOR_ATTACHMENT0);
+    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    const std::array<float, 4> far{1.0f, 1.0f, 1.0f, 1.0f};
+    gl.ClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, far.data());
+}
+
+/// Undoes `attachMoments`: depth only again.
+void detachMoments(GLuint framebuffer) {
+    gl.NamedFramebufferTextureLayer(framebuffer, GL_COLOR_ATTACHMENT0, 0, 0, 0);
+    gl.NamedFramebufferDrawBuffer(framebuffer, GL_NONE);
+    gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+}
 
 /// Whether a caster of `layer` is a cut-out (`Material::cutout`): its depth needs the alpha test.
 bool hasCutoutCaster(const World& world, const ShadowLayerPlan& layer) {
@@ -371,18 +408,25 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
         ls.castersDrawn +=
             drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, true);
     }
-    gl.NamedFramebufferTextureLayer(map.framebuffer.get(), GL_DEPTH_ATTACHMENT, map.array.get(), 0,
-                                    static_cast<GLint>(k));
-    gl.BindFramebuffer(GL_FRAMEBUFFER, map.framebuffer.get());
-    gl.ClearNamedFramebufferfv(map.framebuffer.get(), GL_DEPTH, 0, &far);
+    const GLuint framebuffer = map.framebuffer.get();
+    gl.NamedFramebufferTextureLayer(framebuffer, GL_DEPTH_ATTACHMENT, map.array.get(), 0, static_cast<GLint>(k));
+    // A moment chain's level 0 comes with the depth, unless the game's callback draws a caster
+    // (with a program that may write depth alone): then the chain's build reads the map back.
+    const bool moments = map.chain && map.chain->drawnWithDepth() && !hasCallbackCaster(world, layer);
+    if (map.chain) map.chainBaseDrawn[k] = moments;
+    if (moments) attachMoments(framebuffer, map.chain->texture.get(), static_cast<GLint>(k));
+    gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    gl.ClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &far);
     if (mode != DepthMode::Nearest) {
         gl.BindSampler(SG_UNIT_MINMAX_SOURCE, 0);  // the texture's own nearest filtering, no comparison
         gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, scratch.texture.get());
     }
-    const DepthProgram& program = this->program(mode, false);
+    const DepthProgram& program = this->program(mode, false, moments);
     program.use(layer);
-    ls.castersDrawn += drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, false);
+    ls.castersDrawn +=
+        drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true, moments) : nullptr, false);
     if (mode != DepthMode::Nearest) gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
+    if (moments) detachMoments(framebuffer);
     ++ls.layersDrawn;
 }
 
@@ -418,7 +462,8 @@ void ShadowMaps::render(const ShadowFrame& frame, const World& world, MeshCache&
     gpu::movePendingWarnings(impl_->pending, stats.warnings);
     gpu::movePendingWarnings(gpu::MeshCacheAccess::pending(meshes), stats.warnings);
     static constexpr std::array<GLint, 2> kUnits{SG_UNIT_MINMAX_SOURCE, SG_UNIT_BASE_COLOR};
-    static constexpr std::array<GLint, 1> kImageUnits{SG_IMAGE_MINMAX};
+    static constexpr std::array<GLint, SG_CHAIN_LEVELS_PER_DISPATCH> kImageUnits{SG_IMAGE_MINMAX, SG_IMAGE_MINMAX + 1,
+                                                                                 SG_IMAGE_MINMAX + 2};
     const gpu::GlStateGuard hostState(kUnits, {}, kImageUnits);
     Impl& g = *impl_;
     g.syncMaps(frame);
