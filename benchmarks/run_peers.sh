@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
-# Peer comparison against OpenSceneGraph on one scene, `builtin:bunny-spot` (the Stanford bunny
-# on an 8 m ground under one 2048^2-mapped spot light), both engines on llvmpipe.
+# Peer comparison against OpenSceneGraph on two scenes, `builtin:bunny-spot` (the Stanford bunny
+# on an 8 m ground under one 2048^2-mapped spot light, a 0.08 m emitter) and
+# `builtin:bunny-spot-wide` (the same with a 0.15 m emitter: penumbrae about twice as wide), both
+# engines on llvmpipe.
 #   bash benchmarks/run_peers.sh
 # Installs what is missing (Debian: openscenegraph, xvfb, ...), builds the OSG program
 # (benchmarks/peers, into build-peers/; never part of the main build) and ours (.ci/setup), then
-# runs ROUNDS interleaved rounds of: OSG none/sm/vdsm/soft under Xvfb and ours none/hard/pcf/pcss
-# headless. Writes benchmarks/results/peers.md, benchmarks/results/peers_crop.png, and the
-# section between <!-- peers:begin --> and <!-- peers:end --> of BENCHMARKS.md.
+# runs ROUNDS interleaved rounds of, per scene: OSG none/sm/vdsm/soft under Xvfb and ours
+# none/hard/pcf/pcss headless. Writes benchmarks/results/peers.md, a crop per scene
+# (benchmarks/results/peers_crop.png, peers_crop_wide.png), and the section between
+# <!-- peers:begin --> and <!-- peers:end --> of BENCHMARKS.md.
 #
 # Environment (for quick runs; the committed figures use the defaults):
 #   ROUNDS=3        interleaved rounds; the table gives the median of the rounds' medians
@@ -24,7 +27,10 @@ frames=${FRAMES:-30}
 warmup=${WARMUP:-5}
 grid=${OSG_GRID:-64}
 size=1280x720
-scene=builtin:bunny-spot
+# Scene names, and OSG soft's penumbra width for each (shadow-map units; in proportion to the
+# emitter: 0.005 for 0.08 m).
+scenes=(bunny-spot bunny-spot-wide)
+osg_softness=(0.005 0.0094)
 results=benchmarks/results
 work=$results/tmp/peers
 osg_modes=(none sm vdsm soft)
@@ -86,22 +92,24 @@ mkdir -p "$work"
 # llvmpipe for OSG too, whatever GL the X server offers.
 export LIBGL_ALWAYS_SOFTWARE=1
 
-run_osg() {  # mode round
-  local out="$work/osg_$1_r$2"
+run_osg() {  # scene-index mode round
+  local scene=${scenes[$1]}
+  local out="$work/osg_${scene}_$2_r$3"
   # The image of the last round is kept for the crop.
   local png=()
-  [ "$2" -eq "$rounds" ] && png=(--png "$work/osg_$1.png")
-  xvfb-run -a -s "-screen 0 ${size}x24" "$osg" "$1" --warmup "$warmup" --frames "$frames" \
-    --size "$size" --grid "$grid" "${png[@]}" >"$out.json" 2>"$out.log" \
-    || { echo "peers: osg_bunny $1 failed:" >&2; cat "$out.log" >&2; exit 1; }
+  [ "$3" -eq "$rounds" ] && png=(--png "$work/osg_${scene}_$2.png")
+  xvfb-run -a -s "-screen 0 ${size}x24" "$osg" "$2" --warmup "$warmup" --frames "$frames" \
+    --size "$size" --grid "$grid" --softness "${osg_softness[$1]}" "${png[@]}" >"$out.json" 2>"$out.log" \
+    || { echo "peers: osg_bunny $2 ($scene) failed:" >&2; cat "$out.log" >&2; exit 1; }
 }
 
-run_ours() {  # technique round
-  local out="$work/ours_$1_r$2"
-  "$ours" "$scene" --size "$size" --frames $((frames + 1)) --no-cache --technique "$1" --aov color \
+run_ours() {  # scene-index technique round
+  local scene=${scenes[$1]}
+  local out="$work/ours_${scene}_$2_r$3"
+  "$ours" "builtin:$scene" --size "$size" --frames $((frames + 1)) --no-cache --technique "$2" --aov color \
     --out "$out" >"$out.log" 2>&1 \
-    || { echo "peers: shadow_render --technique $1 failed:" >&2; cat "$out.log" >&2; exit 1; }
-  [ "$2" -eq "$rounds" ] && cp "$out/color.png" "$work/ours_$1.png"
+    || { echo "peers: shadow_render builtin:$scene --technique $2 failed:" >&2; cat "$out.log" >&2; exit 1; }
+  [ "$3" -eq "$rounds" ] && cp "$out/color.png" "$work/ours_${scene}_$2.png"
   return 0
 }
 
@@ -109,10 +117,12 @@ start=$(date +%s)
 for ((r = 1; r <= rounds; r++)); do
   # Interleaved, engine by engine within each mode, so a drift of the machine's load (2 shared
   # cores here) falls on both engines alike.
-  for k in 0 1 2 3; do
-    echo "peers: round $r/$rounds: OSG ${osg_modes[k]}, ours ${our_techniques[k]}"
-    run_osg "${osg_modes[k]}" "$r"
-    run_ours "${our_techniques[k]}" "$r"
+  for s in "${!scenes[@]}"; do
+    for k in 0 1 2 3; do
+      echo "peers: round $r/$rounds, ${scenes[s]}: OSG ${osg_modes[k]}, ours ${our_techniques[k]}"
+      run_osg "$s" "${osg_modes[k]}" "$r"
+      run_ours "$s" "${our_techniques[k]}" "$r"
+    done
   done
 done
 elapsed=$(($(date +%s) - start))
@@ -126,56 +136,64 @@ for v in ROUNDS FRAMES WARMUP OSG_GRID SHADOW_RENDER; do
   if [ -n "${!v:-}" ]; then command_line="$v=${!v} $command_line"; fi
 done
 
-python3 - "$work" "$rounds" "$frames" "$warmup" "$size" "$cpu" "$cores" "$elapsed" "$command_line" <<'PY'
+python3 - "$work" "$rounds" "$frames" "$warmup" "$size" "$cpu" "$cores" "$elapsed" "$command_line" \
+  "${scenes[*]}" "${osg_softness[*]}" <<'PY'
 import json, os, statistics, sys
 
-work, rounds, frames, warmup, size, cpu, cores, elapsed, command = sys.argv[1:]
+work, rounds, frames, warmup, size, cpu, cores, elapsed, command, scenes, softness = sys.argv[1:]
 rounds, frames, warmup, cores, elapsed = int(rounds), int(frames), int(warmup), int(cores), int(elapsed)
+scenes, softness = scenes.split(), softness.split()
 osg_modes = ["none", "sm", "vdsm", "soft"]
 ours_modes = ["none", "hard", "pcf", "pcss"]
 pairs = [("none", "none"), ("hard", "sm"), ("pcf", "vdsm"), ("pcss", "vdsm"), ("pcss", "soft")]
+emitter = {"bunny-spot": "0.08 m", "bunny-spot-wide": "0.15 m"}
+crops = {"bunny-spot": "peers_crop.png", "bunny-spot-wide": "peers_crop_wide.png"}
+med = statistics.median
 
 def load(path):
     with open(path) as f:
         return json.load(f)
 
-# Per engine and mode: one figure per round, each the median over that run's timed frames.
-osg, osg_draw, ours, ours_wall = {}, {}, {}, {}
-for m in osg_modes:
-    runs = [load(f"{work}/osg_{m}_r{r}.json") for r in range(1, rounds + 1)]
-    osg_info = runs[-1]
-    osg[m] = [run["frameMs"]["median"] for run in runs]
-    osg_draw[m] = [run["drawMs"]["median"] for run in runs]
-for t in ours_modes:
-    runs = [load(f"{work}/ours_{t}_r{r}/stats.json") for r in range(1, rounds + 1)]
-    ours_info = runs[-1]
-    # stats.json holds no single per-frame total, but per frame the wall-clock time of the
-    # shadow passes and of the main passes (each pass bracketed by glFinish): their sum, median
-    # over the frames after the first (the warm-up frame stats.json also leaves out).
-    ours[t] = [statistics.median(f["shadowMs"] + f["mainMs"] for f in run["perFrame"][1:]) for run in runs]
-    # Cross-check, the whole frame: the medians of the CPU phases; the last (render submit)
-    # spans every pass with its glFinish.
-    cpu_ms = lambda run: sum(run["timingsMs"]["cpu"][k]["median"]
-                             for k in ("animate", "transforms", "shadowPrepare", "renderSubmit"))
-    ours_wall[t] = [cpu_ms(run) for run in runs]
-
-med = statistics.median
-
 def spread(v):
     return f"{min(v):.1f}–{max(v):.1f}"
 
+def measure(scene):
+    """Per engine and mode: one figure per round, each the median over that run's timed frames."""
+    osg, osg_draw, ours, ours_main, ours_wall = {}, {}, {}, {}, {}
+    for m in osg_modes:
+        runs = [load(f"{work}/osg_{scene}_{m}_r{r}.json") for r in range(1, rounds + 1)]
+        osg[m] = [run["frameMs"]["median"] for run in runs]
+        osg_draw[m] = [run["drawMs"]["median"] for run in runs]
+    for t in ours_modes:
+        runs = [load(f"{work}/ours_{scene}_{t}_r{r}/stats.json") for r in range(1, rounds + 1)]
+        # stats.json holds no single per-frame total, but per frame the wall-clock time of the
+        # shadow passes and of the main passes (each pass bracketed by glFinish): their sum, median
+        # over the frames after the first (the warm-up frame stats.json also leaves out).
+        ours[t] = [med(f["shadowMs"] + f["mainMs"] for f in run["perFrame"][1:]) for run in runs]
+        ours_main[t] = [med(f["mainMs"] for f in run["perFrame"][1:]) for run in runs]
+        # Cross-check, the whole frame: the medians of the CPU phases; the last (render submit)
+        # spans every pass with its glFinish.
+        cpu_ms = lambda run: sum(run["timingsMs"]["cpu"][k]["median"]
+                                 for k in ("animate", "transforms", "shadowPrepare", "renderSubmit"))
+        ours_wall[t] = [cpu_ms(run) for run in runs]
+    return osg, osg_draw, ours, ours_main, ours_wall, runs[-1], load(f"{work}/osg_{scene}_none_r{rounds}.json")
+
 plural = "s" if rounds > 1 else ""
 out = []
-out.append(f"Scene `builtin:bunny-spot`: the Stanford bunny (glmark2-data, {osg_info['bunny']['triangles']} triangles), "
-           f"1.2 m tall on an 8 m ground, one spot light (cone 0.7 rad), a 2048² shadow map drawn every frame, "
-           f"{size.replace('x', '×')} pixels, the same camera. {rounds} round{plural}, each engine and mode interleaved; "
-           f"a run times {frames} frames (OSG after {warmup} warm-up frames, ours after 1) and gives its median; a cell "
-           f"is the median over the rounds.")
+results = {scene: measure(scene) for scene in scenes}
+ours_info, osg_info = results[scenes[0]][5], results[scenes[0]][6]
+out.append(f"Scenes `builtin:bunny-spot` and `builtin:bunny-spot-wide`: the Stanford bunny (glmark2-data, "
+           f"{osg_info['bunny']['triangles']} triangles), 1.2 m tall on an 8 m ground, one spot light (cone 0.7 rad), "
+           f"a 2048² shadow map drawn every frame, {size.replace('x', '×')} pixels, the same camera; the light's "
+           "emitter is a disk of radius 0.08 m, or 0.15 m in the wide scene (penumbrae about twice as wide, so "
+           f"more of the screen is penumbra). {rounds} round{plural}, each scene, engine and mode interleaved; a run "
+           f"times {frames} frames (OSG after {warmup} warm-up frames, ours after 1) and gives its median; a cell is "
+           "the median over the rounds.")
 out.append("")
 out.append(f"- **Ours**: `shadow_render --no-cache` (OSMesa, headless), `{ours_info['renderer']}`. Frame = the shadow "
            "passes plus the main passes of one frame, by wall clock, each pass bracketed by `glFinish` "
-           "(`stats.json` has no single per-frame total). The last column is the whole frame (the CPU phases' medians "
-           "summed), as a check.")
+           "(`stats.json` has no single per-frame total). 'Main pass' is the main passes alone; the last column is "
+           "the whole frame (the CPU phases' medians summed), as a check.")
 out.append(f"- **{osg_info['engine']}**: `build-peers/osg_bunny` (benchmarks/peers), a {size.replace('x', '×')} "
            f"window under Xvfb, `{osg_info['renderer']}`, {osg_info['glVersion']}. Frame = `viewer.frame()` "
            "(event, update, cull, draw, swap) then `glFinish`; 'before swap' stops at a `glFinish` in the camera's "
@@ -183,30 +201,42 @@ out.append(f"- **{osg_info['engine']}**: `build-peers/osg_bunny` (benchmarks/pee
            f"{osg_info['ground']['triangles']}-triangle grid (ours: per pixel on a 512-triangle plane); it only "
            "receives shadows (as a caster it changes no pixel). `sm` and `soft` get ambient bias (0, 1), so "
            "shadowed means unlit as in ours (OSG's default (0.5, 0.5) leaves shadows half lit); `soft` is OSG's "
-           "fixed-width jittered filter (up to 64 taps); `sm` and `vdsm` compare with GL_LINEAR (2×2 hardware PCF).")
+           "fixed-width jittered filter (up to 64 taps), its width in proportion to the emitter "
+           f"({' and '.join(softness)} of the map); `sm` and `vdsm` have no emitter and compare with GL_LINEAR "
+           "(2×2 hardware PCF). Our shading is Lambert + GGX per pixel; OSG's fixed-function Blinn-Phong.")
 out.append(f"- CPU: {cpu}, {cores} cores, shared with other work while measured: compare rows of one run.")
+for scene in scenes:
+    osg, osg_draw, ours, ours_main, ours_wall, _, _ = results[scene]
+    out.append("")
+    out.append(f"### `builtin:{scene}` (emitter radius {emitter.get(scene, '?')})")
+    out.append("")
+    out.append("| engine | mode | frame ms | rounds, lowest–highest | OSG: before swap ms | ours: main pass ms "
+               "| ours: whole frame ms |")
+    out.append("|---|---|---|---|---|---|---|")
+    for m in osg_modes:
+        out.append(f"| OSG | {m} | {med(osg[m]):.1f} | {spread(osg[m])} | {med(osg_draw[m]):.1f} | | |")
+    for t in ours_modes:
+        out.append(f"| ours | {t} | {med(ours[t]):.1f} | {spread(ours[t])} | | {med(ours_main[t]):.1f} "
+                   f"| {med(ours_wall[t]):.1f} |")
+    out.append("")
+    out.append("| ours vs OSG | ours ms | OSG ms | ours / OSG |")
+    out.append("|---|---|---|---|")
+    for t, m in pairs:
+        a, b = med(ours[t]), med(osg[m])
+        out.append(f"| {t} vs {m} | {a:.1f} | {b:.1f} | {a / b:.2f} |")
+    out.append("")
+    out.append(f"Ours, main pass of `none` over `hard`'s: {med(ours_main['none']) / med(ours_main['hard']):.2f}.")
+    out.append("")
+    out.append(f"![OSG (top) and ours (bottom), crop of builtin:{scene}](CROPDIR{crops.get(scene, scene + '.png')})")
 out.append("")
-out.append("| engine | mode | frame ms | rounds, lowest–highest | OSG: before swap ms | ours: whole frame ms |")
-out.append("|---|---|---|---|---|---|")
-for m in osg_modes:
-    out.append(f"| OSG | {m} | {med(osg[m]):.1f} | {spread(osg[m])} | {med(osg_draw[m]):.1f} | |")
-for t in ours_modes:
-    out.append(f"| ours | {t} | {med(ours[t]):.1f} | {spread(ours[t])} | | {med(ours_wall[t]):.1f} |")
-out.append("")
-out.append("| ours vs OSG | ours ms | OSG ms | ours / OSG |")
-out.append("|---|---|---|---|")
-for t, m in pairs:
-    a, b = med(ours[t]), med(osg[m])
-    out.append(f"| {t} vs {m} | {a:.1f} | {b:.1f} | {a / b:.2f} |")
-out.append("")
-out.append("Crop, the same pixels around the bunny's shadow from each engine's last-round image: top row OSG "
+out.append("Crops: the same pixels around the bunny's shadow from each engine's last-round image: top row OSG "
            "`none`, `sm`, `vdsm`, `soft`; bottom row ours `none`, `hard`, `pcf`, `pcss`. Geometry, camera, cone, "
            "map size and which pixels are shadowed match; brightness does not, by design: OSG's light is "
            "fixed-function (per vertex, a hard cutoff with a cos^e falloff, no tone curve), ours physically based "
            "and tone-mapped.")
 out.append("")
 out.append(f"Runs took {elapsed} s (builds excluded). Reproduce (rewrites `benchmarks/results/peers.md`, "
-           "`benchmarks/results/peers_crop.png` and this section):")
+           "the crops and this section):")
 out.append("")
 out.append("```sh")
 out.append(command)
@@ -214,18 +244,22 @@ out.append("```")
 body = "\n".join(out) + "\n"
 
 with open("benchmarks/results/peers.md", "w") as f:
-    f.write("# Peer comparison: OpenSceneGraph\n\n" + body + "\n![OSG (top) and ours (bottom), crop](peers_crop.png)\n")
+    f.write("# Peer comparison: OpenSceneGraph\n\n" + body.replace("CROPDIR", ""))
 with open("benchmarks/results/tmp/peers_section.md", "w") as f:
-    f.write(body + "\n![OSG (top) and ours (bottom), crop](benchmarks/results/peers_crop.png)\n")
+    f.write(body.replace("CROPDIR", "benchmarks/results/"))
 
 PY
 
-# --- The crop: the same rectangle around the bunny's shadow from every image ----------------------
+# --- The crops: the same rectangle around the bunny's shadow from every image ---------------------
 crop_x=440 crop_y=170 crop_w=520 crop_h=380
-top=("$work/osg_none.png" "$work/osg_sm.png" "$work/osg_vdsm.png" "$work/osg_soft.png")
-bottom=("$work/ours_none.png" "$work/ours_hard.png" "$work/ours_pcf.png" "$work/ours_pcss.png")
-if [ -z "$imagemagick" ]; then
-  python3 - "$crop_x" "$crop_y" "$crop_w" "$crop_h" "$results/peers_crop.png" "${top[@]}" "${bottom[@]}" <<'PY'
+for scene in "${scenes[@]}"; do
+  crop="$results/peers_crop.png"
+  [ "$scene" = bunny-spot ] || crop="$results/peers_crop_${scene#bunny-spot-}.png"
+  top=() bottom=()
+  for m in "${osg_modes[@]}"; do top+=("$work/osg_${scene}_$m.png"); done
+  for t in "${our_techniques[@]}"; do bottom+=("$work/ours_${scene}_$t.png"); done
+  if [ -z "$imagemagick" ]; then
+    python3 - "$crop_x" "$crop_y" "$crop_w" "$crop_h" "$crop" "${top[@]}" "${bottom[@]}" <<'PY'
 import sys
 from PIL import Image
 x, y, w, h = map(int, sys.argv[1:5])
@@ -237,16 +271,17 @@ for i, p in enumerate(paths):
     sheet.paste(tile, ((i % 4) * (w + gap), (i // 4) * (h + gap)))
 sheet.save(out)
 PY
-else
-  geometry="${crop_w}x${crop_h}+${crop_x}+${crop_y}"
-  row() {  # out images...
-    local out=$1
-    shift
-    "$imagemagick" "$@" -crop "$geometry" +repage -bordercolor white -border 2 +append "$out"
-  }
-  row "$work/row_osg.png" "${top[@]}"
-  row "$work/row_ours.png" "${bottom[@]}"
-  "$imagemagick" "$work/row_osg.png" "$work/row_ours.png" -append "$results/peers_crop.png"
-fi
+  else
+    geometry="${crop_w}x${crop_h}+${crop_x}+${crop_y}"
+    row() {  # out images...
+      local out=$1
+      shift
+      "$imagemagick" "$@" -crop "$geometry" +repage -bordercolor white -border 2 +append "$out"
+    }
+    row "$work/row_osg.png" "${top[@]}"
+    row "$work/row_ours.png" "${bottom[@]}"
+    "$imagemagick" "$work/row_osg.png" "$work/row_ours.png" -append "$crop"
+  fi
+done
 python3 benchmarks/benchmarks_section.py peers "Peer comparison: OpenSceneGraph" "$results/tmp/peers_section.md"
-echo "peers: wrote $results/peers.md, $results/peers_crop.png and the peers section of BENCHMARKS.md (${elapsed} s of runs)"
+echo "peers: wrote $results/peers.md, the crops and the peers section of BENCHMARKS.md (${elapsed} s of runs)"

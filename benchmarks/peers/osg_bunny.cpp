@@ -3,7 +3,7 @@
 // (benchmarks/peers/CMakeLists.txt).
 //
 //   osg_bunny none|sm|vdsm|soft [--warmup W] [--frames N] [--png PATH] [--size WxH] [--grid N]
-//                               [--obj PATH]
+//                               [--obj PATH] [--softness W]
 //
 // none: no shadow; sm: osgShadow::ShadowMap; vdsm: osgShadow::ViewDependentShadowMap;
 // soft: osgShadow::SoftShadowMap; every map 2048^2 and re-rendered every frame (OSG redraws its
@@ -79,12 +79,14 @@ struct Options {
     int height = 720;
     int grid = 256;
     std::string obj = kDefaultObj;
+    /// `soft`'s penumbra width in shadow-map texture units (OSG's SoftShadowMap::setSoftnessWidth).
+    float softness = 0.005f;
 };
 
 [[noreturn]] void usage(const std::string& problem) {
     std::cerr << "osg_bunny: " << problem << "\n"
               << "usage: osg_bunny none|sm|vdsm|soft [--warmup W] [--frames N] [--png PATH] [--size WxH]"
-                 " [--grid N] [--obj PATH]\n";
+                 " [--grid N] [--obj PATH] [--softness W]\n";
     std::exit(2);
 }
 
@@ -118,6 +120,12 @@ Options parseArgs(int argc, char** argv) {
             o.grid = parseInt(flag, value, 1, 2048);
         } else if (flag == "--obj") {
             o.obj = value;
+        } else if (flag == "--softness") {
+            char* end = nullptr;
+            const double w = std::strtod(value.c_str(), &end);
+            if (value.empty() || *end != '\0' || !(w > 0.0 && w <= 1.0))
+                usage("--softness: expected a width in (0, 1], got '" + value + "'");
+            o.softness = static_cast<float>(w);
         } else if (flag == "--size") {
             const auto x = value.find('x');
             if (x == std::string::npos) usage("--size: expected WxH, got '" + value + "'");
@@ -337,8 +345,9 @@ int main(int argc, char** argv) {
             if (o.mode == "soft") {
                 osg::ref_ptr<osgShadow::SoftShadowMap> soft = new osgShadow::SoftShadowMap;
                 // Penumbra width in shadow-map texture units: our 0.08 m emitter makes a penumbra
-                // of about 4 cm at the bunny's feet, ~0.005 of the 7-8 m the map spans there.
-                soft->setSoftnessWidth(0.005f);
+                // of about 4 cm at the bunny's feet, ~0.005 of the 7-8 m the map spans there
+                // (the default; a wider emitter scales it, benchmarks/run_peers.sh).
+                soft->setSoftnessWidth(o.softness);
                 sm = soft;
             } else {
                 sm = new osgShadow::ShadowMap;

@@ -228,14 +228,16 @@ Result<Scene> makeBunny() {
     return scene;
 }
 
-/// The bunny under one spot light, the scene of the peer comparison (benchmarks/run_peers.sh):
+/// The bunny under one spot light, the scenes of the peer comparison (benchmarks/run_peers.sh):
 /// the Stanford bunny on an 8 m ground, a spot light with a 0.7 rad cone and a 2048^2 PCSS map.
-Result<Scene> makeBunnySpot() {
+/// `name` is bunny-spot (an emitter of radius 0.08 m) or bunny-spot-wide (0.15 m: penumbrae
+/// about twice as wide, so more of the screen is penumbra).
+Result<Scene> makeBunnySpot(const std::string& name, float emitterRadius) {
     auto bunny = loadObjMesh(kBunnyObjPath);
     if (!bunny)
-        return Error{bunny.error().code, "builtin:bunny-spot: " + bunny.error().message + " (install glmark2-data)"};
+        return Error{bunny.error().code, "builtin:" + name + ": " + bunny.error().message + " (install glmark2-data)"};
     Scene scene;
-    scene.name = "bunny-spot";
+    scene.name = name;
     World& w = scene.world;
     // The ground only receives: it hides nothing from the light (the peer is set up the same way).
     const Entity ground = addMeshInstance(w, "ground", makePlaneMesh(4.0f, 16), at(0, 0, 0), matte(0.85f, 0.8f, 0.75f));
@@ -248,7 +250,7 @@ Result<Scene> makeBunnySpot() {
     spot.intensity = 60.0f;
     spot.outerConeAngle = 0.7f;
     spot.innerConeAngle = 0.55f;
-    spot.radius = 0.08f;
+    spot.radius = emitterRadius;
     Shadow shadow;
     shadow.technique = ShadowTechnique::Pcss;
     shadow.mapSize = 2048;
@@ -301,7 +303,8 @@ const std::map<std::string, std::function<Result<Scene>()>>& registry() {
         {"default", [] { return Result<Scene>(makeDefault()); }},
         {"plates", [] { return Result<Scene>(makePlatesScene()); }},
         {"bunny", makeBunny},
-        {"bunny-spot", makeBunnySpot},
+        {"bunny-spot", [] { return makeBunnySpot("bunny-spot", 0.08f); }},
+        {"bunny-spot-wide", [] { return makeBunnySpot("bunny-spot-wide", 0.15f); }},
         {"many-lights", [] { return Result<Scene>(makeManyLights(64)); }},
         {"many-lights-1", [] { return Result<Scene>(makeManyLights(1)); }},
     };
