@@ -34,14 +34,9 @@ std::vector<GLint> unitsChecked() {
     return units;
 }
 const std::vector<GLint> kBindingsChecked{0, 1, 2, 3};
-/// Image units: the chain builders' (one per level a dispatch writes) and one beyond.
-std::vector<GLint> imagesChecked() {
-    std::vector<GLint> units;
-    for (GLint i = 0; i <= SG_CHAIN_LEVELS_PER_DISPATCH; ++i) units.push_back(SG_IMAGE_MINMAX + i);
-    return units;
-}
+const std::vector<GLint> kImagesChecked{SG_IMAGE_MINMAX, SG_IMAGE_MINMAX + 1};
 
-gpu::GlState captureChecked() { return gpu::captureGlState(unitsChecked(), kBindingsChecked, imagesChecked()); }
+gpu::GlState captureChecked() { return gpu::captureGlState(unitsChecked(), kBindingsChecked, kImagesChecked); }
 
 /// A GL entry point the engine's table does not hold (the host's own calls), from the context.
 template <typename Proc>

@@ -86,11 +86,8 @@
 
 // Unit the pyramid builder reads its source from.
 #define SG_UNIT_MINMAX_SOURCE 0
-// First of the image units the chain builders write levels through, one unit per level.
+// Image unit the pyramid builder writes a level through.
 #define SG_IMAGE_MINMAX 0
-// Levels of a mip chain one dispatch writes (shadow_chain_level.glsl), through image units
-// SG_IMAGE_MINMAX and the ones after it.
-#define SG_CHAIN_LEVELS_PER_DISPATCH 3
 
 // Texels of the shadow map along one edge of a tile of the min/max pyramid's level 0.
 #define SG_MINMAX_TILE 4

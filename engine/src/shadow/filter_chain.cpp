@@ -74,7 +74,6 @@ FilterChainBuilder::Pass makePass(const std::string& label, const std::string& f
     p.program = gpu::buildComputeProgram(label, file, defines);
     p.layer = gl.GetUniformLocation(p.program.get(), "uLayer");
     p.level = gl.GetUniformLocation(p.program.get(), "uLevel");
-    p.levelsWritten = gl.GetUniformLocation(p.program.get(), "uLevelsWritten");
     p.momentScale = gl.GetUniformLocation(p.program.get(), "uMomentScale");
     return p;
 }
@@ -108,26 +107,20 @@ const FilterChainBuilder::Programs& FilterChainBuilder::computePrograms(FilterCh
 void FilterChainBuilder::buildMinMax(GLuint depthArray, const FilterChain& chain, int mapSize, int layer) {
     const Programs& programs = computePrograms(FilterChainKind::MinMax);
     int size = FilterChain::baseSize(chain.kind, mapSize);
-    for (int level = 0; level < chain.levels; level += SG_CHAIN_LEVELS_PER_DISPATCH) {
+    for (int level = 0; level < chain.levels; ++level, size = std::max(1, size / 2)) {
         const Pass& pass = level == 0 ? programs.fromDepth : programs.fromBelow;
         const GLuint program = pass.program.get();
-        const int written = std::min(SG_CHAIN_LEVELS_PER_DISPATCH, chain.levels - level);
         gl.UseProgram(program);
         gl.ProgramUniform1i(program, pass.layer, layer);
         gl.ProgramUniform1i(program, pass.level, level);
-        gl.ProgramUniform1i(program, pass.levelsWritten, written);
-        // Reads level - 1 of the chain (texelFetch, never a level written) or the depth map.
+        // Reads level - 1 of the pyramid (texelFetch, never the level written) or the depth map.
         gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, level == 0 ? depthArray : chain.texture.get());
-        for (int i = 0; i < SG_CHAIN_LEVELS_PER_DISPATCH; ++i) {
-            gl.BindImageTexture(SG_IMAGE_MINMAX + i, chain.texture.get(), level + std::min(i, written - 1), GL_FALSE,
-                                layer, GL_WRITE_ONLY, formatOf(chain.kind));
-        }
-        // An invocation per 4x4 texels of the first level written, 8x8 invocations a work group.
-        const auto groups = static_cast<GLuint>((size + 31) / 32);
+        gl.BindImageTexture(SG_IMAGE_MINMAX, chain.texture.get(), level, GL_FALSE, layer, GL_WRITE_ONLY,
+                            formatOf(chain.kind));
+        const auto groups = static_cast<GLuint>((size + 7) / 8);
         gl.DispatchCompute(groups, groups, 1);
-        // The next dispatch reads the last level written; the lit pass samples them all.
+        // The next level reads this one; the lit pass samples them all.
         gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-        for (int i = 0; i < written; ++i) size = std::max(1, size / 2);
     }
 }
 

@@ -69,7 +69,7 @@ public:
     /// A compute program and its uniforms.
     struct Pass {
         gpu::Program program;
-        GLint layer = -1, level = -1, levelsWritten = -1, momentScale = -1;
+        GLint layer = -1, level = -1, momentScale = -1;
     };
 
 private:
@@ -77,8 +77,8 @@ private:
     void buildMoments(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, int fromLevel);
     void buildSummedArea(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale);
 
-    /// Compute builds. The min/max pyramid: levels 0 to 2 from the depth map, then three
-    /// levels at a time from the one below. The summed-area table: prefix sums along rows from
+    /// Compute builds. The min/max pyramid: level 0 from the depth map, then each level from the
+    /// one below. The summed-area table: prefix sums along rows from
     /// the depth map, then along columns in place.
     struct Programs {
         Pass fromDepth, fromBelow;

@@ -462,8 +462,7 @@ void ShadowMaps::render(const ShadowFrame& frame, const World& world, MeshCache&
     gpu::movePendingWarnings(impl_->pending, stats.warnings);
     gpu::movePendingWarnings(gpu::MeshCacheAccess::pending(meshes), stats.warnings);
     static constexpr std::array<GLint, 2> kUnits{SG_UNIT_MINMAX_SOURCE, SG_UNIT_BASE_COLOR};
-    static constexpr std::array<GLint, SG_CHAIN_LEVELS_PER_DISPATCH> kImageUnits{SG_IMAGE_MINMAX, SG_IMAGE_MINMAX + 1,
-                                                                                 SG_IMAGE_MINMAX + 2};
+    static constexpr std::array<GLint, 1> kImageUnits{SG_IMAGE_MINMAX};
     const gpu::GlStateGuard hostState(kUnits, {}, kImageUnits);
     Impl& g = *impl_;
     g.syncMaps(frame);
