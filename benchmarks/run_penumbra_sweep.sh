@@ -19,9 +19,10 @@ PCSS spends taps where the penumbra is (one tap per texel of its disk's area, up
 mip level of the moments for its fixed `pcfRadius`; VSSM reads two squares (search cone and
 penumbra) of its summed-area table, 16 fetches each whatever the width; MSM-soft one trilinear
 fetch of its four-moment mip chain for the search and four for the penumbra. The moment
-techniques pay for their chain, built by compute every time the layer is redrawn (here every
-frame: caching off): a full-resolution mip chain (RG32F, RGBA32F for four moments) or VSSM's
-table (RGBA32F, one level, a pass along the rows and one along the columns). That is most of
+techniques pay for their chain every time the layer is redrawn (here every frame: caching off):
+a full-resolution mip chain (RG32F, RGBA32F for four moments; level 0 written by the depth pass,
+the levels above by a full-screen draw each) or VSSM's table (RGBA32F, one level, a compute pass
+along the rows and one along the columns). That is most of
 their frame at a 2048² map on this CPU rasteriser, and it does not depend on the width (VSM's
 frame, whose filter is fixed, varies as much from run to run). `sdf` draws no caster into its
 map and marches from every pixel through the plates' fields: the same steps at every emitter
