@@ -107,7 +107,9 @@ TEST(BoxTree, QueriesVisitExactlyWhatAWalkOverTheListVisits) {
         tree.build(items);
         EXPECT_EQ(tree.size(), items.size());
         const std::size_t found = expectQueriesMatchTheWalk(rng, tree, items, std::to_string(count) + " boxes");
-        if (count >= 100) EXPECT_GT(found, 0u);
+        if (count >= 100) {
+            EXPECT_GT(found, 0u);
+        }
     }
 }
 

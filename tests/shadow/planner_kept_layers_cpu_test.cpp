@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -213,27 +214,34 @@ struct TwoSpots {
     void move(Entity e, const glm::dvec3& to) { scene.world.get<Transform>(e).translation = to; }
 };
 
+/// Layer 0 of the light named `name` in `frame`; throws when the frame has no such light or layer.
+const ShadowLayerPlan& firstLayer(const ShadowFrame& frame, const char* name) {
+    const ShadowLightPlan* plan = test::planOf(frame, name);
+    if (plan == nullptr || plan->layers.empty()) throw std::runtime_error(std::string("no layer of light ") + name);
+    return plan->layers[0];
+}
+
 TEST(PlannerKeptLayers, ALightKeepsItsLayersUntilAnInstanceInItsReachMoves) {
     TwoSpots t;
     ShadowPlanner planner;
     (void)planner.prepare(t.scene.world, t.update(), t.scene.lights);
     for (int frame = 0; frame < 3; ++frame) {
         const ShadowFrame& still = planner.prepare(t.scene.world, t.update(), t.scene.lights);
-        EXPECT_FALSE(test::planOf(still, "A")->layers[0].dirty) << "frame " << frame;
-        EXPECT_FALSE(test::planOf(still, "B")->layers[0].dirty) << "frame " << frame;
+        EXPECT_FALSE(firstLayer(still, "A").dirty) << "frame " << frame;
+        EXPECT_FALSE(firstLayer(still, "B").dirty) << "frame " << frame;
     }
     t.move(t.boxA, {-5.2, 0.4, 0});
     const ShadowFrame& moved = planner.prepare(t.scene.world, t.update(), t.scene.lights);
-    EXPECT_TRUE(test::planOf(moved, "A")->layers[0].dirty) << "box A moved under A";
-    EXPECT_TRUE(test::contains(test::planOf(moved, "A")->layers[0].casters, t.boxA));
-    EXPECT_FALSE(test::planOf(moved, "B")->layers[0].dirty) << "nothing moved under B";
+    EXPECT_TRUE(firstLayer(moved, "A").dirty) << "box A moved under A";
+    EXPECT_TRUE(test::contains(firstLayer(moved, "A").casters, t.boxA));
+    EXPECT_FALSE(firstLayer(moved, "B").dirty) << "nothing moved under B";
     const ShadowFrame& after = planner.prepare(t.scene.world, t.update(), t.scene.lights);
-    EXPECT_FALSE(test::planOf(after, "A")->layers[0].dirty) << "settled again";
+    EXPECT_FALSE(firstLayer(after, "A").dirty) << "settled again";
     // The camera moves: a spot's layers do not follow it.
     t.scene.world.get<Transform>(t.camera).translation += glm::dvec3(2.0, 1.0, 0.0);
     const ShadowFrame& turned = planner.prepare(t.scene.world, t.update(), t.scene.lights);
-    EXPECT_FALSE(test::planOf(turned, "A")->layers[0].dirty);
-    EXPECT_FALSE(test::planOf(turned, "B")->layers[0].dirty);
+    EXPECT_FALSE(firstLayer(turned, "A").dirty);
+    EXPECT_FALSE(firstLayer(turned, "B").dirty);
 }
 
 TEST(PlannerKeptLayers, AnInstanceMovingNearerTheLightThanItsNearPlanePullsTheNearPlaneIn) {
@@ -270,8 +278,8 @@ TEST(PlannerKeptLayers, AnInstanceMovingFromOneLightsReachIntoAnothersRedrawsBot
     EXPECT_TRUE(test::contains(b->layers[0].casters, t.boxA));
     EXPECT_TRUE(test::contains(b->layers[0].casters, t.boxB));
     const ShadowFrame& settled = planner.prepare(t.scene.world, t.update(), t.scene.lights);
-    EXPECT_FALSE(test::planOf(settled, "A")->layers[0].dirty);
-    EXPECT_FALSE(test::planOf(settled, "B")->layers[0].dirty);
+    EXPECT_FALSE(firstLayer(settled, "A").dirty);
+    EXPECT_FALSE(firstLayer(settled, "B").dirty);
 }
 
 }  // namespace
