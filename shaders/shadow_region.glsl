@@ -21,8 +21,9 @@ vec2 sg_regionDepthRange(int slot, sg_GpuLight L, vec2 uv, int layer, float radi
     ivec2 size = max(textureSize(sg_shadowChain[slot], 0).xy >> level, ivec2(1));
     float tile = float(SG_MINMAX_TILE) * exp2(float(level));  // map texels per texel of the level
     ivec2 first = ivec2(floor(uv * L.mapSize / tile - 0.5));
-    vec2 range = vec2(1.0, 0.0);
-    for (int k = 0; k < 4; ++k) {
+    // Without a pyramid this frame (L.regionTest 0) nothing is known: no fetch, a loop of no trip.
+    vec2 range = L.regionTest != 0 ? vec2(1.0, 0.0) : vec2(0.0, 1.0);
+    for (int k = 0; k < 4 * L.regionTest; ++k) {
         ivec2 texel = clamp(first + ivec2(k & 1, k >> 1), ivec2(0), size - 1);
         // textureLod at the texel's centre, not texelFetch, for the same reason.
         vec2 mm = textureLod(sg_shadowChain[slot], vec3((vec2(texel) + 0.5) / vec2(size), float(layer)), float(level)).rg;

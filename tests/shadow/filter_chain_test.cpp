@@ -116,6 +116,10 @@ TEST(MinMaxPyramid, OnlyForTechniquesThatReadItAndRebuiltWhenTheMapChanges) {
     EXPECT_FALSE(runner.shadows().maps().filterChainOf(0)) << "hard shadows read no pyramid";
 
     scene.world.get<Shadow>(scene.lights[0]).technique = ShadowTechnique::Pcf;
+    // Whatever the texels per pixel of this small image: the pyramid is what is tested here.
+    ShadowLimits limits = runner.shadows().planner().limits();
+    limits.pyramidTexelsPerPixel = 1e9f;
+    runner.shadows().planner().setLimits(limits);
     (void)test::renderFrame(runner, scene, 64, 48);
     expectPyramidMatchesMap(runner, 256, "after switching to PCF");
 
@@ -124,6 +128,44 @@ TEST(MinMaxPyramid, OnlyForTechniquesThatReadItAndRebuiltWhenTheMapChanges) {
     const test::RenderedFrame moved = test::renderFrame(runner, scene, 64, 48);
     EXPECT_EQ(moved.stats.shadowLayersDrawn, 1);
     expectPyramidMatchesMap(runner, 256, "after the box moved");
+}
+
+/// A PCF light's lit pass without its pyramid (`ShadowLimits::pyramidTexelsPerPixel` 0: too
+/// many texels per pixel) takes every tap, and the pyramid's region test only skips taps whose
+/// answer it knows: the visibility is the same either way, and without it no pyramid is built.
+TEST(MinMaxPyramid, APcfLightWithoutItsPyramidSeesWhatItSeesWithIt) {
+    test::glContext();
+    std::vector<ImageF> seen;
+    for (const float texelsPerPixel : {1e9f, 0.0f}) {
+        Scene scene = tiltedScene(ShadowTechnique::Pcf, 256);
+        scene.world.get<Shadow>(scene.lights[0]).pcfRadius = 0.12f;
+        FrameRunner runner;
+        ShadowLimits limits = runner.shadows().planner().limits();
+        limits.pyramidTexelsPerPixel = texelsPerPixel;
+        runner.shadows().planner().setLimits(limits);
+        const test::RenderedFrame frame = test::renderFrame(runner, scene, 128, 96);
+        const bool regionTest = texelsPerPixel > 0.0f;
+        EXPECT_EQ(frame.stats.lights.at(0).regionTest, regionTest);
+        const bool pyramidBuilt = std::any_of(frame.stats.passes.begin(), frame.stats.passes.end(),
+                                              [](const auto& p) { return p.name.find("minmax") != std::string::npos; });
+        EXPECT_EQ(pyramidBuilt, regionTest) << "a pyramid pass in the stats";
+        seen.push_back(frame.images.visibility.at(0));
+    }
+    const ImageF& with = seen[0];
+    const ImageF& without = seen[1];
+    double worst = 0.0;
+    int penumbra = 0;
+    for (int y = 0; y < with.height; ++y) {
+        for (int x = 0; x < with.width; ++x) {
+            const float v = with.at(x, y, 0);
+            if (v > 0.02f && v < 0.98f) ++penumbra;
+            worst = std::max(worst, static_cast<double>(std::abs(v - without.at(x, y, 0))));
+        }
+    }
+    std::printf("[ measured ] PCF with and without its pyramid: %d penumbra pixels, largest difference %.3g\n",
+                penumbra, worst);
+    EXPECT_GT(penumbra, 50) << "the frame has a penumbra to compare";
+    EXPECT_LE(worst, 1e-6);
 }
 
 /// The moments a chain level should hold, from the level below (level 0: from the stored depths)

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -360,6 +361,81 @@ TEST(Planner, AZeroScaleSpotShinesAlongItsRotationInThePlanAndTheLightRecord) {
     std::vector<gpu::GpuShadowLayer> layers(SG_MAX_LAYERS_PER_LIGHT);
     const gpu::GpuLight record = packSlot(frame.lights[0], glm::dvec3(0.0), 0, layers.data());
     EXPECT_NEAR(glm::length(glm::dvec3(record.wsDirection) - expected), 0.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace shadow
+
+namespace shadow {
+namespace {
+
+// ---- Whether a light reads its min/max pyramid ----
+
+/// A sun and a spot over the test scene's boxes, PCF or PCSS, 1024^2 maps.
+struct PyramidScene : TestScene {
+    explicit PyramidScene(ShadowTechnique technique) {
+        Shadow s = hard();
+        s.technique = technique;
+        s.mapSize = 1024;
+        Light spot = lightOf(LightType::Spot);
+        spot.range = 20.0f;
+        addLight(scene, "spot", spot, s, {0, 6, 0}, {0, -1, 0});
+        addLight(scene, "sun", lightOf(LightType::Directional), s, {0, 10, 0}, {0.2, -1, 0.1});
+    }
+    /// This frame's view with an image of `width` x `height` pixels (0: unknown).
+    CameraView view(int width, int height) {
+        CameraView v = update();
+        v.pixelWidth = width;
+        v.pixelHeight = height;
+        return v;
+    }
+};
+
+/// Whether the light named `name` reads its pyramid in `frame`; throws when there is no such light.
+bool regionTestOf(const ShadowFrame& frame, const char* name) {
+    const ShadowLightPlan* plan = planOf(frame, name);
+    if (plan == nullptr) throw std::runtime_error(std::string("no light ") + name);
+    return plan->regionTest;
+}
+
+/// A PCF light reads its pyramid when its redrawn layers hold at most
+/// `ShadowLimits::pyramidTexelsPerPixel` texels per pixel it reaches on screen, when the image's
+/// size is unknown, and when no layer is redrawn; PCSS always; the other techniques never.
+TEST(ShadowPlanner, APcfLightReadsItsPyramidWhereItPaysForItself) {
+    PyramidScene pcf(ShadowTechnique::Pcf);
+    ShadowPlanner planner;
+    // 320x240: 76 800 pixels at most against 1024^2 texels a layer (13.7 texels a pixel or more).
+    const ShadowFrame& small = planner.prepare(pcf.scene.world, pcf.view(320, 240), pcf.scene.lights);
+    EXPECT_FALSE(regionTestOf(small, "spot"));
+    EXPECT_FALSE(regionTestOf(small, "sun"));
+    // Nothing moved: no layer redrawn, the pyramid (built now) costs nothing more.
+    const ShadowFrame& still = planner.prepare(pcf.scene.world, pcf.view(320, 240), pcf.scene.lights);
+    EXPECT_TRUE(std::none_of(still.lights.begin(), still.lights.end(),
+                             [](const ShadowLightPlan& p) { return p.layers.empty() || p.layers[0].dirty; }));
+    EXPECT_TRUE(regionTestOf(still, "spot"));
+    // Redrawn every frame (caching off): at 4K the sun's 3 layers are under 6 texels a pixel.
+    planner.setCaching(false);
+    const ShadowFrame& large = planner.prepare(pcf.scene.world, pcf.view(3840, 2160), pcf.scene.lights);
+    EXPECT_TRUE(regionTestOf(large, "sun"));
+    const ShadowFrame& unknown = planner.prepare(pcf.scene.world, pcf.view(0, 0), pcf.scene.lights);
+    EXPECT_TRUE(regionTestOf(unknown, "spot"));
+    EXPECT_TRUE(regionTestOf(unknown, "sun"));
+    ShadowLimits limits = planner.limits();
+    limits.pyramidTexelsPerPixel = std::nanf("");
+    planner.setLimits(limits);
+    const ShadowFrame& never = planner.prepare(pcf.scene.world, pcf.view(3840, 2160), pcf.scene.lights);
+    EXPECT_FALSE(regionTestOf(never, "sun")) << "NaN reads as 0: never for a redrawn layer";
+
+    PyramidScene pcss(ShadowTechnique::Pcss);
+    ShadowPlanner pcssPlanner;
+    const ShadowFrame& soft = pcssPlanner.prepare(pcss.scene.world, pcss.view(320, 240), pcss.scene.lights);
+    EXPECT_TRUE(regionTestOf(soft, "spot"));
+    EXPECT_TRUE(regionTestOf(soft, "sun"));
+
+    PyramidScene hardScene(ShadowTechnique::Hard);
+    ShadowPlanner hardPlanner;
+    const ShadowFrame& plain = hardPlanner.prepare(hardScene.scene.world, hardScene.view(0, 0), hardScene.scene.lights);
+    EXPECT_FALSE(regionTestOf(plain, "spot")) << "hard shadows read no pyramid";
 }
 
 }  // namespace

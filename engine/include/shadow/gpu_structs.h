@@ -34,7 +34,7 @@ SG_INT sdfSteps;               // sdf: most march steps
 SG_FLOAT sdfStartOffset;       // sdf: m along the normal and the ray before the march starts
 SG_FLOAT sdfMinStep;           // sdf: shortest step (m)
 SG_INT sdfClusterFirst;        // sdf: its first cluster of SG_SDF_CLUSTER field casters
-SG_FLOAT reserved1;
+SG_INT regionTest;             // PCF, PCSS: 1 when the lookups read the min/max pyramid, 0 when it was not built
 SG_FLOAT reserved2;
 SG_END_STRUCT
 

@@ -84,6 +84,10 @@ struct CameraView {
     float aspect = 1.0f;
     float znear = 0.05f;
     float zfar = 500.0f;
+    /// The image's size in pixels (0: unknown). The shadow planner weighs a PCF light's pixels on
+    /// screen against the map texels its min/max pyramid would read
+    /// (`ShadowLimits::pyramidTexelsPerPixel`); unknown, it always builds the pyramid.
+    int pixelWidth = 0, pixelHeight = 0;
     friend bool operator==(const CameraView&, const CameraView&) = default;
 };
 

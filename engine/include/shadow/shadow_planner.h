@@ -71,6 +71,10 @@ struct ShadowLightPlan {
     std::vector<ShadowLayerPlan> layers;
     /// False when its range cannot reach the camera's frustum: its layers are not drawn.
     bool affectsView = true;
+    /// PCF and PCSS: the lookups read the min/max pyramid, built for the layers redrawn this
+    /// frame (always for PCSS; PCF: `ShadowLimits::pyramidTexelsPerPixel`); false for the other
+    /// techniques.
+    bool regionTest = false;
     /// Technique sdf: the casters its march reads through their distance fields (meshes with a
     /// uniform scale in any of its layers' frustums), taken out of the layers' caster lists;
     /// what stays there (a game's own casters, non-uniform scales) casts through its map. Empty
@@ -131,6 +135,18 @@ struct ShadowLimits {
     /// that excess, until it fits (or reaches the minimum and is refused with a warning).
     /// Changing it bakes every field again on the next frame.
     int distanceFieldVoxels = 64 * 64 * 64;
+    /// PCF: map texels the min/max pyramid may read per pixel its light can reach on screen
+    /// (`CameraView::pixelWidth` x `pixelHeight`, the light's screen rectangle). The pyramid
+    /// lets the lit pass skip the taps of pixels whose filter region is wholly lit or in umbra,
+    /// at the price of reading every texel of every redrawn layer; where the redrawn layers hold
+    /// more texels than this many per pixel, a PCF light goes without it
+    /// (`ShadowLightPlan::regionTest` false: every pixel takes its taps, the same visibility).
+    /// Measured on llvmpipe: about 2.5 ns a texel to build, 15-30 ns of PCF taps saved per pixel
+    /// (BENCHMARKS.md, fragment costs), so 6. PCSS always reads its pyramid: what it spares there
+    /// (blocker search and filter) paid for it on every scene measured. Range >= 0 (0: never a
+    /// pyramid for a redrawn PCF layer; a very large value: always). A frame that redraws no
+    /// layer always reads the pyramid.
+    float pyramidTexelsPerPixel = 6.0f;
 };
 
 /// GPU memory (bytes) of the maps of one light with technique `technique`, `layers` layers of
@@ -182,7 +198,7 @@ private:
         std::vector<LayerMemory> layers;
     };
     /// The layers of `plan`, a light with a map this frame, and which of them are dirty: last
-    /// frame's kept (`keepLayers`), or planned again.
+    /// frame's kept (`keepLayers`), or planned again; and whether it reads its pyramid (`regionTest`).
     void planMap(const World& world, const CameraView& camera, ShadowLightPlan& plan, bool cameraMoved);
     void markDirty(const World& world, ShadowLightPlan& plan);
     /// Keeps last frame's layers of `plan` when planning them again would give them back (the

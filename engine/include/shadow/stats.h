@@ -30,6 +30,8 @@ struct LightShadowStats {
     int layersCleared = 0;    ///< no caster in the layer's frustum: cleared, not drawn
     int castersDrawn = 0;     ///< draw calls into this light's layers
     bool affectsView = true;  ///< false when the light cannot reach anything the camera sees
+    /// PCF, PCSS: the lookups read the min/max pyramid this frame (`ShadowLightPlan::regionTest`).
+    bool regionTest = false;
     /// Its map was made this frame (first frame, or a new size or layer count): its texture name
     /// changed and every layer was drawn.
     bool mapAllocated = false;

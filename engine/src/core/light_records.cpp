@@ -40,6 +40,7 @@ void packShadow(const ShadowLightPlan& plan, const glm::dvec3& wsCamera, int fir
     g.lightBleedReduction = s.lightBleedReduction;
     g.sdfFirst = plan.fieldFirst;
     g.sdfClusterFirst = plan.fieldClusterFirst;
+    g.regionTest = plan.regionTest ? 1 : 0;
     g.sdfCount = static_cast<int>(plan.fieldCasters.size());
     g.sdfSteps = s.sdfSteps;
     g.sdfStartOffset = s.sdfStartOffset;

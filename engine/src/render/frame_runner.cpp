@@ -50,6 +50,8 @@ void FrameRunner::runFrame(Scene& scene, double t, Entity camera, const RenderOp
 
     const float aspect = static_cast<float>(options.width) / static_cast<float>(std::max(options.height, 1));
     impl_->camera = makeCameraView(scene.world, camera, aspect);
+    impl_->camera.pixelWidth = options.width;
+    impl_->camera.pixelHeight = options.height;
 
     t0 = std::chrono::steady_clock::now();
     impl_->shadows.prepare(scene.world, impl_->camera, scene.lights);

@@ -4,6 +4,7 @@
 #include <shadow/shared_constants.h>
 
 #include "core/camera.h"
+#include "core/screen_bounds.h"
 #include "shadow/frustum.h"
 #include "shadow/light_projection.h"
 #include "shadow/map_memory.h"
@@ -67,6 +68,24 @@ void describeLight(const World& world, Entity e, int index, ShadowLightPlan& pla
     const LightPose pose = lightPose(*wt);
     plan.wsPosition = pose.wsPosition;
     plan.wsDirection = pose.wsDirection;
+}
+
+/// Whether the min/max pyramid is worth building for `plan` this frame. PCSS: always (the blocker
+/// search and filter taps it spares a known region cost more than reading a layer back, on every
+/// scene measured). PCF: when its redrawn layers (with casters; a layer without is cleared, not
+/// read back) hold at most `texelsPerPixel` texels per pixel the light can reach on screen, or
+/// when the image's size is unknown or nothing is redrawn (a clean layer's pyramid costs nothing).
+bool pyramidPays(const ShadowLightPlan& plan, const CameraView& camera, const DAabb& wsGeometry, float texelsPerPixel) {
+    if (filterChainOf(plan.technique()) != FilterChainKind::MinMax) return false;
+    if (plan.technique() != ShadowTechnique::Pcf) return true;
+    if (!(texelsPerPixel >= 0.0f)) texelsPerPixel = 0.0f;  // NaN and negative: never when redrawn
+    std::int64_t texels = 0;
+    for (const ShadowLayerPlan& layer : plan.layers) {
+        if (layer.dirty && !layer.casters.empty()) texels += std::int64_t{plan.mapSize} * plan.mapSize;
+    }
+    if (texels == 0 || camera.pixelWidth <= 0 || camera.pixelHeight <= 0) return true;
+    const ScreenView view{cameraClipFromWorld(camera), camera.pixelWidth, camera.pixelHeight, wsGeometry};
+    return static_cast<double>(screenBounds(plan, view).area()) * texelsPerPixel >= static_cast<double>(texels);
 }
 
 /// Smallest map edge the memory budget halves a light to before it drops its shadow.
@@ -404,12 +423,14 @@ void ShadowPlanner::planMap(const World& world, const CameraView& camera, Shadow
     PlannedFrom& planned = scratch_->planned[static_cast<std::size_t>(plan.sceneIndex)];
     planned = {plan.entity, caching_ && plan.settings.technique != ShadowTechnique::Sdf, plan.affectsView,
                layerInputs(plan, {plan.wsPosition, plan.wsDirection}), plan.settings.depthMode};
-    if (keepLayers(world, plan, cameraMoved)) return;
-    // Once a frame, and only in a frame with a sun: where receivers are visible on screen.
-    if (plan.light.type == LightType::Directional) measureVisibleReceivers(camera, scratch_->geometry);
-    planLayers(planned.inputs, camera, scratch_->geometry, plan.layers);
-    if (plan.settings.technique == ShadowTechnique::Sdf) takeFieldCasters(world, plan, frame_.warnings);
-    markDirty(world, plan);
+    if (!keepLayers(world, plan, cameraMoved)) {
+        // Once a frame, and only in a frame with a sun: where receivers are visible on screen.
+        if (plan.light.type == LightType::Directional) measureVisibleReceivers(camera, scratch_->geometry);
+        planLayers(planned.inputs, camera, scratch_->geometry, plan.layers);
+        if (plan.settings.technique == ShadowTechnique::Sdf) takeFieldCasters(world, plan, frame_.warnings);
+        markDirty(world, plan);
+    }
+    plan.regionTest = pyramidPays(plan, camera, frame_.wsGeometry, limits_.pyramidTexelsPerPixel);
 }
 
 bool ShadowPlanner::keepLayers(const World& world, ShadowLightPlan& plan, bool cameraMoved) {

@@ -177,6 +177,7 @@ void describe(const ShadowLightPlan& plan, LightShadowStats& ls) {
     ls.requestedMapSize = plan.settings.technique != ShadowTechnique::None ? plan.settings.mapSize : 0;
     ls.layers = static_cast<int>(plan.layers.size());
     ls.affectsView = plan.affectsView;
+    ls.regionTest = plan.regionTest;
 }
 
 }  // namespace
@@ -253,6 +254,11 @@ void ShadowMaps::Impl::updateChains(const ShadowLightPlan& plan) {
         // A layer's moment scale follows its matrices and its casters' bounds, whose changes
         // mark it dirty: a clean layer's table holds the scale of this frame's plan.
         if (!plan.layers[k].dirty && map.chainCurrent[k]) continue;
+        if (map.chain->kind == FilterChainKind::MinMax && !plan.regionTest) {
+            // Not read this frame (ShadowLimits::pyramidTexelsPerPixel): built when it next is.
+            map.chainCurrent[k] = false;
+            continue;
+        }
         if (plan.layers[k].casters.empty() && map.chain->clearable()) {
             map.chain->clearLayer(map.mapSize, static_cast<int>(k));
         } else {
