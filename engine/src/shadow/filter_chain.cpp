@@ -126,8 +126,7 @@ void FilterChainBuilder::buildMinMax(GLuint depthArray, const FilterChain& chain
 
 void FilterChainBuilder::buildMoments(GLuint depthArray, const FilterChain& chain, int mapSize, int layer,
                                       int fromLevel) {
-    const bool four = chain.kind == FilterChainKind::FourMoments;
-    MomentsPrograms& programs = momentsPrograms(four);
+    const MomentsPrograms& programs = momentsPrograms();
     const GLuint fb = momentsFramebuffer_.get();
     const GLuint view = chain.layerViews.at(static_cast<std::size_t>(layer)).get();
     gl.Disable(GL_DEPTH_TEST);
@@ -157,14 +156,13 @@ void FilterChainBuilder::buildMoments(GLuint depthArray, const FilterChain& chai
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-FilterChainBuilder::MomentsPrograms& FilterChainBuilder::momentsPrograms(bool four) {
-    std::optional<MomentsPrograms>& p = momentsPrograms_.at(four ? 1 : 0);
+const FilterChainBuilder::MomentsPrograms& FilterChainBuilder::momentsPrograms() {
+    std::optional<MomentsPrograms>& p = momentsPrograms_;
     if (!p) {
-        const std::string label = four ? "Shadow/FourMoments/" : "Shadow/Moments/";
         const auto make = [&](const char* stage, std::vector<std::string> defines) {
             MomentsPrograms::Pass pass;
-            pass.program = gpu::buildProgram(
-                {label + stage, "fullscreen.vert.glsl", "shadow_moments.frag.glsl", std::move(defines)});
+            pass.program = gpu::buildProgram({std::string("Shadow/Moments/") + stage, "fullscreen.vert.glsl",
+                                              "shadow_moments.frag.glsl", std::move(defines)});
             pass.layer = gl.GetUniformLocation(pass.program.get(), "uLayer");
             return pass;
         };

@@ -30,8 +30,8 @@ struct FilterChain {
     gpu::Texture texture;
     FilterChainKind kind = FilterChainKind::MinMax;
     int levels = 0;
-    /// Moment chains: a 2D view of each layer, all levels (a layer's mipmaps are generated
-    /// through its view, leaving the other layers alone).
+    /// Moment chains: a 2D view of each layer, through which a level's draw samples the level
+    /// below alone (its base and max level set to it).
     std::vector<gpu::Texture> layerViews;
 
     /// `chainBaseSize` (map_memory.h).
@@ -62,7 +62,7 @@ public:
     /// Builds every level of `layer` of `chain` from `depthArray`, a `mapSize`^2 array; a
     /// summed-area table of the moments of min(z momentScale, 1) (ShadowLayerPlan::momentScale).
     /// Moment chains: the levels below `fromLevel` are current already (level 0 written by the
-    /// depth pass, `drawnWithDepth`).
+    /// depth pass, `drawnWithDepth`); nothing is drawn when that is every level.
     void build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale = 1.0f,
                int fromLevel = 0);
 
@@ -78,8 +78,8 @@ private:
     void buildSummedArea(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale);
 
     /// Compute builds. The min/max pyramid: level 0 from the depth map, then each level from the
-    /// one below. The summed-area table: prefix sums along rows from
-    /// the depth map, then along columns in place.
+    /// one below. The summed-area table: prefix sums along rows from the depth map, then along
+    /// columns in place.
     struct Programs {
         Pass fromDepth, fromBelow;
     };
@@ -88,7 +88,8 @@ private:
     std::array<std::optional<Programs>, 2> computePrograms_;  ///< [summed-area table]
 
     /// Moment chains: a full-screen draw per level, level 0 from the depth map, the others from
-    /// the level below; two or four moments alike (the chain's format keeps what it holds).
+    /// the level below; the same programs for two and four moments (the chain's format keeps
+    /// what it holds).
     struct MomentsPrograms {
         struct Pass {
             gpu::Program program;
@@ -97,8 +98,8 @@ private:
         Pass fromDepth, fromBelow;
     };
     /// The moment programs (and the framebuffer they draw through), built on first use.
-    MomentsPrograms& momentsPrograms(bool four);
-    std::array<std::optional<MomentsPrograms>, 2> momentsPrograms_;  ///< [four moments]
+    const MomentsPrograms& momentsPrograms();
+    std::optional<MomentsPrograms> momentsPrograms_;
     gpu::Framebuffer momentsFramebuffer_;
     gpu::VertexArray emptyVertexArray_;
 };

@@ -259,13 +259,14 @@ void ShadowMaps::Impl::updateChains(const ShadowLightPlan& plan) {
             map.chainCurrent[k] = false;
             continue;
         }
+        const int fromLevel = map.chainBaseDrawn[k] ? 1 : 0;
         if (plan.layers[k].casters.empty() && map.chain->clearable()) {
             map.chain->clearLayer(map.mapSize, static_cast<int>(k));
-        } else {
+        } else if (fromLevel < map.chain->levels) {  // else the depth pass wrote it all (MSM)
             formatPassName(passName, plan, map.chain->kind == FilterChainKind::MinMax ? "minmax" : "moments", k);
             const gpu::ScopedPass pass(timer, passName);
             chains.build(map.array.get(), *map.chain, map.mapSize, static_cast<int>(k), plan.layers[k].momentScale,
-                         map.chainBaseDrawn[k] ? 1 : 0);
+                         fromLevel);
         }
         map.chainCurrent[k] = true;
     }
@@ -295,16 +296,6 @@ const DepthProgram& ShadowMaps::Impl::program(DepthMode mode, bool cutout, bool 
 
 namespace {
 
-/// Whether a caster of `layer` is drawn by the game's callback (`ShadowCasterDraw::draw`, with no
-/// mesh to draw instead), which may use a program of its own that writes depth alone.
-bool hasCallbackCaster(const World& world, const ShadowLayerPlan& layer) {
-    return std::any_of(layer.casters.begin(), layer.casters.end(), [&](Entity caster) {
-        const Mesh* mesh = world.tryGet<Mesh>(caster);
-        const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(caster);
-        return (mesh == nullptr || mesh->data == nullptr) && own != nullptr && own->draw != nullptr;
-    });
-}
-
 /// Makes layer `layer` of level 0 of `chain` the colour target of `framebuffer`, cleared to the
 /// moments of the far depth (all 1), with colour writes on.
 void attachMoments(GLuint framebuffer, GLuint chain, GLint layer) {
@@ -322,12 +313,24 @@ void detachMoments(GLuint framebuffer) {
     gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
 }
 
-/// Whether a caster of `layer` is a cut-out (`Material::cutout`): its depth needs the alpha test.
-bool hasCutoutCaster(const World& world, const ShadowLayerPlan& layer) {
-    return std::any_of(layer.casters.begin(), layer.casters.end(), [&](Entity caster) {
+/// What the casters of a layer ask of its depth draw, from one look at each.
+struct LayerCasterKinds {
+    bool cutout = false;    ///< a cut-out mesh (`Material::cutout`): its depth needs the alpha test
+    bool callback = false;  ///< drawn by the game's callback (`ShadowCasterDraw::draw`, no mesh
+                            ///< instead), whose program may write depth alone
+};
+
+LayerCasterKinds casterKinds(const World& world, const ShadowLayerPlan& layer) {
+    LayerCasterKinds kinds;
+    for (Entity caster : layer.casters) {
+        const Mesh* mesh = world.tryGet<Mesh>(caster);
         const Material* m = world.tryGet<Material>(caster);
-        return m != nullptr && m->cutout() && world.has<Mesh>(caster);
-    });
+        kinds.cutout = kinds.cutout || (mesh != nullptr && m != nullptr && m->cutout());
+        const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(caster);
+        kinds.callback =
+            kinds.callback || ((mesh == nullptr || mesh->data == nullptr) && own != nullptr && own->draw != nullptr);
+    }
+    return kinds;
 }
 
 /// Draws every caster of `layer` into the bound framebuffer, with `opaque` (current, its layer
@@ -402,7 +405,8 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
     }
     gl.Viewport(0, 0, map.mapSize, map.mapSize);
     const DepthMode mode = plan.settings.depthMode;
-    const bool cutout = hasCutoutCaster(world, layer);
+    const LayerCasterKinds kinds = casterKinds(world, layer);
+    const bool cutout = kinds.cutout;
     if (mode != DepthMode::Nearest) {
         // First pass: the nearest depth, into the scratch the second pass reads, by the second
         // pass's own program (see uFirstPass in shadow_depth.frag.glsl).
@@ -418,7 +422,7 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
     gl.NamedFramebufferTextureLayer(framebuffer, GL_DEPTH_ATTACHMENT, map.array.get(), 0, static_cast<GLint>(k));
     // A moment chain's level 0 comes with the depth, unless the game's callback draws a caster
     // (with a program that may write depth alone): then the chain's build reads the map back.
-    const bool moments = map.chain && map.chain->drawnWithDepth() && !hasCallbackCaster(world, layer);
+    const bool moments = map.chain && map.chain->drawnWithDepth() && !kinds.callback;
     if (map.chain) map.chainBaseDrawn[k] = moments;
     if (moments) attachMoments(framebuffer, map.chain->texture.get(), static_cast<GLint>(k));
     gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
