@@ -99,6 +99,10 @@ void forBothMapSizes(ShadowTechnique technique,
     for (int mapSize : {256, 200}) {
         Scene scene = tiltedScene(technique, mapSize);
         FrameRunner runner;
+        // Whatever the texels per pixel of this small image: the chain is what is tested here.
+        ShadowLimits limits = runner.shadows().planner().limits();
+        limits.pyramidTexelsPerPixel = 1e9f;
+        runner.shadows().planner().setLimits(limits);
         (void)test::renderFrame(runner, scene, 64, 48);
         expect(runner, mapSize, std::string(techniqueName(technique)) + ", map " + std::to_string(mapSize));
     }
@@ -130,15 +134,17 @@ TEST(MinMaxPyramid, OnlyForTechniquesThatReadItAndRebuiltWhenTheMapChanges) {
     expectPyramidMatchesMap(runner, 256, "after the box moved");
 }
 
-/// A PCF light's lit pass without its pyramid (`ShadowLimits::pyramidTexelsPerPixel` 0: too
-/// many texels per pixel) takes every tap, and the pyramid's region test only skips taps whose
-/// answer it knows: the visibility is the same either way, and without it no pyramid is built.
-TEST(MinMaxPyramid, APcfLightWithoutItsPyramidSeesWhatItSeesWithIt) {
+/// A PCF or PCSS light's lit pass without its pyramid (`ShadowLimits::pyramidTexelsPerPixel` 0:
+/// too many texels per pixel) takes every tap, and the pyramid's region test only skips taps (and
+/// PCSS's blocker search) whose answer it knows: the visibility is the same either way, and
+/// without it no pyramid is built.
+void expectTheSameVisibilityWithoutThePyramid(ShadowTechnique technique) {
     test::glContext();
     std::vector<ImageF> seen;
     for (const float texelsPerPixel : {1e9f, 0.0f}) {
-        Scene scene = tiltedScene(ShadowTechnique::Pcf, 256);
+        Scene scene = tiltedScene(technique, 256);
         scene.world.get<Shadow>(scene.lights[0]).pcfRadius = 0.12f;
+        scene.world.get<Light>(scene.lights[0]).radius = 0.4f;  // PCSS's emitter: wide penumbrae
         FrameRunner runner;
         ShadowLimits limits = runner.shadows().planner().limits();
         limits.pyramidTexelsPerPixel = texelsPerPixel;
@@ -162,10 +168,18 @@ TEST(MinMaxPyramid, APcfLightWithoutItsPyramidSeesWhatItSeesWithIt) {
             worst = std::max(worst, static_cast<double>(std::abs(v - without.at(x, y, 0))));
         }
     }
-    std::printf("[ measured ] PCF with and without its pyramid: %d penumbra pixels, largest difference %.3g\n",
-                penumbra, worst);
+    std::printf("[ measured ] %s with and without its pyramid: %d penumbra pixels, largest difference %.3g\n",
+                techniqueName(technique), penumbra, worst);
     EXPECT_GT(penumbra, 50) << "the frame has a penumbra to compare";
     EXPECT_LE(worst, 1e-6);
+}
+
+TEST(MinMaxPyramid, APcfLightWithoutItsPyramidSeesWhatItSeesWithIt) {
+    expectTheSameVisibilityWithoutThePyramid(ShadowTechnique::Pcf);
+}
+
+TEST(MinMaxPyramid, APcssLightWithoutItsPyramidSeesWhatItSeesWithIt) {
+    expectTheSameVisibilityWithoutThePyramid(ShadowTechnique::Pcss);
 }
 
 /// The moments a chain level should hold, from the level below (level 0: from the stored depths)

@@ -398,9 +398,9 @@ bool regionTestOf(const ShadowFrame& frame, const char* name) {
     return plan->regionTest;
 }
 
-/// A PCF light reads its pyramid when its redrawn layers hold at most
+/// A PCF or PCSS light reads its pyramid when its redrawn layers hold at most
 /// `ShadowLimits::pyramidTexelsPerPixel` texels per pixel it reaches on screen, when the image's
-/// size is unknown, and when no layer is redrawn; PCSS always; the other techniques never.
+/// size is unknown, and when no layer is redrawn; the other techniques never.
 TEST(ShadowPlanner, APcfLightReadsItsPyramidWhereItPaysForItself) {
     PyramidScene pcf(ShadowTechnique::Pcf);
     ShadowPlanner planner;
@@ -426,11 +426,17 @@ TEST(ShadowPlanner, APcfLightReadsItsPyramidWhereItPaysForItself) {
     const ShadowFrame& never = planner.prepare(pcf.scene.world, pcf.view(3840, 2160), pcf.scene.lights);
     EXPECT_FALSE(regionTestOf(never, "sun")) << "NaN reads as 0: never for a redrawn layer";
 
+    // PCSS by the same limit.
     PyramidScene pcss(ShadowTechnique::Pcss);
     ShadowPlanner pcssPlanner;
     const ShadowFrame& soft = pcssPlanner.prepare(pcss.scene.world, pcss.view(320, 240), pcss.scene.lights);
-    EXPECT_TRUE(regionTestOf(soft, "spot"));
-    EXPECT_TRUE(regionTestOf(soft, "sun"));
+    EXPECT_FALSE(regionTestOf(soft, "spot"));
+    EXPECT_FALSE(regionTestOf(soft, "sun"));
+    const ShadowFrame& softStill = pcssPlanner.prepare(pcss.scene.world, pcss.view(320, 240), pcss.scene.lights);
+    EXPECT_TRUE(regionTestOf(softStill, "sun")) << "no layer redrawn";
+    pcssPlanner.setCaching(false);
+    const ShadowFrame& softLarge = pcssPlanner.prepare(pcss.scene.world, pcss.view(3840, 2160), pcss.scene.lights);
+    EXPECT_TRUE(regionTestOf(softLarge, "sun"));
 
     PyramidScene hardScene(ShadowTechnique::Hard);
     ShadowPlanner hardPlanner;

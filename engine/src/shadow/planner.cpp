@@ -70,14 +70,12 @@ void describeLight(const World& world, Entity e, int index, ShadowLightPlan& pla
     plan.wsDirection = pose.wsDirection;
 }
 
-/// Whether the min/max pyramid is worth building for `plan` this frame. PCSS: always (the blocker
-/// search and filter taps it spares a known region cost more than reading a layer back, on every
-/// scene measured). PCF: when its redrawn layers (with casters; a layer without is cleared, not
-/// read back) hold at most `texelsPerPixel` texels per pixel the light can reach on screen, or
-/// when the image's size is unknown or nothing is redrawn (a clean layer's pyramid costs nothing).
+/// Whether the min/max pyramid is worth building for `plan` (PCF or PCSS) this frame: when its
+/// redrawn layers (with casters; a layer without is cleared, not read back) hold at most
+/// `texelsPerPixel` texels per pixel the light can reach on screen, or when the image's size is
+/// unknown or nothing is redrawn (a clean layer's pyramid costs nothing).
 bool pyramidPays(const ShadowLightPlan& plan, const CameraView& camera, const DAabb& wsGeometry, float texelsPerPixel) {
     if (filterChainOf(plan.technique()) != FilterChainKind::MinMax) return false;
-    if (plan.technique() != ShadowTechnique::Pcf) return true;
     if (!(texelsPerPixel >= 0.0f)) texelsPerPixel = 0.0f;  // NaN and negative: never when redrawn
     std::int64_t texels = 0;
     for (const ShadowLayerPlan& layer : plan.layers) {
