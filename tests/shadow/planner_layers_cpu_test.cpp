@@ -208,6 +208,44 @@ TEST(Planner, PointNearPlaneHoldsCasterOffTheFaceAxes) {
     expectOffAxisCasterBetweenNearAndFar(lightOf(LightType::Point), {-2.0, 3.4, 0}, {0, 1.4, 0});
 }
 
+/// Distance from `p` to the box `b` (0 inside).
+double distanceTo(const glm::dvec3& p, const DAabb& b) {
+    return glm::length(glm::max(glm::max(b.min - p, p - b.max), glm::dvec3(0.0)));
+}
+
+// Where a blocker can be nearest: a spot's layer and every face of a point light hold the least
+// distance from the light to a caster's bounds (the point light's over all six faces, as a
+// search disk may cross into another face), or a fixed near plane beyond it.
+TEST(Planner, PerspectiveLayersHoldTheDistanceOfTheNearestCaster) {
+    for (const LightType type : {LightType::Spot, LightType::Point}) {
+        for (const float fixedNear : {0.0f, 0.05f, 3.0f}) {
+            Scene scene;
+            addMeshInstance(scene.world, "ground", makePlaneMesh(5.0f), at({0, 0, 0}));
+            addMeshInstance(scene.world, "box", makeBoxMesh({0.5f, 0.5f, 0.5f}), at({0.3, 1.0, 0.0}));
+            const Entity camera = addCamera(scene, "camera", Camera{}, {0, 6, 8}, {0, 0, 0});
+            Shadow s = hard();
+            s.nearPlane = fixedNear;
+            addLight(scene, "lamp", lightOf(type), s, {0, 4, 0}, {0, -1, 0});
+            (void)updateTransforms(scene.world);
+            ShadowPlanner planner;
+            const ShadowFrame& frame =
+                planner.prepare(scene.world, makeCameraView(scene.world, camera, 1.0f), scene.lights);
+            ASSERT_EQ(frame.lights.size(), 1u);
+            double nearest = 1e30;
+            scene.world.view<WorldBounds>().each([&](Entity, WorldBounds& b) {
+                nearest = std::min(nearest, distanceTo({0, 4, 0}, b.box));
+            });
+            const std::string what =
+                std::string(type == LightType::Spot ? "spot" : "point") + ", near plane " + std::to_string(fixedNear);
+            EXPECT_NEAR(nearest, 2.5, 1e-6) << what << ": the box's top, 1.5 m up, is 2.5 m below the light";
+            const double expected = std::max(nearest, static_cast<double>(fixedNear));
+            for (const ShadowLayerPlan& layer : frame.lights[0].layers) {
+                EXPECT_NEAR(layer.blockerNear, expected, 1e-5) << what;
+            }
+        }
+    }
+}
+
 TEST(Planner, PointLightFacesKeepTheirCastersBetweenNearAndFar) {
     TestScene t;
     addLight(t.scene, "bulb", lightOf(LightType::Point), hard(), {0, 3, 0}, {0, -1, 0});

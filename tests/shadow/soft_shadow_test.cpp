@@ -159,6 +159,41 @@ TEST(SoftShadow, PcssContactHardeningMatchesGeometry) {
     EXPECT_NEAR(c.farEdge.midpoint, 0.0, kMidpointTolerance);
 }
 
+/// The blocker search cone is cut at the light's nearest caster, not at its near plane. The near
+/// plate's edge of the plates scene, with a second plate 3 m up over the shadowed side whose
+/// inner edge (x = -0.3 m) casts onto the ground from x = -0.6 m: no ray from the emitter to the
+/// near edge's penumbra passes it, and the search cone cut at its top (0.3 m wide at the ground)
+/// does not reach it, so the closed form holds. With the light's near plane set 2 cm from the
+/// emitter, a cone cut there is ~150 times wider (clamped to maxFilterTexels, 0.93 m): the search
+/// took the high plate's depths into the blocker average and widened the penumbra.
+TEST(SoftShadow, PcssSearchesFromTheNearestCasterWhateverTheNearPlane) {
+    Scene scene;
+    test::addGround(scene, 4.0f);
+    test::addBox(scene, "near plate", {-kPlateHalf.x, kNearPlateHeight, kNearPlateZ}, kPlateHalf);
+    test::addBox(scene, "high plate", {-0.3 - kPlateHalf.x, kFarPlateHeight, kNearPlateZ}, kPlateHalf);
+    Light spot = test::pointSizedLight(LightType::Spot, 0.55f);
+    spot.radius = kLightRadius;
+    Shadow soft = test::shadowWith(ShadowTechnique::Pcss, 2048);
+    soft.blockerSamples = 32;
+    soft.pcfSamples = 32;
+    soft.maxFilterTexels = 256.0f;
+    soft.nearPlane = 0.02f;
+    addLight(scene, "spot", spot, soft, {0.0, kLightHeight, 0.0}, {0.0, -1.0, 0.0});
+    Camera lens;
+    lens.yfov = 0.12f;
+    const Entity camera = addCamera(scene, "near edge", lens, {0.5, 1.2, -0.85}, {0.0, 0.0, -0.85});
+    test::glContext();
+    FrameRunner runner;
+    const EdgeMeasurement e = measureEdge(runner, scene, camera, kNearPlateHeight, -1.1, -0.6, 0.08);
+    std::printf(
+        "[ measured ] pcss near plate under a high one, near plane 2 cm: 5-95%% band %.5f m, closed form "
+        "%.5f m (%+.2f %%)\n",
+        e.measured, e.expected, 100.0 * (e.measured / e.expected - 1.0));
+    EXPECT_GE(e.minPixelsPerBin, 20);
+    EXPECT_NEAR(e.measured, e.expected, kBandTolerance * e.expected);
+    EXPECT_NEAR(e.midpoint, 0.0, kMidpointTolerance);
+}
+
 /// VSSM reads its blocker depth and its filter from its summed-area table (a square whose
 /// variance matches the disk's), not from taps over a disk: its average blocker depth is exact
 /// for two plane depths. Measured by the same command as PCSS's: near band -0.94 %, far -2.06 %

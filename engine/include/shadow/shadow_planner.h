@@ -32,7 +32,14 @@ struct ShadowLayerPlan {
     bool orthographic = false;      ///< a directional light's cascade (else a perspective frustum)
     float depthScale = 1.0f;        ///< stored depth = lsDepth / depthScale (m per stored unit, > 0)
     float depthNear = 0.0f;         ///< near plane (m)
-    float splitFar = 0.0f;          ///< directional: camera distance where the cascade ends (m)
+    /// Spot and point lights: the nearest a blocker can be (m), the same in every layer of the
+    /// light: the least distance from the light of any caster in its layers (the far plane when
+    /// there is none), or a fixed near plane beyond that (it clips what is nearer). PCSS's,
+    /// VSSM's and MSM-soft's blocker search cone is cut there rather than at the fitted near
+    /// plane, which is rounded down to a power of two and tilted by the frustum's corner angle,
+    /// nor at a fixed near plane set close to the light. 0 for a directional light.
+    float blockerNear = 0.0f;
+    float splitFar = 0.0f;  ///< directional: camera distance where the cascade ends (m)
     /// VSSM: the power of two >= 1 its summed-area table scales stored depths by before their
     /// fixed point (it holds the moments of min(z momentScale, 1)), so that the farthest
     /// caster's bounds lie in (1/4, 1/2]: a light whose range is 10^6 times the depth of its

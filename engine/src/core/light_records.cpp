@@ -73,6 +73,7 @@ GpuShadowLayer packLayer(const ShadowLayerPlan& layer, const glm::dvec3& wsCamer
     l.clipFromLight = glm::mat4(layer.clipFromLight);
     l.depthScale = layer.depthScale;
     l.depthNear = layer.depthNear;
+    l.blockerNear = layer.blockerNear;
     l.splitFar = layer.splitFar;
     l.orthographic = layer.orthographic ? 1 : 0;
     l.momentScale = layer.momentScale;

@@ -414,12 +414,13 @@ void perspectiveLayer(const LayerInputs& light, const glm::dvec3& direction, con
     layer.lightFromWorld = lookAlong(position, direction);
     const double fov = 2.0 * std::atan(tanHalf);
     double near = std::min(reach.fixedNear, 0.5 * far);
+    double nearest = far;
+    const Frustum f = widestFrustum(layer.lightFromWorld, reach);
+    forEachCaster(
+        g, [&f](const DAabb& box) { return f.intersects(box); },
+        [&](const BoundedEntity& c) { nearest = std::min(nearest, distanceToBox(position, c.bounds)); });
+    layer.blockerNear = static_cast<float>(nearest);  // this layer's; planLayers takes the light's
     if (fitsNear(reach)) {
-        double nearest = far;
-        const Frustum f = widestFrustum(layer.lightFromWorld, reach);
-        forEachCaster(
-            g, [&f](const DAabb& box) { return f.intersects(box); },
-            [&](const BoundedEntity& c) { nearest = std::min(nearest, distanceToBox(position, c.bounds)); });
         // The near plane clips by depth along the axis; a caster at distance d can be as shallow
         // as d times the cosine of the frustum's corner angle.
         const double cornerCos = 1.0 / std::sqrt(1.0 + 2.0 * tanHalf * tanHalf);
@@ -519,12 +520,19 @@ void planLayers(const LayerInputs& light, const CameraView& camera, const SceneG
     if (light.type == LightType::Spot) {
         layers.resize(1);
         perspectiveLayer(light, light.pose.wsDirection, reach, geometry, layers[0]);
-        return;
+    } else {
+        // Point: cube faces +X, -X, +Y, -Y, +Z, -Z, the order the shader's cubeFace() uses.
+        static const glm::dvec3 kFaces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+        layers.resize(6);
+        for (std::size_t k = 0; k < 6; ++k) perspectiveLayer(light, kFaces[k], reach, geometry, layers[k]);
     }
-    // Point: cube faces +X, -X, +Y, -Y, +Z, -Z, the order the shader's cubeFace() uses.
-    static const glm::dvec3 kFaces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    layers.resize(6);
-    for (std::size_t k = 0; k < 6; ++k) perspectiveLayer(light, kFaces[k], reach, geometry, layers[k]);
+    // The nearest a blocker can be: the light's nearest caster over all its layers (a search disk
+    // that leaves its cube face continues on another), or a fixed near plane beyond it, which
+    // clips what is nearer.
+    float nearest = layers[0].blockerNear;
+    for (const ShadowLayerPlan& layer : layers) nearest = std::min(nearest, layer.blockerNear);
+    const float clipped = fitsNear(reach) ? 0.0f : layers[0].depthNear;  // a fixed near plane, as used
+    for (ShadowLayerPlan& layer : layers) layer.blockerNear = std::max(nearest, clipped);
 }
 
 bool layersHold(const LayerInputs& light, bool cameraMoved, const SceneGeometry& geometry,
