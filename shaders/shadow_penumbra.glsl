@@ -6,10 +6,12 @@
 #include "shadow_receiver.glsl"
 
 // Blocker search region: the cone from the receiver to the emitter, widest at the nearest depth
-// a blocker can have (`blockerNear`: the light's nearest caster, or a fixed near plane beyond it).
+// a blocker can have (`blockerNear`: a spot's or point light's nearest caster, or a fixed near
+// plane beyond it; a cascade's highest caster below its top).
 float sg_blockerSearchRadius(sg_GpuLight L, sg_Receiver r, float dReceiver, float size) {
-    if (L.type == SG_LIGHT_DIRECTIONAL) return dReceiver * tan(size);
-    float near = max(sg_layers[L.firstLayer + r.layer].blockerNear, 1e-6);
+    float blockerNear = sg_layers[L.firstLayer + r.layer].blockerNear;
+    if (L.type == SG_LIGHT_DIRECTIONAL) return max(dReceiver - blockerNear, 0.0) * tan(size);
+    float near = max(blockerNear, 1e-6);
     return size * max(dReceiver - near, 0.0) / near;
 }
 

@@ -246,6 +246,33 @@ TEST(Planner, PerspectiveLayersHoldTheDistanceOfTheNearestCaster) {
     }
 }
 
+// A sun's cascade: the depth below the layer's top of its highest caster's top. Here a tall
+// receiver-only wall raises the layer's top 3 m above the box, the highest caster.
+TEST(Planner, CascadesHoldTheDepthOfTheirHighestCaster) {
+    Scene scene;
+    addMeshInstance(scene.world, "ground", makePlaneMesh(5.0f), at({0, 0, 0}));
+    const Entity box = addMeshInstance(scene.world, "box", makeBoxMesh({0.5f, 0.5f, 0.5f}), at({0.3, 1.0, 0.0}));
+    const Entity wall = addMeshInstance(scene.world, "wall", makeBoxMesh({0.1f, 2.25f, 0.5f}), at({-2.0, 2.25, 0.0}));
+    scene.world.get<Mesh>(wall).castShadows = false;
+    const Entity camera = addCamera(scene, "camera", Camera{}, {0, 6, 8}, {0, 0, 0});
+    addLight(scene, "sun", lightOf(LightType::Directional), hard(), {0, 10, 0}, {0, -1, 0});
+    (void)updateTransforms(scene.world);
+    ShadowPlanner planner;
+    const ShadowFrame& frame = planner.prepare(scene.world, makeCameraView(scene.world, camera, 1.0f), scene.lights);
+    ASSERT_EQ(frame.lights.size(), 1u);
+    int checked = 0;
+    for (const ShadowLayerPlan& layer : frame.lights[0].layers) {
+        if (std::find(layer.casters.begin(), layer.casters.end(), box) == layer.casters.end()) continue;
+        // The box's top face, 1.5 m up: its depth below the layer's top.
+        const double boxTop = -(layer.lightFromWorld * glm::dvec4(0.3, 1.5, 0.0, 1.0)).z;
+        const double wallTop = -(layer.lightFromWorld * glm::dvec4(-2.0, 4.5, 0.0, 1.0)).z;
+        EXPECT_NEAR(layer.blockerNear, boxTop, 1e-4);
+        EXPECT_GT(boxTop, wallTop + 2.9) << "the wall, a receiver only, holds the top 3 m above the box";
+        ++checked;
+    }
+    EXPECT_GT(checked, 0);
+}
+
 TEST(Planner, PointLightFacesKeepTheirCastersBetweenNearAndFar) {
     TestScene t;
     addLight(t.scene, "bulb", lightOf(LightType::Point), hard(), {0, 3, 0}, {0, -1, 0});

@@ -47,7 +47,7 @@ SG_FLOAT depthNear;     // near plane of the projection (m)
 SG_FLOAT splitFar;      // directional: camera distance where this cascade ends (m)
 SG_INT orthographic;    // 1 for directional lights
 SG_FLOAT momentScale;   // VSSM: its summed-area table holds the moments of min(z momentScale, 1)
-SG_FLOAT blockerNear;   // spot, point: the nearest a blocker can be (m; ShadowLayerPlan::blockerNear)
+SG_FLOAT blockerNear;   // the nearest a blocker can be (m; ShadowLayerPlan::blockerNear)
 SG_FLOAT reserved1;
 SG_FLOAT reserved2;
 SG_END_STRUCT

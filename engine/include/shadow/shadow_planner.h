@@ -37,7 +37,9 @@ struct ShadowLayerPlan {
     /// there is none), or a fixed near plane beyond that (it clips what is nearer). PCSS's,
     /// VSSM's and MSM-soft's blocker search cone is cut there rather than at the fitted near
     /// plane, which is rounded down to a power of two and tilted by the frustum's corner angle,
-    /// nor at a fixed near plane set close to the light. 0 for a directional light.
+    /// nor at a fixed near plane set close to the light. A directional light's cascade: the depth
+    /// below its top (m) of the top of its highest caster (receivers and rounding raise the top
+    /// above it; 0 without casters).
     float blockerNear = 0.0f;
     float splitFar = 0.0f;  ///< directional: camera distance where the cascade ends (m)
     /// VSSM: the power of two >= 1 its summed-area table scales stored depths by before their

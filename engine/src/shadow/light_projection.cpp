@@ -356,6 +356,12 @@ void planDirectional(const LayerInputs& s, const CameraView& cam, const SceneGeo
         layer.depthScale = static_cast<float>(depthRange);
         layer.depthNear = 0.0f;
         layer.splitFar = static_cast<float>(splits[k + 1]);
+        // The nearest a blocker can be: the top of the highest caster in the column, below the
+        // layer's top (which receivers and the rounding to steps may raise above it).
+        double casterTop = -std::numeric_limits<double>::infinity();
+        double casterBottom = std::numeric_limits<double>::infinity();
+        zRangeOfColumn(rotation, g, lsCenter - 0.5 * extent, lsCenter + 0.5 * extent, casterTop, casterBottom);
+        layer.blockerNear = casterTop >= zBottom ? static_cast<float>(zTop - std::min(casterTop, zTop)) : 0.0f;
         castersIn(g, s.summedMoments, layer);
     }
 }
