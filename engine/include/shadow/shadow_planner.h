@@ -153,13 +153,12 @@ struct ShadowLimits {
     /// taps saved per pixel (BENCHMARKS.md, fragment costs), so 6. PCSS spares more per known
     /// pixel but knows fewer: a receiver sloped to the light is known lit only where its own
     /// depths across the search region stay within the bias, so most of its lit area searches
-    /// either way. With caching off, PCSS's frame
-    /// without the pyramid was 18-38 % shorter at 320x240 (plates, bunny, default: tens of texels
-    /// a pixel) and 7-24 % longer at 1920x1080 (`builtin:bunny-spot`, default: under 6); at
-    /// 1280x720 on bunny-spot (about 5) 5 % shorter, within the run-to-run noise: the same limit
-    /// serves both techniques. Range >= 0 (0: never a pyramid for a redrawn layer; a very large
-    /// value: always). A frame that redraws no layer always
-    /// reads the pyramid.
+    /// either way. With caching off, PCSS's frame without the pyramid was 18-38 % shorter at
+    /// 320x240 (plates, bunny, default: tens of texels a pixel) and 7-24 % longer at 1920x1080
+    /// (`builtin:bunny-spot`, default: under 6); at 1280x720 on bunny-spot (about 5) 5 % shorter,
+    /// within the run-to-run noise: the same limit serves both techniques. Range >= 0 (0: never a
+    /// pyramid for a redrawn layer; a very large value: always). A frame that redraws no layer
+    /// always reads the pyramid.
     float pyramidTexelsPerPixel = 6.0f;
 };
 

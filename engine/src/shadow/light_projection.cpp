@@ -283,13 +283,16 @@ CascadeSquare fitCascadeSquare(const CameraView& cam, double near, double far, c
 
 /// The light-space depth range [zBottom, zTop] of the column over the square [lo, hi]: what the
 /// receivers and casters in it span, within reach of the camera, rounded out to steps of an
-/// eighth of its power of two (stable while things move inside it).
+/// eighth of its power of two (stable while things move inside it). `casterTop`: the top of the
+/// highest caster in the column (-infinity without one).
 void cascadeDepthRange(const glm::dmat4& rotation, const SceneGeometry& g, const DAabb& lsReceivers,
                        const glm::dvec3& lsCamera, const glm::dvec2& lo, const glm::dvec2& hi, double& zTop,
-                       double& zBottom) {
-    zTop = lsReceivers.empty() ? 0.0 : lsReceivers.max.z;
-    zBottom = lsReceivers.empty() ? -1.0 : lsReceivers.min.z;
-    zRangeOfColumn(rotation, g, lo, hi, zTop, zBottom);
+                       double& zBottom, double& casterTop) {
+    casterTop = -std::numeric_limits<double>::infinity();
+    double casterBottom = std::numeric_limits<double>::infinity();
+    zRangeOfColumn(rotation, g, lo, hi, casterTop, casterBottom);
+    zTop = std::max(lsReceivers.empty() ? 0.0 : lsReceivers.max.z, casterTop);
+    zBottom = std::min(lsReceivers.empty() ? -1.0 : lsReceivers.min.z, casterBottom);
     zTop = std::clamp(zTop, lsCamera.z - kMaxShadowReach, lsCamera.z + kMaxShadowReach);
     zBottom = std::clamp(zBottom, lsCamera.z - kMaxShadowReach, zTop);
     const double step = std::exp2(std::ceil(std::log2(std::max(zTop - zBottom, 1e-3) / 8.0)));
@@ -344,8 +347,9 @@ void planDirectional(const LayerInputs& s, const CameraView& cam, const SceneGeo
         const double extent = sq.extent;
         double zTop = 0.0;
         double zBottom = 0.0;
+        double casterTop = 0.0;
         cascadeDepthRange(rotation, g, lsReceivers, lsCamera, lsCenter - 0.5 * extent, lsCenter + 0.5 * extent, zTop,
-                          zBottom);
+                          zBottom, casterTop);
 
         ShadowLayerPlan& layer = layers[static_cast<std::size_t>(k)];
         resetLayer(layer);
@@ -358,9 +362,6 @@ void planDirectional(const LayerInputs& s, const CameraView& cam, const SceneGeo
         layer.splitFar = static_cast<float>(splits[k + 1]);
         // The nearest a blocker can be: the top of the highest caster in the column, below the
         // layer's top (which receivers and the rounding to steps may raise above it).
-        double casterTop = -std::numeric_limits<double>::infinity();
-        double casterBottom = std::numeric_limits<double>::infinity();
-        zRangeOfColumn(rotation, g, lsCenter - 0.5 * extent, lsCenter + 0.5 * extent, casterTop, casterBottom);
         layer.blockerNear = casterTop >= zBottom ? static_cast<float>(zTop - std::min(casterTop, zTop)) : 0.0f;
         castersIn(g, s.summedMoments, layer);
     }
@@ -408,9 +409,10 @@ Frustum widestFrustum(const glm::dmat4& lightFromWorld, const PerspectiveReach& 
 double powerOfTwoBelow(double x) { return std::exp2(std::floor(std::log2(x))); }
 
 /// One perspective layer of `light` looking along `direction`, into `layer`. Without a fixed
-/// near plane it is fitted just before the nearest caster in the layer's widest frustum.
-void perspectiveLayer(const LayerInputs& light, const glm::dvec3& direction, const PerspectiveReach& reach,
-                      const SceneGeometry& g, ShadowLayerPlan& layer) {
+/// near plane it is fitted just before the nearest caster in the layer's widest frustum. Returns
+/// that caster's distance from the light (the far plane without one).
+double perspectiveLayer(const LayerInputs& light, const glm::dvec3& direction, const PerspectiveReach& reach,
+                        const SceneGeometry& g, ShadowLayerPlan& layer) {
     const glm::dvec3& position = light.pose.wsPosition;
     const double far = reach.far;
     const double tanHalf = reach.tanHalf;
@@ -425,7 +427,6 @@ void perspectiveLayer(const LayerInputs& light, const glm::dvec3& direction, con
     forEachCaster(
         g, [&f](const DAabb& box) { return f.intersects(box); },
         [&](const BoundedEntity& c) { nearest = std::min(nearest, distanceToBox(position, c.bounds)); });
-    layer.blockerNear = static_cast<float>(nearest);  // this layer's; planLayers takes the light's
     if (fitsNear(reach)) {
         // The near plane clips by depth along the axis; a caster at distance d can be as shallow
         // as d times the cosine of the frustum's corner angle.
@@ -438,6 +439,7 @@ void perspectiveLayer(const LayerInputs& light, const glm::dvec3& direction, con
     layer.depthScale = static_cast<float>(far * std::sqrt(1.0 + 2.0 * tanHalf * tanHalf));
     layer.depthNear = static_cast<float>(near);
     castersIn(g, light.summedMoments, layer);
+    return nearest;
 }
 
 }  // namespace
@@ -523,22 +525,22 @@ void planLayers(const LayerInputs& light, const CameraView& camera, const SceneG
         return;
     }
     const PerspectiveReach reach = perspectiveReach(light, geometry);
+    double nearest = reach.far;  // the light's nearest caster over all its layers
     if (light.type == LightType::Spot) {
         layers.resize(1);
-        perspectiveLayer(light, light.pose.wsDirection, reach, geometry, layers[0]);
+        nearest = perspectiveLayer(light, light.pose.wsDirection, reach, geometry, layers[0]);
     } else {
         // Point: cube faces +X, -X, +Y, -Y, +Z, -Z, the order the shader's cubeFace() uses.
         static const glm::dvec3 kFaces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
         layers.resize(6);
-        for (std::size_t k = 0; k < 6; ++k) perspectiveLayer(light, kFaces[k], reach, geometry, layers[k]);
+        for (std::size_t k = 0; k < 6; ++k)
+            nearest = std::min(nearest, perspectiveLayer(light, kFaces[k], reach, geometry, layers[k]));
     }
-    // The nearest a blocker can be: the light's nearest caster over all its layers (a search disk
-    // that leaves its cube face continues on another), or a fixed near plane beyond it, which
-    // clips what is nearer.
-    float nearest = layers[0].blockerNear;
-    for (const ShadowLayerPlan& layer : layers) nearest = std::min(nearest, layer.blockerNear);
-    const float clipped = fitsNear(reach) ? 0.0f : layers[0].depthNear;  // a fixed near plane, as used
-    for (ShadowLayerPlan& layer : layers) layer.blockerNear = std::max(nearest, clipped);
+    // The nearest a blocker can be, the same in every layer (a search disk that leaves its cube
+    // face continues on another): that caster, or a fixed near plane beyond it, which clips what
+    // is nearer.
+    const double clipped = fitsNear(reach) ? 0.0 : layers[0].depthNear;  // a fixed near plane, as used
+    for (ShadowLayerPlan& layer : layers) layer.blockerNear = static_cast<float>(std::max(nearest, clipped));
 }
 
 bool layersHold(const LayerInputs& light, bool cameraMoved, const SceneGeometry& geometry,

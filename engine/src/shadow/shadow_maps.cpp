@@ -406,7 +406,6 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
     gl.Viewport(0, 0, map.mapSize, map.mapSize);
     const DepthMode mode = plan.settings.depthMode;
     const LayerCasterKinds kinds = casterKinds(world, layer);
-    const bool cutout = kinds.cutout;
     if (mode != DepthMode::Nearest) {
         // First pass: the nearest depth, into the scratch the second pass reads, by the second
         // pass's own program (see uFirstPass in shadow_depth.frag.glsl).
@@ -416,7 +415,7 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
         const DepthProgram& program = this->program(mode, false);
         program.use(layer, true);
         ls.castersDrawn +=
-            drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, true);
+            drawCasters(world, meshes, layer, program, kinds.cutout ? &this->program(mode, true) : nullptr, true);
     }
     const GLuint framebuffer = map.framebuffer.get();
     gl.NamedFramebufferTextureLayer(framebuffer, GL_DEPTH_ATTACHMENT, map.array.get(), 0, static_cast<GLint>(k));
@@ -434,7 +433,7 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
     const DepthProgram& program = this->program(mode, false, moments);
     program.use(layer);
     ls.castersDrawn +=
-        drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true, moments) : nullptr, false);
+        drawCasters(world, meshes, layer, program, kinds.cutout ? &this->program(mode, true, moments) : nullptr, false);
     if (mode != DepthMode::Nearest) gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
     if (moments) detachMoments(framebuffer);
     ++ls.layersDrawn;
