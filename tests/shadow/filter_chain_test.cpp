@@ -380,8 +380,8 @@ TEST(FilterChain, LevelsReachTheWidestRegionTheTechniqueReads) {
     EXPECT_EQ(FilterChain::levelsFor(ShadowTechnique::MsmSoft, 16, 256.0f), 5);  // all the map has
     // VSSM's summed-area table is one level whatever the width.
     EXPECT_EQ(FilterChain::levelsFor(ShadowTechnique::Vssm, 2048, 256.0f), 1);
-    // Hard-edged MSM reads one texel: level 0 alone.
-    EXPECT_EQ(FilterChain::levelsFor(ShadowTechnique::Msm, 2048, 256.0f), 1);
+    // Hard-edged MSM reads one texel, whose moments it takes from the depth map itself: no chain.
+    EXPECT_FALSE(filterChainOf(ShadowTechnique::Msm));
     // The pyramid: tiles of 4 texels at level 0, up to the first as wide as 2 (32 + 1.5) texels.
     EXPECT_EQ(FilterChain::levelsFor(ShadowTechnique::Pcss, 2048, 32.0f), 6);
 }
@@ -401,6 +401,9 @@ TEST(FilterChain, TheChainFollowsTheTechnique) {
     scene.world.get<Shadow>(scene.lights[0]).technique = ShadowTechnique::Hard;
     (void)test::renderFrame(runner, scene, 64, 48);
     EXPECT_FALSE(runner.shadows().maps().filterChainOf(0)) << "hard shadows read no chain";
+    scene.world.get<Shadow>(scene.lights[0]).technique = ShadowTechnique::Msm;
+    (void)test::renderFrame(runner, scene, 64, 48);
+    EXPECT_FALSE(runner.shadows().maps().filterChainOf(0)) << "msm gathers its moments from the depth map";
 }
 
 }  // namespace

@@ -37,8 +37,8 @@ TEST(MapMemory, MomentsChainsAreMapSizedAndFourMomentsTwiceAsWide) {
     for (int edge = 1024, level = 0; level < 6; ++level, edge /= 2) vsm += std::int64_t{8} * edge * edge;
     EXPECT_EQ(shadowMapBytes(ShadowTechnique::Vsm, 1024, 1, 32.0f), 4 * kMiB + vsm);
     EXPECT_EQ(shadowMapBytes(ShadowTechnique::MsmSoft, 1024, 1, 32.0f), 4 * kMiB + 2 * vsm);
-    // Hard-edged MSM reads one texel: level 0 alone, RGBA32F.
-    EXPECT_EQ(shadowMapBytes(ShadowTechnique::Msm, 1024, 1, 32.0f), 4 * kMiB + 16 * kMiB);
+    // Hard-edged MSM gathers its one texel's moments from the depth map: no chain.
+    EXPECT_EQ(shadowMapBytes(ShadowTechnique::Msm, 1024, 1, 32.0f), 4 * kMiB);
     // VSSM's summed-area table: one RGBA32F level whatever the radius.
     EXPECT_EQ(shadowMapBytes(ShadowTechnique::Vssm, 1024, 2, 256.0f), 2 * (4 * kMiB + 16 * kMiB));
 }

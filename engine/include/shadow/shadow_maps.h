@@ -56,8 +56,8 @@ public:
     /// The depth array of scene light `i` of the last rendered frame, none when it has no map.
     [[nodiscard]] GlTexture textureOf(std::size_t i) const;
     /// The filter chain of scene light `i` (an array, one mip chain per layer): the min/max depth
-    /// pyramid of PCF and PCSS lights (RG32F), the depth moments of VSM lights (RG32F) and of MSM
-    /// and MSM-soft lights (RGBA32F), the summed-area table of VSSM lights (RGBA32F, one level:
+    /// pyramid of PCF and PCSS lights (RG32F), the depth moments of VSM lights (RG32F) and of
+    /// MSM-soft lights (RGBA32F), the summed-area table of VSSM lights (RGBA32F, one level:
     /// shaders/shadow_summed_area_format.glsl); none when it has none. It is what unit
     /// SG_UNIT_SHADOW_MINMAX + slot reads.
     [[nodiscard]] GlTexture filterChainOf(std::size_t i) const;

@@ -43,7 +43,7 @@ struct ShadowBindingPoints {
     int kernelBlock = SG_BINDING_KERNELS;      ///< the filters' Poisson disk
     int compareUnit = SG_UNIT_SHADOW_COMPARE;  ///< depth arrays with the comparison sampler
     int depthUnit = SG_UNIT_SHADOW_DEPTH;      ///< the same arrays with the raw-depth sampler
-    /// Filter chains: min/max pyramids (PCF, PCSS), moments (VSM, MSM), summed-area tables (VSSM).
+    /// Filter chains: min/max pyramids (PCF, PCSS), moments (VSM, MSM-soft), summed-area tables (VSSM).
     int minMaxUnit = SG_UNIT_SHADOW_MINMAX;
     int sdfAtlasUnit = SG_UNIT_SDF_ATLAS;         ///< technique sdf: the distance-field atlas (3D)
     int sdfInstanceUnit = SG_UNIT_SDF_INSTANCES;  ///< technique sdf: the field casters (buffer texture)

@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <initializer_list>
 
-/// X(Enum, CONSTANT, "name", "include", glsl, Chain, Reach, Loops, Availability, "description"):
+/// X(Enum, CONSTANT, "name", "include", glsl, Chain, Loops, Availability, "description"):
 ///   Enum          the `ShadowTechnique` enumerator; rows are in the order of the enum's values;
 ///   CONSTANT      GLSL constant SG_TECH_<CONSTANT> (the enum's value) and the define
 ///                 SG_TECH_<CONSTANT>_ENABLED that compiles the technique's code in;
@@ -23,32 +23,30 @@
 ///   Chain         the filter chain its map carries: None, MinMax (min/max depth pyramid),
 ///                 Moments (two-moment mips), FourMoments (four-moment mips), SummedMoments
 ///                 (summed-area table of two moments);
-///   Reach         how wide its chain's regions get: Texel (one texel) or Filter
-///                 (`maxFilterTexels`), which sets the levels the chain keeps;
 ///   Loops         the loops with run-time trip counts its code runs one after another (its
 ///                 taps): what the compile-time guard of lit.frag.glsl counts (gl/technique_glsl.h);
 ///   Availability  Public, or Baseline: the benchmarks' reference, compiled only into builds
 ///                 with SHADOW_BASELINE_TECHNIQUES and never into a game's shader;
 ///   "description" one line for the CLI's help and the README.
 #define SHADOW_TECHNIQUE_TABLE(X)                                                                                 \
-    X(None, NONE, "none", "", none, None, Texel, 0, Public, "no shadow map; visibility 1")                        \
-    X(Hard, HARD, "hard", "shadow_hard.glsl", hard, None, Texel, 0, Public,                                       \
+    X(None, NONE, "none", "", none, None, 0, Public, "no shadow map; visibility 1")                               \
+    X(Hard, HARD, "hard", "shadow_hard.glsl", hard, None, 0, Public,                                              \
       "one depth comparison, bilinear over the 2x2 texels around the receiver")                                   \
-    X(Pcf, PCF, "pcf", "shadow_pcf.glsl", pcf, MinMax, Filter, 1, Public,                                         \
+    X(Pcf, PCF, "pcf", "shadow_pcf.glsl", pcf, MinMax, 1, Public,                                                 \
       "percentage-closer filtering over `pcfRadius` at the receiver")                                             \
-    X(Pcss, PCSS, "pcss", "shadow_pcss.glsl", pcss, MinMax, Filter, 2, Public,                                    \
+    X(Pcss, PCSS, "pcss", "shadow_pcss.glsl", pcss, MinMax, 2, Public,                                            \
       "percentage-closer soft shadows: blocker search, penumbra from the emitter's size, PCF over it")            \
-    X(PcssTextbook, PCSS_TEXTBOOK, "pcss-textbook", "shadow_pcss_textbook.glsl", pcssTextbook, None, Texel, 2,    \
-      Baseline, "the seeds' PCSS, fixed Poisson taps around the receiver's map position (benchmark builds only)") \
-    X(Vsm, VSM, "vsm", "shadow_vsm.glsl", vsm, Moments, Filter, 0, Public,                                        \
+    X(PcssTextbook, PCSS_TEXTBOOK, "pcss-textbook", "shadow_pcss_textbook.glsl", pcssTextbook, None, 2, Baseline, \
+      "the seeds' PCSS, fixed Poisson taps around the receiver's map position (benchmark builds only)")           \
+    X(Vsm, VSM, "vsm", "shadow_vsm.glsl", vsm, Moments, 0, Public,                                                \
       "variance shadow map: Chebyshev's bound over prefiltered depth moments of a `pcfRadius` region")            \
-    X(Vssm, VSSM, "vssm", "shadow_vssm.glsl", vssm, SummedMoments, Filter, 1, Public,                             \
+    X(Vssm, VSSM, "vssm", "shadow_vssm.glsl", vssm, SummedMoments, 1, Public,                                     \
       "variance soft shadows: blocker depth and penumbra from a summed-area table of the moments")                \
-    X(Msm, MSM, "msm", "shadow_msm.glsl", msm, FourMoments, Texel, 0, Public,                                     \
+    X(Msm, MSM, "msm", "shadow_msm.glsl", msm, None, 0, Public,                                                   \
       "moment shadow map: the Hamburger bound of four moments over one texel, edges antialiased")                 \
-    X(MsmSoft, MSM_SOFT, "msm-soft", "shadow_msm_soft.glsl", msmSoft, FourMoments, Filter, 0, Public,             \
+    X(MsmSoft, MSM_SOFT, "msm-soft", "shadow_msm_soft.glsl", msmSoft, FourMoments, 0, Public,                     \
       "moment soft shadows: vssm's blocker search and penumbra, the Hamburger bound over it")                     \
-    X(Sdf, SDF, "sdf", "shadow_sdf.glsl", sdf, None, Texel, 3, Public,                                            \
+    X(Sdf, SDF, "sdf", "shadow_sdf.glsl", sdf, None, 3, Public,                                                   \
       "distance-field soft shadows: a cone marched to the emitter through the casters' signed distance fields")
 
 namespace shadow {
@@ -74,7 +72,7 @@ constexpr unsigned techniqueBit(ShadowTechnique t) { return 1u << static_cast<un
 
 /// Every technique with a shadow map that a game may use (the table's Public rows but None).
 inline constexpr unsigned kAllShadowTechniques = 0u
-#define SHADOW_TECHNIQUE_PUBLIC_BIT(Enum, C, N, I, G, Chain, Reach, Loops, Availability, ...)                          \
+#define SHADOW_TECHNIQUE_PUBLIC_BIT(Enum, C, N, I, G, Chain, Loops, Availability, ...)                                 \
     | (ShadowTechnique::Enum != ShadowTechnique::None && #Availability[0] == 'P' ? techniqueBit(ShadowTechnique::Enum) \
                                                                                  : 0u)
     SHADOW_TECHNIQUE_TABLE(SHADOW_TECHNIQUE_PUBLIC_BIT)

@@ -28,7 +28,7 @@ struct GlslRow {
 };
 
 constexpr std::array<GlslRow, kShadowTechniqueCount> kRows{{
-#define SHADOW_TECHNIQUE_GLSL_ROW(Enum, Constant, Name, File, Glsl, Chain, Reach, Loops, Availability, Description) \
+#define SHADOW_TECHNIQUE_GLSL_ROW(Enum, Constant, Name, File, Glsl, Chain, Loops, Availability, Description) \
     {ShadowTechnique::Enum, #Constant, File, #Glsl, Loops, std::string_view(#Availability) == "Baseline"},
     SHADOW_TECHNIQUE_TABLE(SHADOW_TECHNIQUE_GLSL_ROW)
 #undef SHADOW_TECHNIQUE_GLSL_ROW

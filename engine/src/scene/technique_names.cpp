@@ -26,7 +26,7 @@ struct TechniqueRow {
 };
 
 constexpr std::array<TechniqueRow, kShadowTechniqueCount> kTechniques{{
-#define SHADOW_TECHNIQUE_ROW(Enum, C, Name, I, G, Chain, Reach, Loops, Availability, Description) \
+#define SHADOW_TECHNIQUE_ROW(Enum, C, Name, I, G, Chain, Loops, Availability, Description) \
     {ShadowTechnique::Enum, Name, Description, std::string_view(#Availability) == "Baseline"},
     SHADOW_TECHNIQUE_TABLE(SHADOW_TECHNIQUE_ROW)
 #undef SHADOW_TECHNIQUE_ROW

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <iterator>
 #include <cstdint>
-#include <string_view>
 
 namespace shadow {
 
@@ -33,16 +32,7 @@ constexpr TableChain kChainColumn[] = {
 #undef SHADOW_TECHNIQUE_CHAIN
 };
 
-/// The table's Reach column: whether a technique's regions are one texel wide, so that its
-/// chain keeps level 0 only.
-constexpr bool kReadsOneTexel[] = {
-#define SHADOW_TECHNIQUE_REACH(Enum, Constant, Name, File, Glsl, Chain, Reach, ...) std::string_view(#Reach) == "Texel",
-    SHADOW_TECHNIQUE_TABLE(SHADOW_TECHNIQUE_REACH)
-#undef SHADOW_TECHNIQUE_REACH
-};
-static_assert(std::size(kChainColumn) == kShadowTechniqueCount && std::size(kReadsOneTexel) == kShadowTechniqueCount);
-
-bool readsOneTexel(ShadowTechnique t) { return kReadsOneTexel[static_cast<std::size_t>(t)]; }
+static_assert(std::size(kChainColumn) == kShadowTechniqueCount);
 
 }  // namespace
 
@@ -73,10 +63,8 @@ int chainLevels(ShadowTechnique t, int mapSize, float maxFilterTexels) {
         const double widest = 2.0 * (static_cast<double>(maxFilterTexels) + 1.5);
         for (double tile = SG_MINMAX_TILE; tile < widest; tile *= 2.0) ++needed;
     } else {
-        // A trilinear fetch at level log2(radius in texels) reads that level's floor and ceiling;
-        // a technique whose regions are one texel (hard-edged MSM) reads level 0 only.
-        const double radius = readsOneTexel(t) ? 1.0 : static_cast<double>(maxFilterTexels);
-        for (double tile = 1.0; tile < radius; tile *= 2.0) ++needed;
+        // A trilinear fetch at level log2(radius in texels) reads that level's floor and ceiling.
+        for (double tile = 1.0; tile < static_cast<double>(maxFilterTexels); tile *= 2.0) ++needed;
     }
     return std::clamp(needed, 1, all);
 }

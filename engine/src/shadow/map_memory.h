@@ -24,8 +24,7 @@ enum class FilterChainKind : std::uint8_t { MinMax, Moments, FourMoments, Summed
 
 /// Levels technique `t`'s lookups of at most `maxFilterTexels` texels of radius read. MinMax:
 /// the first whose tiles are as wide as the widest region (2 * (maxFilterTexels + 1.5) texels),
-/// and those below; moments: up to ceil(log2(radius)), the radius one texel for hard-edged MSM
-/// (its chain is level 0 alone); the summed-area table is one level.
+/// and those below; moments: up to ceil(log2(radius)); the summed-area table is one level.
 [[nodiscard]] int chainLevels(ShadowTechnique t, int mapSize, float maxFilterTexels);
 
 /// Bytes of one texel of a chain of `kind` (RG32F, or RGBA32F for four moments and the table).
