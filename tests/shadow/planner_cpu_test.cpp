@@ -6,6 +6,8 @@
 #include <shadow/scene.h>
 #include <shadow/shadow_planner.h>
 
+#include "shadow/map_memory.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -334,7 +336,7 @@ TEST(Planner, MemoryBudgetCountsEachTechniquesFilterChain) {
         EXPECT_GT(shadowMapBytes(technique, plan.mapSize * 2, 1, plan.settings.maxFilterTexels),
                   ShadowLimits{}.maxShadowBytes)
             << name;
-        const bool chain = technique != ShadowTechnique::Hard && technique != ShadowTechnique::PcssTextbook;
+        const bool chain = filterChainOf(technique).has_value();
         EXPECT_EQ(plan.mapSize < 16384, chain) << name << ": " << plan.mapSize;
         EXPECT_EQ(test::countWarnings(frame.warnings, WarningCode::MapSizeReduced, "lamp"), chain ? 1 : 0)
             << name << ":\n"
