@@ -5,6 +5,11 @@
 // keeps what it holds). Level 0 (SG_CHAIN_FROM_DEPTH) reads one depth texel, every further level
 // averages the 2x2 texels of the level below (of a level of odd size, the last row and column
 // are left to the level's floor, as GL's own mipmaps round), so a trilinear fetch at level log2(w) gives the moments of a region about w texels wide.
+// A chain whose lookups read nothing below level k (ShadowLayerPlan::chainFirstLevel, VSM) draws
+// level k straight from the depth map (SG_CHAIN_FROM_DEPTH with uLevel k): each texel the mean
+// over its 2^k x 2^k tile of depth texels, by gathers of 2x2 (the same means as k halvings, which
+// leave the same texels out of a level of odd size), and the levels below are never made: the
+// depth pass then writes no moments, and the chain costs a read of the map.
 //
 // Draws, not compute dispatches: on llvmpipe an image store costs about 27 ns per texel, more
 // than the fragment pipeline's whole write of it (builtin:default, `--technique vsm --no-cache`:
@@ -20,6 +25,7 @@
 #ifdef SG_CHAIN_FROM_DEPTH
 layout(binding = SG_UNIT_MINMAX_SOURCE) uniform sampler2DArray uDepth;  // the layer's depth map
 uniform int uLayer;
+uniform int uLevel;  // the level drawn: tiles of 2^uLevel texels
 #else
 // The layer's view, its base level the level below the one drawn (the only level it shows).
 layout(binding = SG_UNIT_MINMAX_SOURCE) uniform sampler2D uBelow;
@@ -30,7 +36,21 @@ layout(location = 0) out vec4 oMoments;
 void main() {
     ivec2 texel = ivec2(gl_FragCoord.xy);
 #ifdef SG_CHAIN_FROM_DEPTH
-    oMoments = sg_depthMoments(texelFetch(uDepth, ivec3(texel, uLayer), 0).r);
+    int tile = 1 << uLevel;
+    if (tile == 1) {
+        oMoments = sg_depthMoments(texelFetch(uDepth, ivec3(texel, uLayer), 0).r);
+        return;
+    }
+    // Gathers at the corner each 2x2 block of the tile shares: exactly those four texels.
+    vec2 texelSize = 1.0 / vec2(textureSize(uDepth, 0).xy);
+    vec4 sum = vec4(0.0);
+    for (int y = 0; y < tile; y += 2) {
+        for (int x = 0; x < tile; x += 2) {
+            vec4 d = textureGather(uDepth, vec3((vec2(texel * tile + ivec2(x, y)) + 1.0) * texelSize, float(uLayer)));
+            sum += sg_depthMoments(d.x) + sg_depthMoments(d.y) + sg_depthMoments(d.z) + sg_depthMoments(d.w);
+        }
+    }
+    oMoments = sum / float(tile * tile);
 #else
     // One bilinear fetch at the corner the 2x2 texels share: their mean, weights 1/2 and 1/2
     // exactly.

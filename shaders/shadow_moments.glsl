@@ -29,9 +29,12 @@ float sg_chebyshevUpperBound(vec2 m, float reference, float minVariance) {
 // texels) filters with a box of 2^L texels convolved with a tent of half-width 2^L, whose
 // variance along each axis, 4^L / 4, is that of a disk of the same radius, r^2 / 4 (PCF's).
 // One level up, a box as wide as the disk, has tails twice as long (tests/shadow/vsm_test.cpp
-// compares VSM with PCF of the same radius).
-vec4 sg_regionMoments(int slot, sg_Receiver r, sg_Tap center, float radius) {
+// compares VSM with PCF of the same radius). Never below the layer's first level
+// (sg_GpuShadowLayer::chainFirstLevel: the levels below it are not built), which the planner
+// sets below every level a receiver of the layer asks for.
+vec4 sg_regionMoments(int slot, sg_GpuLight L, sg_Receiver r, sg_Tap center, float radius) {
     float level = log2(max(radius / max(r.texelMetres, 1e-30), 1.0));
+    level = max(level, float(sg_layers[L.firstLayer + center.layer].chainFirstLevel));
     return textureLod(sg_shadowChain[slot], vec3(center.uv, float(center.layer)), level);
 }
 

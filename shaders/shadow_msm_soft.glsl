@@ -36,7 +36,7 @@ float sg_msmSoftVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
     float penumbra = 0.0;
     if (size > 0.0) {
         float searchRadius = sg_softMomentsSearchRadius(L, r, dReceiver, size, maxRadius);
-        vec2 m = sg_regionMoments(slot, r, center, searchRadius).xy;
+        vec2 m = sg_regionMoments(slot, L, r, center, searchRadius).xy;
         penumbra = sg_softMomentsPenumbra(L, r, m, reference, sg_varianceFloor(r, m), dReceiver, size, maxRadius);
         if (penumbra < 0.0) return 1.0;  // no blocker: lit
     }

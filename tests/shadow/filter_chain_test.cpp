@@ -227,6 +227,9 @@ void expectMomentsMatchMap(FrameRunner& runner, int mapSize, const std::string& 
     const int levels = FilterChain::levelsFor(shadows.frame().lights[0].technique(), mapSize,
                                               shadows.frame().lights[0].settings.maxFilterTexels);
     ASSERT_GT(levels, 1) << what;
+    // The levels below the layer's first level are neither built nor read.
+    const int first = shadows.frame().lights[0].layers[0].chainFirstLevel;
+    ASSERT_LT(first, levels) << what;
     int size = mapSize;
     double worst = 0.0;
     for (int level = 0; level < levels; ++level) {
@@ -235,15 +238,46 @@ void expectMomentsMatchMap(FrameRunner& runner, int mapSize, const std::string& 
             expected = momentsBelowAveraged(expected, size, next, channels);
             size = next;
         }
+        if (level < first) continue;
         const std::vector<float> got = readLevel(chain, level, 0, size, channels);
         for (std::size_t i = 0; i < got.size(); ++i) worst = std::max(worst, std::abs(got[i] - expected[i]));
     }
-    std::printf("[ measured ] %s: %d levels, largest |moment - double mean| %.3g\n", what.c_str(), levels, worst);
+    std::printf("[ measured ] %s: levels %d to %d, largest |moment - double mean| %.3g\n", what.c_str(), first,
+                levels - 1, worst);
     EXPECT_LT(worst, momentTolerance(mapSize)) << what;
 }
 
 TEST(FilterChain, MomentsHoldTheMeanDepthAndSquareOfEachTile) {
     forBothMapSizes(ShadowTechnique::Vsm, expectMomentsMatchMap);
+}
+
+TEST(FilterChain, AVsmChainStartsAtTheFirstLevelItsLookupsRead) {
+    // A filter radius of many texels at the farthest receiver: the lookups read nothing below
+    // level log2 of it, and the chain is drawn from the depth map at that level (its tiles' means
+    // of 2^k x 2^k texels by gathers), for a map size of odd levels too.
+    test::glContext();
+    for (int mapSize : {256, 200}) {
+        Scene scene = tiltedScene(ShadowTechnique::Vsm, mapSize);
+        Shadow& shadow = scene.world.get<Shadow>(scene.lights[0]);
+        shadow.pcfRadius = 0.5f;
+        FrameRunner runner;
+        (void)test::renderFrame(runner, scene, 64, 48);
+        const ShadowLayerPlan& layer = runner.shadows().frame().lights[0].layers[0];
+        // The spot's texel at the farthest receiver corner (the ground's), as the planner bounds it.
+        const double texel = 2.0 / (layer.clipFromLight[0][0] * mapSize) *
+                             glm::distance(glm::dvec3(-3.0, 5.0, 2.0), glm::dvec3(6.0, 0.0, -6.0));
+        const int expectedFirst = static_cast<int>(std::floor(std::log2(0.5 / (1.05 * texel))));
+        std::printf("[ measured ] vsm, map %d, radius 0.5 m: first level %d (texel at the farthest receiver %.4f m)\n",
+                    mapSize, layer.chainFirstLevel, texel);
+        EXPECT_EQ(layer.chainFirstLevel, expectedFirst) << "map " << mapSize;
+        EXPECT_GE(layer.chainFirstLevel, 2) << "map " << mapSize;
+        expectMomentsMatchMap(runner, mapSize, "vsm from its first level, map " + std::to_string(mapSize));
+        // A radius below a texel reads level 0 again: the chain is built from there.
+        shadow.pcfRadius = 0.001f;
+        (void)test::renderFrame(runner, scene, 64, 48);
+        EXPECT_EQ(runner.shadows().frame().lights[0].layers[0].chainFirstLevel, 0);
+        expectMomentsMatchMap(runner, mapSize, "vsm down to level 0 again, map " + std::to_string(mapSize));
+    }
 }
 
 TEST(FilterChain, FourMomentsHoldTheMeansOfTheFirstFourPowersOfEachTile) {

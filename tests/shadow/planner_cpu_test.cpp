@@ -448,3 +448,42 @@ TEST(ShadowPlanner, APcfLightReadsItsPyramidWhereItPaysForItself) {
 
 }  // namespace
 }  // namespace shadow
+
+namespace shadow {
+namespace {
+
+TEST(Planner, AVsmCascadeStartsItsChainAtTheLevelOfItsFilterRadius) {
+    // A cascade's texel is one size throughout, so each of a VSM sun's cascades reads its chain
+    // from the floor of log2(pcfRadius in its texels) (5 % of margin on the texel), at most the
+    // chain's top level; the same light on PCF has no first level.
+    for (const ShadowTechnique technique : {ShadowTechnique::Vsm, ShadowTechnique::Pcf}) {
+        TestScene t;
+        Shadow s = test::hard();
+        s.technique = technique;
+        s.mapSize = 1024;
+        s.cascades = 3;
+        s.pcfRadius = 0.2f;
+        addLight(t.scene, "sun", test::lightOf(LightType::Directional), s, {0, 10, 0}, {0.2, -1, 0.1});
+        ShadowPlanner planner;
+        const ShadowFrame& frame = planner.prepare(t.scene.world, t.update(), t.scene.lights);
+        const ShadowLightPlan& plan = frame.lights.at(0);
+        ASSERT_EQ(plan.layers.size(), 3u);
+        const int levels = chainLevels(technique, plan.mapSize, plan.settings.maxFilterTexels);
+        int widest = 0;
+        for (const ShadowLayerPlan& layer : plan.layers) {
+            const double texel = 2.0 / (layer.clipFromLight[0][0] * plan.mapSize);
+            const double texels = std::min(0.2 / (1.05 * texel), static_cast<double>(plan.settings.maxFilterTexels));
+            const int expected = technique == ShadowTechnique::Vsm
+                                     ? std::clamp(static_cast<int>(std::floor(std::log2(texels))), 0, levels - 1)
+                                     : 0;
+            std::printf("[ measured ] %s cascade: texel %.4f m, radius %.1f texels, first level %d\n",
+                        techniqueName(technique), texel, 0.2 / texel, layer.chainFirstLevel);
+            EXPECT_EQ(layer.chainFirstLevel, expected) << techniqueName(technique);
+            widest = std::max(widest, layer.chainFirstLevel);
+        }
+        if (technique == ShadowTechnique::Vsm) EXPECT_GE(widest, 2) << "no cascade skips a level: the test is vacuous";
+    }
+}
+
+}  // namespace
+}  // namespace shadow

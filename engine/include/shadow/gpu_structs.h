@@ -40,14 +40,14 @@ SG_END_STRUCT
 
 // One layer (cascade, spot map or cube face) of a light's shadow-map array.
 SG_STRUCT(GpuShadowLayer)
-SG_MAT4 lightFromCs;    // camera-relative world -> light view (m; the light looks down -Z)
-SG_MAT4 clipFromLight;  // light view -> clip
-SG_FLOAT depthScale;    // stored depth = lsDepth / depthScale
-SG_FLOAT depthNear;     // near plane of the projection (m)
-SG_FLOAT splitFar;      // directional: camera distance where this cascade ends (m)
-SG_INT orthographic;    // 1 for directional lights
-SG_FLOAT momentScale;   // VSSM: its summed-area table holds the moments of min(z momentScale, 1)
-SG_FLOAT blockerNear;   // the nearest a blocker can be (m; ShadowLayerPlan::blockerNear)
-SG_FLOAT reserved1;
+SG_MAT4 lightFromCs;     // camera-relative world -> light view (m; the light looks down -Z)
+SG_MAT4 clipFromLight;   // light view -> clip
+SG_FLOAT depthScale;     // stored depth = lsDepth / depthScale
+SG_FLOAT depthNear;      // near plane of the projection (m)
+SG_FLOAT splitFar;       // directional: camera distance where this cascade ends (m)
+SG_INT orthographic;     // 1 for directional lights
+SG_FLOAT momentScale;    // VSSM: its summed-area table holds the moments of min(z momentScale, 1)
+SG_FLOAT blockerNear;    // the nearest a blocker can be (m; ShadowLayerPlan::blockerNear)
+SG_INT chainFirstLevel;  // VSM: the lowest level of its moment chain built and read (ShadowLayerPlan)
 SG_FLOAT reserved2;
 SG_END_STRUCT

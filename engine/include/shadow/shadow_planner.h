@@ -47,6 +47,12 @@ struct ShadowLayerPlan {
     /// caster's bounds lie in (1/4, 1/2]: a light whose range is 10^6 times the depth of its
     /// scene keeps 2^-24 of the casters' depth as its resolution rather than of its range.
     float momentScale = 1.0f;
+    /// VSM: the lowest level of its moment chain that a lookup of this layer reads, the floor of
+    /// log2 of the filter radius in the largest texel any receiver of the layer has (its
+    /// cascade's texel; a perspective layer's at the farthest receiver). The chain is built from
+    /// there, straight from the depth map, and the levels below are neither built nor read; the
+    /// depth pass writes the moments beside the depth only at 0 (ShadowMaps).
+    int chainFirstLevel = 0;
     /// Casters (meshes and `ShadowCasterDraw`s) whose world bounds meet this layer's frustum,
     /// in entity order.
     std::vector<Entity> casters;

@@ -77,6 +77,7 @@ GpuShadowLayer packLayer(const ShadowLayerPlan& layer, const glm::dvec3& wsCamer
     l.splitFar = layer.splitFar;
     l.orthographic = layer.orthographic ? 1 : 0;
     l.momentScale = layer.momentScale;
+    l.chainFirstLevel = layer.chainFirstLevel;
     return l;
 }
 

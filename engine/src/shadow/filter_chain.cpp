@@ -81,12 +81,12 @@ FilterChainBuilder::Pass makePass(const std::string& label, const std::string& f
 }  // namespace
 
 void FilterChainBuilder::build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale,
-                               int fromLevel) {
+                               int fromLevel, bool fromDepth) {
     gl.BindSampler(SG_UNIT_MINMAX_SOURCE, 0);  // the textures' own nearest filtering, no comparison
     switch (chain.kind) {
         case FilterChainKind::MinMax: buildMinMax(depthArray, chain, mapSize, layer); break;
         case FilterChainKind::Moments:
-        case FilterChainKind::FourMoments: buildMoments(depthArray, chain, mapSize, layer, fromLevel); break;
+        case FilterChainKind::FourMoments: buildMoments(depthArray, chain, mapSize, layer, fromLevel, fromDepth); break;
         case FilterChainKind::SummedMoments: buildSummedArea(depthArray, chain, mapSize, layer, momentScale); break;
     }
     gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
@@ -125,7 +125,7 @@ void FilterChainBuilder::buildMinMax(GLuint depthArray, const FilterChain& chain
 }
 
 void FilterChainBuilder::buildMoments(GLuint depthArray, const FilterChain& chain, int mapSize, int layer,
-                                      int fromLevel) {
+                                      int fromLevel, bool fromDepth) {
     const MomentsPrograms& programs = momentsPrograms();
     const GLuint fb = momentsFramebuffer_.get();
     const GLuint view = chain.layerViews.at(static_cast<std::size_t>(layer)).get();
@@ -134,10 +134,12 @@ void FilterChainBuilder::buildMoments(GLuint depthArray, const FilterChain& chai
     gl.BindVertexArray(emptyVertexArray_.get());
     for (int level = fromLevel; level < chain.levels; ++level) {
         const int size = std::max(1, mapSize >> level);
-        const MomentsPrograms::Pass& pass = level == 0 ? programs.fromDepth : programs.fromBelow;
+        const bool fromMap = fromDepth && level == fromLevel;
+        const MomentsPrograms::Pass& pass = fromMap ? programs.fromDepth : programs.fromBelow;
         gl.UseProgram(pass.program.get());
-        if (level == 0) {
+        if (fromMap) {
             gl.ProgramUniform1i(pass.program.get(), pass.layer, layer);
+            gl.ProgramUniform1i(pass.program.get(), pass.level, level);
             gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, depthArray);
         } else {
             // The view shows the level below alone, so the level drawn is not one it samples.
@@ -164,6 +166,7 @@ const FilterChainBuilder::MomentsPrograms& FilterChainBuilder::momentsPrograms()
             pass.program = gpu::buildProgram({std::string("Shadow/Moments/") + stage, "fullscreen.vert.glsl",
                                               "shadow_moments.frag.glsl", std::move(defines)});
             pass.layer = gl.GetUniformLocation(pass.program.get(), "uLayer");
+            pass.level = gl.GetUniformLocation(pass.program.get(), "uLevel");
             return pass;
         };
         p = MomentsPrograms{make("fromDepth", {"SG_CHAIN_FROM_DEPTH"}), make("fromBelow", {})};

@@ -61,10 +61,12 @@ class FilterChainBuilder {
 public:
     /// Builds every level of `layer` of `chain` from `depthArray`, a `mapSize`^2 array; a
     /// summed-area table of the moments of min(z momentScale, 1) (ShadowLayerPlan::momentScale).
-    /// Moment chains: the levels below `fromLevel` are current already (level 0 written by the
-    /// depth pass, `drawnWithDepth`); nothing is drawn when that is every level.
+    /// Moment chains: levels `fromLevel` and above; level `fromLevel` straight from the depth map
+    /// when `fromDepth` (each texel the mean over its 2^fromLevel-texel tile), else from the level
+    /// below, current already (level 0 written by the depth pass, `drawnWithDepth`). The levels
+    /// below a first level drawn from the depth are not built (ShadowLayerPlan::chainFirstLevel).
     void build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale = 1.0f,
-               int fromLevel = 0);
+               int fromLevel = 0, bool fromDepth = true);
 
     /// A compute program and its uniforms.
     struct Pass {
@@ -74,7 +76,8 @@ public:
 
 private:
     void buildMinMax(GLuint depthArray, const FilterChain& chain, int mapSize, int layer);
-    void buildMoments(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, int fromLevel);
+    void buildMoments(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, int fromLevel,
+                      bool fromDepth);
     void buildSummedArea(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale);
 
     /// Compute builds. The min/max pyramid: level 0 from the depth map, then each level from the
@@ -93,7 +96,7 @@ private:
     struct MomentsPrograms {
         struct Pass {
             gpu::Program program;
-            GLint layer = -1;
+            GLint layer = -1, level = -1;
         };
         Pass fromDepth, fromBelow;
     };

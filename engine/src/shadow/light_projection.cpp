@@ -543,6 +543,26 @@ void planLayers(const LayerInputs& light, const CameraView& camera, const SceneG
     for (ShadowLayerPlan& layer : layers) layer.blockerNear = static_cast<float>(std::max(nearest, clipped));
 }
 
+void fitChainFirstLevels(const LayerInputs& light, bool vsm, double radius, double maxFilterTexels, int levels,
+                         const SceneGeometry& geometry, std::span<ShadowLayerPlan> layers) {
+    // A lookup reads level log2(radius in the receiver's texels) (sg_regionMoments), least where
+    // the texel is largest: a cascade's texel is one size throughout, a perspective layer's grows
+    // with the distance from the light, largest at the farthest receiver (axial distance at
+    // most that). Five per cent of margin for the shader's float texel and the receiver's normal
+    // offset, which moves it a texel or so.
+    constexpr double kTexelMargin = 1.05;
+    const double farthest = farthestCorner(light.pose.wsPosition, geometry.receivers);
+    for (ShadowLayerPlan& layer : layers) {
+        layer.chainFirstLevel = 0;
+        if (!vsm || !(radius > 0.0)) continue;
+        const double distance = layer.orthographic ? 1.0 : std::min(farthest, static_cast<double>(layer.depthScale));
+        const double texel = 2.0 / (layer.clipFromLight[0][0] * light.mapSize) * distance * kTexelMargin;
+        const double texels = std::min(radius / texel, maxFilterTexels);
+        while (layer.chainFirstLevel + 1 < levels && std::exp2(layer.chainFirstLevel + 1) <= texels)
+            ++layer.chainFirstLevel;
+    }
+}
+
 bool layersHold(const LayerInputs& light, bool cameraMoved, const SceneGeometry& geometry,
                 std::span<const ShadowLayerPlan> layers) {
     const bool geometryChanged = !geometry.changed.empty() || geometry.receiversChanged || geometry.everythingChanged;

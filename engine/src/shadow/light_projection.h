@@ -76,6 +76,12 @@ struct LayerInputs {
 void planLayers(const LayerInputs& light, const CameraView& camera, const SceneGeometry& geometry,
                 std::vector<ShadowLayerPlan>& layers);
 
+/// Sets each layer's `chainFirstLevel` (ShadowLayerPlan): for a VSM light the lowest level of
+/// its moment chain a lookup reads, `radius` m at the receiver (at most `maxFilterTexels`) in
+/// the largest texel a receiver of the layer has, below `levels`; 0 for every other light.
+void fitChainFirstLevels(const LayerInputs& light, bool vsm, double radius, double maxFilterTexels, int levels,
+                         const SceneGeometry& geometry, std::span<ShadowLayerPlan> layers);
+
 /// Whether `planLayers(light, camera, geometry, layers)` would give `layers` back, field for
 /// field, when `layers` is what it gave for the same `light` over the geometry of the last
 /// `gatherGeometry` and, with `cameraMoved` false, the same camera. A directional light's

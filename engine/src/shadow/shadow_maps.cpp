@@ -42,6 +42,8 @@ struct ShadowMapGpu {
     /// Per layer: level 0 of its moment chain was written by the depth pass as the layer was
     /// last drawn (`FilterChain::drawnWithDepth`), so the chain's build starts at level 1.
     std::vector<bool> chainBaseDrawn;
+    /// Per layer: the lowest level its chain was last built from (ShadowLayerPlan::chainFirstLevel).
+    std::vector<int> chainFirstLevel;
     /// Made this frame (a new light, or a new map size or layer count): its texture name changed.
     bool allocatedThisFrame = true;
 };
@@ -241,6 +243,7 @@ void ShadowMaps::Impl::syncMaps(const ShadowFrame& frame) {
             map->chain = FilterChain::allocate("Shadow/" + plan.name, *kind, map->mapSize, map->layers, levels);
             map->chainCurrent.assign(static_cast<std::size_t>(map->layers), false);
             map->chainBaseDrawn.assign(static_cast<std::size_t>(map->layers), false);
+            map->chainFirstLevel.assign(static_cast<std::size_t>(map->layers), 0);
         }
         maps[i].second = std::move(map);
     }
@@ -253,22 +256,29 @@ void ShadowMaps::Impl::updateChains(const ShadowLightPlan& plan) {
     for (std::size_t k = 0; k < plan.layers.size(); ++k) {
         // A layer's moment scale follows its matrices and its casters' bounds, whose changes
         // mark it dirty: a clean layer's table holds the scale of this frame's plan.
-        if (!plan.layers[k].dirty && map.chainCurrent[k]) continue;
+        // So does its first level, but with the receivers too: a clean layer whose lookups now
+        // reach below the levels built has its chain built again.
+        const int firstLevel = plan.layers[k].chainFirstLevel;
+        if (!plan.layers[k].dirty && map.chainCurrent[k] && map.chainFirstLevel[k] <= firstLevel) continue;
         if (map.chain->kind == FilterChainKind::MinMax && !plan.regionTest) {
             // Not read this frame (ShadowLimits::pyramidTexelsPerPixel): built when it next is.
             map.chainCurrent[k] = false;
             continue;
         }
-        const int fromLevel = map.chainBaseDrawn[k] ? 1 : 0;
+        // From the level above the depth pass's level 0, or from the first level read, drawn
+        // straight from the depth map.
+        const bool baseDrawn = map.chainBaseDrawn[k];
+        const int fromLevel = baseDrawn ? 1 : firstLevel;
         if (plan.layers[k].casters.empty() && map.chain->clearable()) {
             map.chain->clearLayer(map.mapSize, static_cast<int>(k));
-        } else if (fromLevel < map.chain->levels) {  // else the depth pass wrote it all (MSM)
+        } else if (fromLevel < map.chain->levels) {
             formatPassName(passName, plan, map.chain->kind == FilterChainKind::MinMax ? "minmax" : "moments", k);
             const gpu::ScopedPass pass(timer, passName);
             chains.build(map.array.get(), *map.chain, map.mapSize, static_cast<int>(k), plan.layers[k].momentScale,
-                         fromLevel);
+                         fromLevel, !baseDrawn);
         }
         map.chainCurrent[k] = true;
+        map.chainFirstLevel[k] = baseDrawn ? 0 : firstLevel;
     }
 }
 
@@ -421,7 +431,7 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
     gl.NamedFramebufferTextureLayer(framebuffer, GL_DEPTH_ATTACHMENT, map.array.get(), 0, static_cast<GLint>(k));
     // A moment chain's level 0 comes with the depth, unless the game's callback draws a caster
     // (with a program that may write depth alone): then the chain's build reads the map back.
-    const bool moments = map.chain && map.chain->drawnWithDepth() && !kinds.callback;
+    const bool moments = map.chain && map.chain->drawnWithDepth() && !kinds.callback && layer.chainFirstLevel == 0;
     if (map.chain) map.chainBaseDrawn[k] = moments;
     if (moments) attachMoments(framebuffer, map.chain->texture.get(), static_cast<GLint>(k));
     gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
