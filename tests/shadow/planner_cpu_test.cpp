@@ -481,7 +481,9 @@ TEST(Planner, AVsmCascadeStartsItsChainAtTheLevelOfItsFilterRadius) {
             EXPECT_EQ(layer.chainFirstLevel, expected) << techniqueName(technique);
             widest = std::max(widest, layer.chainFirstLevel);
         }
-        if (technique == ShadowTechnique::Vsm) EXPECT_GE(widest, 2) << "no cascade skips a level: the test is vacuous";
+        if (technique == ShadowTechnique::Vsm) {
+            EXPECT_GE(widest, 2) << "no cascade skips a level: the test is vacuous";
+        }
     }
 }
 
