@@ -97,10 +97,11 @@ TEST(Stability, SceneWithoutCastersClearsEveryLayer) {
     Scene scene = baseScene();
     scene.world.view<Mesh>().each([](Entity, Mesh& m) { m.castShadows = false; });
     test::forEveryTechnique(
-        scene, 96, 72, "no casters", [&](ShadowTechnique, const test::RenderedFrame& frame, FrameRunner&) {
+        scene, 96, 72, "no casters", [&](ShadowTechnique technique, const test::RenderedFrame& frame, FrameRunner&) {
             EXPECT_EQ(frame.stats.shadowDrawCalls, 0);
             for (const ImageF& v : frame.images.visibility) {
-                EXPECT_TRUE(std::all_of(v.pixels.begin(), v.pixels.end(), [](float x) { return x == 1.0f; }));
+                EXPECT_TRUE(std::all_of(v.pixels.begin(), v.pixels.end(), [](float x) { return x == 1.0f; }))
+                    << techniqueName(technique);
             }
         });
 }
