@@ -487,5 +487,34 @@ TEST(Planner, AVsmCascadeStartsItsChainAtTheLevelOfItsFilterRadius) {
     }
 }
 
+TEST(Planner, AVsmSpotBoundsItsTexelByEverythingTheSceneHoldsNotOnlyItsReceivers) {
+    // A spot's texel grows with the distance from the light: its chain's first level comes from
+    // the farthest corner of the scene's known bounds. Receivers the engine does not know (a
+    // game's own surfaces, its ShadowCasterDraw objects) may lie there, so meshes that do not
+    // receive count too, and a scene of no known receiver keeps the same first level.
+    const auto firstLevel = [](bool receivers) {
+        TestScene t;
+        t.scene.world.view<Mesh>().each([&](Entity, Mesh& m) { m.receiveShadows = receivers; });
+        Shadow s = test::hard();
+        s.technique = ShadowTechnique::Vsm;
+        s.mapSize = 1024;
+        s.pcfRadius = 0.5f;
+        Light spot = test::lightOf(LightType::Spot);
+        spot.range = 40.0f;
+        addLight(t.scene, "spot", spot, s, {0, 6, 0}, {0, -1, 0});
+        ShadowPlanner planner;
+        const ShadowFrame& frame = planner.prepare(t.scene.world, t.update(), t.scene.lights);
+        const ShadowLayerPlan& layer = frame.lights.at(0).layers.at(0);
+        // The ground's corner (5, 0, 5) is the farthest: sqrt(25 + 36 + 25) m from the light.
+        const double texel = 2.0 / (layer.clipFromLight[0][0] * 1024.0) * std::sqrt(86.0);
+        const int expected = static_cast<int>(std::floor(std::log2(0.5 / (1.05 * texel))));
+        EXPECT_EQ(layer.chainFirstLevel, expected) << (receivers ? "receivers" : "no receivers");
+        return layer.chainFirstLevel;
+    };
+    const int known = firstLevel(true);
+    EXPECT_GE(known, 2) << "the test is vacuous: the chain starts at level 0 anyway";
+    EXPECT_EQ(firstLevel(false), known);
+}
+
 }  // namespace
 }  // namespace shadow

@@ -49,7 +49,8 @@ struct ShadowLayerPlan {
     float momentScale = 1.0f;
     /// VSM: the lowest level of its moment chain that a lookup of this layer reads, the floor of
     /// log2 of the filter radius in the largest texel any receiver of the layer has (its
-    /// cascade's texel; a perspective layer's at the farthest receiver). The chain is built from
+    /// cascade's texel; a perspective layer's at the farthest corner of the scene's known bounds,
+    /// meshes and the game's casters). The chain is built from
     /// there, straight from the depth map, and the levels below are neither built nor read; the
     /// depth pass writes the moments beside the depth only at 0 (ShadowMaps).
     int chainFirstLevel = 0;

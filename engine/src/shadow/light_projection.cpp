@@ -548,10 +548,13 @@ void fitChainFirstLevels(const LayerInputs& light, bool vsm, double radius, doub
     // A lookup reads level log2(radius in the receiver's texels) (sg_regionMoments), least where
     // the texel is largest: a cascade's texel is one size throughout, a perspective layer's grows
     // with the distance from the light, largest at the farthest receiver (axial distance at
-    // most that). Five per cent of margin for the shader's float texel and the receiver's normal
-    // offset, which moves it a texel or so.
+    // most that). The farthest of everything the engine knows, not only its receiving meshes: a
+    // game's own casters (ShadowCasterDraw) may receive in its shader; with nothing known, the
+    // layer's far plane. Five per cent of margin for the shader's float texel and the receiver's
+    // normal offset, which moves it a texel or so.
     constexpr double kTexelMargin = 1.05;
-    const double farthest = farthestCorner(light.pose.wsPosition, geometry.receivers);
+    const double farthest = geometry.everything.empty() ? std::numeric_limits<double>::infinity()
+                                                        : farthestCorner(light.pose.wsPosition, geometry.everything);
     for (ShadowLayerPlan& layer : layers) {
         layer.chainFirstLevel = 0;
         if (!vsm || !(radius > 0.0)) continue;

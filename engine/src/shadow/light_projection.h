@@ -78,7 +78,8 @@ void planLayers(const LayerInputs& light, const CameraView& camera, const SceneG
 
 /// Sets each layer's `chainFirstLevel` (ShadowLayerPlan): for a VSM light the lowest level of
 /// its moment chain a lookup reads, `radius` m at the receiver (at most `maxFilterTexels`) in
-/// the largest texel a receiver of the layer has, below `levels`; 0 for every other light.
+/// the largest texel a receiver of the layer can have (at the farthest corner of the scene's known
+/// bounds for a perspective layer), below `levels`; 0 for every other light.
 void fitChainFirstLevels(const LayerInputs& light, bool vsm, double radius, double maxFilterTexels, int levels,
                          const SceneGeometry& geometry, std::span<ShadowLayerPlan> layers);
 
