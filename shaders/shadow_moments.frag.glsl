@@ -5,7 +5,8 @@
 // keeps what it holds). Level 0 (SG_CHAIN_FROM_DEPTH) reads one depth texel, every further level
 // averages the 2x2 texels of the level below (of a level of odd size, the last row and column
 // are left to the level's floor, as GL's own mipmaps round), so a trilinear fetch at level log2(w) gives the moments of a region about w texels wide.
-// A chain whose lookups read nothing below level k (ShadowLayerPlan::chainFirstLevel, VSM) draws
+// A chain whose lookups read nothing below level k (ShadowLayerPlan::chainFirstLevel: VSM's, and
+// MSM-soft's 1, whose lookups take level 0 from the depth map) draws
 // level k straight from the depth map (SG_CHAIN_FROM_DEPTH with uLevel k): each texel the mean
 // over its 2^k x 2^k tile of depth texels, by gathers of 2x2 (the same means as k halvings, which
 // leave the same texels out of a level of odd size), and the levels below are never made: the

@@ -10,7 +10,7 @@
 // "Summed-Area Variance Shadow Maps", GPU Gems 3, 2007 (light-bleeding reduction).
 #ifndef SG_SHADOW_MOMENTS
 #define SG_SHADOW_MOMENTS
-#include "shadow_receiver.glsl"
+#include "shadow_taps.glsl"
 
 // Relative float error of a stored second moment, in units of its value: a few ulps of the mean
 // of squares, which E[z^2] - E[z]^2 cancels down to.
@@ -24,6 +24,11 @@ float sg_chebyshevUpperBound(vec2 m, float reference, float minVariance) {
     return d <= 0.0 ? 1.0 : variance / (variance + d * d);
 }
 
+// The chain level whose texels are as wide as a region of radius `radius` (m) at the receiver.
+float sg_regionLevel(sg_Receiver r, float radius) {
+    return log2(max(radius / max(r.texelMetres, 1e-30), 1.0));
+}
+
 // The moments of the stored depths (two or four, as the chain holds) over a region of radius
 // `radius` metres around `center`, one fetch whatever the radius: the trilinear fetch at mip level L = log2(radius in
 // texels) filters with a box of 2^L texels convolved with a tent of half-width 2^L, whose
@@ -31,11 +36,36 @@ float sg_chebyshevUpperBound(vec2 m, float reference, float minVariance) {
 // One level up, a box as wide as the disk, has tails twice as long (tests/shadow/vsm_test.cpp
 // compares VSM with PCF of the same radius). Never below the layer's first level
 // (sg_GpuShadowLayer::chainFirstLevel: the levels below it are not built), which the planner
-// sets below every level a receiver of the layer asks for.
+// sets below every level a receiver of the layer asks for (VSM; MSM-soft reads sg_chainMoments).
 vec4 sg_regionMoments(int slot, sg_GpuLight L, sg_Receiver r, sg_Tap center, float radius) {
-    float level = log2(max(radius / max(r.texelMetres, 1e-30), 1.0));
-    level = max(level, float(sg_layers[L.firstLayer + center.layer].chainFirstLevel));
+    float level = max(sg_regionLevel(r, radius), float(sg_layers[L.firstLayer + center.layer].chainFirstLevel));
     return textureLod(sg_shadowChain[slot], vec3(center.uv, float(center.layer)), level);
+}
+
+// The four power moments around `uv` in `layer` over one texel: the 2x2 stored depths around it
+// from one gather of the depth map, raised to their powers and blended by lerps, exact where the
+// four agree as the filtering unit's blend is (a region of cleared texels keeps a mean of exactly
+// 1, which the bound reads as lit), edge clamped: a four-moment chain's level 0 fetched with
+// GL_LINEAR, without the level. Hard-edged MSM reads its one-texel region so; MSM-soft its
+// regions finer than level 1 (sg_chainMoments).
+vec4 sg_texelMoments(int slot, sg_GpuLight L, vec2 uv, int layer) {
+    float size = float(L.mapSize);
+    vec2 st = clamp(uv * size - 0.5, vec2(0.0), vec2(size - 1.0));
+    vec2 base = floor(st);
+    vec2 f = st - base;
+    vec4 z = clamp(textureGather(sg_shadowDepth[slot], vec3((base + 1.0) / size, float(layer))), 0.0, 1.0);
+    vec4 z2 = z * z;
+    return vec4(sg_bilinearQuad(z, f), sg_bilinearQuad(z2, f), sg_bilinearQuad(z2 * z, f), sg_bilinearQuad(z2 * z2, f));
+}
+
+// A four-moment chain's trilinear fetch at `level` around `uv`, for a chain made from level 1 up
+// (MSM-soft; sg_GpuShadowLayer::chainFirstLevel): below level 1, the fetch's level-0 half comes
+// from the depth map (sg_texelMoments) and is mixed with level 1 by the level's fraction, as
+// the trilinear filter mixes the two levels.
+vec4 sg_chainMoments(int slot, sg_GpuLight L, vec2 uv, int layer, float level) {
+    vec4 coarse = textureLod(sg_shadowChain[slot], vec3(uv, float(layer)), max(level, 1.0));
+    vec4 fine = sg_texelMoments(slot, L, uv, layer);
+    return level < 1.0 ? mix(fine, coarse, max(level, 0.0)) : coarse;
 }
 
 // The least variance a region's moments are given: the spread of depths within one texel of the

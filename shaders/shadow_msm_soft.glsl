@@ -1,6 +1,9 @@
 // Moment soft shadows (msm-soft): VSSM's blocker search and penumbra (shadow_soft_moments.glsl)
 // on the four-moment mip chain, one trilinear fetch for the search and four for the penumbra,
-// and the Hamburger 4MSM bound (shadow_hamburger.glsl) over the penumbra.
+// and the Hamburger 4MSM bound (shadow_hamburger.glsl) over the penumbra. The chain is made from
+// level 1 up: a fetch finer than level 1 takes its level-0 half from a gather of the depth map
+// (sg_chainMoments), so the depth pass writes no RGBA32F moments (a colour write per fragment
+// that cost more than the depth itself).
 #ifndef SG_SHADOW_MSM_SOFT
 #define SG_SHADOW_MSM_SOFT
 #include "shadow_soft_moments.glsl"
@@ -14,14 +17,14 @@ sg_ReceiverPolicy sg_msmSoftPolicy() { return sg_planePolicy(); }
 // whose box-and-tent has tails half again as long as the disk: the level and the positions of
 // least penumbra error against the ray-traced truth. The blocker search keeps one fetch: it only
 // estimates the blockers' mean depth, and four there measured more error (docs/tuning.md).
-vec4 sg_quadrantMoments(int slot, sg_Receiver r, sg_Tap center, float radius) {
+vec4 sg_quadrantMoments(int slot, sg_GpuLight L, sg_Receiver r, sg_Tap center, float radius) {
     float h = 0.8660254 * radius / max(r.texelMetres, 1e-30);
     float level = max(log2(max(h, 1e-30)) - 0.5, 0.0);
     vec2 offset = vec2(0.5 * h) / vec2(textureSize(sg_shadowChain[slot], 0).xy);
     vec4 m = vec4(0.0);
     for (int k = 0; k < 4; ++k) {
         vec2 quadrant = vec2((k & 1) == 1 ? 1.0 : -1.0, (k & 2) == 2 ? 1.0 : -1.0);
-        m += textureLod(sg_shadowChain[slot], vec3(center.uv + quadrant * offset, float(center.layer)), level);
+        m += sg_chainMoments(slot, L, center.uv + quadrant * offset, center.layer, level);
     }
     return 0.25 * m;
 }
@@ -36,12 +39,12 @@ float sg_msmSoftVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
     float penumbra = 0.0;
     if (size > 0.0) {
         float searchRadius = sg_softMomentsSearchRadius(L, r, dReceiver, size, maxRadius);
-        vec2 m = sg_regionMoments(slot, L, r, center, searchRadius).xy;
+        vec2 m = sg_chainMoments(slot, L, center.uv, center.layer, sg_regionLevel(r, searchRadius)).xy;
         penumbra = sg_softMomentsPenumbra(L, r, m, reference, sg_varianceFloor(r, m), dReceiver, size, maxRadius);
         if (penumbra < 0.0) return 1.0;  // no blocker: lit
     }
     SG_DEBUG_STORE(sg_debugPenumbra, penumbra);
-    vec4 b = sg_quadrantMoments(slot, r, center, penumbra);
+    vec4 b = sg_quadrantMoments(slot, L, r, center, penumbra);
     return 1.0 - sg_msmShadowFraction(b, sg_msmReference(r, center, penumbra));
 }
 

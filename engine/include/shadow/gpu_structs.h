@@ -48,6 +48,6 @@ SG_FLOAT splitFar;       // directional: camera distance where this cascade ends
 SG_INT orthographic;     // 1 for directional lights
 SG_FLOAT momentScale;    // VSSM: its summed-area table holds the moments of min(z momentScale, 1)
 SG_FLOAT blockerNear;    // the nearest a blocker can be (m; ShadowLayerPlan::blockerNear)
-SG_INT chainFirstLevel;  // VSM: the lowest level of its moment chain built and read (ShadowLayerPlan)
+SG_INT chainFirstLevel;  // VSM, MSM-soft: the lowest level of the moment chain built (ShadowLayerPlan)
 SG_FLOAT reserved2;
 SG_END_STRUCT

@@ -47,6 +47,7 @@ struct ShadowLayerPlan {
     /// caster's bounds lie in (1/4, 1/2]: a light whose range is 10^6 times the depth of its
     /// scene keeps 2^-24 of the casters' depth as its resolution rather than of its range.
     float momentScale = 1.0f;
+    /// MSM-soft: 1, its lookups taking level 0's fetches from the depth map (sg_chainMoments).
     /// VSM: the lowest level of its moment chain that a lookup of this layer reads, the floor of
     /// log2 of the filter radius in the largest texel any receiver of the layer has (its
     /// cascade's texel; a perspective layer's at the farthest corner of the scene's known bounds,

@@ -543,8 +543,8 @@ void planLayers(const LayerInputs& light, const CameraView& camera, const SceneG
     for (ShadowLayerPlan& layer : layers) layer.blockerNear = static_cast<float>(std::max(nearest, clipped));
 }
 
-void fitChainFirstLevels(const LayerInputs& light, bool vsm, double radius, double maxFilterTexels, int levels,
-                         const SceneGeometry& geometry, std::span<ShadowLayerPlan> layers) {
+void fitChainFirstLevels(const LayerInputs& light, ShadowTechnique technique, double radius, double maxFilterTexels,
+                         int levels, const SceneGeometry& geometry, std::span<ShadowLayerPlan> layers) {
     // A lookup reads level log2(radius in the receiver's texels) (sg_regionMoments), least where
     // the texel is largest: a cascade's texel is one size throughout, a perspective layer's grows
     // with the distance from the light, largest at the farthest receiver (axial distance at
@@ -556,8 +556,9 @@ void fitChainFirstLevels(const LayerInputs& light, bool vsm, double radius, doub
     const double farthest = geometry.everything.empty() ? std::numeric_limits<double>::infinity()
                                                         : farthestCorner(light.pose.wsPosition, geometry.everything);
     for (ShadowLayerPlan& layer : layers) {
-        layer.chainFirstLevel = 0;
-        if (!vsm || !(radius > 0.0)) continue;
+        // MSM-soft reads level 0's fetches from the depth map itself (sg_chainMoments).
+        layer.chainFirstLevel = technique == ShadowTechnique::MsmSoft ? std::min(1, levels - 1) : 0;
+        if (technique != ShadowTechnique::Vsm || !(radius > 0.0)) continue;
         const double distance = layer.orthographic ? 1.0 : std::min(farthest, static_cast<double>(layer.depthScale));
         const double texel = 2.0 / (layer.clipFromLight[0][0] * light.mapSize) * distance * kTexelMargin;
         const double texels = std::min(radius / texel, maxFilterTexels);

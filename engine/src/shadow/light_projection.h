@@ -79,9 +79,10 @@ void planLayers(const LayerInputs& light, const CameraView& camera, const SceneG
 /// Sets each layer's `chainFirstLevel` (ShadowLayerPlan): for a VSM light the lowest level of
 /// its moment chain a lookup reads, `radius` m at the receiver (at most `maxFilterTexels`) in
 /// the largest texel a receiver of the layer can have (at the farthest corner of the scene's known
-/// bounds for a perspective layer), below `levels`; 0 for every other light.
-void fitChainFirstLevels(const LayerInputs& light, bool vsm, double radius, double maxFilterTexels, int levels,
-                         const SceneGeometry& geometry, std::span<ShadowLayerPlan> layers);
+/// bounds for a perspective layer), below `levels`; 1 for MSM-soft (its lookups take level 0 from
+/// the depth map) when the chain has it; 0 for every other light.
+void fitChainFirstLevels(const LayerInputs& light, ShadowTechnique technique, double radius, double maxFilterTexels,
+                         int levels, const SceneGeometry& geometry, std::span<ShadowLayerPlan> layers);
 
 /// Whether `planLayers(light, camera, geometry, layers)` would give `layers` back, field for
 /// field, when `layers` is what it gave for the same `light` over the geometry of the last
