@@ -50,10 +50,9 @@ vec4 sg_regionMoments(int slot, sg_GpuLight L, sg_Receiver r, sg_Tap center, flo
 // regions finer than level 1 (sg_chainMoments).
 vec4 sg_texelMoments(int slot, sg_GpuLight L, vec2 uv, int layer) {
     float size = float(L.mapSize);
-    vec2 st = clamp(uv * size - 0.5, vec2(0.0), vec2(size - 1.0));
-    vec2 base = floor(st);
-    vec2 f = st - base;
-    vec4 z = clamp(textureGather(sg_shadowDepth[slot], vec3((base + 1.0) / size, float(layer))), 0.0, 1.0);
+    vec2 f;
+    vec2 quadUv = sg_quadAt(clamp(uv * size - 0.5, vec2(0.0), vec2(size - 1.0)), size, f);
+    vec4 z = clamp(textureGather(sg_shadowDepth[slot], vec3(quadUv, float(layer))), 0.0, 1.0);
     vec4 z2 = z * z;
     return vec4(sg_bilinearQuad(z, f), sg_bilinearQuad(z2, f), sg_bilinearQuad(z2 * z, f), sg_bilinearQuad(z2 * z2, f));
 }

@@ -3,8 +3,8 @@
 //
 // A one-texel region is the bilinear blend of the 2x2 texels around the receiver, whose four
 // moments come from one gather of the depth map itself: msm keeps no chain, and its shadow pass
-// is hard's (a stored chain cost the depth pass an RGBA32F colour write per fragment, 2.6-3x
-// hard's layer; BENCHMARKS.md's error against time).
+// is hard's (BENCHMARKS.md's error against time; a stored chain cost the depth pass an RGBA32F
+// colour write per fragment: 1.3-3.9x hard's shadow pass at 1024^2 on that chart's scenes).
 #ifndef SG_SHADOW_MSM
 #define SG_SHADOW_MSM
 #include "shadow_hamburger.glsl"

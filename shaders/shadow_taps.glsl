@@ -11,6 +11,16 @@ struct sg_TexelQuad {
     vec2 f;  // the tap's position inside the quad
 };
 
+// The 2x2 texels around map position `st` (texels, less half a texel: st = uv * mapSize - 0.5) of
+// a map `size` texels wide: the uv of the corner they share, where a gather reads exactly these
+// four whatever the sampler's sub-texel rounding (a quad one texel off is a whole gradient step
+// off), and `f`, the position inside the quad.
+vec2 sg_quadAt(vec2 st, float size, out vec2 f) {
+    vec2 base = floor(st);
+    f = st - base;
+    return (base + 1.0) / size;
+}
+
 // The reference depths (stored units) of the 2x2 texels around tap `t`, in textureGather's
 // order ((0,1), (1,1), (1,0), (0,0) from the lower-left texel): the receiver plane's depth at each
 // texel's own centre, less the bias. `f` is the tap's position inside the quad.
@@ -24,12 +34,7 @@ vec4 sg_quadReferences(sg_GpuLight L, sg_Receiver r, sg_Tap t, out vec2 f, out v
     float secant = sqrt(1.0 + r.slope * r.slope);
     float bend = r.bendPerReach2 * t.reach * t.reach * secant * secant * secant;
     float bias = r.depthBias + min(bend, (1.0 - sg_kNearSlopeBias) * L.slopeBias * r.texelMetres * r.slope);
-    vec2 st = t.uv * float(L.mapSize) - 0.5;
-    vec2 base = floor(st);
-    f = st - base;
-    // The quad's own centre, so that the gather reads exactly these four texels whatever the
-    // sampler's sub-texel rounding (a quad one texel off is a whole gradient step off).
-    quadUv = (base + 1.0) / float(L.mapSize);
+    quadUv = sg_quadAt(t.uv * float(L.mapSize) - 0.5, float(L.mapSize), f);
     vec4 steps = t.refPerTexel.x * vec4(-f.x, 1.0 - f.x, 1.0 - f.x, -f.x) +
                  t.refPerTexel.y * vec4(1.0 - f.y, 1.0 - f.y, -f.y, -f.y);
     vec4 depths;

@@ -553,12 +553,13 @@ void fitChainFirstLevels(const LayerInputs& light, ShadowTechnique technique, do
     // layer's far plane. Five per cent of margin for the shader's float texel and the receiver's
     // normal offset, which moves it a texel or so.
     constexpr double kTexelMargin = 1.05;
+    // MSM-soft reads level 0's fetches from the depth map itself (sg_chainMoments).
+    const int base = technique == ShadowTechnique::MsmSoft ? std::min(1, levels - 1) : 0;
+    for (ShadowLayerPlan& layer : layers) layer.chainFirstLevel = base;
+    if (technique != ShadowTechnique::Vsm || !(radius > 0.0)) return;
     const double farthest = geometry.everything.empty() ? std::numeric_limits<double>::infinity()
                                                         : farthestCorner(light.pose.wsPosition, geometry.everything);
     for (ShadowLayerPlan& layer : layers) {
-        // MSM-soft reads level 0's fetches from the depth map itself (sg_chainMoments).
-        layer.chainFirstLevel = technique == ShadowTechnique::MsmSoft ? std::min(1, levels - 1) : 0;
-        if (technique != ShadowTechnique::Vsm || !(radius > 0.0)) continue;
         const double distance = layer.orthographic ? 1.0 : std::min(farthest, static_cast<double>(layer.depthScale));
         const double texel = 2.0 / (layer.clipFromLight[0][0] * light.mapSize) * distance * kTexelMargin;
         const double texels = std::min(radius / texel, maxFilterTexels);
