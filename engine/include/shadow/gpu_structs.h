@@ -46,7 +46,7 @@ SG_FLOAT depthScale;     // stored depth = lsDepth / depthScale
 SG_FLOAT depthNear;      // near plane of the projection (m)
 SG_FLOAT splitFar;       // directional: camera distance where this cascade ends (m)
 SG_INT orthographic;     // 1 for directional lights
-SG_FLOAT momentScale;    // VSSM: its summed-area table holds the moments of min(z momentScale, 1)
+SG_FLOAT momentScale;    // VSSM: its summed-area table holds the moments of min(z momentScale, 1) (0: no table)
 SG_FLOAT blockerNear;    // the nearest a blocker can be (m; ShadowLayerPlan::blockerNear)
 SG_INT chainFirstLevel;  // VSM, MSM-soft: the lowest level of the moment chain built (ShadowLayerPlan)
 SG_FLOAT reserved2;

@@ -3,7 +3,8 @@
 // point: six cube faces) and, for the techniques that read one, a filter chain (min/max pyramid,
 // moments, summed-area table). `render` draws only the layers the frame marks dirty, clears the
 // layers with no caster, leaves every other layer as the last frame left it, and brings the
-// filter chain of every redrawn layer up to date.
+// filter chain of every redrawn layer up to date (a layer with no caster keeps no summed-area
+// table: its moment scale 0 has the lookups read lit).
 #pragma once
 
 #include <shadow/gl_handles.h>

@@ -46,6 +46,7 @@ struct ShadowLayerPlan {
     /// fixed point (it holds the moments of min(z momentScale, 1)), so that the farthest
     /// caster's bounds lie in (1/4, 1/2]: a light whose range is 10^6 times the depth of its
     /// scene keeps 2^-24 of the casters' depth as its resolution rather than of its range.
+    /// 0 for a layer without casters: its table is not built, and its lookups read lit.
     float momentScale = 1.0f;
     /// MSM-soft: 1, its lookups taking level 0's fetches from the depth map (sg_chainMoments).
     /// VSM: the lowest level of its moment chain that a lookup of this layer reads, the floor of

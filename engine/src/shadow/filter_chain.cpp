@@ -18,7 +18,7 @@ bool fourChannels(FilterChainKind kind) {
 }
 GLenum formatOf(FilterChainKind kind) { return fourChannels(kind) ? GL_RGBA32F : GL_RG32F; }
 
-/// Summed-area table passes: one invocation per row (or column) of the layer.
+/// Summed-area table passes: one invocation per pair of rows (or per column) of the layer.
 constexpr int kSatGroupSize = 64;
 
 }  // namespace
@@ -184,13 +184,15 @@ void FilterChainBuilder::buildSummedArea(GLuint depthArray, const FilterChain& c
                                          float momentScale) {
     const Programs& programs = computePrograms(FilterChainKind::SummedMoments);
     const auto groups = static_cast<GLuint>((mapSize + kSatGroupSize - 1) / kSatGroupSize);
-    // Rows: prefix sums of the quantised moments along x, from the depth map.
+    const auto rowPairGroups = static_cast<GLuint>(((mapSize + 1) / 2 + kSatGroupSize - 1) / kSatGroupSize);
+    // Rows: prefix sums of the quantised moments along x, from the depth map, two rows per
+    // invocation.
     gl.UseProgram(programs.fromDepth.program.get());
     gl.ProgramUniform1i(programs.fromDepth.program.get(), programs.fromDepth.layer, layer);
     gl.ProgramUniform1f(programs.fromDepth.program.get(), programs.fromDepth.momentScale, momentScale);
     gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, depthArray);
     gl.BindImageTexture(SG_IMAGE_MINMAX, chain.texture.get(), 0, GL_FALSE, layer, GL_READ_WRITE, formatOf(chain.kind));
-    gl.DispatchCompute(groups, 1, 1);
+    gl.DispatchCompute(rowPairGroups, 1, 1);
     gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     // Columns: prefix sums of the row sums along y, in place.
     gl.UseProgram(programs.fromBelow.program.get());

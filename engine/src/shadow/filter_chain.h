@@ -43,7 +43,8 @@ struct FilterChain {
     /// Allocates the chain of a `mapSize`^2 array of `layers` layers with `levels` levels.
     static FilterChain allocate(const std::string& label, FilterChainKind kind, int mapSize, int layers, int levels);
     /// Whether a cleared layer's chain is one value throughout, which clearLayer writes: not the
-    /// summed-area table's, whose sums grow across the layer (it is built from the cleared map).
+    /// summed-area table's, whose sums grow across the layer (a layer without casters keeps no
+    /// table: its lookups read lit, ShadowLayerPlan::momentScale).
     [[nodiscard]] bool clearable() const { return kind != FilterChainKind::SummedMoments; }
     /// Every level of `layer` as for a cleared layer, nothing in front of the far plane: all 1.
     void clearLayer(int mapSize, int layer) const;

@@ -59,15 +59,19 @@ Frustum frustumOf(const ShadowLayerPlan& layer) {
 
 /// Sets `layer.casters` to the casters whose bounds meet the layer's frustum, in entity order,
 /// with room for every caster: one moving into the layer later costs no allocation. With
-/// `summedMoments` (a VSSM light) also `layer.momentScale` from the farthest of them
-/// (ShadowLayerPlan::momentScale); other lights keep 1 and skip the corners. Call once the
-/// layer's matrices and depth scale are set.
+/// `summedMoments` (a VSSM light) also `layer.momentScale` from the farthest of them, 0 when
+/// there is none (ShadowLayerPlan::momentScale); other lights keep 1 and skip the corners. Call
+/// once the layer's matrices and depth scale are set.
 void castersIn(const SceneGeometry& g, bool summedMoments, ShadowLayerPlan& layer) {
     const Frustum f = frustumOf(layer);
     const auto meets = [&f](const DAabb& box) { return f.intersects(box); };
     layer.casters.reserve(g.casters.size());
     castersMeeting(g, meets, layer.casters);
     if (!summedMoments) return;
+    if (layer.casters.empty()) {
+        layer.momentScale = 0.0f;  // nothing to sum: no table, every lookup lit
+        return;
+    }
     double farthest = 0.0;
     forEachCaster(g, meets,
                   [&](const BoundedEntity& c) { farthest = std::max(farthest, farthestDepth(layer, c.bounds)); });

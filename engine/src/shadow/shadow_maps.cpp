@@ -269,8 +269,10 @@ void ShadowMaps::Impl::updateChains(const ShadowLightPlan& plan) {
         // straight from the depth map.
         const bool baseDrawn = map.chainBaseDrawn[k];
         const int fromLevel = baseDrawn ? 1 : firstLevel;
-        if (plan.layers[k].casters.empty() && map.chain->clearable()) {
-            map.chain->clearLayer(map.mapSize, static_cast<int>(k));
+        if (plan.layers[k].casters.empty()) {
+            // Nothing in front of the far plane. A summed-area table is left as it is: the
+            // layer's moment scale 0 has its lookups read lit (ShadowLayerPlan::momentScale).
+            if (map.chain->clearable()) map.chain->clearLayer(map.mapSize, static_cast<int>(k));
         } else if (fromLevel < map.chain->levels) {
             formatPassName(passName, plan, map.chain->kind == FilterChainKind::MinMax ? "minmax" : "moments", k);
             const gpu::ScopedPass pass(timer, passName);
