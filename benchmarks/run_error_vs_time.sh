@@ -48,9 +48,11 @@ over it. The moment techniques' shadow column includes their chain, built every 
 (caching off): VSM's level 0 is written by the depth pass itself (a colour target beside the
 depth) where its lookups read level 0 and the levels above by one full-screen draw each, else its
 chain starts at the first level they read (log2 of `pcfRadius` in the layer's largest receiver
-texel), drawn from the depth map; MSM-soft's starts at level 1 the same way, its lookups taking
+texel), drawn from the depth map, and ends at the last they read (a cascade's two levels);
+MSM-soft's starts at level 1 the same way, its lookups taking
 level 0 from a gather of the depth map, as hard-edged MSM takes its one texel (it keeps no
-chain); VSSM's table by two compute passes along rows and columns. Rows `... midpoint` are
+chain); VSSM's table by two compute passes along rows (two per gather) and columns, none for
+a layer without casters. Rows `... midpoint` are
 second-depth maps (`depthMode` midpoint: each layer drawn twice, the mean of the first two
 surfaces stored) with zero constant and slope bias; rows `sdf fieldN stepsM` the distance-field
 march through fields of N voxels along the edge (`ShadowLimits::distanceFieldVoxels` = N³) at M

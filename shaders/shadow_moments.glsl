@@ -34,11 +34,13 @@ float sg_regionLevel(sg_Receiver r, float radius) {
 // texels) filters with a box of 2^L texels convolved with a tent of half-width 2^L, whose
 // variance along each axis, 4^L / 4, is that of a disk of the same radius, r^2 / 4 (PCF's).
 // One level up, a box as wide as the disk, has tails twice as long (tests/shadow/vsm_test.cpp
-// compares VSM with PCF of the same radius). Never below the layer's first level
-// (sg_GpuShadowLayer::chainFirstLevel: the levels below it are not built), which the planner
-// sets below every level a receiver of the layer asks for (VSM; MSM-soft reads sg_chainMoments).
+// compares VSM with PCF of the same radius). Within the layer's first and last levels
+// (sg_GpuShadowLayer::chainFirstLevel and chainLastLevel: the levels beyond are not built), which
+// the planner sets around every level a receiver of the layer asks for (VSM; MSM-soft reads
+// sg_chainMoments).
 vec4 sg_regionMoments(int slot, sg_GpuLight L, sg_Receiver r, sg_Tap center, float radius) {
-    float level = max(sg_regionLevel(r, radius), float(sg_layers[L.firstLayer + center.layer].chainFirstLevel));
+    sg_GpuShadowLayer S = sg_layers[L.firstLayer + center.layer];
+    float level = clamp(sg_regionLevel(r, radius), float(S.chainFirstLevel), float(S.chainLastLevel));
     return textureLod(sg_shadowChain[slot], vec3(center.uv, float(center.layer)), level);
 }
 
@@ -58,11 +60,12 @@ vec4 sg_texelMoments(int slot, sg_GpuLight L, vec2 uv, int layer) {
 }
 
 // A four-moment chain's trilinear fetch at `level` around `uv`, for a chain made from level 1 up
-// (MSM-soft; sg_GpuShadowLayer::chainFirstLevel): below level 1, the fetch's level-0 half comes
-// from the depth map (sg_texelMoments) and is mixed with level 1 by the level's fraction, as
-// the trilinear filter mixes the two levels.
+// (MSM-soft; sg_GpuShadowLayer::chainFirstLevel), whose texture holds no level 0 (its level k is
+// the chain's level k + 1): below level 1, the fetch's level-0 half comes from the depth map
+// (sg_texelMoments) and is mixed with level 1 by the level's fraction, as the trilinear filter
+// mixes the two levels.
 vec4 sg_chainMoments(int slot, sg_GpuLight L, vec2 uv, int layer, float level) {
-    vec4 coarse = textureLod(sg_shadowChain[slot], vec3(uv, float(layer)), max(level, 1.0));
+    vec4 coarse = textureLod(sg_shadowChain[slot], vec3(uv, float(layer)), max(level, 1.0) - 1.0);
     vec4 fine = sg_texelMoments(slot, L, uv, layer);
     return level < 1.0 ? mix(fine, coarse, max(level, 0.0)) : coarse;
 }

@@ -20,7 +20,7 @@ sg_ReceiverPolicy sg_msmSoftPolicy() { return sg_planePolicy(); }
 vec4 sg_quadrantMoments(int slot, sg_GpuLight L, sg_Receiver r, sg_Tap center, float radius) {
     float h = 0.8660254 * radius / max(r.texelMetres, 1e-30);
     float level = max(log2(max(h, 1e-30)) - 0.5, 0.0);
-    vec2 offset = vec2(0.5 * h) / vec2(textureSize(sg_shadowChain[slot], 0).xy);
+    vec2 offset = vec2(0.5 * h / L.mapSize);  // map texels (the chain holds no level 0)
     vec4 m = vec4(0.0);
     for (int k = 0; k < 4; ++k) {
         vec2 quadrant = vec2((k & 1) == 1 ? 1.0 : -1.0, (k & 2) == 2 ? 1.0 : -1.0);

@@ -31,12 +31,15 @@ TEST(MapMemory, MinMaxPyramidIsAQuarterEdgeRg32fChain) {
     EXPECT_EQ(shadowMapBytes(ShadowTechnique::Pcss, 2048, 6, 32.0f), 6 * (16 * kMiB + chain));
 }
 
-TEST(MapMemory, MomentsChainsAreMapSizedAndFourMomentsTwiceAsWide) {
+TEST(MapMemory, MomentsChainsAreMapSizedAndFourMomentsTwiceAsWideFromLevelOne) {
     // VSM at 1024^2, radius 32: levels up to ceil(log2 32) + 1 = 6, RG32F from 1024^2 down.
     std::int64_t vsm = 0;
     for (int edge = 1024, level = 0; level < 6; ++level, edge /= 2) vsm += std::int64_t{8} * edge * edge;
     EXPECT_EQ(shadowMapBytes(ShadowTechnique::Vsm, 1024, 1, 32.0f), 4 * kMiB + vsm);
-    EXPECT_EQ(shadowMapBytes(ShadowTechnique::MsmSoft, 1024, 1, 32.0f), 4 * kMiB + 2 * vsm);
+    // MSM-soft's four moments twice as wide, from level 1: its lookups take level 0 from a gather
+    // of the depth map, and its texture holds no level 0 (a quarter of the chain's whole).
+    EXPECT_EQ(chainStoredFrom(FilterChainKind::FourMoments, 6), 1);
+    EXPECT_EQ(shadowMapBytes(ShadowTechnique::MsmSoft, 1024, 1, 32.0f), 4 * kMiB + 2 * (vsm - 8 * kMiB));
     // Hard-edged MSM gathers its one texel's moments from the depth map: no chain.
     EXPECT_EQ(shadowMapBytes(ShadowTechnique::Msm, 1024, 1, 32.0f), 4 * kMiB);
     // VSSM's summed-area table: one RGBA32F level whatever the radius.

@@ -480,6 +480,13 @@ TEST(Planner, AVsmCascadeStartsItsChainAtTheLevelOfItsFilterRadius) {
             std::printf("[ measured ] %s cascade: texel %.4f m, radius %.1f texels, first level %d\n",
                         techniqueName(technique), texel, 0.2 / texel, layer.chainFirstLevel);
             EXPECT_EQ(layer.chainFirstLevel, expected) << techniqueName(technique);
+            // ... and ends at the level above: the trilinear fetch's two levels, the whole chain.
+            // Other techniques keep the chain's top.
+            const int last =
+                technique == ShadowTechnique::Vsm
+                    ? std::clamp(static_cast<int>(std::floor(std::log2(0.2 * 1.05 / texel))) + 1, expected, levels - 1)
+                    : levels - 1;
+            EXPECT_EQ(layer.chainLastLevel, last) << techniqueName(technique);
             widest = std::max(widest, layer.chainFirstLevel);
         }
         if (technique == ShadowTechnique::Vsm) {
@@ -515,6 +522,47 @@ TEST(Planner, AVsmSpotBoundsItsTexelByEverythingTheSceneHoldsNotOnlyItsReceivers
     const int known = firstLevel(true);
     EXPECT_GE(known, 2) << "the test is vacuous: the chain starts at level 0 anyway";
     EXPECT_EQ(firstLevel(false), known);
+}
+
+TEST(Planner, AVsmSpotEndsItsChainAtTheLevelOfItsNearestPossibleReceiver) {
+    // The highest level a spot's lookups read is the one above log2 of the radius in the
+    // smallest texel a receiver can have: the axial distance of the nearest point of the scene's
+    // bounds, at least its distance times the cosine of the frustum's corner. A light far above
+    // the scene reads few levels; a light inside the scene's bounds (a receiver may stand at it)
+    // every level up to the chain's top.
+    const auto levelsOf = [](double height) {
+        TestScene t;
+        Shadow s = test::hard();
+        s.technique = ShadowTechnique::Vsm;
+        s.mapSize = 1024;
+        s.pcfRadius = 0.05f;
+        s.maxFilterTexels = 64.0f;
+        Light spot = test::lightOf(LightType::Spot);
+        spot.range = 100.0f;
+        addLight(t.scene, "spot", spot, s, {0, height, 0}, {0, -1, 0});
+        ShadowPlanner planner;
+        const ShadowFrame& frame = planner.prepare(t.scene.world, t.update(), t.scene.lights);
+        const ShadowLightPlan& plan = frame.lights.at(0);
+        const ShadowLayerPlan& layer = plan.layers.at(0);
+        const int levels = chainLevels(ShadowTechnique::Vsm, plan.mapSize, plan.settings.maxFilterTexels);
+        // The scene's bounds reach up to their top; the light stands straight above it.
+        double top = 0.0;
+        for (const DAabb& box : t.casterBounds()) top = std::max(top, box.max.y);
+        const double px = layer.clipFromLight[0][0], py = layer.clipFromLight[1][1];
+        const double cornerCos = 1.0 / std::sqrt(1.0 + 1.0 / (px * px) + 1.0 / (py * py));
+        const double texel = 2.0 / (px * 1024.0) * std::max(height - top, 0.0) * cornerCos / 1.05;
+        const int expected = texel > 0.0
+                                 ? std::clamp(static_cast<int>(std::floor(std::log2(std::max(0.05 / texel, 1.0)))) + 1,
+                                              layer.chainFirstLevel, levels - 1)
+                                 : levels - 1;
+        std::printf("[ measured ] vsm spot %.0f m up: levels %d to %d of %d\n", height, layer.chainFirstLevel,
+                    layer.chainLastLevel, levels);
+        EXPECT_EQ(layer.chainLastLevel, expected) << height << " m up";
+        return std::pair{layer.chainLastLevel, levels};
+    };
+    const auto [high, levels] = levelsOf(30.0);
+    EXPECT_LT(high, levels - 1) << "a light far above the scene builds fewer levels: the test is vacuous";
+    EXPECT_EQ(levelsOf(0.5).first, levels - 1) << "a light inside the scene's bounds";
 }
 
 }  // namespace

@@ -49,5 +49,5 @@ SG_INT orthographic;     // 1 for directional lights
 SG_FLOAT momentScale;    // VSSM: its summed-area table holds the moments of min(z momentScale, 1) (0: no table)
 SG_FLOAT blockerNear;    // the nearest a blocker can be (m; ShadowLayerPlan::blockerNear)
 SG_INT chainFirstLevel;  // VSM, MSM-soft: the lowest level of the moment chain built (ShadowLayerPlan)
-SG_FLOAT reserved2;
+SG_INT chainLastLevel;   // VSM: the highest level of the moment chain built (ShadowLayerPlan)
 SG_END_STRUCT

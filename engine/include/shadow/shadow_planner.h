@@ -56,6 +56,12 @@ struct ShadowLayerPlan {
     /// there, straight from the depth map, and the levels below are neither built nor read; the
     /// depth pass writes the moments beside the depth only at 0 (ShadowMaps).
     int chainFirstLevel = 0;
+    /// VSM: the highest level of its moment chain that a lookup of this layer reads, the level
+    /// above the floor of log2 of the filter radius in the smallest texel any receiver of the
+    /// layer has (its cascade's texel: a cascade's chain is two levels; a perspective layer's at
+    /// the nearest point of the scene's known bounds, seen at the frustum's corner). The levels
+    /// above are not built. The chain's top level for every other technique.
+    int chainLastLevel = 0;
     /// Casters (meshes and `ShadowCasterDraw`s) whose world bounds meet this layer's frustum,
     /// in entity order.
     std::vector<Entity> casters;

@@ -78,6 +78,7 @@ GpuShadowLayer packLayer(const ShadowLayerPlan& layer, const glm::dvec3& wsCamer
     l.orthographic = layer.orthographic ? 1 : 0;
     l.momentScale = layer.momentScale;
     l.chainFirstLevel = layer.chainFirstLevel;
+    l.chainLastLevel = layer.chainLastLevel;
     return l;
 }
 

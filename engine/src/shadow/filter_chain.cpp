@@ -25,15 +25,17 @@ constexpr int kSatGroupSize = 64;
 
 FilterChain FilterChain::allocate(const std::string& label, FilterChainKind kind, int mapSize, int layers, int levels) {
     FilterChain c;
-    const int base = baseSize(kind, mapSize);
     c.kind = kind;
     c.levels = levels;
+    c.storedFrom = chainStoredFrom(kind, levels);
+    const int base = c.storedEdge(mapSize);
+    const int stored = c.levels - c.storedFrom;
     // Moments are filtered (trilinear: a region's mean); min/max texels and the table's limbs are
     // read one by one.
     const bool filtered = kind == FilterChainKind::Moments || kind == FilterChainKind::FourMoments;
     static constexpr std::array<const char*, 4> kSuffix{"/minmax", "/moments", "/moments", "/summed-moments"};
     c.texture = gpu::makeTexture(label + kSuffix.at(static_cast<std::size_t>(kind)), GL_TEXTURE_2D_ARRAY);
-    gl.TextureStorage3D(c.texture.get(), c.levels, formatOf(kind), base, base, layers);
+    gl.TextureStorage3D(c.texture.get(), stored, formatOf(kind), base, base, layers);
     gl.TextureParameteri(c.texture.get(), GL_TEXTURE_MIN_FILTER,
                          filtered ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_NEAREST);
     gl.TextureParameteri(c.texture.get(), GL_TEXTURE_MAG_FILTER, filtered ? GL_LINEAR : GL_NEAREST);
@@ -43,7 +45,7 @@ FilterChain FilterChain::allocate(const std::string& label, FilterChainKind kind
         for (int layer = 0; layer < layers; ++layer) {
             GLuint view = 0;
             gl.GenTextures(1, &view);  // a view takes a name that has no target yet
-            gl.TextureView(view, GL_TEXTURE_2D, c.texture.get(), formatOf(kind), 0, static_cast<GLuint>(levels),
+            gl.TextureView(view, GL_TEXTURE_2D, c.texture.get(), formatOf(kind), 0, static_cast<GLuint>(stored),
                            static_cast<GLuint>(layer), 1);
             // Bilinear within the one level it shows (the mean of 2x2 texels from one fetch).
             gl.TextureParameteri(view, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -53,14 +55,20 @@ FilterChain FilterChain::allocate(const std::string& label, FilterChainKind kind
             c.layerViews.emplace_back(view);
         }
     }
+    // A moment chain's levels beyond those a layer's lookups read are not built (ShadowLayerPlan's
+    // chainFirstLevel, chainLastLevel), yet a trilinear fetch at the last level built reads the
+    // one above with weight 0: every level starts as the far plane's moments, finite.
+    if (filtered) {
+        for (int layer = 0; layer < layers; ++layer) c.clearLayer(mapSize, layer);
+    }
     gpu::checkGlError("allocating " + label + " filter chain");
     return c;
 }
 
 void FilterChain::clearLayer(int mapSize, int layer) const {
     const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f};
-    int size = baseSize(kind, mapSize);
-    for (int level = 0; level < levels; ++level, size = std::max(1, size / 2)) {
+    int size = storedEdge(mapSize);
+    for (int level = 0; level < levels - storedFrom; ++level, size = std::max(1, size / 2)) {
         gl.ClearTexSubImage(texture.get(), level, 0, 0, layer, size, size, 1, fourChannels(kind) ? GL_RGBA : GL_RG,
                             GL_FLOAT, far);
     }
@@ -81,12 +89,15 @@ FilterChainBuilder::Pass makePass(const std::string& label, const std::string& f
 }  // namespace
 
 void FilterChainBuilder::build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale,
-                               int fromLevel, bool fromDepth) {
+                               int fromLevel, bool fromDepth, int toLevel) {
     gl.BindSampler(SG_UNIT_MINMAX_SOURCE, 0);  // the textures' own nearest filtering, no comparison
     switch (chain.kind) {
         case FilterChainKind::MinMax: buildMinMax(depthArray, chain, mapSize, layer); break;
         case FilterChainKind::Moments:
-        case FilterChainKind::FourMoments: buildMoments(depthArray, chain, mapSize, layer, fromLevel, fromDepth); break;
+        case FilterChainKind::FourMoments:
+            buildMoments(depthArray, chain, mapSize, layer, fromLevel, fromDepth,
+                         toLevel < 0 ? chain.levels - 1 : std::min(toLevel, chain.levels - 1));
+            break;
         case FilterChainKind::SummedMoments: buildSummedArea(depthArray, chain, mapSize, layer, momentScale); break;
     }
     gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
@@ -125,14 +136,21 @@ void FilterChainBuilder::buildMinMax(GLuint depthArray, const FilterChain& chain
 }
 
 void FilterChainBuilder::buildMoments(GLuint depthArray, const FilterChain& chain, int mapSize, int layer,
-                                      int fromLevel, bool fromDepth) {
+                                      int fromLevel, bool fromDepth, int toLevel) {
     const MomentsPrograms& programs = momentsPrograms();
     const GLuint fb = momentsFramebuffer_.get();
     const GLuint view = chain.layerViews.at(static_cast<std::size_t>(layer)).get();
     gl.Disable(GL_DEPTH_TEST);
     gl.BindFramebuffer(GL_FRAMEBUFFER, fb);
     gl.BindVertexArray(emptyVertexArray_.get());
-    for (int level = fromLevel; level < chain.levels; ++level) {
+    // Chain levels; the texture's are storedFrom lower. Below the first level it holds nothing
+    // is drawn, and its first is drawn from the depth map.
+    const int base = chain.storedFrom;
+    if (base > 0 && fromLevel <= base) {
+        fromLevel = base;
+        fromDepth = true;
+    }
+    for (int level = fromLevel; level <= toLevel; ++level) {
         const int size = std::max(1, mapSize >> level);
         const bool fromMap = fromDepth && level == fromLevel;
         const MomentsPrograms::Pass& pass = fromMap ? programs.fromDepth : programs.fromBelow;
@@ -143,16 +161,16 @@ void FilterChainBuilder::buildMoments(GLuint depthArray, const FilterChain& chai
             gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, depthArray);
         } else {
             // The view shows the level below alone, so the level drawn is not one it samples.
-            gl.TextureParameteri(view, GL_TEXTURE_BASE_LEVEL, level - 1);
-            gl.TextureParameteri(view, GL_TEXTURE_MAX_LEVEL, level - 1);
+            gl.TextureParameteri(view, GL_TEXTURE_BASE_LEVEL, level - 1 - base);
+            gl.TextureParameteri(view, GL_TEXTURE_MAX_LEVEL, level - 1 - base);
             gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, view);
         }
-        gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, chain.texture.get(), level, layer);
+        gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, chain.texture.get(), level - base, layer);
         gl.Viewport(0, 0, size, size);
         gl.DrawArrays(GL_TRIANGLES, 0, 3);
     }
     gl.TextureParameteri(view, GL_TEXTURE_BASE_LEVEL, 0);
-    gl.TextureParameteri(view, GL_TEXTURE_MAX_LEVEL, chain.levels - 1);
+    gl.TextureParameteri(view, GL_TEXTURE_MAX_LEVEL, chain.levels - 1 - base);
     gl.BindVertexArray(0);
     gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, 0, 0, 0);
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);

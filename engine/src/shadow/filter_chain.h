@@ -5,7 +5,8 @@
 //     whole filter region from four fetches.
 //   - Moments (VSM): texel (level k) holds the mean stored depth and mean squared depth of
 //     a tile of 2^k map texels; a trilinear fetch gives a filter region's mean and variance.
-//   - FourMoments (MSM, MSM-soft): the same with the means of z, z^2, z^3 and z^4.
+//   - FourMoments (MSM-soft): the same with the means of z, z^2, z^3 and z^4, from level 1 up
+//     (its texture's level 0 is level 1: the lookups gather level 0 from the depth map).
 //   - SummedMoments (VSSM): one level, a summed-area table of z and z^2 in 24-bit fixed point,
 //     exact integer sums modulo 2^48 held as two 24-bit limbs per moment in RGBA32F (integers
 //     below 2^24 are exact floats); any rectangle's moments come from its four corners, with no
@@ -17,6 +18,7 @@
 #include "gl/objects.h"
 #include "shadow/map_memory.h"
 
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <string>
@@ -30,12 +32,17 @@ struct FilterChain {
     gpu::Texture texture;
     FilterChainKind kind = FilterChainKind::MinMax;
     int levels = 0;
+    /// The first level the texture holds, its level 0 (`chainStoredFrom`): level k of the chain
+    /// is the texture's level k - storedFrom. 1 for four moments, whose level 0 no lookup reads.
+    int storedFrom = 0;
     /// Moment chains: a 2D view of each layer, through which a level's draw samples the level
     /// below alone (its base and max level set to it).
     std::vector<gpu::Texture> layerViews;
 
-    /// `chainBaseSize` (map_memory.h).
+    /// `chainBaseSize` (map_memory.h): the edge of the chain's level 0.
     [[nodiscard]] static int baseSize(FilterChainKind kind, int mapSize) { return chainBaseSize(kind, mapSize); }
+    /// The edge of the texture's level 0, the chain's level `storedFrom`.
+    [[nodiscard]] int storedEdge(int mapSize) const { return std::max(1, baseSize(kind, mapSize) >> storedFrom); }
     /// `chainLevels` (map_memory.h).
     [[nodiscard]] static int levelsFor(ShadowTechnique t, int mapSize, float maxFilterTexels) {
         return chainLevels(t, mapSize, maxFilterTexels);
@@ -51,7 +58,7 @@ struct FilterChain {
     /// Whether the depth pass can write level 0 as it draws a layer (moment chains: the powers of
     /// the depth it stores, SG_DEPTH_MOMENTS), leaving `build` the levels above.
     [[nodiscard]] bool drawnWithDepth() const {
-        return kind == FilterChainKind::Moments || kind == FilterChainKind::FourMoments;
+        return (kind == FilterChainKind::Moments || kind == FilterChainKind::FourMoments) && storedFrom == 0;
     }
     /// Bytes of GPU memory the chain holds (`chainBytes`, what the memory budget counts).
     [[nodiscard]] long long bytes(int mapSize, int layers) const { return chainBytes(kind, mapSize, layers, levels); }
@@ -65,9 +72,10 @@ public:
     /// Moment chains: levels `fromLevel` and above; level `fromLevel` straight from the depth map
     /// when `fromDepth` (each texel the mean over its 2^fromLevel-texel tile), else from the level
     /// below, current already (level 0 written by the depth pass, `drawnWithDepth`). The levels
-    /// below a first level drawn from the depth are not built (ShadowLayerPlan::chainFirstLevel).
+    /// below a first level drawn from the depth are not built (ShadowLayerPlan::chainFirstLevel),
+    /// nor those above `toLevel` (chainLastLevel; the top level when negative).
     void build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale = 1.0f,
-               int fromLevel = 0, bool fromDepth = true);
+               int fromLevel = 0, bool fromDepth = true, int toLevel = -1);
 
     /// A compute program and its uniforms.
     struct Pass {
@@ -78,7 +86,7 @@ public:
 private:
     void buildMinMax(GLuint depthArray, const FilterChain& chain, int mapSize, int layer);
     void buildMoments(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, int fromLevel,
-                      bool fromDepth);
+                      bool fromDepth, int toLevel);
     void buildSummedArea(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale);
 
     /// Compute builds. The min/max pyramid: level 0 from the depth map, then each level from the

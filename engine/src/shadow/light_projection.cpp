@@ -547,28 +547,44 @@ void planLayers(const LayerInputs& light, const CameraView& camera, const SceneG
     for (ShadowLayerPlan& layer : layers) layer.blockerNear = static_cast<float>(std::max(nearest, clipped));
 }
 
-void fitChainFirstLevels(const LayerInputs& light, ShadowTechnique technique, double radius, double maxFilterTexels,
-                         int levels, const SceneGeometry& geometry, std::span<ShadowLayerPlan> layers) {
-    // A lookup reads level log2(radius in the receiver's texels) (sg_regionMoments), least where
-    // the texel is largest: a cascade's texel is one size throughout, a perspective layer's grows
-    // with the distance from the light, largest at the farthest receiver (axial distance at
-    // most that). The farthest of everything the engine knows, not only its receiving meshes: a
-    // game's own casters (ShadowCasterDraw) may receive in its shader; with nothing known, the
-    // layer's far plane. Five per cent of margin for the shader's float texel and the receiver's
-    // normal offset, which moves it a texel or so.
+void fitChainLevels(const LayerInputs& light, ShadowTechnique technique, double radius, double maxFilterTexels,
+                    int levels, const SceneGeometry& geometry, std::span<ShadowLayerPlan> layers) {
+    // A lookup reads level log2(radius in the receiver's texels) (sg_regionMoments) and the one
+    // above (trilinear), least where the texel is largest, most where it is smallest: a
+    // cascade's texel is one size throughout, a perspective layer's grows with the axial
+    // distance from the light, largest at the farthest receiver (axial distance at most that),
+    // smallest at the nearest (axial distance at least its distance times the cosine of the
+    // frustum's corner). The bounds of everything the engine knows, not only its receiving
+    // meshes: a game's own casters (ShadowCasterDraw) may receive in its shader; with nothing
+    // known, the layer's far plane and the light itself. Five per cent of margin for the
+    // shader's float texel and the receiver's normal offset, which moves it a texel or so.
     constexpr double kTexelMargin = 1.05;
     // MSM-soft reads level 0's fetches from the depth map itself (sg_chainMoments).
     const int base = technique == ShadowTechnique::MsmSoft ? std::min(1, levels - 1) : 0;
-    for (ShadowLayerPlan& layer : layers) layer.chainFirstLevel = base;
-    if (technique != ShadowTechnique::Vsm || !(radius > 0.0)) return;
-    const double farthest = geometry.everything.empty() ? std::numeric_limits<double>::infinity()
-                                                        : farthestCorner(light.pose.wsPosition, geometry.everything);
     for (ShadowLayerPlan& layer : layers) {
-        const double distance = layer.orthographic ? 1.0 : std::min(farthest, static_cast<double>(layer.depthScale));
-        const double texel = 2.0 / (layer.clipFromLight[0][0] * light.mapSize) * distance * kTexelMargin;
-        const double texels = std::min(radius / texel, maxFilterTexels);
+        layer.chainFirstLevel = base;
+        layer.chainLastLevel = levels - 1;
+    }
+    if (technique != ShadowTechnique::Vsm || !(radius > 0.0)) return;
+    const bool known = !geometry.everything.empty();
+    const double farthest =
+        known ? farthestCorner(light.pose.wsPosition, geometry.everything) : std::numeric_limits<double>::infinity();
+    const double nearest = known ? distanceToBox(light.pose.wsPosition, geometry.everything) : 0.0;
+    for (ShadowLayerPlan& layer : layers) {
+        const double perAxial = 2.0 / (layer.clipFromLight[0][0] * light.mapSize);  // texel per axial m
+        const double widest =
+            perAxial * (layer.orthographic ? 1.0 : std::min(farthest, static_cast<double>(layer.depthScale)));
+        const double texels = std::min(radius / (widest * kTexelMargin), maxFilterTexels);
         while (layer.chainFirstLevel + 1 < levels && std::exp2(layer.chainFirstLevel + 1) <= texels)
             ++layer.chainFirstLevel;
+        // The frustum's corner: tangents 1 / P00 and 1 / P11 from the axis.
+        const double px = layer.clipFromLight[0][0], py = layer.clipFromLight[1][1];
+        const double cornerCos = layer.orthographic ? 1.0 : 1.0 / std::sqrt(1.0 + 1.0 / (px * px) + 1.0 / (py * py));
+        const double narrowest = perAxial * (layer.orthographic ? 1.0 : nearest * cornerCos) / kTexelMargin;
+        if (!(narrowest > 0.0)) continue;  // a receiver may stand at the light: every level
+        const double most = radius / narrowest;
+        const int floorLevel = most > 1.0 ? static_cast<int>(std::floor(std::log2(most))) : 0;
+        layer.chainLastLevel = std::clamp(floorLevel + 1, layer.chainFirstLevel, levels - 1);
     }
 }
 

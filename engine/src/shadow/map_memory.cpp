@@ -69,6 +69,10 @@ int chainLevels(ShadowTechnique t, int mapSize, float maxFilterTexels) {
     return std::clamp(needed, 1, all);
 }
 
+int chainStoredFrom(FilterChainKind kind, int levels) {
+    return kind == FilterChainKind::FourMoments ? std::clamp(levels - 1, 0, 1) : 0;
+}
+
 int chainTexelBytes(FilterChainKind kind) {
     return kind == FilterChainKind::FourMoments || kind == FilterChainKind::SummedMoments ? 16 : 8;
 }
@@ -77,7 +81,7 @@ std::int64_t chainBytes(FilterChainKind kind, int mapSize, int layers, int level
     std::int64_t total = 0;
     std::int64_t size = chainBaseSize(kind, mapSize);
     for (int level = 0; level < levels; ++level, size = std::max<std::int64_t>(1, size / 2)) {
-        total += std::int64_t{chainTexelBytes(kind)} * size * size * layers;
+        if (level >= chainStoredFrom(kind, levels)) total += std::int64_t{chainTexelBytes(kind)} * size * size * layers;
     }
     return total;
 }

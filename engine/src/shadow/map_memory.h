@@ -27,10 +27,16 @@ enum class FilterChainKind : std::uint8_t { MinMax, Moments, FourMoments, Summed
 /// and those below; moments: up to ceil(log2(radius)); the summed-area table is one level.
 [[nodiscard]] int chainLevels(ShadowTechnique t, int mapSize, float maxFilterTexels);
 
+/// The first level of a chain of `kind` with `levels` levels that its texture holds (the
+/// texture's level 0): 1 for four moments (MSM-soft, whose lookups take level 0 from a gather of
+/// the depth map) when the chain has a level 1, else 0.
+[[nodiscard]] int chainStoredFrom(FilterChainKind kind, int levels);
+
 /// Bytes of one texel of a chain of `kind` (RG32F, or RGBA32F for four moments and the table).
 [[nodiscard]] int chainTexelBytes(FilterChainKind kind);
 
-/// Bytes of a chain of `kind` with `levels` levels for `layers` layers of a `mapSize`^2 map.
+/// Bytes of a chain of `kind` with `levels` levels for `layers` layers of a `mapSize`^2 map: the
+/// levels from `chainStoredFrom` up.
 [[nodiscard]] std::int64_t chainBytes(FilterChainKind kind, int mapSize, int layers, int levels);
 
 /// Bytes of a depth array of `layers` layers of `mapSize`^2 texels (GL_DEPTH_COMPONENT32F).

@@ -430,9 +430,9 @@ void ShadowPlanner::planMap(const World& world, const CameraView& camera, Shadow
     }
     plan.regionTest = pyramidPays(plan, camera, frame_.wsGeometry, limits_.pyramidTexelsPerPixel);
     const ShadowTechnique technique = plan.technique();
-    fitChainFirstLevels(planned.inputs, technique, plan.settings.pcfRadius, plan.settings.maxFilterTexels,
-                        chainLevels(technique, plan.mapSize, plan.settings.maxFilterTexels), scratch_->geometry,
-                        plan.layers);
+    fitChainLevels(planned.inputs, technique, plan.settings.pcfRadius, plan.settings.maxFilterTexels,
+                   chainLevels(technique, plan.mapSize, plan.settings.maxFilterTexels), scratch_->geometry,
+                   plan.layers);
 }
 
 bool ShadowPlanner::keepLayers(const World& world, ShadowLightPlan& plan, bool cameraMoved) {

@@ -42,8 +42,10 @@ struct ShadowMapGpu {
     /// Per layer: level 0 of its moment chain was written by the depth pass as the layer was
     /// last drawn (`FilterChain::drawnWithDepth`), so the chain's build starts at level 1.
     std::vector<bool> chainBaseDrawn;
-    /// Per layer: the lowest level its chain was last built from (ShadowLayerPlan::chainFirstLevel).
+    /// Per layer: the lowest and highest levels its chain was last built for
+    /// (ShadowLayerPlan::chainFirstLevel, chainLastLevel).
     std::vector<int> chainFirstLevel;
+    std::vector<int> chainLastLevel;
     /// Made this frame (a new light, or a new map size or layer count): its texture name changed.
     bool allocatedThisFrame = true;
 };
@@ -244,6 +246,7 @@ void ShadowMaps::Impl::syncMaps(const ShadowFrame& frame) {
             map->chainCurrent.assign(static_cast<std::size_t>(map->layers), false);
             map->chainBaseDrawn.assign(static_cast<std::size_t>(map->layers), false);
             map->chainFirstLevel.assign(static_cast<std::size_t>(map->layers), 0);
+            map->chainLastLevel.assign(static_cast<std::size_t>(map->layers), 0);
         }
         maps[i].second = std::move(map);
     }
@@ -256,10 +259,13 @@ void ShadowMaps::Impl::updateChains(const ShadowLightPlan& plan) {
     for (std::size_t k = 0; k < plan.layers.size(); ++k) {
         // A layer's moment scale follows its matrices and its casters' bounds, whose changes
         // mark it dirty: a clean layer's table holds the scale of this frame's plan.
-        // So does its first level, but with the receivers too: a clean layer whose lookups now
-        // reach below the levels built has its chain built again.
+        // So do its first and last levels, but with the receivers too: a clean layer whose
+        // lookups now reach beyond the levels built has its chain built again.
         const int firstLevel = plan.layers[k].chainFirstLevel;
-        if (!plan.layers[k].dirty && map.chainCurrent[k] && map.chainFirstLevel[k] <= firstLevel) continue;
+        const int lastLevel = plan.layers[k].chainLastLevel;
+        if (!plan.layers[k].dirty && map.chainCurrent[k] && map.chainFirstLevel[k] <= firstLevel &&
+            map.chainLastLevel[k] >= lastLevel)
+            continue;
         if (map.chain->kind == FilterChainKind::MinMax && !plan.regionTest) {
             // Not read this frame (ShadowLimits::pyramidTexelsPerPixel): built when it next is.
             map.chainCurrent[k] = false;
@@ -273,14 +279,15 @@ void ShadowMaps::Impl::updateChains(const ShadowLightPlan& plan) {
             // Nothing in front of the far plane. A summed-area table is left as it is: the
             // layer's moment scale 0 has its lookups read lit (ShadowLayerPlan::momentScale).
             if (map.chain->clearable()) map.chain->clearLayer(map.mapSize, static_cast<int>(k));
-        } else if (fromLevel < map.chain->levels) {
+        } else if (fromLevel <= lastLevel) {
             formatPassName(passName, plan, map.chain->kind == FilterChainKind::MinMax ? "minmax" : "moments", k);
             const gpu::ScopedPass pass(timer, passName);
             chains.build(map.array.get(), *map.chain, map.mapSize, static_cast<int>(k), plan.layers[k].momentScale,
-                         fromLevel, !baseDrawn);
+                         fromLevel, !baseDrawn, lastLevel);
         }
         map.chainCurrent[k] = true;
         map.chainFirstLevel[k] = baseDrawn ? 0 : firstLevel;
+        map.chainLastLevel[k] = lastLevel;
     }
 }
 
