@@ -7,7 +7,8 @@
 // are left to the level's floor, as GL's own mipmaps round), so a trilinear fetch at level log2(w) gives the moments of a region about w texels wide.
 // A chain whose lookups read nothing below level k (ShadowLayerPlan::chainFirstLevel: VSM's, and
 // MSM-soft's 1, whose lookups take level 0 from the depth map) draws
-// level k straight from the depth map (SG_CHAIN_FROM_DEPTH with uLevel k): each texel the mean
+// level k straight from the depth map (SG_CHAIN_FROM_DEPTH, SG_CHAIN_TILE 1 for level 0, 2 for
+// level 1, 0 for a level k above given by uLevel): each texel the mean
 // over its 2^k x 2^k tile of depth texels, by gathers of 2x2 (the same means as k halvings, which
 // leave the same texels out of a level of odd size), and the levels below are never made: the
 // depth pass then writes no moments, and the chain costs a read of the map.
@@ -36,14 +37,21 @@ layout(location = 0) out vec4 oMoments;
 
 void main() {
     ivec2 texel = ivec2(gl_FragCoord.xy);
+    // One program per case, no `if` between them: llvmpipe runs both sides of an `if`, even on a
+    // uniform, and the first from-depth level of an MSM-soft chain cost a third more for it.
 #ifdef SG_CHAIN_FROM_DEPTH
-    int tile = 1 << uLevel;
-    if (tile == 1) {
-        oMoments = sg_depthMoments(texelFetch(uDepth, ivec3(texel, uLayer), 0).r);
-        return;
-    }
-    // Gathers at the corner each 2x2 block of the tile shares: exactly those four texels.
+#if SG_CHAIN_TILE == 1
+    oMoments = sg_depthMoments(texelFetch(uDepth, ivec3(texel, uLayer), 0).r);
+#else
+    // Gathers at the corner each 2x2 block of the tile shares: exactly those four texels; one
+    // for a tile of 2 (SG_CHAIN_TILE 2, level 1), a loop over the tile's blocks for wider tiles
+    // (SG_CHAIN_TILE 0, the tile 2^uLevel).
     vec2 texelSize = 1.0 / vec2(textureSize(uDepth, 0).xy);
+#if SG_CHAIN_TILE == 2
+    const int tile = 2;
+#else
+    int tile = 1 << uLevel;
+#endif
     vec4 sum = vec4(0.0);
     for (int y = 0; y < tile; y += 2) {
         for (int x = 0; x < tile; x += 2) {
@@ -52,6 +60,7 @@ void main() {
         }
     }
     oMoments = sum / float(tile * tile);
+#endif
 #else
     // One bilinear fetch at the corner the 2x2 texels share: their mean, weights 1/2 and 1/2
     // exactly.

@@ -153,7 +153,10 @@ void FilterChainBuilder::buildMoments(GLuint depthArray, const FilterChain& chai
     for (int level = fromLevel; level <= toLevel; ++level) {
         const int size = std::max(1, mapSize >> level);
         const bool fromMap = fromDepth && level == fromLevel;
-        const MomentsPrograms::Pass& pass = fromMap ? programs.fromDepth : programs.fromBelow;
+        const MomentsPrograms::Pass& pass = !fromMap     ? programs.fromBelow
+                                            : level == 0 ? programs.fromDepthTexel
+                                            : level == 1 ? programs.fromDepthQuad
+                                                         : programs.fromDepthTiles;
         gl.UseProgram(pass.program.get());
         if (fromMap) {
             gl.ProgramUniform1i(pass.program.get(), pass.layer, layer);
@@ -187,7 +190,9 @@ const FilterChainBuilder::MomentsPrograms& FilterChainBuilder::momentsPrograms()
             pass.level = gl.GetUniformLocation(pass.program.get(), "uLevel");
             return pass;
         };
-        p = MomentsPrograms{make("fromDepth", {"SG_CHAIN_FROM_DEPTH"}), make("fromBelow", {})};
+        p = MomentsPrograms{make("fromDepthTexel", {"SG_CHAIN_FROM_DEPTH", "SG_CHAIN_TILE 1"}),
+                            make("fromDepthQuad", {"SG_CHAIN_FROM_DEPTH", "SG_CHAIN_TILE 2"}),
+                            make("fromDepthTiles", {"SG_CHAIN_FROM_DEPTH", "SG_CHAIN_TILE 0"}), make("fromBelow", {})};
     }
     if (!momentsFramebuffer_) {
         momentsFramebuffer_ = gpu::makeFramebuffer("Shadow/moments framebuffer");

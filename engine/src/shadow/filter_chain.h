@@ -107,7 +107,9 @@ private:
             gpu::Program program;
             GLint layer = -1, level = -1;
         };
-        Pass fromDepth, fromBelow;
+        /// From the depth map: level 0 (a texel each), level 1 (one gather each), a level above
+        /// (a loop of gathers over each tile); a level from the one below.
+        Pass fromDepthTexel, fromDepthQuad, fromDepthTiles, fromBelow;
     };
     /// The moment programs (and the framebuffer they draw through), built on first use.
     const MomentsPrograms& momentsPrograms();
