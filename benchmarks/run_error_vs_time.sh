@@ -45,14 +45,11 @@ square whatever the width. `msm` is the hard-edged moment shadow map (four momen
 Hamburger bound over one texel), `msm-soft` VSSM's blocker search and penumbra on the mip chain
 of four moments (one fetch for the search, four for the penumbra) with the four-moment bound
 over it. The moment techniques' shadow column includes their chain, built every frame here
-(caching off): VSM's level 0 is written by the depth pass itself (a colour target beside the
-depth) where its lookups read level 0 and the levels above by one full-screen draw each, else its
-chain starts at the first level they read (log2 of `pcfRadius` in the layer's largest receiver
-texel), drawn from the depth map, and ends at the last they read (a cascade's two levels);
-MSM-soft's starts at level 1 the same way, its lookups taking
-level 0 from a gather of the depth map, as hard-edged MSM takes its one texel (it keeps no
-chain); VSSM's table by two compute passes along rows (two per gather) and columns, none for
-a layer without casters. Rows `... midpoint` are
+(caching off): VSM's and MSM-soft's from level 1 (their lookups take level 0 from a gather of
+the depth map, as hard-edged MSM takes its one texel: it keeps no chain), or from VSM's first
+level read (log2 of `pcfRadius` in the layer's largest receiver texel), drawn from the depth
+map, up to VSM's last level read (a cascade's two levels); VSSM's table by two compute passes
+along rows (two per gather) and columns, none for a layer without casters. Rows `... midpoint` are
 second-depth maps (`depthMode` midpoint: each layer drawn twice, the mean of the first two
 surfaces stored) with zero constant and slope bias; rows `sdf fieldN stepsM` the distance-field
 march through fields of N voxels along the edge (`ShadowLimits::distanceFieldVoxels` = N³) at M

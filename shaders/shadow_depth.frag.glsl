@@ -10,10 +10,6 @@
 // depth test keeps the right surface. Where no surface lies behind the first the layer keeps
 // its clear value, the far depth.
 //
-// With SG_DEPTH_MOMENTS (a VSM, MSM or MSM-soft light's layer) the fragment also writes level 0
-// of the layer's moment chain, the powers of the depth it stores (filter_chain.h): the chain's
-// base costs a colour write per fragment instead of a pass that reads the whole map back.
-//
 // With SG_ALPHA_TESTED (a cut-out caster, `Material::cutout`) its holes are left out, by the same
 // test as the main pass (alpha_test.glsl).
 #include "shadow_common.glsl"
@@ -23,10 +19,6 @@
 in vec2 vTexcoord;
 
 in vec3 vLsPosition;
-
-#ifdef SG_DEPTH_MOMENTS
-layout(location = 0) out vec4 oMoments;
-#endif
 
 uniform float uDepthScale;
 uniform int uOrthographic;
@@ -65,7 +57,4 @@ void main() {
     }
 #endif
     gl_FragDepth = depth;
-#ifdef SG_DEPTH_MOMENTS
-    oMoments = sg_depthMoments(depth);
-#endif
 }

@@ -1,17 +1,15 @@
-// One level of a shadow layer's moment chain, drawn as one full-screen triangle over the level
-// (level 0 only when the depth pass did not write it, SG_DEPTH_MOMENTS in shadow_depth.frag.glsl):
+// One level of a shadow layer's moment chain, drawn as one full-screen triangle over the level:
 // each texel holds the means of the powers of the stored depth over its tile of the map, 2^level
-// texels wide: z and z^2 (VSM), or z, z^2, z^3 and z^4 (MSM and MSM-soft; the chain's format
-// keeps what it holds). Level 0 (SG_CHAIN_FROM_DEPTH) reads one depth texel, every further level
-// averages the 2x2 texels of the level below (of a level of odd size, the last row and column
-// are left to the level's floor, as GL's own mipmaps round), so a trilinear fetch at level log2(w) gives the moments of a region about w texels wide.
-// A chain whose lookups read nothing below level k (ShadowLayerPlan::chainFirstLevel: VSM's, and
-// MSM-soft's 1, whose lookups take level 0 from the depth map) draws
-// level k straight from the depth map (SG_CHAIN_FROM_DEPTH, SG_CHAIN_TILE 1 for level 0, 2 for
-// level 1, 0 for a level k above given by uLevel): each texel the mean
-// over its 2^k x 2^k tile of depth texels, by gathers of 2x2 (the same means as k halvings, which
-// leave the same texels out of a level of odd size), and the levels below are never made: the
-// depth pass then writes no moments, and the chain costs a read of the map.
+// texels wide: z and z^2 (VSM), or z, z^2, z^3 and z^4 (MSM-soft; the chain's format keeps what
+// it holds), so a trilinear fetch at level log2(w) gives the moments of a region about w texels
+// wide. The first level a layer's lookups read (ShadowLayerPlan::chainFirstLevel: 1, or above
+// for a VSM layer whose filter is wider wherever a receiver can be; their level-0 fetches come
+// from the depth map itself, sg_texelMoments) is drawn straight from the depth map
+// (SG_CHAIN_FROM_DEPTH): each texel the mean over its 2^k x 2^k tile of depth texels, by gathers
+// of 2x2 (the same means as k halvings, which leave the same texels out of a level of odd size).
+// Every level above averages the 2x2 texels of the level below (of a level of odd size, the last
+// row and column are left to the level's floor, as GL's own mipmaps round). The levels below the
+// first are never made, and the depth pass writes no moments: the chain costs a read of the map.
 //
 // Draws, not compute dispatches: on llvmpipe an image store costs about 27 ns per texel, more
 // than the fragment pipeline's whole write of it (builtin:default, `--technique vsm --no-cache`:

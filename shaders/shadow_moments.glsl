@@ -1,7 +1,7 @@
 // What every moment technique shares: region moments from a prefiltered chain, Chebyshev's
 // one-sided bound, the variance floor and the receiver's reference depth in stored units.
 //
-// The moments chain (shadow_depth.frag.glsl writes level 0, shadow_moments.frag.glsl the rest) holds the means of powers of the stored depth
+// The moments chain (shadow_moments.frag.glsl; level 0 is read from the depth map, sg_texelMoments) holds the means of powers of the stored depth
 // over every tile of the map, so one trilinear fetch gives a filter region's moments, whatever
 // its width. Chebyshev's one-sided inequality bounds the fraction of the region at least as far
 // as the receiver, P(z >= t) <= var / (var + (t - mean)^2) for t > mean.
@@ -29,6 +29,35 @@ float sg_regionLevel(sg_Receiver r, float radius) {
     return log2(max(radius / max(r.texelMetres, 1e-30), 1.0));
 }
 
+// The four power moments around `uv` in `layer` over one texel: the 2x2 stored depths around it
+// from one gather of the depth map, raised to their powers and blended by lerps, exact where the
+// four agree as the filtering unit's blend is (a region of cleared texels keeps a mean of exactly
+// 1, which the bound reads as lit), edge clamped: a moment chain's level 0 fetched with
+// GL_LINEAR, without the level. Hard-edged MSM reads its one-texel region so; VSM and MSM-soft
+// their regions finer than level 1 (sg_chainMoments).
+vec4 sg_texelMoments(int slot, sg_GpuLight L, vec2 uv, int layer) {
+    float size = float(L.mapSize);
+    vec2 f;
+    vec2 quadUv = sg_quadAt(clamp(uv * size - 0.5, vec2(0.0), vec2(size - 1.0)), size, f);
+    vec4 z = clamp(textureGather(sg_shadowDepth[slot], vec3(quadUv, float(layer))), 0.0, 1.0);
+    vec4 z2 = z * z;
+    return vec4(sg_bilinearQuad(z, f), sg_bilinearQuad(z2, f), sg_bilinearQuad(z2 * z, f), sg_bilinearQuad(z2 * z2, f));
+}
+
+// A moment chain's trilinear fetch at `level` around `uv`, for a chain made from level 1 up (VSM,
+// MSM-soft; sg_GpuShadowLayer::chainFirstLevel), whose texture holds no level 0 (its level k is
+// the chain's level k + 1; a chain of one level holds level 0 alone, read as the depth map's):
+// below level 1, the fetch's level-0 half comes from the depth map (sg_texelMoments) and is
+// mixed with level 1 by the level's fraction, as the trilinear filter mixes the two levels. A
+// loop, not an `if` (a CPU rasteriser runs both sides of an `if`): a group of pixels none of
+// which reads below level 1 takes no gather.
+vec4 sg_chainMoments(int slot, sg_GpuLight L, vec2 uv, int layer, float level) {
+    vec4 m = textureLod(sg_shadowChain[slot], vec3(uv, float(layer)), max(level, 1.0) - 1.0);
+    SG_ISOLATED
+    for (int k = 0; k < int(level < 1.0); ++k) m = mix(sg_texelMoments(slot, L, uv, layer), m, max(level, 0.0));
+    return m;
+}
+
 // The moments of the stored depths (two or four, as the chain holds) over a region of radius
 // `radius` metres around `center`, one fetch whatever the radius: the trilinear fetch at mip level L = log2(radius in
 // texels) filters with a box of 2^L texels convolved with a tent of half-width 2^L, whose
@@ -41,33 +70,7 @@ float sg_regionLevel(sg_Receiver r, float radius) {
 vec4 sg_regionMoments(int slot, sg_GpuLight L, sg_Receiver r, sg_Tap center, float radius) {
     sg_GpuShadowLayer S = sg_layers[L.firstLayer + center.layer];
     float level = clamp(sg_regionLevel(r, radius), float(S.chainFirstLevel), float(S.chainLastLevel));
-    return textureLod(sg_shadowChain[slot], vec3(center.uv, float(center.layer)), level);
-}
-
-// The four power moments around `uv` in `layer` over one texel: the 2x2 stored depths around it
-// from one gather of the depth map, raised to their powers and blended by lerps, exact where the
-// four agree as the filtering unit's blend is (a region of cleared texels keeps a mean of exactly
-// 1, which the bound reads as lit), edge clamped: a four-moment chain's level 0 fetched with
-// GL_LINEAR, without the level. Hard-edged MSM reads its one-texel region so; MSM-soft its
-// regions finer than level 1 (sg_chainMoments).
-vec4 sg_texelMoments(int slot, sg_GpuLight L, vec2 uv, int layer) {
-    float size = float(L.mapSize);
-    vec2 f;
-    vec2 quadUv = sg_quadAt(clamp(uv * size - 0.5, vec2(0.0), vec2(size - 1.0)), size, f);
-    vec4 z = clamp(textureGather(sg_shadowDepth[slot], vec3(quadUv, float(layer))), 0.0, 1.0);
-    vec4 z2 = z * z;
-    return vec4(sg_bilinearQuad(z, f), sg_bilinearQuad(z2, f), sg_bilinearQuad(z2 * z, f), sg_bilinearQuad(z2 * z2, f));
-}
-
-// A four-moment chain's trilinear fetch at `level` around `uv`, for a chain made from level 1 up
-// (MSM-soft; sg_GpuShadowLayer::chainFirstLevel), whose texture holds no level 0 (its level k is
-// the chain's level k + 1): below level 1, the fetch's level-0 half comes from the depth map
-// (sg_texelMoments) and is mixed with level 1 by the level's fraction, as the trilinear filter
-// mixes the two levels.
-vec4 sg_chainMoments(int slot, sg_GpuLight L, vec2 uv, int layer, float level) {
-    vec4 coarse = textureLod(sg_shadowChain[slot], vec3(uv, float(layer)), max(level, 1.0) - 1.0);
-    vec4 fine = sg_texelMoments(slot, L, uv, layer);
-    return level < 1.0 ? mix(fine, coarse, max(level, 0.0)) : coarse;
+    return sg_chainMoments(slot, L, center.uv, center.layer, level);
 }
 
 // The least variance a region's moments are given: the spread of depths within one texel of the

@@ -2,8 +2,7 @@
 // on the four-moment mip chain, one trilinear fetch for the search and four for the penumbra,
 // and the Hamburger 4MSM bound (shadow_hamburger.glsl) over the penumbra. The chain is made from
 // level 1 up: a fetch finer than level 1 takes its level-0 half from a gather of the depth map
-// (sg_chainMoments), so the depth pass writes no RGBA32F moments (a colour write per fragment
-// that cost more than the depth itself).
+// (sg_chainMoments), as VSM's does, so no pass writes RGBA32F moments at the map's resolution.
 #ifndef SG_SHADOW_MSM_SOFT
 #define SG_SHADOW_MSM_SOFT
 #include "shadow_soft_moments.glsl"

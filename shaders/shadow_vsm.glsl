@@ -1,6 +1,6 @@
 // Variance shadow maps: Chebyshev's bound over the two moments of a region of the light's
-// `pcfRadius`, one trilinear fetch of the moments chain whatever its width, taken as the
-// visibility. Where casters overlap at different depths the bound is loose and light leaks (the
+// `pcfRadius`, one trilinear fetch of the moments chain whatever its width (below level 1, with
+// a gather of the depth map for level 0), taken as the visibility. Where casters overlap at different depths the bound is loose and light leaks (the
 // seeds' VSSM notes): bounds below `lightBleedReduction` read as shadow and the rest is
 // stretched back to [0, 1].
 #ifndef SG_SHADOW_VSM

@@ -153,9 +153,10 @@ TEST(CasterDraw, ADrawCallbackDrawsItsOwnInstances) {
     EXPECT_EQ(calls, 2);
 }
 
-/// A moment chain's level 0 holds the powers of the depth the map stores (z, z^2 for VSM) even
-/// where a callback drew with colour writes off, as a game program that writes depth alone
-/// would: such a layer's chain is read back from the map, not left to the depth pass.
+/// A moment chain's first level holds the means of the powers of the depth the map stores (z,
+/// z^2 over 2x2 texels, VSM's level 1, the first its texture holds) where a callback drew with
+/// colour writes off, as a game program that writes depth alone would: the chain is read back
+/// from the map, never left to the depth pass.
 TEST(CasterDraw, AMomentChainHoldsTheDepthsACallbackDrew) {
     test::glContext();
     const std::shared_ptr<const MeshData> box = boxMesh();
@@ -178,20 +179,30 @@ TEST(CasterDraw, AMomentChainHoldsTheDepthsACallbackDrew) {
     Shadows shadows;
     (void)shadows.frame(own);
 
-    const int size = 256;
+    const int size = 256, half = size / 2;
     const std::vector<float> depth = shadows.system.maps().readLayerDepth(0, 0);  // metres
     const float scale = shadows.system.frame().lights[0].layers[0].depthScale;
-    std::vector<float> moments(static_cast<std::size_t>(size) * size * 2);
-    gl.GetTextureSubImage(shadows.system.maps().filterChainOf(0).name, 0, 0, 0, 0, size, size, 1, GL_RG, GL_FLOAT,
+    ASSERT_EQ(shadows.system.frame().lights[0].layers[0].chainFirstLevel, 1);
+    std::vector<float> moments(static_cast<std::size_t>(half) * half * 2);  // the texture's level 0
+    gl.GetTextureSubImage(shadows.system.maps().filterChainOf(0).name, 0, 0, 0, 0, half, half, 1, GL_RG, GL_FLOAT,
                           static_cast<GLsizei>(moments.size() * sizeof(float)), moments.data());
     int drawnTexels = 0, wrong = 0;
-    for (std::size_t i = 0; i < depth.size(); ++i) {
-        const double z = static_cast<float>(depth[i] / scale);  // back to stored units
-        if (z < 0.999) ++drawnTexels;
-        if (std::abs(moments[2 * i] - z) > 1e-6 || std::abs(moments[2 * i + 1] - z * z) > 1e-6) ++wrong;
+    for (int y = 0; y < half; ++y) {
+        for (int x = 0; x < half; ++x) {
+            double mean = 0.0, meanSquare = 0.0;
+            for (int k = 0; k < 4; ++k) {
+                const auto i = static_cast<std::size_t>((2 * y + (k >> 1)) * size + 2 * x + (k & 1));
+                const double z = static_cast<float>(depth[i] / scale);  // back to stored units
+                if (z < 0.999) ++drawnTexels;
+                mean += 0.25 * z;
+                meanSquare += 0.25 * static_cast<float>(z * z);
+            }
+            const auto t = static_cast<std::size_t>(y * half + x);
+            if (std::abs(moments[2 * t] - mean) > 1e-6 || std::abs(moments[2 * t + 1] - meanSquare) > 1e-6) ++wrong;
+        }
     }
     EXPECT_GT(drawnTexels, 1000) << "the box and the ground are in the map";
-    EXPECT_EQ(wrong, 0) << "texels of level 0 that do not hold (z, z^2) of the map";
+    EXPECT_EQ(wrong, 0) << "texels of level 1 that do not hold the means of (z, z^2) of the map";
 }
 
 TEST(CasterDraw, ACasterThatDrawsNothingIsLeftOut) {

@@ -275,11 +275,12 @@ TEST(FilterChain, AVsmChainStartsAtTheFirstLevelItsLookupsRead) {
         EXPECT_EQ(layer.chainFirstLevel, expectedFirst) << "map " << mapSize;
         EXPECT_GE(layer.chainFirstLevel, 2) << "map " << mapSize;
         expectMomentsMatchMap(runner, mapSize, "vsm from its first level, map " + std::to_string(mapSize));
-        // A radius below a texel reads level 0 again: the chain is built from there.
+        // A radius below a texel reads level 0 again, from the depth map: the chain is built from
+        // level 1 (the first its texture holds).
         shadow.pcfRadius = 0.001f;
         (void)test::renderFrame(runner, scene, 64, 48);
-        EXPECT_EQ(runner.shadows().frame().lights[0].layers[0].chainFirstLevel, 0);
-        expectMomentsMatchMap(runner, mapSize, "vsm down to level 0 again, map " + std::to_string(mapSize));
+        EXPECT_EQ(runner.shadows().frame().lights[0].layers[0].chainFirstLevel, 1);
+        expectMomentsMatchMap(runner, mapSize, "vsm down to level 1 again, map " + std::to_string(mapSize));
     }
 }
 

@@ -31,15 +31,19 @@ TEST(MapMemory, MinMaxPyramidIsAQuarterEdgeRg32fChain) {
     EXPECT_EQ(shadowMapBytes(ShadowTechnique::Pcss, 2048, 6, 32.0f), 6 * (16 * kMiB + chain));
 }
 
-TEST(MapMemory, MomentsChainsAreMapSizedAndFourMomentsTwiceAsWideFromLevelOne) {
-    // VSM at 1024^2, radius 32: levels up to ceil(log2 32) + 1 = 6, RG32F from 1024^2 down.
+TEST(MapMemory, MomentsChainsHoldLevelOneUpFourMomentsTwiceAsWide) {
+    // VSM at 1024^2, radius 32: levels up to ceil(log2 32) + 1 = 6, RG32F, held from level 1
+    // (512^2) down: the lookups take level 0 from a gather of the depth map, and the texture
+    // holds no level 0 (three quarters of a full chain's bytes).
     std::int64_t vsm = 0;
-    for (int edge = 1024, level = 0; level < 6; ++level, edge /= 2) vsm += std::int64_t{8} * edge * edge;
+    for (int edge = 512, level = 1; level < 6; ++level, edge /= 2) vsm += std::int64_t{8} * edge * edge;
+    EXPECT_EQ(chainStoredFrom(FilterChainKind::Moments, 6), 1);
     EXPECT_EQ(shadowMapBytes(ShadowTechnique::Vsm, 1024, 1, 32.0f), 4 * kMiB + vsm);
-    // MSM-soft's four moments twice as wide, from level 1: its lookups take level 0 from a gather
-    // of the depth map, and its texture holds no level 0 (a quarter of the chain's whole).
+    // MSM-soft's four moments: the same levels, twice as wide.
     EXPECT_EQ(chainStoredFrom(FilterChainKind::FourMoments, 6), 1);
-    EXPECT_EQ(shadowMapBytes(ShadowTechnique::MsmSoft, 1024, 1, 32.0f), 4 * kMiB + 2 * (vsm - 8 * kMiB));
+    EXPECT_EQ(shadowMapBytes(ShadowTechnique::MsmSoft, 1024, 1, 32.0f), 4 * kMiB + 2 * vsm);
+    // A chain of one level (a filter of at most a texel) holds it.
+    EXPECT_EQ(chainStoredFrom(FilterChainKind::Moments, 1), 0);
     // Hard-edged MSM gathers its one texel's moments from the depth map: no chain.
     EXPECT_EQ(shadowMapBytes(ShadowTechnique::Msm, 1024, 1, 32.0f), 4 * kMiB);
     // VSSM's summed-area table: one RGBA32F level whatever the radius.

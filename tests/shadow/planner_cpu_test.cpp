@@ -454,9 +454,9 @@ namespace {
 
 TEST(Planner, AVsmCascadeStartsItsChainAtTheLevelOfItsFilterRadius) {
     // A cascade's texel is one size throughout, so each of a VSM sun's cascades reads its chain
-    // from the floor of log2(pcfRadius in its texels) (5 % of margin on the texel), at most the
-    // chain's top level; the same light on MSM-soft starts at 1 (its lookups take level 0 from the
-    // depth map), on PCF at 0.
+    // from the floor of log2(pcfRadius in its texels) (5 % of margin on the texel), at least 1
+    // (its lookups take level 0 from the depth map) and at most the chain's top level; the same
+    // light on MSM-soft starts at 1, on PCF at 0.
     for (const ShadowTechnique technique : {ShadowTechnique::Vsm, ShadowTechnique::MsmSoft, ShadowTechnique::Pcf}) {
         TestScene t;
         Shadow s = test::hard();
@@ -476,7 +476,7 @@ TEST(Planner, AVsmCascadeStartsItsChainAtTheLevelOfItsFilterRadius) {
             const double texels = std::min(0.2 / (1.05 * texel), static_cast<double>(plan.settings.maxFilterTexels));
             int expected = technique == ShadowTechnique::MsmSoft ? 1 : 0;
             if (technique == ShadowTechnique::Vsm)
-                expected = std::clamp(static_cast<int>(std::floor(std::log2(texels))), 0, levels - 1);
+                expected = std::clamp(static_cast<int>(std::floor(std::log2(texels))), 1, levels - 1);
             std::printf("[ measured ] %s cascade: texel %.4f m, radius %.1f texels, first level %d\n",
                         techniqueName(technique), texel, 0.2 / texel, layer.chainFirstLevel);
             EXPECT_EQ(layer.chainFirstLevel, expected) << techniqueName(technique);

@@ -89,13 +89,13 @@ FilterChainBuilder::Pass makePass(const std::string& label, const std::string& f
 }  // namespace
 
 void FilterChainBuilder::build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale,
-                               int fromLevel, bool fromDepth, int toLevel) {
+                               int fromLevel, int toLevel) {
     gl.BindSampler(SG_UNIT_MINMAX_SOURCE, 0);  // the textures' own nearest filtering, no comparison
     switch (chain.kind) {
         case FilterChainKind::MinMax: buildMinMax(depthArray, chain, mapSize, layer); break;
         case FilterChainKind::Moments:
         case FilterChainKind::FourMoments:
-            buildMoments(depthArray, chain, mapSize, layer, fromLevel, fromDepth,
+            buildMoments(depthArray, chain, mapSize, layer, fromLevel,
                          toLevel < 0 ? chain.levels - 1 : std::min(toLevel, chain.levels - 1));
             break;
         case FilterChainKind::SummedMoments: buildSummedArea(depthArray, chain, mapSize, layer, momentScale); break;
@@ -136,23 +136,19 @@ void FilterChainBuilder::buildMinMax(GLuint depthArray, const FilterChain& chain
 }
 
 void FilterChainBuilder::buildMoments(GLuint depthArray, const FilterChain& chain, int mapSize, int layer,
-                                      int fromLevel, bool fromDepth, int toLevel) {
+                                      int fromLevel, int toLevel) {
     const MomentsPrograms& programs = momentsPrograms();
     const GLuint fb = momentsFramebuffer_.get();
     const GLuint view = chain.layerViews.at(static_cast<std::size_t>(layer)).get();
     gl.Disable(GL_DEPTH_TEST);
     gl.BindFramebuffer(GL_FRAMEBUFFER, fb);
     gl.BindVertexArray(emptyVertexArray_.get());
-    // Chain levels; the texture's are storedFrom lower. Below the first level it holds nothing
-    // is drawn, and its first is drawn from the depth map.
+    // Chain levels; the texture's are storedFrom lower, and nothing below its level 0 is drawn.
     const int base = chain.storedFrom;
-    if (base > 0 && fromLevel <= base) {
-        fromLevel = base;
-        fromDepth = true;
-    }
+    fromLevel = std::max(fromLevel, base);
     for (int level = fromLevel; level <= toLevel; ++level) {
         const int size = std::max(1, mapSize >> level);
-        const bool fromMap = fromDepth && level == fromLevel;
+        const bool fromMap = level == fromLevel;
         const MomentsPrograms::Pass& pass = !fromMap     ? programs.fromBelow
                                             : level == 0 ? programs.fromDepthTexel
                                             : level == 1 ? programs.fromDepthQuad

@@ -55,11 +55,6 @@ struct FilterChain {
     [[nodiscard]] bool clearable() const { return kind != FilterChainKind::SummedMoments; }
     /// Every level of `layer` as for a cleared layer, nothing in front of the far plane: all 1.
     void clearLayer(int mapSize, int layer) const;
-    /// Whether the depth pass can write level 0 as it draws a layer (moment chains: the powers of
-    /// the depth it stores, SG_DEPTH_MOMENTS), leaving `build` the levels above.
-    [[nodiscard]] bool drawnWithDepth() const {
-        return (kind == FilterChainKind::Moments || kind == FilterChainKind::FourMoments) && storedFrom == 0;
-    }
     /// Bytes of GPU memory the chain holds (`chainBytes`, what the memory budget counts).
     [[nodiscard]] long long bytes(int mapSize, int layers) const { return chainBytes(kind, mapSize, layers, levels); }
 };
@@ -69,13 +64,12 @@ class FilterChainBuilder {
 public:
     /// Builds every level of `layer` of `chain` from `depthArray`, a `mapSize`^2 array; a
     /// summed-area table of the moments of min(z momentScale, 1) (ShadowLayerPlan::momentScale).
-    /// Moment chains: levels `fromLevel` and above; level `fromLevel` straight from the depth map
-    /// when `fromDepth` (each texel the mean over its 2^fromLevel-texel tile), else from the level
-    /// below, current already (level 0 written by the depth pass, `drawnWithDepth`). The levels
-    /// below a first level drawn from the depth are not built (ShadowLayerPlan::chainFirstLevel),
-    /// nor those above `toLevel` (chainLastLevel; the top level when negative).
+    /// Moment chains: levels `fromLevel` (at least the first the texture holds) to `toLevel`
+    /// (the top level when negative); the first straight from the depth map (each texel the mean
+    /// over its 2^fromLevel-texel tile), each above from the one below. The levels outside are not
+    /// built (ShadowLayerPlan::chainFirstLevel, chainLastLevel).
     void build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale = 1.0f,
-               int fromLevel = 0, bool fromDepth = true, int toLevel = -1);
+               int fromLevel = 0, int toLevel = -1);
 
     /// A compute program and its uniforms.
     struct Pass {
@@ -85,8 +79,7 @@ public:
 
 private:
     void buildMinMax(GLuint depthArray, const FilterChain& chain, int mapSize, int layer);
-    void buildMoments(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, int fromLevel,
-                      bool fromDepth, int toLevel);
+    void buildMoments(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, int fromLevel, int toLevel);
     void buildSummedArea(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale);
 
     /// Compute builds. The min/max pyramid: level 0 from the depth map, then each level from the

@@ -559,8 +559,9 @@ void fitChainLevels(const LayerInputs& light, ShadowTechnique technique, double 
     // known, the layer's far plane and the light itself. Five per cent of margin for the
     // shader's float texel and the receiver's normal offset, which moves it a texel or so.
     constexpr double kTexelMargin = 1.05;
-    // MSM-soft reads level 0's fetches from the depth map itself (sg_chainMoments).
-    const int base = technique == ShadowTechnique::MsmSoft ? std::min(1, levels - 1) : 0;
+    // VSM and MSM-soft read level 0's fetches from the depth map itself (sg_chainMoments).
+    const bool moments = technique == ShadowTechnique::Vsm || technique == ShadowTechnique::MsmSoft;
+    const int base = moments ? std::min(1, levels - 1) : 0;
     for (ShadowLayerPlan& layer : layers) {
         layer.chainFirstLevel = base;
         layer.chainLastLevel = levels - 1;

@@ -70,7 +70,8 @@ int chainLevels(ShadowTechnique t, int mapSize, float maxFilterTexels) {
 }
 
 int chainStoredFrom(FilterChainKind kind, int levels) {
-    return kind == FilterChainKind::FourMoments ? std::clamp(levels - 1, 0, 1) : 0;
+    const bool moments = kind == FilterChainKind::Moments || kind == FilterChainKind::FourMoments;
+    return moments ? std::clamp(levels - 1, 0, 1) : 0;
 }
 
 int chainTexelBytes(FilterChainKind kind) {

@@ -28,7 +28,7 @@ enum class FilterChainKind : std::uint8_t { MinMax, Moments, FourMoments, Summed
 [[nodiscard]] int chainLevels(ShadowTechnique t, int mapSize, float maxFilterTexels);
 
 /// The first level of a chain of `kind` with `levels` levels that its texture holds (the
-/// texture's level 0): 1 for four moments (MSM-soft, whose lookups take level 0 from a gather of
+/// texture's level 0): 1 for moments (VSM, MSM-soft, whose lookups take level 0 from a gather of
 /// the depth map) when the chain has a level 1, else 0.
 [[nodiscard]] int chainStoredFrom(FilterChainKind kind, int levels);
 

@@ -39,9 +39,6 @@ struct ShadowMapGpu {
     /// chain matches its map.
     std::optional<FilterChain> chain;
     std::vector<bool> chainCurrent;
-    /// Per layer: level 0 of its moment chain was written by the depth pass as the layer was
-    /// last drawn (`FilterChain::drawnWithDepth`), so the chain's build starts at level 1.
-    std::vector<bool> chainBaseDrawn;
     /// Per layer: the lowest and highest levels its chain was last built for
     /// (ShadowLayerPlan::chainFirstLevel, chainLastLevel).
     std::vector<int> chainFirstLevel;
@@ -188,10 +185,9 @@ void describe(const ShadowLightPlan& plan, LightShadowStats& ls) {
 
 struct ShadowMaps::Impl {
     DepthProgram depth{"Shadow/Depth", {}};
-    /// The other depth programs, by depth mode (`DepthMode`), alpha test (0 opaque, 1 cut-out)
-    /// and moments (1: also writes level 0 of a moment chain), built when a layer first needs one
-    /// (the nearest opaque one without moments is `depth`).
-    std::array<std::array<std::array<std::optional<DepthProgram>, 2>, 2>, 3> others;
+    /// The other depth programs, by depth mode (`DepthMode`) and alpha test (0 opaque, 1
+    /// cut-out), built when a layer first needs one (the nearest opaque one is `depth`).
+    std::array<std::array<std::optional<DepthProgram>, 2>, 3> others;
     NearestScratch scratch;
     /// The distance fields of the sdf lights' casters, made when a light first uses sdf.
     std::optional<gpu::DistanceFieldAtlas> fields;
@@ -213,8 +209,8 @@ struct ShadowMaps::Impl {
     void drawLayer(const World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k,
                    LightShadowStats& ls);
     /// The program of depth mode `mode` (the second pass's for Midpoint and Second), opaque or
-    /// alpha-tested, writing the moments of its depth or not, built on first use.
-    const DepthProgram& program(DepthMode mode, bool cutout, bool moments = false);
+    /// alpha-tested, built on first use.
+    const DepthProgram& program(DepthMode mode, bool cutout);
     /// Brings the filter chain of every layer of `plan` whose map changed up to date.
     void updateChains(const ShadowLightPlan& plan);
 };
@@ -244,7 +240,6 @@ void ShadowMaps::Impl::syncMaps(const ShadowFrame& frame) {
                    !map->chain || map->chain->kind != *kind || map->chain->levels != levels) {
             map->chain = FilterChain::allocate("Shadow/" + plan.name, *kind, map->mapSize, map->layers, levels);
             map->chainCurrent.assign(static_cast<std::size_t>(map->layers), false);
-            map->chainBaseDrawn.assign(static_cast<std::size_t>(map->layers), false);
             map->chainFirstLevel.assign(static_cast<std::size_t>(map->layers), 0);
             map->chainLastLevel.assign(static_cast<std::size_t>(map->layers), 0);
         }
@@ -271,29 +266,26 @@ void ShadowMaps::Impl::updateChains(const ShadowLightPlan& plan) {
             map.chainCurrent[k] = false;
             continue;
         }
-        // From the level above the depth pass's level 0, or from the first level read, drawn
-        // straight from the depth map.
-        const bool baseDrawn = map.chainBaseDrawn[k];
-        const int fromLevel = baseDrawn ? 1 : firstLevel;
+        // From the first level read, drawn straight from the depth map.
         if (plan.layers[k].casters.empty()) {
             // Nothing in front of the far plane. A summed-area table is left as it is: the
             // layer's moment scale 0 has its lookups read lit (ShadowLayerPlan::momentScale).
             if (map.chain->clearable()) map.chain->clearLayer(map.mapSize, static_cast<int>(k));
-        } else if (fromLevel <= lastLevel) {
+        } else {
             formatPassName(passName, plan, map.chain->kind == FilterChainKind::MinMax ? "minmax" : "moments", k);
             const gpu::ScopedPass pass(timer, passName);
             chains.build(map.array.get(), *map.chain, map.mapSize, static_cast<int>(k), plan.layers[k].momentScale,
-                         fromLevel, !baseDrawn, lastLevel);
+                         firstLevel, lastLevel);
         }
         map.chainCurrent[k] = true;
-        map.chainFirstLevel[k] = baseDrawn ? 0 : firstLevel;
+        map.chainFirstLevel[k] = firstLevel;
         map.chainLastLevel[k] = lastLevel;
     }
 }
 
-const DepthProgram& ShadowMaps::Impl::program(DepthMode mode, bool cutout, bool moments) {
-    if (mode == DepthMode::Nearest && !cutout && !moments) return depth;
-    std::optional<DepthProgram>& p = others[static_cast<std::size_t>(mode)][cutout ? 1 : 0][moments ? 1 : 0];
+const DepthProgram& ShadowMaps::Impl::program(DepthMode mode, bool cutout) {
+    if (mode == DepthMode::Nearest && !cutout) return depth;
+    std::optional<DepthProgram>& p = others[static_cast<std::size_t>(mode)][cutout ? 1 : 0];
     if (!p) {
         std::vector<std::string> defines;
         std::string label = "Shadow/Depth";
@@ -304,10 +296,6 @@ const DepthProgram& ShadowMaps::Impl::program(DepthMode mode, bool cutout, bool 
             defines.emplace_back("SG_ALPHA_TESTED");
             label += "/alpha";
         }
-        if (moments) {
-            defines.emplace_back("SG_DEPTH_MOMENTS");
-            label += "/moments";
-        }
         p.emplace(std::move(label), std::move(defines));
     }
     return *p;
@@ -315,41 +303,14 @@ const DepthProgram& ShadowMaps::Impl::program(DepthMode mode, bool cutout, bool 
 
 namespace {
 
-/// Makes layer `layer` of level 0 of `chain` the colour target of `framebuffer`, cleared to the
-/// moments of the far depth (all 1), with colour writes on.
-void attachMoments(GLuint framebuffer, GLuint chain, GLint layer) {
-    gl.NamedFramebufferTextureLayer(framebuffer, GL_COLOR_ATTACHMENT0, chain, 0, layer);
-    gl.NamedFramebufferDrawBuffer(framebuffer, GL_COLOR_ATTACHMENT0);
-    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    const std::array<float, 4> far{1.0f, 1.0f, 1.0f, 1.0f};
-    gl.ClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, far.data());
-}
-
-/// Undoes `attachMoments`: depth only again.
-void detachMoments(GLuint framebuffer) {
-    gl.NamedFramebufferTextureLayer(framebuffer, GL_COLOR_ATTACHMENT0, 0, 0, 0);
-    gl.NamedFramebufferDrawBuffer(framebuffer, GL_NONE);
-    gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-}
-
-/// What the casters of a layer ask of its depth draw, from one look at each.
-struct LayerCasterKinds {
-    bool cutout = false;    ///< a cut-out mesh (`Material::cutout`): its depth needs the alpha test
-    bool callback = false;  ///< drawn by the game's callback (`ShadowCasterDraw::draw`, no mesh
-                            ///< instead), whose program may write depth alone
-};
-
-LayerCasterKinds casterKinds(const World& world, const ShadowLayerPlan& layer) {
-    LayerCasterKinds kinds;
-    for (Entity caster : layer.casters) {
+/// Whether a caster of `layer` is a cut-out mesh (`Material::cutout`), whose depth needs the
+/// alpha test.
+bool anyCutout(const World& world, const ShadowLayerPlan& layer) {
+    return std::any_of(layer.casters.begin(), layer.casters.end(), [&](Entity caster) {
         const Mesh* mesh = world.tryGet<Mesh>(caster);
         const Material* m = world.tryGet<Material>(caster);
-        kinds.cutout = kinds.cutout || (mesh != nullptr && m != nullptr && m->cutout());
-        const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(caster);
-        kinds.callback =
-            kinds.callback || ((mesh == nullptr || mesh->data == nullptr) && own != nullptr && own->draw != nullptr);
-    }
-    return kinds;
+        return mesh != nullptr && m != nullptr && m->cutout();
+    });
 }
 
 /// Draws every caster of `layer` into the bound framebuffer, with `opaque` (current, its layer
@@ -424,7 +385,7 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
     }
     gl.Viewport(0, 0, map.mapSize, map.mapSize);
     const DepthMode mode = plan.settings.depthMode;
-    const LayerCasterKinds kinds = casterKinds(world, layer);
+    const bool cutout = anyCutout(world, layer);
     if (mode != DepthMode::Nearest) {
         // First pass: the nearest depth, into the scratch the second pass reads, by the second
         // pass's own program (see uFirstPass in shadow_depth.frag.glsl).
@@ -434,27 +395,20 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
         const DepthProgram& program = this->program(mode, false);
         program.use(layer, true);
         ls.castersDrawn +=
-            drawCasters(world, meshes, layer, program, kinds.cutout ? &this->program(mode, true) : nullptr, true);
+            drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, true);
     }
     const GLuint framebuffer = map.framebuffer.get();
     gl.NamedFramebufferTextureLayer(framebuffer, GL_DEPTH_ATTACHMENT, map.array.get(), 0, static_cast<GLint>(k));
-    // A moment chain's level 0 comes with the depth, unless the game's callback draws a caster
-    // (with a program that may write depth alone): then the chain's build reads the map back.
-    const bool moments = map.chain && map.chain->drawnWithDepth() && !kinds.callback && layer.chainFirstLevel == 0;
-    if (map.chain) map.chainBaseDrawn[k] = moments;
-    if (moments) attachMoments(framebuffer, map.chain->texture.get(), static_cast<GLint>(k));
     gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     gl.ClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &far);
     if (mode != DepthMode::Nearest) {
         gl.BindSampler(SG_UNIT_MINMAX_SOURCE, 0);  // the texture's own nearest filtering, no comparison
         gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, scratch.texture.get());
     }
-    const DepthProgram& program = this->program(mode, false, moments);
+    const DepthProgram& program = this->program(mode, false);
     program.use(layer);
-    ls.castersDrawn +=
-        drawCasters(world, meshes, layer, program, kinds.cutout ? &this->program(mode, true, moments) : nullptr, false);
+    ls.castersDrawn += drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, false);
     if (mode != DepthMode::Nearest) gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
-    if (moments) detachMoments(framebuffer);
     ++ls.layersDrawn;
 }
 
