@@ -15,6 +15,7 @@
 #include <shadow/scene.h>
 
 #include "render_output.h"
+#include "cli_common.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -446,6 +447,7 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    shadow::samples::keepFreedHeap();
     Options o;
     CLI::App app{"Error against time for every shadow technique and setting (see the file header)."};
     app.add_option("--scenes", o.scenes, "scenes to sweep")->delimiter(',');

@@ -15,6 +15,7 @@
 #include <shadow/scene.h>
 
 #include "render_output.h"
+#include "cli_common.h"
 
 #include <CLI/CLI.hpp>
 
@@ -147,6 +148,7 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    shadow::samples::keepFreedHeap();
     Options o;
     CLI::App app{"Frame time against penumbra width (see the file header)."};
     app.add_option("--size", o.size, "image size WxH");

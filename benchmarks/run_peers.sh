@@ -91,6 +91,10 @@ rm -rf "$work"
 mkdir -p "$work"
 # llvmpipe for OSG too, whatever GL the X server offers.
 export LIBGL_ALWAYS_SOFTWARE=1
+# Both processes keep up to 512 MiB of freed heap (glibc's trim threshold), as shadow_render sets
+# for itself (samples/cli_common.h, keepFreedHeap): llvmpipe allocates each draw's vertex buffers
+# anew, and with glibc's default a frame of one pass gave them back to the kernel every frame.
+export GLIBC_TUNABLES=glibc.malloc.trim_threshold=536870912
 
 run_osg() {  # scene-index mode round
   local scene=${scenes[$1]}
@@ -204,7 +208,10 @@ out.append(f"- **{osg_info['engine']}**: `build-peers/osg_bunny` (benchmarks/pee
            "fixed-width jittered filter (up to 64 taps), its width in proportion to the emitter "
            f"({' and '.join(softness)} of the map); `sm` and `vdsm` have no emitter and compare with GL_LINEAR "
            "(2×2 hardware PCF). Our shading is Lambert + GGX per pixel; OSG's fixed-function Blinn-Phong.")
-out.append(f"- CPU: {cpu}, {cores} cores, shared with other work while measured: compare rows of one run.")
+out.append(f"- CPU: {cpu}, {cores} cores, shared with other work while measured: compare rows of one run. Both "
+           "processes keep up to 512 MiB of freed heap (`GLIBC_TUNABLES=glibc.malloc.trim_threshold=536870912`, "
+           "what shadow_render sets for itself): with glibc's default, llvmpipe's per-draw vertex buffers went "
+           "back to the kernel every frame in which nothing else kept the heap's top in use.")
 for scene in scenes:
     osg, osg_draw, ours, ours_main, ours_wall, _, _ = results[scene]
     out.append("")

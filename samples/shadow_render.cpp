@@ -223,6 +223,7 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    shadow::samples::keepFreedHeap();
     Options o;
     CLI::App app{"Renders a scene with per-light shadows, headless, and writes images, AOVs and stats.json."};
     app.add_option("scene", o.scene, "a sample scene's name, a .gltf/.glb file or builtin:NAME")->required();

@@ -373,6 +373,7 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    shadow::samples::keepFreedHeap();
     Options o;
     CLI::App app{"Shows a scene with per-light shadows in a window, with panels to tune them; or runs a script."};
     app.add_option("scene", o.scene, "a .gltf/.glb file or builtin:NAME (default builtin:default)");
