@@ -69,7 +69,9 @@ vec4 sg_chainMoments(int slot, sg_GpuLight L, vec2 uv, int layer, float level) {
 // sg_chainMoments).
 vec4 sg_regionMoments(int slot, sg_GpuLight L, sg_Receiver r, sg_Tap center, float radius) {
     sg_GpuShadowLayer S = sg_layers[L.firstLayer + center.layer];
-    float level = clamp(sg_regionLevel(r, radius), float(S.chainFirstLevel), float(S.chainLastLevel));
+    // A chain built from level 1 serves the levels below it too (sg_chainMoments).
+    float lowest = S.chainFirstLevel > 1 ? float(S.chainFirstLevel) : 0.0;
+    float level = clamp(sg_regionLevel(r, radius), lowest, float(S.chainLastLevel));
     return sg_chainMoments(slot, L, center.uv, center.layer, level);
 }
 

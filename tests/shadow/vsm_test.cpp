@@ -1,7 +1,8 @@
 // Variance shadow maps (shaders/shadow_vsm.glsl) against geometry: the umbra under a plate reads
 // shadowed and the open ground lit, the penumbra stays within the filter's reach of the
-// geometric edge, light bleeding where casters overlap falls as `lightBleedReduction` rises,
-// and every light type gives finite visibility in [0, 1].
+// geometric edge (a filter finer than a texel as narrow as level 0's blend, which no chain
+// holds), light bleeding where casters overlap falls as `lightBleedReduction` rises, and every
+// light type gives finite visibility in [0, 1].
 #include <gtest/gtest.h>
 #include <shadow/shadow_system.h>
 
@@ -89,6 +90,45 @@ TEST(Vsm, UmbraDarkOpenGroundLitPenumbraWithinTheFilter) {
     EXPECT_EQ(p.openLit, p.open) << "shadow on open ground beyond the filter's reach";
     // At the geometric edge the region holds plate and ground alike: a penumbra, not a step.
     EXPECT_GT(p.bandPartial, p.band * 9 / 10) << "no penumbra at the edge";
+}
+
+/// Ground pixels within 4 texels of the shadow's edge |x| = 1 (away from |z| = 1) whose
+/// visibility is strictly between 0.02 and 0.98, of a frame of the plate scene with VSM of
+/// `radius` m: the penumbra's width in pixels.
+int partialNearTheEdge(float radius, double texel) {
+    Scene scene = plateScene(0.0f);
+    scene.world.get<Shadow>(scene.lights[0]).pcfRadius = radius;
+    FrameRunner runner;
+    const test::RenderedFrame frame = test::renderFrame(runner, scene, 320, 240);
+    const FrameImages& im = frame.images;
+    int partial = 0;
+    for (int y = 0; y < im.position.height; ++y) {
+        for (int x = 0; x < im.position.width; ++x) {
+            if (!test::isGroundPixel(im, x, y)) continue;
+            const glm::dvec3 w = test::positionAt(im, x, y);
+            if (std::abs(w.z) > kPlateHalf - 0.1 || std::abs(std::abs(w.x) - kPlateHalf) > 4.0 * texel) continue;
+            const double v = im.visibility[0].at(x, y, 0);
+            partial += v > 0.02 && v < 0.98 ? 1 : 0;
+        }
+    }
+    return partial;
+}
+
+TEST(Vsm, AFilterFinerThanATexelReadsLevelZeroFromTheDepthMap) {
+    // A radius of a third of a texel asks for level 0, which no chain holds: it is read from a
+    // gather of the depth map (sg_chainMoments), a bilinear blend one texel wide, less than half
+    // the penumbra of a radius of two texels (level 1, the chain's first: 2x2 texels of it
+    // blended). Read from level 1 as well, it would be nearly as wide.
+    test::glContext();
+    const double texel = 2.0 * 4.5 / 512.0;  // the sun's layer spans about the 9 m scene
+    const int fine = partialNearTheEdge(static_cast<float>(texel / 3.0), texel);
+    const int level1 = partialNearTheEdge(static_cast<float>(2.0 * texel), texel);
+    std::printf("[ measured ] vsm penumbra pixels near the edge: radius a third of a texel %d, two texels %d\n", fine,
+                level1);
+    ASSERT_GT(level1, 20);
+    EXPECT_GT(fine, 0) << "no blend at the edge at all";
+    // Measured 14 against 44; clamped to level 1, the fine one was 28.
+    EXPECT_LT(fine, level1 / 2) << "a sub-texel filter nearly as wide as level 1's";
 }
 
 TEST(Vsm, TheBleedReductionCutsLowBoundsAndKeepsUmbraAndOpenGround) {
