@@ -38,9 +38,6 @@ void main() {
     // One program per case, no `if` between them: llvmpipe runs both sides of an `if`, even on a
     // uniform, and the first from-depth level of an MSM-soft chain cost a third more for it.
 #ifdef SG_CHAIN_FROM_DEPTH
-#if SG_CHAIN_TILE == 1
-    oMoments = sg_depthMoments(texelFetch(uDepth, ivec3(texel, uLayer), 0).r);
-#else
     // Gathers at the corner each 2x2 block of the tile shares: exactly those four texels; one
     // for a tile of 2 (SG_CHAIN_TILE 2, level 1), a loop over the tile's blocks for wider tiles
     // (SG_CHAIN_TILE 0, the tile 2^uLevel).
@@ -58,7 +55,6 @@ void main() {
         }
     }
     oMoments = sum / float(tile * tile);
-#endif
 #else
     // One bilinear fetch at the corner the 2x2 texels share: their mean, weights 1/2 and 1/2
     // exactly.

@@ -46,7 +46,7 @@ vec4 sg_texelMoments(int slot, sg_GpuLight L, vec2 uv, int layer) {
 
 // A moment chain's trilinear fetch at `level` around `uv`, for a chain made from level 1 up (VSM,
 // MSM-soft; sg_GpuShadowLayer::chainFirstLevel), whose texture holds no level 0 (its level k is
-// the chain's level k + 1; a chain of one level holds level 0 alone, read as the depth map's):
+// the chain's level k + 1):
 // below level 1, the fetch's level-0 half comes from the depth map (sg_texelMoments) and is
 // mixed with level 1 by the level's fraction, as the trilinear filter mixes the two levels. A
 // loop, not an `if` (a CPU rasteriser runs both sides of an `if`): a group of pixels none of

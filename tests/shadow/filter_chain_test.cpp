@@ -242,7 +242,7 @@ void expectMomentsMatchMap(FrameRunner& runner, int mapSize, const std::string& 
         }
         if (level < first) continue;
         // The texture holds the chain from chainStoredFrom up (four moments: from level 1).
-        const std::vector<float> got = readLevel(chain, level - chainStoredFrom(*kind, levels), 0, size, channels);
+        const std::vector<float> got = readLevel(chain, level - chainStoredFrom(*kind), 0, size, channels);
         for (std::size_t i = 0; i < got.size(); ++i) worst = std::max(worst, std::abs(got[i] - expected[i]));
     }
     std::printf("[ measured ] %s: levels %d to %d of %d, largest |moment - double mean| %.3g\n", what.c_str(), first,

@@ -37,13 +37,17 @@ TEST(MapMemory, MomentsChainsHoldLevelOneUpFourMomentsTwiceAsWide) {
     // holds no level 0 (three quarters of a full chain's bytes).
     std::int64_t vsm = 0;
     for (int edge = 512, level = 1; level < 6; ++level, edge /= 2) vsm += std::int64_t{8} * edge * edge;
-    EXPECT_EQ(chainStoredFrom(FilterChainKind::Moments, 6), 1);
+    EXPECT_EQ(chainStoredFrom(FilterChainKind::Moments), 1);
     EXPECT_EQ(shadowMapBytes(ShadowTechnique::Vsm, 1024, 1, 32.0f), 4 * kMiB + vsm);
     // MSM-soft's four moments: the same levels, twice as wide.
-    EXPECT_EQ(chainStoredFrom(FilterChainKind::FourMoments, 6), 1);
+    EXPECT_EQ(chainStoredFrom(FilterChainKind::FourMoments), 1);
     EXPECT_EQ(shadowMapBytes(ShadowTechnique::MsmSoft, 1024, 1, 32.0f), 4 * kMiB + 2 * vsm);
-    // A chain of one level (a filter of at most a texel) holds it.
-    EXPECT_EQ(chainStoredFrom(FilterChainKind::Moments, 1), 0);
+    // A filter of at most a texel, or a map of one texel, still has the level the texture starts
+    // at: a moment chain is two levels at least, the texture one (a 512^2 level 1, or 1^2).
+    EXPECT_EQ(chainLevels(ShadowTechnique::Vsm, 1024, 1.0f), 2);
+    EXPECT_EQ(chainLevels(ShadowTechnique::MsmSoft, 1, 32.0f), 2);
+    EXPECT_EQ(shadowMapBytes(ShadowTechnique::Vsm, 1024, 1, 1.0f), 4 * kMiB + 8 * 512 * 512);
+    EXPECT_EQ(shadowMapBytes(ShadowTechnique::MsmSoft, 1, 1, 32.0f), 4 + 16);
     // Hard-edged MSM gathers its one texel's moments from the depth map: no chain.
     EXPECT_EQ(shadowMapBytes(ShadowTechnique::Msm, 1024, 1, 32.0f), 4 * kMiB);
     // VSSM's summed-area table: one RGBA32F level whatever the radius.

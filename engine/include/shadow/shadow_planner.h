@@ -54,7 +54,7 @@ struct ShadowLayerPlan {
     /// cascade's texel; a perspective layer's at the farthest corner of the scene's known bounds,
     /// meshes and the game's casters), and at least 1 as MSM-soft's. The chain is built from
     /// there, straight from the depth map, and the levels below are neither built nor read
-    /// through the chain (0 only for a chain of one level).
+    /// through the chain.
     int chainFirstLevel = 0;
     /// VSM: the highest level of its moment chain that a lookup of this layer reads, the level
     /// above the floor of log2 of the filter radius in the smallest texel any receiver of the

@@ -27,7 +27,7 @@ FilterChain FilterChain::allocate(const std::string& label, FilterChainKind kind
     FilterChain c;
     c.kind = kind;
     c.levels = levels;
-    c.storedFrom = chainStoredFrom(kind, levels);
+    c.storedFrom = chainStoredFrom(kind);
     const int base = c.storedEdge(mapSize);
     const int stored = c.levels - c.storedFrom;
     // Moments are filtered (trilinear: a region's mean); min/max texels and the table's limbs are
@@ -95,8 +95,7 @@ void FilterChainBuilder::build(GLuint depthArray, const FilterChain& chain, int 
         case FilterChainKind::MinMax: buildMinMax(depthArray, chain, mapSize, layer); break;
         case FilterChainKind::Moments:
         case FilterChainKind::FourMoments:
-            buildMoments(depthArray, chain, mapSize, layer, fromLevel,
-                         toLevel < 0 ? chain.levels - 1 : std::min(toLevel, chain.levels - 1));
+            buildMoments(depthArray, chain, mapSize, layer, fromLevel, std::min(toLevel, chain.levels - 1));
             break;
         case FilterChainKind::SummedMoments: buildSummedArea(depthArray, chain, mapSize, layer, momentScale); break;
     }
@@ -150,7 +149,6 @@ void FilterChainBuilder::buildMoments(GLuint depthArray, const FilterChain& chai
         const int size = std::max(1, mapSize >> level);
         const bool fromMap = level == fromLevel;
         const MomentsPrograms::Pass& pass = !fromMap     ? programs.fromBelow
-                                            : level == 0 ? programs.fromDepthTexel
                                             : level == 1 ? programs.fromDepthQuad
                                                          : programs.fromDepthTiles;
         gl.UseProgram(pass.program.get());
@@ -186,8 +184,7 @@ const FilterChainBuilder::MomentsPrograms& FilterChainBuilder::momentsPrograms()
             pass.level = gl.GetUniformLocation(pass.program.get(), "uLevel");
             return pass;
         };
-        p = MomentsPrograms{make("fromDepthTexel", {"SG_CHAIN_FROM_DEPTH", "SG_CHAIN_TILE 1"}),
-                            make("fromDepthQuad", {"SG_CHAIN_FROM_DEPTH", "SG_CHAIN_TILE 2"}),
+        p = MomentsPrograms{make("fromDepthQuad", {"SG_CHAIN_FROM_DEPTH", "SG_CHAIN_TILE 2"}),
                             make("fromDepthTiles", {"SG_CHAIN_FROM_DEPTH", "SG_CHAIN_TILE 0"}), make("fromBelow", {})};
     }
     if (!momentsFramebuffer_) {

@@ -33,7 +33,7 @@ struct FilterChain {
     FilterChainKind kind = FilterChainKind::MinMax;
     int levels = 0;
     /// The first level the texture holds, its level 0 (`chainStoredFrom`): level k of the chain
-    /// is the texture's level k - storedFrom. 1 for four moments, whose level 0 no lookup reads.
+    /// is the texture's level k - storedFrom. 1 for moments, whose level 0 no lookup reads.
     int storedFrom = 0;
     /// Moment chains: a 2D view of each layer, through which a level's draw samples the level
     /// below alone (its base and max level set to it).
@@ -64,12 +64,12 @@ class FilterChainBuilder {
 public:
     /// Builds every level of `layer` of `chain` from `depthArray`, a `mapSize`^2 array; a
     /// summed-area table of the moments of min(z momentScale, 1) (ShadowLayerPlan::momentScale).
-    /// Moment chains: levels `fromLevel` (at least the first the texture holds) to `toLevel`
-    /// (the top level when negative); the first straight from the depth map (each texel the mean
+    /// Moment chains: levels `fromLevel` (at least the first the texture holds) to `toLevel` (at
+    /// most the top level); the first straight from the depth map (each texel the mean
     /// over its 2^fromLevel-texel tile), each above from the one below. The levels outside are not
     /// built (ShadowLayerPlan::chainFirstLevel, chainLastLevel).
-    void build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale = 1.0f,
-               int fromLevel = 0, int toLevel = -1);
+    void build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale, int fromLevel,
+               int toLevel);
 
     /// A compute program and its uniforms.
     struct Pass {
@@ -92,17 +92,17 @@ private:
     const Programs& computePrograms(FilterChainKind kind);
     std::array<std::optional<Programs>, 2> computePrograms_;  ///< [summed-area table]
 
-    /// Moment chains: a full-screen draw per level, level 0 from the depth map, the others from
-    /// the level below; the same programs for two and four moments (the chain's format keeps
+    /// Moment chains: a full-screen draw per level, the first built from the depth map, the others
+    /// from the level below; the same programs for two and four moments (the chain's format keeps
     /// what it holds).
     struct MomentsPrograms {
         struct Pass {
             gpu::Program program;
             GLint layer = -1, level = -1;
         };
-        /// From the depth map: level 0 (a texel each), level 1 (one gather each), a level above
-        /// (a loop of gathers over each tile); a level from the one below.
-        Pass fromDepthTexel, fromDepthQuad, fromDepthTiles, fromBelow;
+        /// From the depth map: level 1 (one gather each), a level above (a loop of gathers over
+        /// each tile); a level from the one below.
+        Pass fromDepthQuad, fromDepthTiles, fromBelow;
     };
     /// The moment programs (and the framebuffer they draw through), built on first use.
     const MomentsPrograms& momentsPrograms();

@@ -88,6 +88,10 @@ void resetLayer(ShadowLayerPlan& layer) {
     layer.casters = std::move(casters);
 }
 
+/// The distance of a frustum's corner over its axial depth, for the tangents `tanX` and `tanY` of
+/// its half-angles: a point at axial depth d lies at most d times this from the apex.
+double cornerSecant(double tanX, double tanY) { return std::sqrt(1.0 + tanX * tanX + tanY * tanY); }
+
 /// Distance from `p` to the box (0 inside).
 double distanceToBox(const glm::dvec3& p, const DAabb& box) {
     const glm::dvec3 q = glm::max(glm::max(box.min - p, p - box.max), glm::dvec3(0.0));
@@ -434,13 +438,13 @@ double perspectiveLayer(const LayerInputs& light, const glm::dvec3& direction, c
     if (fitsNear(reach)) {
         // The near plane clips by depth along the axis; a caster at distance d can be as shallow
         // as d times the cosine of the frustum's corner angle.
-        const double cornerCos = 1.0 / std::sqrt(1.0 + 2.0 * tanHalf * tanHalf);
+        const double cornerCos = 1.0 / cornerSecant(tanHalf, tanHalf);
         near = std::clamp(powerOfTwoBelow(std::max(0.9 * nearest * cornerCos, minNear)), minNear, 0.5 * far);
     }
     layer.clipFromLight = glm::perspective(fov, 1.0, near, far);
     // Stored depth is the distance from the light; the farthest point of the frustum is a
     // far-plane corner.
-    layer.depthScale = static_cast<float>(far * std::sqrt(1.0 + 2.0 * tanHalf * tanHalf));
+    layer.depthScale = static_cast<float>(far * cornerSecant(tanHalf, tanHalf));
     layer.depthNear = static_cast<float>(near);
     castersIn(g, light.summedMoments, layer);
     return nearest;
@@ -561,7 +565,7 @@ void fitChainLevels(const LayerInputs& light, ShadowTechnique technique, double 
     constexpr double kTexelMargin = 1.05;
     // VSM and MSM-soft read level 0's fetches from the depth map itself (sg_chainMoments).
     const bool moments = technique == ShadowTechnique::Vsm || technique == ShadowTechnique::MsmSoft;
-    const int base = moments ? std::min(1, levels - 1) : 0;
+    const int base = moments ? 1 : 0;  // chainLevels gives a moment chain two levels at least
     for (ShadowLayerPlan& layer : layers) {
         layer.chainFirstLevel = base;
         layer.chainLastLevel = levels - 1;
@@ -579,8 +583,9 @@ void fitChainLevels(const LayerInputs& light, ShadowTechnique technique, double 
         while (layer.chainFirstLevel + 1 < levels && std::exp2(layer.chainFirstLevel + 1) <= texels)
             ++layer.chainFirstLevel;
         // The frustum's corner: tangents 1 / P00 and 1 / P11 from the axis.
-        const double px = layer.clipFromLight[0][0], py = layer.clipFromLight[1][1];
-        const double cornerCos = layer.orthographic ? 1.0 : 1.0 / std::sqrt(1.0 + 1.0 / (px * px) + 1.0 / (py * py));
+        const double cornerCos =
+            layer.orthographic ? 1.0
+                               : 1.0 / cornerSecant(1.0 / layer.clipFromLight[0][0], 1.0 / layer.clipFromLight[1][1]);
         const double narrowest = perAxial * (layer.orthographic ? 1.0 : nearest * cornerCos) / kTexelMargin;
         if (!(narrowest > 0.0)) continue;  // a receiver may stand at the light: every level
         const double most = radius / narrowest;

@@ -82,8 +82,7 @@ void planLayers(const LayerInputs& light, const CameraView& camera, const SceneG
 /// corner of the scene's known bounds for a perspective layer), at least 1 (its lookups take level
 /// 0 from the depth map), and the highest, the level above log2 of `radius` in the smallest texel
 /// (a cascade's one texel; at the nearest point of the bounds, seen at the frustum's corner),
-/// within `levels`; for MSM-soft 1 when the chain has it, and the top; 0 and the top for every
-/// other light.
+/// within `levels`; for MSM-soft 1 and the top; 0 and the top for every other light.
 void fitChainLevels(const LayerInputs& light, ShadowTechnique technique, double radius, double maxFilterTexels,
                     int levels, const SceneGeometry& geometry, std::span<ShadowLayerPlan> layers);
 

@@ -63,15 +63,17 @@ int chainLevels(ShadowTechnique t, int mapSize, float maxFilterTexels) {
         const double widest = 2.0 * (static_cast<double>(maxFilterTexels) + 1.5);
         for (double tile = SG_MINMAX_TILE; tile < widest; tile *= 2.0) ++needed;
     } else {
-        // A trilinear fetch at level log2(radius in texels) reads that level's floor and ceiling.
+        // A trilinear fetch at level log2(radius in texels) reads that level's floor and ceiling;
+        // level 1 at least, the first the texture holds (chainStoredFrom), whatever the map's size
+        // (a level's edge is at least 1).
         for (double tile = 1.0; tile < static_cast<double>(maxFilterTexels); tile *= 2.0) ++needed;
+        return std::max(std::min(needed, all), 2);
     }
     return std::clamp(needed, 1, all);
 }
 
-int chainStoredFrom(FilterChainKind kind, int levels) {
-    const bool moments = kind == FilterChainKind::Moments || kind == FilterChainKind::FourMoments;
-    return moments ? std::clamp(levels - 1, 0, 1) : 0;
+int chainStoredFrom(FilterChainKind kind) {
+    return kind == FilterChainKind::Moments || kind == FilterChainKind::FourMoments ? 1 : 0;
 }
 
 int chainTexelBytes(FilterChainKind kind) {
@@ -80,9 +82,9 @@ int chainTexelBytes(FilterChainKind kind) {
 
 std::int64_t chainBytes(FilterChainKind kind, int mapSize, int layers, int levels) {
     std::int64_t total = 0;
-    std::int64_t size = chainBaseSize(kind, mapSize);
-    for (int level = 0; level < levels; ++level, size = std::max<std::int64_t>(1, size / 2)) {
-        if (level >= chainStoredFrom(kind, levels)) total += std::int64_t{chainTexelBytes(kind)} * size * size * layers;
+    std::int64_t size = std::max(1, chainBaseSize(kind, mapSize) >> chainStoredFrom(kind));
+    for (int level = chainStoredFrom(kind); level < levels; ++level, size = std::max<std::int64_t>(1, size / 2)) {
+        total += std::int64_t{chainTexelBytes(kind)} * size * size * layers;
     }
     return total;
 }

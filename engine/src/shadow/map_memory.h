@@ -24,13 +24,13 @@ enum class FilterChainKind : std::uint8_t { MinMax, Moments, FourMoments, Summed
 
 /// Levels technique `t`'s lookups of at most `maxFilterTexels` texels of radius read. MinMax:
 /// the first whose tiles are as wide as the widest region (2 * (maxFilterTexels + 1.5) texels),
-/// and those below; moments: up to ceil(log2(radius)); the summed-area table is one level.
+/// and those below; moments: up to ceil(log2(radius)), at least 2; the summed-area table is one
+/// level.
 [[nodiscard]] int chainLevels(ShadowTechnique t, int mapSize, float maxFilterTexels);
 
-/// The first level of a chain of `kind` with `levels` levels that its texture holds (the
-/// texture's level 0): 1 for moments (VSM, MSM-soft, whose lookups take level 0 from a gather of
-/// the depth map) when the chain has a level 1, else 0.
-[[nodiscard]] int chainStoredFrom(FilterChainKind kind, int levels);
+/// The first level of a chain of `kind` that its texture holds (the texture's level 0): 1 for
+/// moments (VSM, MSM-soft, whose lookups take level 0 from a gather of the depth map), else 0.
+[[nodiscard]] int chainStoredFrom(FilterChainKind kind);
 
 /// Bytes of one texel of a chain of `kind` (RG32F, or RGBA32F for four moments and the table).
 [[nodiscard]] int chainTexelBytes(FilterChainKind kind);
