@@ -154,5 +154,51 @@ TEST(BoxTree, AnyStopsAtTheFirstAcceptedItem) {
     EXPECT_FALSE(tree.any([](const DAabb&) { return true; }));
 }
 
+/// The bounds of `box`'s eight corners under `m`, one corner at a time.
+DAabb cornerBounds(const glm::dmat4& m, const DAabb& box) {
+    DAabb out;
+    for (int i = 0; i < 8; ++i) out.extend(glm::dvec3(m * glm::dvec4(box.corner(i), 1.0)));
+    return out;
+}
+
+// transformBounds gives the corners' bounds bit for bit, and a box inside another gets bounds
+// inside the other's (what the light-space queries through the tree rely on), for rotations,
+// scales, shears and translations far from the origin, and for float boxes as their doubles.
+TEST(TransformBounds, EqualsTheCornersBoundsBitForBitAndGrowsWithTheBox) {
+    std::mt19937 rng(14);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const std::vector<BoundedEntity> items = scatteredBoxes(rng, 400);
+    int inner = 0;
+    for (int trial = 0; trial < 200; ++trial) {
+        glm::dvec3 axis(u(rng), u(rng), u(rng));
+        if (glm::length(axis) < 1e-3) axis = {0.0, 1.0, 0.0};
+        glm::dmat4 m = glm::rotate(glm::dmat4(1.0), 3.0 * u(rng), glm::normalize(axis));
+        if (trial % 3 == 1) m = glm::scale(m, glm::dvec3(1.0 + u(rng), 0.01 + std::abs(u(rng)), 3.0));
+        if (trial % 5 == 2) m[1][0] += 0.7 * u(rng);  // a shear
+        m[3] = glm::dvec4(1e5 * u(rng), 1e3 * u(rng), -1e5 * u(rng), 1.0);
+        for (std::size_t i = 0; i < items.size(); i += 7) {
+            const DAabb& box = items[i].bounds;
+            const DAabb fast = transformBounds(m, box);
+            const DAabb slow = cornerBounds(m, box);
+            ASSERT_EQ(fast.min, slow.min) << "trial " << trial << ", box " << i;
+            ASSERT_EQ(fast.max, slow.max) << "trial " << trial << ", box " << i;
+            // A box inside: its bounds inside, whatever the rounding.
+            DAabb shrunk = box;
+            shrunk.min = glm::mix(box.min, box.max, 0.3 * (u(rng) + 1.0) * 0.5);
+            shrunk.max = glm::mix(shrunk.min, box.max, 0.5 * (u(rng) + 1.0));
+            const DAabb in = transformBounds(m, shrunk);
+            ASSERT_TRUE(glm::all(glm::greaterThanEqual(in.min, fast.min)) &&
+                        glm::all(glm::lessThanEqual(in.max, fast.max)))
+                << "trial " << trial << ", box " << i;
+            ++inner;
+        }
+        const Aabb single{glm::vec3(-0.3f, 0.1f, 2.5f), glm::vec3(0.7f, 0.100001f, 9.0f)};
+        const DAabb asDouble{glm::dvec3(single.min), glm::dvec3(single.max)};
+        ASSERT_EQ(transformBounds(m, single), cornerBounds(m, asDouble)) << "trial " << trial;
+    }
+    EXPECT_GT(inner, 10000);
+    EXPECT_TRUE(transformBounds(glm::dmat4(1.0), DAabb{}).empty());
+}
+
 }  // namespace
 }  // namespace shadow

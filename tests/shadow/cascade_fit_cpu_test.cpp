@@ -347,7 +347,7 @@ TEST(CascadeFit, NoVisibleReceiverFallsBackToTheReceiversBounds) {
     SceneGeometry plain;
     gatherGeometry(scene.world, plain);
     std::vector<ShadowLayerPlan> unmeasured;
-    planLayers(layerInputs(sun, {sun.wsPosition, sun.wsDirection}), sky, plain, unmeasured);
+    planLayers(layerInputs(sun, {sun.wsPosition, sun.wsDirection}), sky, plain, false, unmeasured);
     ASSERT_EQ(unmeasured.size(), sun.layers.size());
     float previous = 0.0f;
     for (std::size_t k = 0; k < sun.layers.size(); ++k) {

@@ -50,7 +50,7 @@ std::vector<double> splitsOf(double near, double far, int count, double lambda) 
 std::vector<ShadowLayerPlan> layersOf(const ShadowLightPlan& plan, const LightPose& pose, const CameraView& camera,
                                       const SceneGeometry& geometry) {
     std::vector<ShadowLayerPlan> layers;
-    planLayers(layerInputs(plan, pose), camera, geometry, layers);
+    planLayers(layerInputs(plan, pose), camera, geometry, false, layers);
     return layers;
 }
 
@@ -396,12 +396,12 @@ TEST(LightProjection, PlanningIntoUsedLayersGivesWhatPlanningAfreshGives) {
     g.casters.push_back({world.create(), {{-0.5, 0.0, -0.5}, {0.5, 1.0, 0.5}}});
     const CameraView camera = cameraAt({0, 3, 8}, glm::normalize(glm::dvec3(0, -3, -8)));
     std::vector<ShadowLayerPlan> layers;
-    planLayers(layerInputs(sun.plan, sun.pose), camera, g, layers);
+    planLayers(layerInputs(sun.plan, sun.pose), camera, g, false, layers);
     for (ShadowLayerPlan& layer : layers) layer.dirty = false;
 
     const ShadowLightPlan bulb = planFor(LightType::Point, 0.0f, 0.0f, 512);
     const LightPose bulbPose{{0.0, 3.0, 0.0}, {0.0, -1.0, 0.0}};
-    planLayers(layerInputs(bulb, bulbPose), camera, g, layers);
+    planLayers(layerInputs(bulb, bulbPose), camera, g, false, layers);
     const std::vector<ShadowLayerPlan> fresh = layersOf(bulb, bulbPose, camera, g);
     ASSERT_EQ(layers.size(), fresh.size());
     for (std::size_t k = 0; k < fresh.size(); ++k) {

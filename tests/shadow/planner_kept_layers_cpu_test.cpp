@@ -55,6 +55,9 @@ bool aCasterMoved(const World& world, const ShadowLayerPlan& layer) {
 struct Tally {
     int kept = 0;   ///< layers in view reused
     int dirty = 0;  ///< layers in view redrawn
+    /// Layers planned again with the frustum they had, whose casters changed: their lists
+    /// followed the changed casters (planLayers with `follow`), per light type.
+    int followed[3] = {0, 0, 0};
 };
 
 /// Compares `frame` (from a planner with history) with a planner planning afresh, the caster
@@ -79,6 +82,14 @@ void expectAsPlannedAfresh(const World& world, const CameraView& camera, const s
         EXPECT_EQ(p.affectsView, t.affectsView) << light;
         const ShadowLightPlan* before =
             i < last.lights.size() && last.lights[i].entity == p.entity ? &last.lights[i] : nullptr;
+        for (std::size_t k = 0; before != nullptr && k < std::min(p.layers.size(), before->layers.size()); ++k) {
+            const ShadowLayerPlan& a = p.layers[k];
+            const ShadowLayerPlan& was = before->layers[k];
+            if (a.lightFromWorld == was.lightFromWorld && a.clipFromLight == was.clipFromLight &&
+                a.casters != was.casters) {
+                ++tally.followed[static_cast<int>(p.light.type)];
+            }
+        }
         const bool comparable = before != nullptr && before->affectsView && before->mapSize == p.mapSize &&
                                 before->layers.size() == p.layers.size();
         for (std::size_t k = 0; k < t.layers.size(); ++k) {
@@ -185,9 +196,13 @@ TEST(PlannerKeptLayers, EveryFrameIsWhatPlanningAfreshGivesWhileInstancesLightsA
         expectAsPlannedAfresh(world, camera, play.scene.lights, now, last, "frame " + std::to_string(frame), tally);
         last = now;
     }
-    // Not vacuous: layers were kept and layers were redrawn.
+    // Not vacuous: layers were kept and layers were redrawn, and casters entered and left
+    // layers of every type whose frusta stayed.
     EXPECT_GT(tally.kept, 100);
     EXPECT_GT(tally.dirty, 20);
+    for (const LightType type : {LightType::Directional, LightType::Spot, LightType::Point}) {
+        EXPECT_GT(tally.followed[static_cast<int>(type)], 3) << "light type " << static_cast<int>(type);
+    }
 }
 
 /// Two spots 10 m apart, a box under each, and a camera that sees both.

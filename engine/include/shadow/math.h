@@ -42,14 +42,30 @@ struct BasicAabb {
 using Aabb = BasicAabb<glm::vec3>;
 using DAabb = BasicAabb<glm::dvec3>;
 
-/// Bounds of `box` after the affine transform `m` (exact for the box's corners).
-inline DAabb transformBounds(const glm::dmat4& m, const Aabb& box) {
+/// Bounds of `box` (float or double) after the affine transform `m`: exactly the bounds of its
+/// eight corners transformed by `m * dvec4(corner, 1)`, bit for bit, at the cost of one corner.
+/// Each output coordinate sums one term per input axis, in the order glm's product sums them;
+/// the corner that makes every term least (greatest) makes the rounded sum least (greatest),
+/// since rounding keeps the order. For the same reason the bounds grow with the box: a box
+/// inside another gives bounds inside its bounds (a monotone test for `BoxTree`).
+template <typename Vec>
+DAabb transformBounds(const glm::dmat4& m, const BasicAabb<Vec>& box) {
     DAabb out;
     if (box.empty()) return out;
-    for (int i = 0; i < 8; ++i) {
-        const glm::dvec3 c(box.corner(i));
-        out.extend(glm::dvec3(m * glm::dvec4(c, 1.0)));
+    const glm::dvec3 lo(box.min);
+    const glm::dvec3 hi(box.max);
+    glm::dvec3 least[3];
+    glm::dvec3 most[3];
+    for (int axis = 0; axis < 3; ++axis) {
+        const glm::dvec3 column(m[axis]);
+        const glm::dvec3 a = column * lo[axis];
+        const glm::dvec3 b = column * hi[axis];
+        least[axis] = glm::min(a, b);
+        most[axis] = glm::max(a, b);
     }
+    const glm::dvec3 translation(m[3]);
+    out.min = (least[0] + least[1]) + (least[2] + translation);
+    out.max = (most[0] + most[1]) + (most[2] + translation);
     return out;
 }
 

@@ -229,9 +229,9 @@ private:
     /// frame's kept (`keepLayers`), or planned again; and whether it reads its pyramid (`regionTest`).
     void planMap(const World& world, const CameraView& camera, ShadowLightPlan& plan, bool cameraMoved);
     void markDirty(const World& world, ShadowLightPlan& plan);
-    /// Keeps last frame's layers of `plan` when planning them again would give them back (the
-    /// same light with the same inputs, nothing in its reach changed), with the dirty flags
-    /// `markDirty` would give; false when they must be planned.
+    /// Keeps last frame's layers of `plan`, planned for the same light with the same inputs,
+    /// when planning them again would give them back (nothing in its reach changed), with the
+    /// dirty flags `markDirty` would give; false when they must be planned.
     bool keepLayers(const World& world, ShadowLightPlan& plan, bool cameraMoved);
 
     ShadowFrame frame_;

@@ -30,14 +30,6 @@ double quantizeDown(double x) {
     return std::floor(x / step) * step;
 }
 
-/// Light-space bounds of a world box under the affine `lightFromWorld`.
-DAabb toLightSpace(const glm::dmat4& lightFromWorld, const DAabb& box) {
-    DAabb out;
-    if (box.empty()) return out;
-    for (int i = 0; i < 8; ++i) out.extend(glm::dvec3(lightFromWorld * glm::dvec4(box.corner(i), 1.0)));
-    return out;
-}
-
 /// The stored depth (lsDepth, m) of the point of `box` farthest from the light of `layer`: the
 /// greatest of its corners' (axial for orthographic layers, the distance from the light for
 /// perspective ones, as shadow_depth.frag.glsl stores).
@@ -57,15 +49,68 @@ Frustum frustumOf(const ShadowLayerPlan& layer) {
     return Frustum::fromMatrix(layer.clipFromLight * layer.lightFromWorld);
 }
 
+/// A layer's matrices: while they stay, so does its frustum.
+struct LayerMatrices {
+    glm::dmat4 lightFromWorld{0.0};
+    glm::dmat4 clipFromLight{0.0};
+    friend bool operator==(const LayerMatrices&, const LayerMatrices&) = default;
+};
+
+LayerMatrices matricesOf(const ShadowLayerPlan& layer) { return {layer.lightFromWorld, layer.clipFromLight}; }
+
+/// Brings `casters`, the casters of the last gather whose bounds `meets` accepted (in entity
+/// order), up to the casters of `g`: only a changed caster can have entered or left, and one
+/// did exactly when an odd number of its entries in `g.changed` meet (SceneGeometry::changed).
+/// Its cost grows with the changed casters in the frustum, not with the casters. False, with
+/// `casters` untouched, when more than a few changed entries meet or more than a few casters
+/// entered or left: finding the list anew then costs about as much.
+template <typename Meets>
+bool followChangedCasters(const SceneGeometry& g, const Meets& meets, std::vector<Entity>& casters) {
+    constexpr std::size_t kMostMet = 256;
+    constexpr std::size_t kMostCrossed = 16;
+    std::array<Entity, kMostMet> met{};
+    std::size_t count = 0;
+    const bool few = forEachWhile(g.changedTree, g.changed, meets, [&](const BoundedEntity& c) {
+        if (count == met.size()) return false;
+        met[count++] = c.entity;
+        return true;
+    });
+    if (!few) return false;
+    std::sort(met.begin(), met.begin() + static_cast<std::ptrdiff_t>(count));
+    std::size_t crossed = 0;  // the casters that entered or left, packed at the front of `met`
+    for (std::size_t i = 0; i < count;) {
+        std::size_t j = i + 1;
+        while (j < count && met[j] == met[i]) ++j;
+        if ((j - i) % 2 == 1) met[crossed++] = met[i];
+        i = j;
+    }
+    if (crossed > kMostCrossed) return false;
+    for (std::size_t k = 0; k < crossed; ++k) {
+        const auto at = std::lower_bound(casters.begin(), casters.end(), met[k]);
+        if (at != casters.end() && *at == met[k]) {
+            casters.erase(at);
+        } else {
+            casters.insert(at, met[k]);
+        }
+    }
+    return true;
+}
+
 /// Sets `layer.casters` to the casters whose bounds meet the layer's frustum, in entity order,
-/// with room for every caster: one moving into the layer later costs no allocation. With
-/// `summedMoments` (a VSSM light) also `layer.momentScale` from the farthest of them, 0 when
-/// there is none (ShadowLayerPlan::momentScale); other lights keep 1 and skip the corners. Call
-/// once the layer's matrices and depth scale are set.
-void castersIn(const SceneGeometry& g, bool summedMoments, ShadowLayerPlan& layer) {
+/// with room for every caster: one moving into the layer later costs no allocation. When
+/// `followed` holds the matrices the layer had when its list was last found, over the last
+/// gather's geometry, and the layer still has them, the list follows the changed casters
+/// (`followChangedCasters`) instead of being found anew. With `summedMoments` (a VSSM light)
+/// also `layer.momentScale` from the farthest of them, 0 when there is none
+/// (ShadowLayerPlan::momentScale); other lights keep 1 and skip the corners. Call once the
+/// layer's matrices and depth scale are set.
+void castersIn(const SceneGeometry& g, bool summedMoments, const std::optional<LayerMatrices>& followed,
+               ShadowLayerPlan& layer) {
     const Frustum f = frustumOf(layer);
     const auto meets = [&f](const DAabb& box) { return f.intersects(box); };
     layer.casters.reserve(g.casters.size());
+    const bool same = followed.has_value() && *followed == matricesOf(layer);
+    if (!summedMoments && same && followChangedCasters(g, meets, layer.casters)) return;
     castersMeeting(g, meets, layer.casters);
     if (!summedMoments) return;
     if (layer.casters.empty()) {
@@ -81,11 +126,15 @@ void castersIn(const SceneGeometry& g, bool summedMoments, ShadowLayerPlan& laye
     layer.momentScale = static_cast<float>(std::clamp(std::exp2(std::floor(std::log2(0.5 / stored))), 1.0, 0x1p40));
 }
 
-/// `layer` at its defaults, but with the storage of its caster list.
-void resetLayer(ShadowLayerPlan& layer) {
+/// `layer` at its defaults, but with the storage of its caster list (and the list itself, for
+/// `castersIn` to follow). Returns the matrices it had when `follow`, else nothing.
+std::optional<LayerMatrices> resetLayer(ShadowLayerPlan& layer, bool follow) {
+    std::optional<LayerMatrices> had;
+    if (follow) had = matricesOf(layer);
     std::vector<Entity> casters = std::move(layer.casters);
     layer = ShadowLayerPlan{};
     layer.casters = std::move(casters);
+    return had;
 }
 
 /// The distance of a frustum's corner over its axial depth, for the tangents `tanX` and `tanY` of
@@ -244,12 +293,12 @@ std::optional<DepthInterval> depthInside(const ViewVolume& v, const DAabb& box) 
 void zRangeOfColumn(const glm::dmat4& rotation, const SceneGeometry& g, const glm::dvec2& lo, const glm::dvec2& hi,
                     double& zTop, double& zBottom) {
     const auto mayWiden = [&](const DAabb& box) {
-        const DAabb ls = toLightSpace(rotation, box);
+        const DAabb ls = transformBounds(rotation, box);
         const bool beside = ls.max.x < lo.x || ls.min.x > hi.x || ls.max.y < lo.y || ls.min.y > hi.y;
         return !beside && (ls.max.z > zTop || ls.min.z < zBottom);
     };
     forEachCaster(g, mayWiden, [&](const BoundedEntity& c) {
-        const DAabb ls = toLightSpace(rotation, c.bounds);
+        const DAabb ls = transformBounds(rotation, c.bounds);
         zTop = std::max(zTop, ls.max.z);
         zBottom = std::min(zBottom, ls.min.z);
     });
@@ -297,10 +346,10 @@ void cascadeDepthRange(const glm::dmat4& rotation, const SceneGeometry& g, const
                        const glm::dvec3& lsCamera, const glm::dvec2& lo, const glm::dvec2& hi, double& zTop,
                        double& zBottom, double& casterTop) {
     casterTop = -std::numeric_limits<double>::infinity();
-    double casterBottom = std::numeric_limits<double>::infinity();
-    zRangeOfColumn(rotation, g, lo, hi, casterTop, casterBottom);
+    // The bottom is the receivers' or a lower caster's: the walk need only look for the latter.
+    zBottom = lsReceivers.empty() ? -1.0 : lsReceivers.min.z;
+    zRangeOfColumn(rotation, g, lo, hi, casterTop, zBottom);
     zTop = std::max(lsReceivers.empty() ? 0.0 : lsReceivers.max.z, casterTop);
-    zBottom = std::min(lsReceivers.empty() ? -1.0 : lsReceivers.min.z, casterBottom);
     zTop = std::clamp(zTop, lsCamera.z - kMaxShadowReach, lsCamera.z + kMaxShadowReach);
     zBottom = std::clamp(zBottom, lsCamera.z - kMaxShadowReach, zTop);
     const double step = std::exp2(std::ceil(std::log2(std::max(zTop - zBottom, 1e-3) / 8.0)));
@@ -334,7 +383,7 @@ DepthInterval cascadeSpan(const CameraView& cam, const SceneGeometry& g, double 
     return {nearest, distance};
 }
 
-void planDirectional(const LayerInputs& s, const CameraView& cam, const SceneGeometry& g,
+void planDirectional(const LayerInputs& s, const CameraView& cam, const SceneGeometry& g, bool follow,
                      std::vector<ShadowLayerPlan>& layers) {
     const glm::dmat4 rotation = lookAlong(glm::dvec3(0.0), s.pose.wsDirection);
     const double reach =
@@ -345,7 +394,7 @@ void planDirectional(const LayerInputs& s, const CameraView& cam, const SceneGeo
     const std::span<double> splits(splitStorage.data(), static_cast<std::size_t>(s.cascades) + 1);
     const DepthInterval span = cascadeSpan(cam, g, reach);
     cascadeSplits(span.nearest, span.farthest, s.cascadeSplitLambda, splits);
-    const DAabb lsReceivers = toLightSpace(rotation, g.receivers);
+    const DAabb lsReceivers = transformBounds(rotation, g.receivers);
 
     layers.resize(static_cast<std::size_t>(s.cascades));
     for (int k = 0; k < s.cascades; ++k) {
@@ -360,7 +409,7 @@ void planDirectional(const LayerInputs& s, const CameraView& cam, const SceneGeo
                           zBottom, casterTop);
 
         ShadowLayerPlan& layer = layers[static_cast<std::size_t>(k)];
-        resetLayer(layer);
+        const std::optional<LayerMatrices> had = resetLayer(layer, follow);
         layer.orthographic = true;
         layer.lightFromWorld = glm::translate(glm::dmat4(1.0), -glm::dvec3(lsCenter, zTop)) * rotation;
         const double depthRange = zTop - zBottom;
@@ -371,7 +420,7 @@ void planDirectional(const LayerInputs& s, const CameraView& cam, const SceneGeo
         // The nearest a blocker can be: the top of the highest caster in the column, below the
         // layer's top (which receivers and the rounding to steps may raise above it).
         layer.blockerNear = casterTop >= zBottom ? static_cast<float>(zTop - std::min(casterTop, zTop)) : 0.0f;
-        castersIn(g, s.summedMoments, layer);
+        castersIn(g, s.summedMoments, had, layer);
     }
 }
 
@@ -420,12 +469,12 @@ double powerOfTwoBelow(double x) { return std::exp2(std::floor(std::log2(x))); }
 /// near plane it is fitted just before the nearest caster in the layer's widest frustum. Returns
 /// that caster's distance from the light (the far plane without one).
 double perspectiveLayer(const LayerInputs& light, const glm::dvec3& direction, const PerspectiveReach& reach,
-                        const SceneGeometry& g, ShadowLayerPlan& layer) {
+                        const SceneGeometry& g, bool follow, ShadowLayerPlan& layer) {
     const glm::dvec3& position = light.pose.wsPosition;
     const double far = reach.far;
     const double tanHalf = reach.tanHalf;
     const double minNear = far * 1e-6;
-    resetLayer(layer);
+    const std::optional<LayerMatrices> had = resetLayer(layer, follow);
     layer.orthographic = false;
     layer.lightFromWorld = lookAlong(position, direction);
     const double fov = 2.0 * std::atan(tanHalf);
@@ -446,7 +495,7 @@ double perspectiveLayer(const LayerInputs& light, const glm::dvec3& direction, c
     // far-plane corner.
     layer.depthScale = static_cast<float>(far * cornerSecant(tanHalf, tanHalf));
     layer.depthNear = static_cast<float>(near);
-    castersIn(g, light.summedMoments, layer);
+    castersIn(g, light.summedMoments, had, layer);
     return nearest;
 }
 
@@ -526,23 +575,23 @@ LayerInputs layerInputs(const ShadowLightPlan& plan, const LightPose& pose) {
     return in;
 }
 
-void planLayers(const LayerInputs& light, const CameraView& camera, const SceneGeometry& geometry,
+void planLayers(const LayerInputs& light, const CameraView& camera, const SceneGeometry& geometry, bool follow,
                 std::vector<ShadowLayerPlan>& layers) {
     if (light.type == LightType::Directional) {
-        planDirectional(light, camera, geometry, layers);
+        planDirectional(light, camera, geometry, follow, layers);
         return;
     }
     const PerspectiveReach reach = perspectiveReach(light, geometry);
     double nearest = reach.far;  // the light's nearest caster over all its layers
     if (light.type == LightType::Spot) {
         layers.resize(1);
-        nearest = perspectiveLayer(light, light.pose.wsDirection, reach, geometry, layers[0]);
+        nearest = perspectiveLayer(light, light.pose.wsDirection, reach, geometry, follow, layers[0]);
     } else {
         // Point: cube faces +X, -X, +Y, -Y, +Z, -Z, the order the shader's cubeFace() uses.
         static const glm::dvec3 kFaces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
         layers.resize(6);
         for (std::size_t k = 0; k < 6; ++k)
-            nearest = std::min(nearest, perspectiveLayer(light, kFaces[k], reach, geometry, layers[k]));
+            nearest = std::min(nearest, perspectiveLayer(light, kFaces[k], reach, geometry, follow, layers[k]));
     }
     // The nearest a blocker can be, the same in every layer (a search disk that leaves its cube
     // face continues on another): that caster, or a fixed near plane beyond it, which clips what

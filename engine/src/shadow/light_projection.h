@@ -72,8 +72,11 @@ struct LayerInputs {
 /// faces (point), each with the casters that fall in it. Every field of every layer is written
 /// (`dirty` to its default); the storage of the layers' caster lists is reused, and each list
 /// holds room for every caster of `geometry`, so that planning the same light again allocates
-/// nothing.
-void planLayers(const LayerInputs& light, const CameraView& camera, const SceneGeometry& geometry,
+/// nothing. With `follow`, `layers` must be what `planLayers` gave for the same `light` over
+/// the geometry of the last `gatherGeometry`: a layer whose frustum comes out the same then
+/// updates its caster list by the changed casters (`SceneGeometry::changed`) that meet it,
+/// instead of testing every caster; the layers come out the same either way.
+void planLayers(const LayerInputs& light, const CameraView& camera, const SceneGeometry& geometry, bool follow,
                 std::vector<ShadowLayerPlan>& layers);
 
 /// Sets each layer's `chainFirstLevel` and `chainLastLevel` (ShadowLayerPlan): for a VSM light

@@ -421,10 +421,14 @@ void ShadowPlanner::planMap(const World& world, const CameraView& camera, Shadow
     PlannedFrom& planned = scratch_->planned[static_cast<std::size_t>(plan.sceneIndex)];
     planned = {plan.entity, caching_ && plan.settings.technique != ShadowTechnique::Sdf, plan.affectsView,
                layerInputs(plan, {plan.wsPosition, plan.wsDirection}), plan.settings.depthMode};
-    if (!keepLayers(world, plan, cameraMoved)) {
+    // plan.layers still holds what this scene light was planned to last frame (describeLight).
+    const auto index = static_cast<std::size_t>(plan.sceneIndex);
+    const bool samePlan = index < scratch_->lastPlanned.size() && scratch_->lastPlanned[index].keepable &&
+                          planned.keepable && scratch_->lastPlanned[index].samePlan(planned);
+    if (!samePlan || !keepLayers(world, plan, cameraMoved)) {
         // Once a frame, and only in a frame with a sun: where receivers are visible on screen.
         if (plan.light.type == LightType::Directional) measureVisibleReceivers(camera, scratch_->geometry);
-        planLayers(planned.inputs, camera, scratch_->geometry, plan.layers);
+        planLayers(planned.inputs, camera, scratch_->geometry, samePlan, plan.layers);
         if (plan.settings.technique == ShadowTechnique::Sdf) takeFieldCasters(world, plan, frame_.warnings);
         markDirty(world, plan);
     }
@@ -437,14 +441,9 @@ void ShadowPlanner::planMap(const World& world, const CameraView& camera, Shadow
 
 bool ShadowPlanner::keepLayers(const World& world, ShadowLightPlan& plan, bool cameraMoved) {
     const auto index = static_cast<std::size_t>(plan.sceneIndex);
-    if (index >= scratch_->lastPlanned.size()) return false;
     const PlannedFrom& last = scratch_->lastPlanned[index];
     const PlannedFrom& now = scratch_->planned[index];
-    // plan.layers still holds what this scene light was planned to last frame (describeLight).
-    if (!last.keepable || !now.keepable || !last.samePlan(now) ||
-        !layersHold(now.inputs, cameraMoved, scratch_->geometry, plan.layers)) {
-        return false;
-    }
+    if (!layersHold(now.inputs, cameraMoved, scratch_->geometry, plan.layers)) return false;
     if (last.affectedView && plan.affectsView) {
         // The layer memory holds these very layers, and none of their casters moved (layersHold):
         // what markDirty would find, without walking the casters.

@@ -20,7 +20,7 @@ struct CasterDiff {
 };
 
 /// Walks the last and the current casters (both in entity order) side by side and lists in
-/// `changed` the box each changed caster left and the one it took (see `SceneGeometry::changed`).
+/// `changed` the boxes each changed caster left and took (see `SceneGeometry::changed`).
 CasterDiff diffCasters(const std::vector<BoundedEntity>& last, const std::vector<BoundedEntity>& now,
                        std::vector<BoundedEntity>& changed) {
     changed.clear();
@@ -36,8 +36,10 @@ CasterDiff diffCasters(const std::vector<BoundedEntity>& last, const std::vector
             diff.sameEntities = false;
         } else {
             const bool boundsMoved = !(last[i].bounds == now[j].bounds);
-            if (boundsMoved) changed.push_back(last[i]);
-            if (boundsMoved || now[j].moved) changed.push_back(now[j]);
+            if (boundsMoved || now[j].moved) {
+                changed.push_back(last[i]);  // left (the same box when it moved within its bounds)
+                changed.push_back(now[j]);   // took
+            }
             diff.boundsMoved = diff.boundsMoved || boundsMoved;
             ++i;
             ++j;

@@ -44,8 +44,10 @@ struct SceneGeometry {
     /// Without it (a few casters, or geometry filled in by hand) queries walk the list.
     BoxTree casterTree;
     /// What can change a layer's casters or make it redraw since the last gather: the box each
-    /// caster left and the one it took when its bounds changed, the box of a caster that
-    /// appeared, disappeared, moved within its bounds or whose geometry changed (`moved`).
+    /// changed caster left and the one it took. One that appeared has only the one it took, one
+    /// that disappeared only the one it left; one that moved within its bounds or whose geometry
+    /// changed (`moved`) has its box twice. So a caster entered or left a fixed frustum exactly
+    /// when an odd number of its entries meet it.
     std::vector<BoundedEntity> changed;
     BoxTree changedTree;            ///< `changed` indexed, when more than a few
     bool receiversChanged = true;   ///< `receiverBoxes` differ from the last gather's
