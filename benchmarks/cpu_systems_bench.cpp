@@ -108,32 +108,35 @@ GameSizedScene gameSizedScene(int lights, int instances) {
     return game;
 }
 
-/// Moves `count` of the game-sized scene's boxes 5 cm along x, a different `count` each `frame`
-/// spread over the grid, back again when their turn comes round the next time.
-void moveSomeBoxes(GameSizedScene& game, std::size_t count, std::size_t frame) {
+/// Moves `count` of the game-sized scene's boxes `step` m along x, a different `count` each
+/// `frame` spread over the grid, back again when their turn comes round the next time.
+void moveSomeBoxes(GameSizedScene& game, std::size_t count, double step, std::size_t frame) {
     if (count == 0) return;
     const std::size_t stride = game.boxes.size() / count;
     const std::size_t turn = frame % stride;
-    const double dx = (frame / stride) % 2 == 0 ? 0.05 : -0.05;
+    const double dx = (frame / stride) % 2 == 0 ? step : -step;
     for (std::size_t k = 0; k < count; ++k) {
         game.scene.world.get<Transform>(game.boxes[k * stride + turn]).translation.x += dx;
     }
 }
 
 // The decide phase of a game-sized scene, with the allocations it made: range(2) per mille of
-// the boxes move each frame (0: the common frame of a game, in which nothing moved and the maps
-// are kept). The transform system runs between frames, outside the timing.
+// the boxes move range(3) cm each frame (0: the common frame of a game, in which nothing moved
+// and the maps are kept; 5 cm, a step that seldom crosses a layer's edge; 250 cm, more than a
+// box's spacing, so that boxes enter and leave the lights' layers every frame). The transform
+// system runs between frames, outside the timing.
 void BM_ShadowPrepareGameSized(benchmark::State& state) {
     GameSizedScene game = gameSizedScene(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
     Scene& scene = game.scene;
     const auto moving = static_cast<std::size_t>(state.range(2)) * game.boxes.size() / 1000;
+    const double step = 0.01 * static_cast<double>(state.range(3));
     (void)updateTransforms(scene.world);
     (void)updateTransforms(scene.world);  // settled: nothing moved since the last frame
     const CameraView view = makeCameraView(scene.world, scene.cameras.front(), 16.0f / 9.0f);
     ShadowPlanner planner;
     std::size_t frame = 0;
     const auto nextFrame = [&] {
-        moveSomeBoxes(game, moving, frame++);
+        moveSomeBoxes(game, moving, step, frame++);
         (void)updateTransforms(scene.world);
     };
     for (int warm = 0; warm < 3; ++warm) {
@@ -153,13 +156,15 @@ void BM_ShadowPrepareGameSized(benchmark::State& state) {
         benchmark::Counter(static_cast<double>(allocations) / static_cast<double>(state.iterations()));
 }
 BENCHMARK(BM_ShadowPrepareGameSized)
-    ->ArgNames({"lights", "instances", "moving_permille"})
-    ->Args({1, 10000, 0})
-    ->Args({64, 10000, 0})
-    ->Args({256, 10000, 0})
-    ->Args({1, 10000, 10})
-    ->Args({64, 10000, 10})
-    ->Args({256, 10000, 10})
+    ->ArgNames({"lights", "instances", "moving_permille", "step_cm"})
+    ->Args({1, 10000, 0, 0})
+    ->Args({64, 10000, 0, 0})
+    ->Args({256, 10000, 0, 0})
+    ->Args({1, 10000, 10, 5})
+    ->Args({64, 10000, 10, 5})
+    ->Args({256, 10000, 10, 5})
+    ->Args({64, 10000, 10, 250})
+    ->Args({256, 10000, 10, 250})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
