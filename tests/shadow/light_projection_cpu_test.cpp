@@ -417,5 +417,66 @@ TEST(LightProjection, PlanningIntoUsedLayersGivesWhatPlanningAfreshGives) {
     }
 }
 
+// Planning again with `follow` updates a layer whose frustum stayed from the changed casters
+// alone, and finds its list anew when many cross it. Told apart by an entity planted in the list
+// (no caster of the scene): the update leaves it, finding the list anew drops it.
+TEST(LightProjection, AFollowedListChangesOnlyByTheChangedCastersUnlessManyCrossed) {
+    Scene scene;
+    World& world = scene.world;
+    std::vector<Entity> boxes;
+    for (int i = 0; i < 40; ++i) {
+        boxes.push_back(addMeshInstance(world, "box", makeBoxMesh(glm::vec3(0.2f)),
+                                        at({0.5 * (i % 8) - 1.75, 0.2, 0.5 * (i / 8) - 1.0})));
+    }
+    // A fixed near plane and a range: the spot's matrices do not follow its casters.
+    const ShadowLightPlan spot = planFor(LightType::Spot, 12.0f, 0.5f, 512);
+    const LightPose pose{{0.0, 5.0, 0.0}, {0.0, -1.0, 0.0}};
+    const LayerInputs inputs = layerInputs(spot, pose);
+    const CameraView camera = cameraAt({0, 3, 8}, glm::normalize(glm::dvec3(0, -3, -8)));
+    SceneGeometry g;
+    const auto gather = [&] {
+        (void)updateTransforms(world);
+        gatherGeometry(world, g);
+    };
+    gather();
+    std::vector<ShadowLayerPlan> layers;
+    planLayers(inputs, camera, g, false, layers);
+    ASSERT_EQ(layers.size(), 1u);
+    ASSERT_EQ(layers[0].casters.size(), 40u) << "every box under the cone";
+    const glm::dmat4 clip = layers[0].clipFromLight;
+
+    // One box leaves the cone, one moves within it: the list follows.
+    world.get<Transform>(boxes[3]).translation = {40.0, 0.2, 0.0};
+    world.get<Transform>(boxes[9]).translation.x += 0.1;
+    gather();
+    planLayers(inputs, camera, g, true, layers);
+    EXPECT_EQ(layers[0].clipFromLight, clip);
+    EXPECT_EQ(layers[0].casters, layersOf(spot, pose, camera, g)[0].casters);
+    EXPECT_EQ(layers[0].casters.size(), 39u);
+
+    // Nothing changed: a followed list is left as it was, planted entity and all.
+    const Entity planted(Entity::kMaxEntities - 1, 0);
+    layers[0].casters.push_back(planted);
+    gather();
+    planLayers(inputs, camera, g, true, layers);
+    EXPECT_TRUE(test::contains(layers[0].casters, planted)) << "the list was found anew";
+    EXPECT_EQ(layers[0].casters.size(), 40u);
+
+    // It comes back: an odd number of its entries meet the cone, one box crossed.
+    world.get<Transform>(boxes[3]).translation = {0.0, 0.2, 1.5};
+    gather();
+    planLayers(inputs, camera, g, true, layers);
+    EXPECT_TRUE(test::contains(layers[0].casters, planted));
+    EXPECT_TRUE(test::contains(layers[0].casters, boxes[3]));
+
+    // Twenty leave: more than a few crossed, the list is found anew, the planted entity gone.
+    for (int i = 20; i < 40; ++i) world.get<Transform>(boxes[static_cast<std::size_t>(i)]).translation.x += 60.0;
+    gather();
+    planLayers(inputs, camera, g, true, layers);
+    EXPECT_FALSE(test::contains(layers[0].casters, planted));
+    EXPECT_EQ(layers[0].casters, layersOf(spot, pose, camera, g)[0].casters);
+    EXPECT_EQ(layers[0].casters.size(), 20u);
+}
+
 }  // namespace
 }  // namespace shadow

@@ -55,8 +55,10 @@ bool aCasterMoved(const World& world, const ShadowLayerPlan& layer) {
 struct Tally {
     int kept = 0;   ///< layers in view reused
     int dirty = 0;  ///< layers in view redrawn
-    /// Layers planned again with the frustum they had, whose casters changed: their lists
-    /// followed the changed casters (planLayers with `follow`), per light type.
+    /// Layers with the frustum they had whose casters changed, per light type: the case in
+    /// which planLayers' `follow` updates a list from the changed casters (that it does, rather
+    /// than find the list anew, light_projection_cpu_test.cpp checks; here, that the lists come
+    /// out right).
     int followed[3] = {0, 0, 0};
 };
 
