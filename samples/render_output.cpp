@@ -170,6 +170,7 @@ nlohmann::json lightsJson(const Scene& scene, const FrameStats& last) {
                            {"mapBytes", ls.mapBytes},
                            {"filterChainBytes", ls.filterChainBytes},
                            {"castersDrawn", ls.castersDrawn},
+                           {"castersCulled", ls.castersCulled},
                            {"affectsView", ls.affectsView},
                            {"regionTest", ls.regionTest},
                            {"depthMode", shadow != nullptr ? depthModeName(shadow->depthMode) : "nearest"}};

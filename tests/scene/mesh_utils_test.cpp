@@ -4,7 +4,9 @@
 #include <shadow/scene.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <utility>
 
 namespace shadow {
 namespace {
@@ -135,6 +137,61 @@ TEST(MeshUtils, ComputeClosedKnowsWatertightMeshesFromOpenOnes) {
     split.indices = {0, 2, 1, 5, 1, 3, 0, 3, 2, 1, 2, 3};
     computeClosed(split);
     EXPECT_FALSE(split.closed);
+}
+
+TEST(MeshUtils, SolidMeansClosedWoundAlikeAndOutwardInEveryPart) {
+    // The generated closed meshes are wound counter-clockwise seen from outside.
+    EXPECT_TRUE(makeBoxMesh(glm::vec3(0.5f, 0.2f, 1.0f))->solid);
+    EXPECT_TRUE(makeSphereMesh(0.5f, 48, 24)->solid);
+    EXPECT_FALSE(makePlaneMesh(2.0f, 4)->solid);
+    MeshData flat = *makeBoxMesh(glm::vec3(1.0f));
+    makeFlatNormals(flat);
+    computeClosed(flat);
+    EXPECT_TRUE(flat.solid);
+
+    // The tetrahedron far from the origin (its volume 1/6 in double about its centre), and the
+    // same turned inside out: closed, not solid.
+    const glm::vec3 o(1e5f, -3e4f, 7e3f);
+    MeshData tet;
+    tet.positions = {o, o + glm::vec3(1, 0, 0), o + glm::vec3(0, 1, 0), o + glm::vec3(0, 0, 1)};
+    tet.indices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+    computeClosed(tet);
+    EXPECT_TRUE(tet.solid);
+    MeshData inverted = tet;
+    for (std::size_t t = 0; t < inverted.indices.size(); t += 3)
+        std::swap(inverted.indices[t + 1], inverted.indices[t + 2]);
+    computeClosed(inverted);
+    EXPECT_TRUE(inverted.closed);
+    EXPECT_FALSE(inverted.solid);
+
+    // One face of four wound the other way: every edge still has two triangles, but one of its
+    // edges runs the same way in both.
+    MeshData oneFlipped = tet;
+    std::swap(oneFlipped.indices[1], oneFlipped.indices[2]);
+    computeClosed(oneFlipped);
+    EXPECT_TRUE(oneFlipped.closed);
+    EXPECT_FALSE(oneFlipped.solid);
+
+    // Two parts in one mesh: solid when both are outward, not when either is inside out, though
+    // the sum of their volumes is positive (the outward part is the larger).
+    MeshData two = *makeBoxMesh(glm::vec3(1.0f));
+    const std::uint32_t base = static_cast<std::uint32_t>(two.positions.size());
+    for (const glm::vec3& p : tet.positions) two.positions.push_back(p - o + glm::vec3(5.0f, 0.0f, 0.0f));
+    two.normals.resize(two.positions.size(), glm::vec3(0.0f, 1.0f, 0.0f));
+    for (std::uint32_t i : tet.indices) two.indices.push_back(base + i);
+    computeClosed(two);
+    EXPECT_TRUE(two.solid);
+    for (std::size_t t = two.indices.size() - tet.indices.size(); t < two.indices.size(); t += 3)
+        std::swap(two.indices[t + 1], two.indices[t + 2]);
+    computeClosed(two);
+    EXPECT_TRUE(two.closed);
+    EXPECT_FALSE(two.solid);
+
+    // A non-finite position leaves the sign of its part unknown: not solid.
+    MeshData broken = tet;
+    broken.positions[3].z = std::numeric_limits<float>::quiet_NaN();
+    computeClosed(broken);
+    EXPECT_FALSE(broken.solid);
 }
 
 }  // namespace

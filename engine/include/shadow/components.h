@@ -79,15 +79,22 @@ struct MeshData {
     /// Every edge, matched by position, is shared by exactly two triangles: a watertight surface
     /// (see `computeClosed`). The second-depth modes (`DepthMode`) need closed casters.
     bool closed = false;
+    /// Closed, and every edge met once in each direction (its triangles wound alike), each
+    /// connected part counter-clockwise seen from outside (a positive volume). A ray from
+    /// outside meets such a surface first on a front face, so a depth-only pass whose eye is
+    /// outside its bounds stores the same nearest depths with its back faces culled, drawing
+    /// about half its fragments (see `computeClosed`).
+    bool solid = false;
 };
 
 /// Computes `bounds` from `positions`.
 void computeBounds(MeshData& mesh);
 /// Computes `jointBounds` from `positions`, `joints` and `weights` (empty without them).
 void computeJointBounds(MeshData& mesh);
-/// Computes `closed`: vertices at the same position count as one (a mesh with flat normals
-/// repeats them per face), degenerate triangles are ignored, and every remaining edge must
-/// belong to exactly two triangles.
+/// Computes `closed` and `solid`: vertices at the same position count as one (a mesh with flat
+/// normals repeats them per face), degenerate triangles are ignored, and every remaining edge
+/// must belong to exactly two triangles (`solid`: one in each direction, and each connected
+/// part of positive volume).
 void computeClosed(MeshData& mesh);
 /// Replaces a mesh by one with flat normals: every triangle gets its own three vertices.
 void makeFlatNormals(MeshData& mesh);

@@ -25,10 +25,13 @@ struct LightShadowStats {
     int mapSize = 0;           ///< texels per layer edge actually allocated (0 = no map)
     int requestedMapSize = 0;  ///< the light's mapSize setting (clamped to the GL limit); 0 without a shadow
     int layers = 0;
-    int layersDrawn = 0;      ///< redrawn this frame
-    int layersReused = 0;     ///< unchanged since the last frame, not redrawn
-    int layersCleared = 0;    ///< no caster in the layer's frustum: cleared, not drawn
-    int castersDrawn = 0;     ///< draw calls into this light's layers
+    int layersDrawn = 0;    ///< redrawn this frame
+    int layersReused = 0;   ///< unchanged since the last frame, not redrawn
+    int layersCleared = 0;  ///< no caster in the layer's frustum: cleared, not drawn
+    int castersDrawn = 0;   ///< draw calls into this light's layers
+    /// Of `castersDrawn`: solid meshes (`MeshData::solid`) drawn with their back faces culled,
+    /// the nearest depths unchanged at about half the fragments.
+    int castersCulled = 0;
     bool affectsView = true;  ///< false when the light cannot reach anything the camera sees
     /// PCF, PCSS: the lookups read the min/max pyramid this frame (`ShadowLightPlan::regionTest`).
     bool regionTest = false;

@@ -27,13 +27,14 @@ Aabb finiteBounds(const std::vector<glm::vec3>& positions) {
 
 void computeBounds(MeshData& mesh) { mesh.bounds = finiteBounds(mesh.positions); }
 
-// Welds positions that round to the same point of a grid a millionth of the mesh's extent
-// apart (so a flat-shaded mesh's repeated vertices, and a generated sphere's pole vertices that
-// differ by rounding, count once); then sorts the edges and checks that each appears exactly
-// twice.
-void computeClosed(MeshData& mesh) {
+namespace {
+
+/// Per vertex, one id per position, welding positions that round to the same point of a grid a
+/// millionth of the mesh's extent `box` apart (so a flat-shaded mesh's repeated vertices, and a
+/// generated sphere's pole vertices that differ by rounding, count once). `count` is set to the
+/// number of ids.
+std::vector<std::uint32_t> weldByPosition(const MeshData& mesh, const Aabb& box, std::uint32_t& count) {
     const std::size_t vertexCount = mesh.positions.size();
-    const Aabb box = finiteBounds(mesh.positions);
     const glm::vec3 extent = box.empty() ? glm::vec3(0.0f) : box.extent();
     const double cell = std::max(1e-6 * std::max({extent.x, extent.y, extent.z}), 1e-12);
     auto key = [cell](const glm::vec3& p) {
@@ -49,32 +50,85 @@ void computeClosed(MeshData& mesh) {
         byPosition[i] = {key(mesh.positions[i]), static_cast<std::uint32_t>(i)};
     std::sort(byPosition.begin(), byPosition.end());
     std::vector<std::uint32_t> welded(vertexCount);
-    std::uint32_t id = 0;
+    count = 0;
     for (std::size_t i = 0; i < vertexCount; ++i) {
-        if (i > 0 && byPosition[i].first != byPosition[i - 1].first) ++id;
-        welded[byPosition[i].second] = id;
+        if (i == 0 || byPosition[i].first != byPosition[i - 1].first) ++count;
+        welded[byPosition[i].second] = count - 1;
     }
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+    return welded;
+}
+
+/// Whether every connected part of the triangles `triangles` (vertex indices; parts joined by
+/// the welded ids `welded`, `ids` of them) encloses a positive volume: the sum of its
+/// triangles' tetrahedra with the box's centre, in double about the centre so that a mesh far
+/// from the origin keeps its digits. NaN (a non-finite position) counts as not positive.
+bool everyPartOutward(const MeshData& mesh, const std::vector<std::array<std::uint32_t, 3>>& triangles,
+                      const std::vector<std::uint32_t>& welded, std::uint32_t ids, const Aabb& box) {
+    std::vector<std::uint32_t> part(ids);
+    for (std::uint32_t v = 0; v < ids; ++v) part[v] = v;
+    const auto root = [&part](std::uint32_t v) {
+        while (part[v] != v) v = part[v] = part[part[v]];
+        return v;
+    };
+    for (const std::array<std::uint32_t, 3>& tri : triangles) {
+        part[root(welded[tri[0]])] = root(welded[tri[1]]);
+        part[root(welded[tri[1]])] = root(welded[tri[2]]);
+    }
+    const glm::dvec3 centre = 0.5 * (glm::dvec3(box.min) + glm::dvec3(box.max));
+    std::vector<double> volume(ids, 0.0);
+    std::vector<char> hasTriangle(ids, 0);
+    for (const std::array<std::uint32_t, 3>& tri : triangles) {
+        const glm::dvec3 a = glm::dvec3(mesh.positions[tri[0]]) - centre;
+        const glm::dvec3 b = glm::dvec3(mesh.positions[tri[1]]) - centre;
+        const glm::dvec3 c = glm::dvec3(mesh.positions[tri[2]]) - centre;
+        const std::uint32_t r = root(welded[tri[0]]);
+        volume[r] += glm::dot(a, glm::cross(b, c));
+        hasTriangle[r] = 1;
+    }
+    for (std::uint32_t r = 0; r < ids; ++r) {
+        if (hasTriangle[r] != 0 && !(volume[r] > 0.0)) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+// Welds the positions (weldByPosition), then sorts the edges and checks that each appears
+// exactly twice; `solid` also needs each edge once in each direction, and every connected part
+// outward (everyPartOutward).
+void computeClosed(MeshData& mesh) {
+    const std::size_t vertexCount = mesh.positions.size();
+    const Aabb box = finiteBounds(mesh.positions);
+    std::uint32_t ids = 0;
+    const std::vector<std::uint32_t> welded = weldByPosition(mesh, box, ids);
+    // Each edge as (lower id, higher id, 1 when it runs from the higher to the lower).
+    std::vector<std::array<std::uint32_t, 3>> edges;
     edges.reserve(mesh.indices.size());
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+    triangles.reserve(mesh.indices.size() / 3);
     for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
         const std::uint32_t* tri = &mesh.indices[t];
         if (tri[0] >= vertexCount || tri[1] >= vertexCount || tri[2] >= vertexCount) continue;
         const std::array<std::uint32_t, 3> v{welded[tri[0]], welded[tri[1]], welded[tri[2]]};
         if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;  // degenerate: covers nothing
+        triangles.push_back({tri[0], tri[1], tri[2]});
         for (int e = 0; e < 3; ++e) {
             const std::uint32_t a = v[static_cast<std::size_t>(e)];
             const std::uint32_t b = v[static_cast<std::size_t>((e + 1) % 3)];
-            edges.emplace_back(std::min(a, b), std::max(a, b));
+            edges.push_back({std::min(a, b), std::max(a, b), a > b ? 1U : 0U});
         }
     }
     std::sort(edges.begin(), edges.end());
     mesh.closed = !edges.empty();
+    bool wound = true;  // every edge once in each direction
     for (std::size_t i = 0; i < edges.size() && mesh.closed;) {
         std::size_t j = i;
-        while (j < edges.size() && edges[j] == edges[i]) ++j;
+        while (j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]) ++j;
         mesh.closed = j - i == 2;
+        wound = wound && mesh.closed && edges[i][2] != edges[i + 1][2];
         i = j;
     }
+    mesh.solid = mesh.closed && wound && !box.empty() && everyPartOutward(mesh, triangles, welded, ids, box);
 }
 
 namespace {

@@ -313,12 +313,61 @@ bool anyCutout(const World& world, const ShadowLayerPlan& layer) {
     });
 }
 
+/// The faces of a solid caster (`MeshData::solid`) a nearest-depth layer may cull: GL_BACK, or
+/// GL_FRONT where the transform and the projection together mirror its winding; 0 (cull none)
+/// where its world bounds reach in front of the layer's near plane, whose rays could then start
+/// inside it and meet a back face first (a light inside a box, a cascade's near plane through
+/// a caster), and without world bounds.
+GLenum solidCulledFaces(const World& world, Entity caster, const ShadowLayerPlan& layer, const WorldTransform& wt) {
+    const WorldBounds* bounds = world.tryGet<WorldBounds>(caster);
+    if (bounds == nullptr) return 0;
+    // Clip z + w, affine in light-view coordinates, is positive beyond the near plane: its least
+    // value over the caster's light-view box, with a margin for the float clipping of vertices.
+    const DAabb box = transformBounds(layer.lightFromWorld, bounds->box);
+    const glm::dmat4& p = layer.clipFromLight;
+    double least = p[3][2] + p[3][3];
+    double scale = std::abs(least);
+    for (int axis = 0; axis < 3; ++axis) {
+        const double k = p[axis][2] + p[axis][3];
+        least += k * (k > 0.0 ? box.min[axis] : box.max[axis]);
+        scale += std::abs(k * box.min[axis]) + std::abs(k * box.max[axis]);
+    }
+    if (box.empty() || !(least > 1e-5 * scale)) return 0;
+    // A face towards the light: counter-clockwise in the window when the projection keeps the
+    // orientation of the view's x-y plane (the light looks down -Z) and the transform does not
+    // mirror.
+    const double mirror = glm::determinant(glm::dmat3(layer.lightFromWorld * wt.worldFromLocal)) *
+                          (p[0][0] * p[1][1] - p[1][0] * p[0][1]);
+    if (!(std::abs(mirror) > 0.0)) return 0;
+    return mirror > 0.0 ? GL_BACK : GL_FRONT;
+}
+
+/// The faces culled in a depth pass, set only when they change (0: none, as beginDepthOnly
+/// leaves it).
+struct FaceCulling {
+    GLenum faces = 0;
+    /// Culls the faces `to` (0: none) from the next draw on; true when some are culled.
+    bool set(GLenum to) {
+        if (to != faces) {
+            if (to == 0) {
+                gl.Disable(GL_CULL_FACE);
+            } else {
+                if (faces == 0) gl.Enable(GL_CULL_FACE);
+                gl.CullFace(to);
+            }
+            faces = to;
+        }
+        return faces != 0;
+    }
+};
+
 /// Draws every caster of `layer` into the bound framebuffer, with `opaque` (current, its layer
 /// uniforms set) or, for a cut-out caster, `cutout` (set up here when first needed; null when the
 /// layer has none); `first`: the first pass of a second-depth mode. A skinned caster is drawn in
-/// its pose. Returns the draw calls made.
+/// its pose. With `cullSolids` (a nearest-depth layer) a rigid, opaque solid mesh is drawn with
+/// its back faces culled (`solidCulledFaces`), counted in `culled`. Returns the draw calls made.
 int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& layer, const DepthProgram& opaque,
-                const DepthProgram* cutout, bool first) {
+                const DepthProgram* cutout, bool first, bool cullSolids, int& culled) {
     const CasterDrawContext context{layer.lightFromWorld,
                                     layer.clipFromLight,
                                     layer.depthScale,
@@ -331,6 +380,7 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
         p.use(layer, first);
         current = &p;
     };
+    FaceCulling cull;
     int drawn = 0;
     for (Entity caster : layer.casters) {
         const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
@@ -340,6 +390,9 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
             if (skin != nullptr && !skin->posed) continue;
             const Material* m = world.tryGet<Material>(caster);
             const bool alphaTested = cutout != nullptr && m != nullptr && m->cutout();
+            // A posed skin may fold a part inside out, and a cut-out's holes show its inside.
+            const bool rigidOpaqueSolid = cullSolids && mesh->data->solid && skin == nullptr && !alphaTested;
+            culled += cull.set(rigidOpaqueSolid ? solidCulledFaces(world, caster, layer, *wt) : 0) ? 1 : 0;
             choose(alphaTested ? *cutout : opaque);
             const GLuint name = current->program.get();
             if (alphaTested) {
@@ -356,6 +409,7 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
             const int count = gpu::MeshCacheAccess::bind(meshes, mesh->data);
             gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
         } else if (const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(caster); own != nullptr) {
+            cull.set(0);
             choose(opaque);
             gl.ProgramUniform1i(opaque.program.get(), opaque.skinned, 0);
             drawOwnCaster(*own, *wt, context);
@@ -364,6 +418,7 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
         }
         ++drawn;
     }
+    cull.set(0);
     if (current != &opaque) opaque.use(layer, first);  // what the caller left current
     return drawn;
 }
@@ -394,8 +449,9 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
         gl.ClearNamedFramebufferfv(scratch.framebuffer.get(), GL_DEPTH, 0, &far);
         const DepthProgram& program = this->program(mode, false);
         program.use(layer, true);
-        ls.castersDrawn +=
-            drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, true);
+        int unused = 0;
+        ls.castersDrawn += drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr,
+                                       true, false, unused);
     }
     const GLuint framebuffer = map.framebuffer.get();
     gl.NamedFramebufferTextureLayer(framebuffer, GL_DEPTH_ATTACHMENT, map.array.get(), 0, static_cast<GLint>(k));
@@ -407,7 +463,9 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
     }
     const DepthProgram& program = this->program(mode, false);
     program.use(layer);
-    ls.castersDrawn += drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, false);
+    // The second-depth modes need the far side of every caster: only a nearest layer culls.
+    ls.castersDrawn += drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, false,
+                                   mode == DepthMode::Nearest, ls.castersCulled);
     if (mode != DepthMode::Nearest) gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
     ++ls.layersDrawn;
 }
