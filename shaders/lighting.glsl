@@ -21,7 +21,8 @@ struct Surface {
 // Smooth window that brings a light's influence to 0 at `range` (0 = infinite).
 float rangeWindow(float distance, float range) {
     if (range <= 0.0) return 1.0;
-    float x = clamp(1.0 - pow(distance / range, 4.0), 0.0, 1.0);
+    float r2 = distance * distance / (range * range);
+    float x = clamp(1.0 - r2 * r2, 0.0, 1.0);
     return x * x;
 }
 
@@ -51,7 +52,9 @@ vec3 shadeSurface(sg_GpuLight L, Surface s) {
     float q = nDotH * nDotH * (a2 - 1.0) + 1.0;
     float distribution = a2 / (3.14159265 * q * q);
     float visibility = 0.5 / (nDotL * sqrt(nDotV * nDotV * (1.0 - a2) + a2) + nDotV * sqrt(nDotL * nDotL * (1.0 - a2) + a2));
-    float f = pow(1.0 - max(dot(s.toViewer, h), 0.0), 5.0);
+    float m = 1.0 - max(dot(s.toViewer, h), 0.0);
+    float m2 = m * m;
+    float f = m2 * m2 * m;
     vec3 fresnel = s.specular + (1.0 - s.specular) * f;
     vec3 brdf = s.albedo / 3.14159265 + distribution * visibility * fresnel;
     return L.radiance * attenuation * nDotL * brdf;
