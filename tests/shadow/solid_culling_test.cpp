@@ -57,11 +57,13 @@ Scene solids(LightType type, bool cull) {
                     turned({0.0, 0.6, -1.2}, {0.0, 1.0, 0.3}, 0.5, {-1.0, 1.0, 1.0}));
     addMeshInstance(scene.world, "squashed", sided(makeSphereMesh(0.4f, 32, 16), cull),
                     turned({0.3, 1.4, 1.0}, {1.0, 0.0, 0.0}, 0.3, {1.5, 0.5, 1.0}));
-    addMeshInstance(scene.world, "inside-out", sided(insideOutBox(glm::vec3(0.3f)), cull), test::placed({-0.9, 0.4, 1.4}));
+    addMeshInstance(scene.world, "inside-out", sided(insideOutBox(glm::vec3(0.3f)), cull),
+                    test::placed({-0.9, 0.4, 1.4}));
     Light light = test::pointSizedLight(type, 1.0f);
     const glm::dvec3 position = type == LightType::Directional ? glm::dvec3(2.0, 6.0, 3.0) : glm::dvec3(0.5, 3.5, 0.8);
-    addLight(scene, "light", light, test::hardShadow(kMapSize), position,
-             type == LightType::Point ? glm::dvec3(0.0, -1.0, 0.0) : glm::normalize(-position + glm::dvec3(0.0, 0.5, 0.0)));
+    addLight(
+        scene, "light", light, test::hardShadow(kMapSize), position,
+        type == LightType::Point ? glm::dvec3(0.0, -1.0, 0.0) : glm::normalize(-position + glm::dvec3(0.0, 0.5, 0.0)));
     addCamera(scene, "camera", Camera{}, {0.0, 4.0, 6.0}, {0.0, 0.5, 0.0});
     return scene;
 }
@@ -101,8 +103,8 @@ Layers render(Scene scene) {
 struct Difference {
     long long texels = 0;
     long long differing = 0;
-    long long caster = 0;     ///< texels nearer than the far depth in `b`
-    double largest = 0.0;     ///< the largest difference (m)
+    long long caster = 0;  ///< texels nearer than the far depth in `b`
+    double largest = 0.0;  ///< the largest difference (m)
 };
 
 Difference compare(const Layers& a, const Layers& b) {
@@ -151,7 +153,9 @@ TEST_P(SolidCulling, StoresTheDepthsOfBothSidesDrawn) {
 
 INSTANTIATE_TEST_SUITE_P(EveryLightType, SolidCulling,
                          ::testing::Values(LightType::Directional, LightType::Spot, LightType::Point),
-                         [](const ::testing::TestParamInfo<LightType>& param) { return std::string(lightTypeName(param.param)); });
+                         [](const ::testing::TestParamInfo<LightType>& param) {
+                             return std::string(lightTypeName(param.param));
+                         });
 
 TEST(SolidCullingInside, KeepsBothSidesOfASolidTheLightIsIn) {
     const Layers culled = render(lightInsideABox(true));

@@ -52,6 +52,12 @@ struct ShadowCasterDraw {
     /// Whether what it draws is closed (watertight), which the second-depth modes need
     /// (`DepthMode`); a light in those modes warns about a caster not marked closed.
     bool closed = false;
+    /// Whether the indexed draw's triangles are solid, as `MeshData::solid` (closed, every edge
+    /// once in each direction, each part counter-clockwise seen from outside): a nearest-depth
+    /// layer then culls their back faces (the front ones under a mirroring transform), which
+    /// stores the same depths from about half the fragments. Not used for a `draw` callback,
+    /// which is called with culling off.
+    bool solid = false;
 
     /// Whether it draws anything: a callback, or a vertex array with indices.
     [[nodiscard]] bool drawsSomething() const { return draw != nullptr || (vertexArray && indexCount > 0); }

@@ -141,7 +141,8 @@ void formatPassName(std::string& out, const ShadowLightPlan& plan, std::string_v
 void drawOwnCaster(const ShadowCasterDraw& own, const WorldTransform& wt, const CasterDrawContext& context) {
     if (own.draw) {
         own.draw(context);
-        gl.UseProgram(context.program.name);  // the callback may have used its own
+        gl.UseProgram(context.program.name);  // the callback may have used its own,
+        gl.Disable(GL_CULL_FACE);             // and culled faces: off, as it was called
         return;
     }
     context.setWorldFromLocal(wt.worldFromLocal);
@@ -313,17 +314,17 @@ bool anyCutout(const World& world, const ShadowLayerPlan& layer) {
     });
 }
 
-/// The faces of a solid caster (`MeshData::solid`) a nearest-depth layer may cull: GL_BACK, or
-/// GL_FRONT where the transform and the projection together mirror its winding; 0 (cull none)
-/// where its world bounds reach in front of the layer's near plane, whose rays could then start
-/// inside it and meet a back face first (a light inside a box, a cascade's near plane through
-/// a caster), and without world bounds.
-GLenum solidCulledFaces(const World& world, Entity caster, const ShadowLayerPlan& layer, const WorldTransform& wt) {
-    const WorldBounds* bounds = world.tryGet<WorldBounds>(caster);
-    if (bounds == nullptr) return 0;
+/// The faces of a solid caster (`MeshData::solid`, `ShadowCasterDraw::solid`) a nearest-depth
+/// layer may cull, for object transform `worldFromLocal` and object bounds `localBounds`:
+/// GL_BACK, or GL_FRONT where the transform and the projection together mirror its winding; 0
+/// (cull none) where its bounds reach in front of the layer's near plane, whose rays could then
+/// start inside it and meet a back face first (a light inside a box, a cascade's near plane
+/// through a caster).
+GLenum solidCulledFaces(const ShadowLayerPlan& layer, const glm::dmat4& worldFromLocal, const Aabb& localBounds) {
+    const glm::dmat4 lightFromLocal = layer.lightFromWorld * worldFromLocal;
     // Clip z + w, affine in light-view coordinates, is positive beyond the near plane: its least
     // value over the caster's light-view box, with a margin for the float clipping of vertices.
-    const DAabb box = transformBounds(layer.lightFromWorld, bounds->box);
+    const DAabb box = transformBounds(lightFromLocal, localBounds);
     const glm::dmat4& p = layer.clipFromLight;
     double least = p[3][2] + p[3][3];
     double scale = std::abs(least);
@@ -336,8 +337,7 @@ GLenum solidCulledFaces(const World& world, Entity caster, const ShadowLayerPlan
     // A face towards the light: counter-clockwise in the window when the projection keeps the
     // orientation of the view's x-y plane (the light looks down -Z) and the transform does not
     // mirror.
-    const double mirror = glm::determinant(glm::dmat3(layer.lightFromWorld * wt.worldFromLocal)) *
-                          (p[0][0] * p[1][1] - p[1][0] * p[0][1]);
+    const double mirror = glm::determinant(glm::dmat3(lightFromLocal)) * (p[0][0] * p[1][1] - p[1][0] * p[0][1]);
     if (!(std::abs(mirror) > 0.0)) return 0;
     return mirror > 0.0 ? GL_BACK : GL_FRONT;
 }
@@ -392,7 +392,8 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
             const bool alphaTested = cutout != nullptr && m != nullptr && m->cutout();
             // A posed skin may fold a part inside out, and a cut-out's holes show its inside.
             const bool rigidOpaqueSolid = cullSolids && mesh->data->solid && skin == nullptr && !alphaTested;
-            culled += cull.set(rigidOpaqueSolid ? solidCulledFaces(world, caster, layer, *wt) : 0) ? 1 : 0;
+            const GLenum faces = rigidOpaqueSolid ? solidCulledFaces(layer, wt->worldFromLocal, mesh->data->bounds) : 0;
+            culled += cull.set(faces) ? 1 : 0;
             choose(alphaTested ? *cutout : opaque);
             const GLuint name = current->program.get();
             if (alphaTested) {
@@ -409,7 +410,8 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
             const int count = gpu::MeshCacheAccess::bind(meshes, mesh->data);
             gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
         } else if (const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(caster); own != nullptr) {
-            cull.set(0);
+            const bool solid = cullSolids && own->solid && !own->draw;
+            culled += cull.set(solid ? solidCulledFaces(layer, wt->worldFromLocal, own->localBounds) : 0) ? 1 : 0;
             choose(opaque);
             gl.ProgramUniform1i(opaque.program.get(), opaque.skinned, 0);
             drawOwnCaster(*own, *wt, context);
