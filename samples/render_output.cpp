@@ -171,6 +171,7 @@ nlohmann::json lightsJson(const Scene& scene, const FrameStats& last) {
                            {"filterChainBytes", ls.filterChainBytes},
                            {"castersDrawn", ls.castersDrawn},
                            {"castersCulled", ls.castersCulled},
+                           {"pyramidTexelsRead", ls.pyramidTexelsRead},
                            {"affectsView", ls.affectsView},
                            {"regionTest", ls.regionTest},
                            {"depthMode", shadow != nullptr ? depthModeName(shadow->depthMode) : "nearest"}};

@@ -16,5 +16,8 @@ layout(binding = SG_UNIT_MINMAX_SOURCE) uniform sampler2DArray uBelow;  // the c
 
 uniform int uLayer;
 uniform int uLevel;
+// The first texel of the level the dispatch covers (the min/max pyramid's tiles that hold a
+// drawn texel).
+uniform ivec2 uOrigin;
 
 #endif

@@ -13,6 +13,10 @@
 // 20-25 ms for the 9 layers either way): the cost is level 0's reading of every depth texel, about
 // 2 ns a texel through gathers (4 ns through texelFetch).
 //
+// Only the tiles that hold a texel the layer's casters drew are dispatched (uOrigin, the
+// dispatch's size); filter_chain.cpp clears the others to the far depth's range, which is what
+// they would hold: on builtin:bunny-spot the bunny covers a small part of the spot's map.
+//
 // Reference: the hierarchical min/max shadow map of G. Guennebaud, L. Barthe, M. Paulin,
 // "Real-time soft shadow mapping by backprojection", EGSR 2006, and of Z. Dong, B. Yang,
 // "Variance soft shadow mapping", 2010 (the seeds' VSSM notes).
@@ -23,7 +27,7 @@ layout(binding = SG_IMAGE_MINMAX, rg32f) writeonly uniform image2D uTarget;  // 
 vec2 merge(vec2 a, vec2 b) { return vec2(min(a.x, b.x), max(a.y, b.y)); }
 
 void main() {
-    ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 texel = ivec2(gl_GlobalInvocationID.xy) + uOrigin;
     if (any(greaterThanEqual(texel, imageSize(uTarget)))) return;
     vec2 range = vec2(1.0, 0.0);
 #ifdef SG_CHAIN_FROM_DEPTH

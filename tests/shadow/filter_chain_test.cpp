@@ -112,6 +112,34 @@ TEST(MinMaxPyramid, EveryTexelHoldsTheRangeOfItsTile) {
     forBothMapSizes(ShadowTechnique::Pcss, expectPyramidMatchesMap);
 }
 
+TEST(MinMaxPyramid, TilesNoCasterDrewHoldTheFarRangeAndAreNotRead) {
+    // The ground only receives: the box alone is drawn, and the pyramid reads the tiles its
+    // bounds project to. At the power-of-two map and at the one whose tiles overhang its edge,
+    // every level still holds each tile's range (the far depth's where nothing was drawn).
+    test::glContext();
+    for (int mapSize : {256, 200}) {
+        Scene scene = tiltedScene(ShadowTechnique::Pcf, mapSize);
+        scene.world.view<Mesh, Name>().each([](Entity, Mesh& mesh, const Name& name) {
+            if (name.value == "ground") mesh.castShadows = false;
+        });
+        FrameRunner runner;
+        ShadowLimits limits = runner.shadows().planner().limits();
+        limits.pyramidTexelsPerPixel = 1e9f;
+        runner.shadows().planner().setLimits(limits);
+        const test::RenderedFrame frame = test::renderFrame(runner, scene, 64, 48);
+        const std::string what = "ground not casting, map " + std::to_string(mapSize);
+        expectPyramidMatchesMap(runner, mapSize, what);
+        // The texels read: the box's tiles, under half the map, and at least every texel it drew.
+        const std::vector<float> depth = runner.shadows().maps().readLayerDepth(0, 0);
+        const float far = runner.shadows().frame().lights[0].layers[0].depthScale;
+        const long long drawn = std::count_if(depth.begin(), depth.end(), [far](float d) { return d < far; });
+        const long long read = frame.stats.lights.at(0).pyramidTexelsRead;
+        EXPECT_GT(drawn, 100) << what;
+        EXPECT_GE(read, drawn) << what;
+        EXPECT_LT(read, static_cast<long long>(mapSize) * mapSize / 2) << what;
+    }
+}
+
 TEST(MinMaxPyramid, OnlyForTechniquesThatReadItAndRebuiltWhenTheMapChanges) {
     test::glContext();
     Scene scene = tiltedScene(ShadowTechnique::Hard, 256);

@@ -32,6 +32,10 @@ struct LightShadowStats {
     /// Of `castersDrawn`: solid meshes (`MeshData::solid`) drawn with their back faces culled,
     /// the nearest depths unchanged at about half the fragments.
     int castersCulled = 0;
+    /// PCF, PCSS: the depth texels their min/max pyramids read this frame, over the layers
+    /// rebuilt: the tiles that hold a texel the layer's casters can have drawn (the others are
+    /// cleared to the far depth's range).
+    long long pyramidTexelsRead = 0;
     bool affectsView = true;  ///< false when the light cannot reach anything the camera sees
     /// PCF, PCSS: the lookups read the min/max pyramid this frame (`ShadowLightPlan::regionTest`).
     bool regionTest = false;

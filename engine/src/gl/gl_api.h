@@ -118,6 +118,7 @@ namespace shadow::gpu {
     X(PFNGLUSEPROGRAMPROC, UseProgram)                                     \
     X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                     \
     X(PFNGLPROGRAMUNIFORM1IPROC, ProgramUniform1i)                         \
+    X(PFNGLPROGRAMUNIFORM2IPROC, ProgramUniform2i)                         \
     X(PFNGLPROGRAMUNIFORM1IVPROC, ProgramUniform1iv)                       \
     X(PFNGLPROGRAMUNIFORM1FPROC, ProgramUniform1f)                         \
     X(PFNGLPROGRAMUNIFORM2FVPROC, ProgramUniform2fv)                       \

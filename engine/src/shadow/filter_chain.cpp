@@ -83,16 +83,18 @@ FilterChainBuilder::Pass makePass(const std::string& label, const std::string& f
     p.layer = gl.GetUniformLocation(p.program.get(), "uLayer");
     p.level = gl.GetUniformLocation(p.program.get(), "uLevel");
     p.momentScale = gl.GetUniformLocation(p.program.get(), "uMomentScale");
+    p.origin = gl.GetUniformLocation(p.program.get(), "uOrigin");
     return p;
 }
 
 }  // namespace
 
-void FilterChainBuilder::build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale,
-                               int fromLevel, int toLevel) {
+long long FilterChainBuilder::build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer,
+                                    float momentScale, int fromLevel, int toLevel, const TexelRect& drawn) {
     gl.BindSampler(SG_UNIT_MINMAX_SOURCE, 0);  // the textures' own nearest filtering, no comparison
+    long long read = 0;
     switch (chain.kind) {
-        case FilterChainKind::MinMax: buildMinMax(depthArray, chain, mapSize, layer); break;
+        case FilterChainKind::MinMax: read = buildMinMax(depthArray, chain, mapSize, layer, drawn); break;
         case FilterChainKind::Moments:
         case FilterChainKind::FourMoments:
             buildMoments(depthArray, chain, mapSize, layer, fromLevel, std::min(toLevel, chain.levels - 1));
@@ -100,6 +102,7 @@ void FilterChainBuilder::build(GLuint depthArray, const FilterChain& chain, int 
         case FilterChainKind::SummedMoments: buildSummedArea(depthArray, chain, mapSize, layer, momentScale); break;
     }
     gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
+    return read;
 }
 
 const FilterChainBuilder::Programs& FilterChainBuilder::computePrograms(FilterChainKind kind) {
@@ -114,24 +117,41 @@ const FilterChainBuilder::Programs& FilterChainBuilder::computePrograms(FilterCh
     return *programs;
 }
 
-void FilterChainBuilder::buildMinMax(GLuint depthArray, const FilterChain& chain, int mapSize, int layer) {
+long long FilterChainBuilder::buildMinMax(GLuint depthArray, const FilterChain& chain, int mapSize, int layer,
+                                          const TexelRect& drawn) {
+    long long read = 0;
     const Programs& programs = computePrograms(FilterChainKind::MinMax);
     int size = FilterChain::baseSize(chain.kind, mapSize);
-    for (int level = 0; level < chain.levels; ++level, size = std::max(1, size / 2)) {
+    // The tiles of each level that hold a drawn texel; the others hold the far depth's range.
+    // Tiles past the map's edge read its edge texels (the gathers clamp): built with them.
+    const auto end = [mapSize](int drawnEnd, int tile, int levelSize) {
+        return drawnEnd >= mapSize ? levelSize : std::min((drawnEnd + tile - 1) / tile, levelSize);
+    };
+    int tile = SG_MINMAX_TILE;
+    for (int level = 0; level < chain.levels; ++level, size = std::max(1, size / 2), tile *= 2) {
+        const int x0 = drawn.x0 / tile, y0 = drawn.y0 / tile;
+        const int x1 = end(drawn.x1, tile, size), y1 = end(drawn.y1, tile, size);
+        if (drawn.empty() || x0 > 0 || y0 > 0 || x1 < size || y1 < size) {
+            const std::array<float, 2> far{1.0f, 1.0f};
+            gl.ClearTexSubImage(chain.texture.get(), level, 0, 0, layer, size, size, 1, GL_RG, GL_FLOAT, far.data());
+        }
+        if (drawn.empty()) continue;
+        if (level == 0) read = static_cast<long long>(x1 - x0) * (y1 - y0) * tile * tile;
         const Pass& pass = level == 0 ? programs.fromDepth : programs.fromBelow;
         const GLuint program = pass.program.get();
         gl.UseProgram(program);
         gl.ProgramUniform1i(program, pass.layer, layer);
         gl.ProgramUniform1i(program, pass.level, level);
+        gl.ProgramUniform2i(program, pass.origin, x0, y0);
         // Reads level - 1 of the pyramid (texelFetch, never the level written) or the depth map.
         gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, level == 0 ? depthArray : chain.texture.get());
         gl.BindImageTexture(SG_IMAGE_MINMAX, chain.texture.get(), level, GL_FALSE, layer, GL_WRITE_ONLY,
                             formatOf(chain.kind));
-        const auto groups = static_cast<GLuint>((size + 7) / 8);
-        gl.DispatchCompute(groups, groups, 1);
-        // The next level reads this one; the lit pass samples them all.
-        gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+        gl.DispatchCompute(static_cast<GLuint>((x1 - x0 + 7) / 8), static_cast<GLuint>((y1 - y0 + 7) / 8), 1);
+        // The next level reads this one (and its cleared tiles); the lit pass samples them all.
+        gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     }
+    return read;
 }
 
 void FilterChainBuilder::buildMoments(GLuint depthArray, const FilterChain& chain, int mapSize, int layer,

@@ -20,6 +20,8 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cmath>
+#include <limits>
 #include <optional>
 #include <string_view>
 
@@ -43,6 +45,8 @@ struct ShadowMapGpu {
     /// (ShadowLayerPlan::chainFirstLevel, chainLastLevel).
     std::vector<int> chainFirstLevel;
     std::vector<int> chainLastLevel;
+    /// Per layer: the texels its casters may have drawn when last drawn (casterTexels).
+    std::vector<TexelRect> drawnTexels;
     /// Made this frame (a new light, or a new map size or layer count): its texture name changed.
     bool allocatedThisFrame = true;
 };
@@ -116,6 +120,7 @@ std::unique_ptr<ShadowMapGpu> allocate(const ShadowLightPlan& plan) {
     map->mapSize = plan.mapSize;
     map->layers = static_cast<int>(plan.layers.size());
     map->depthScales.assign(plan.layers.size(), 1.0f);
+    map->drawnTexels.assign(plan.layers.size(), TexelRect{0, 0, map->mapSize, map->mapSize});
     map->array = gpu::makeTexture(label + "/array", GL_TEXTURE_2D_ARRAY);
     gl.TextureStorage3D(map->array.get(), 1, GL_DEPTH_COMPONENT32F, map->mapSize, map->mapSize, map->layers);
     gl.TextureParameteri(map->array.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -213,7 +218,7 @@ struct ShadowMaps::Impl {
     /// alpha-tested, built on first use.
     const DepthProgram& program(DepthMode mode, bool cutout);
     /// Brings the filter chain of every layer of `plan` whose map changed up to date.
-    void updateChains(const ShadowLightPlan& plan);
+    void updateChains(const ShadowLightPlan& plan, LightShadowStats& ls);
 };
 
 void ShadowMaps::Impl::syncMaps(const ShadowFrame& frame) {
@@ -249,7 +254,7 @@ void ShadowMaps::Impl::syncMaps(const ShadowFrame& frame) {
     lastMaps.clear();  // the maps of lights gone or without a map this frame
 }
 
-void ShadowMaps::Impl::updateChains(const ShadowLightPlan& plan) {
+void ShadowMaps::Impl::updateChains(const ShadowLightPlan& plan, LightShadowStats& ls) {
     ShadowMapGpu& map = *maps[static_cast<std::size_t>(plan.sceneIndex)].second;
     if (!map.chain) return;
     for (std::size_t k = 0; k < plan.layers.size(); ++k) {
@@ -275,8 +280,8 @@ void ShadowMaps::Impl::updateChains(const ShadowLightPlan& plan) {
         } else {
             formatPassName(passName, plan, map.chain->kind == FilterChainKind::MinMax ? "minmax" : "moments", k);
             const gpu::ScopedPass pass(timer, passName);
-            chains.build(map.array.get(), *map.chain, map.mapSize, static_cast<int>(k), plan.layers[k].momentScale,
-                         firstLevel, lastLevel);
+            ls.pyramidTexelsRead += chains.build(map.array.get(), *map.chain, map.mapSize, static_cast<int>(k),
+                                                 plan.layers[k].momentScale, firstLevel, lastLevel, map.drawnTexels[k]);
         }
         map.chainCurrent[k] = true;
         map.chainFirstLevel[k] = firstLevel;
@@ -342,6 +347,36 @@ GLenum solidCulledFaces(const ShadowLayerPlan& layer, const glm::dmat4& worldFro
     return mirror > 0.0 ? GL_BACK : GL_FRONT;
 }
 
+/// The texels of a `mapSize`^2 layer that a caster within world bounds `bounds` can draw, one
+/// texel wider on each side than the bounds' projection; the whole layer without bounds or where
+/// they reach to the light's plane (a perspective projection has no bounded image there).
+TexelRect casterTexels(const ShadowLayerPlan& layer, int mapSize, const WorldBounds* bounds) {
+    const TexelRect whole{0, 0, mapSize, mapSize};
+    if (bounds == nullptr) return whole;
+    if (bounds->box.empty()) return {};
+    const DAabb box = transformBounds(layer.lightFromWorld, bounds->box);
+    glm::dvec2 lo(std::numeric_limits<double>::infinity());
+    glm::dvec2 hi(-std::numeric_limits<double>::infinity());
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::dvec4 ls((corner & 1) != 0 ? box.max.x : box.min.x, (corner & 2) != 0 ? box.max.y : box.min.y,
+                            (corner & 4) != 0 ? box.max.z : box.min.z, 1.0);
+        const glm::dvec4 clip = layer.clipFromLight * ls;
+        if (!(clip.w > 1e-9 * (std::abs(clip.x) + std::abs(clip.y) + std::abs(clip.w)))) return whole;
+        lo = glm::min(lo, glm::dvec2(clip) / clip.w);
+        hi = glm::max(hi, glm::dvec2(clip) / clip.w);
+    }
+    if (!std::isfinite(lo.x) || !std::isfinite(lo.y) || !std::isfinite(hi.x) || !std::isfinite(hi.y)) return whole;
+    // A texel is drawn when its centre is covered: those within the image, and one more.
+    const double size = mapSize;
+    const auto first = [size](double ndc) {
+        return static_cast<int>(std::clamp(std::floor((ndc * 0.5 + 0.5) * size) - 1.0, 0.0, size));
+    };
+    const auto end = [size](double ndc) {
+        return static_cast<int>(std::clamp(std::ceil((ndc * 0.5 + 0.5) * size) + 1.0, 0.0, size));
+    };
+    return TexelRect{first(lo.x), first(lo.y), end(hi.x), end(hi.y)};
+}
+
 /// The faces culled in a depth pass, set only when they change (0: none, as beginDepthOnly
 /// leaves it).
 struct FaceCulling {
@@ -361,13 +396,23 @@ struct FaceCulling {
     }
 };
 
+/// What a layer's caster draws are told and tell back.
+struct CasterPass {
+    /// A nearest-depth layer: a rigid, opaque solid mesh (or a game's solid indexed draw) is
+    /// drawn with its back faces culled (`solidCulledFaces`), counted in `culled`.
+    bool cullSolids = false;
+    int mapSize = 0;
+    int culled = 0;
+    TexelRect texels;  ///< the texels the casters drawn may cover (casterTexels)
+};
+
 /// Draws every caster of `layer` into the bound framebuffer, with `opaque` (current, its layer
 /// uniforms set) or, for a cut-out caster, `cutout` (set up here when first needed; null when the
 /// layer has none); `first`: the first pass of a second-depth mode. A skinned caster is drawn in
-/// its pose. With `cullSolids` (a nearest-depth layer) a rigid, opaque solid mesh is drawn with
-/// its back faces culled (`solidCulledFaces`), counted in `culled`. Returns the draw calls made.
+/// its pose. `pass` says whether solids are culled and gathers what was drawn. Returns the draw
+/// calls made.
 int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& layer, const DepthProgram& opaque,
-                const DepthProgram* cutout, bool first, bool cullSolids, int& culled) {
+                const DepthProgram* cutout, bool first, CasterPass& pass) {
     const CasterDrawContext context{layer.lightFromWorld,
                                     layer.clipFromLight,
                                     layer.depthScale,
@@ -391,9 +436,10 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
             const Material* m = world.tryGet<Material>(caster);
             const bool alphaTested = cutout != nullptr && m != nullptr && m->cutout();
             // A posed skin may fold a part inside out, and a cut-out's holes show its inside.
-            const bool rigidOpaqueSolid = cullSolids && mesh->data->solid && skin == nullptr && !alphaTested;
+            const bool rigidOpaqueSolid = pass.cullSolids && mesh->data->solid && skin == nullptr && !alphaTested;
             const GLenum faces = rigidOpaqueSolid ? solidCulledFaces(layer, wt->worldFromLocal, mesh->data->bounds) : 0;
-            culled += cull.set(faces) ? 1 : 0;
+            pass.culled += cull.set(faces) ? 1 : 0;
+            pass.texels.extend(casterTexels(layer, pass.mapSize, world.tryGet<WorldBounds>(caster)));
             choose(alphaTested ? *cutout : opaque);
             const GLuint name = current->program.get();
             if (alphaTested) {
@@ -410,8 +456,10 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
             const int count = gpu::MeshCacheAccess::bind(meshes, mesh->data);
             gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
         } else if (const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(caster); own != nullptr) {
-            const bool solid = cullSolids && own->solid && !own->draw;
-            culled += cull.set(solid ? solidCulledFaces(layer, wt->worldFromLocal, own->localBounds) : 0) ? 1 : 0;
+            const bool solid = pass.cullSolids && own->solid && !own->draw;
+            pass.culled += cull.set(solid ? solidCulledFaces(layer, wt->worldFromLocal, own->localBounds) : 0) ? 1 : 0;
+            const WorldBounds box{transformBounds(wt->worldFromLocal, own->localBounds)};
+            pass.texels.extend(casterTexels(layer, pass.mapSize, &box));
             choose(opaque);
             gl.ProgramUniform1i(opaque.program.get(), opaque.skinned, 0);
             drawOwnCaster(*own, *wt, context);
@@ -438,6 +486,7 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
         gl.ClearTexSubImage(map.array.get(), 0, 0, 0, static_cast<GLint>(k), map.mapSize, map.mapSize, 1,
                             GL_DEPTH_COMPONENT, GL_FLOAT, &far);
         ++ls.layersCleared;
+        map.drawnTexels[k] = {};
         return;
     }
     gl.Viewport(0, 0, map.mapSize, map.mapSize);
@@ -451,9 +500,10 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
         gl.ClearNamedFramebufferfv(scratch.framebuffer.get(), GL_DEPTH, 0, &far);
         const DepthProgram& program = this->program(mode, false);
         program.use(layer, true);
-        int unused = 0;
-        ls.castersDrawn += drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr,
-                                       true, false, unused);
+        CasterPass firstPass;
+        firstPass.mapSize = map.mapSize;
+        ls.castersDrawn +=
+            drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, true, firstPass);
     }
     const GLuint framebuffer = map.framebuffer.get();
     gl.NamedFramebufferTextureLayer(framebuffer, GL_DEPTH_ATTACHMENT, map.array.get(), 0, static_cast<GLint>(k));
@@ -466,8 +516,13 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
     const DepthProgram& program = this->program(mode, false);
     program.use(layer);
     // The second-depth modes need the far side of every caster: only a nearest layer culls.
-    ls.castersDrawn += drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, false,
-                                   mode == DepthMode::Nearest, ls.castersCulled);
+    CasterPass pass;
+    pass.cullSolids = mode == DepthMode::Nearest;
+    pass.mapSize = map.mapSize;
+    ls.castersDrawn +=
+        drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, false, pass);
+    ls.castersCulled += pass.culled;
+    map.drawnTexels[k] = pass.texels;
     if (mode != DepthMode::Nearest) gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
     ++ls.layersDrawn;
 }
@@ -510,6 +565,7 @@ void ShadowMaps::render(const ShadowFrame& frame, const World& world, MeshCache&
     g.syncMaps(frame);
     stats.warnings.insert(stats.warnings.end(), frame.warnings.begin(), frame.warnings.end());
     beginDepthOnly();
+    const std::size_t firstLight = stats.lights.size();
     for (const ShadowLightPlan& plan : frame.lights) {
         LightShadowStats& ls = stats.addLight();
         describe(plan, ls);
@@ -536,8 +592,8 @@ void ShadowMaps::render(const ShadowFrame& frame, const World& world, MeshCache&
         stats.shadowDrawCalls += ls.castersDrawn;
     }
     endDepthOnly();
-    for (const ShadowLightPlan& plan : frame.lights) {
-        if (plan.hasMap()) g.updateChains(plan);
+    for (std::size_t i = 0; i < frame.lights.size(); ++i) {
+        if (frame.lights[i].hasMap()) g.updateChains(frame.lights[i], stats.lights[firstLight + i]);
     }
     stats.shadowScratchBytes = g.scratch.bytes();
     if (g.fields && g.fields->voxelBudget() != frame.distanceFieldVoxels) g.fields.reset();  // bake again
