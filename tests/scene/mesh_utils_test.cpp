@@ -83,6 +83,26 @@ TEST(MeshUtils, FlatNormalsDropTrianglesWithBadIndices) {
     EXPECT_EQ(mesh.normals[3], glm::vec3(0, 0, 1));
 }
 
+/// Where `farTetrahedron` stands.
+const glm::vec3 kFar(1e5f, -3e4f, 7e3f);
+
+/// A unit tetrahedron at `kFar`, wound counter-clockwise seen from outside, `closed` computed.
+MeshData farTetrahedron() {
+    MeshData tet;
+    tet.positions = {kFar, kFar + glm::vec3(1, 0, 0), kFar + glm::vec3(0, 1, 0), kFar + glm::vec3(0, 0, 1)};
+    tet.indices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+    computeClosed(tet);
+    return tet;
+}
+
+/// The unit box with flat normals (every triangle its own vertices), `closed` computed.
+MeshData flatBox() {
+    MeshData flat = *makeBoxMesh(glm::vec3(1.0f));
+    makeFlatNormals(flat);
+    computeClosed(flat);
+    return flat;
+}
+
 TEST(MeshUtils, ComputeClosedKnowsWatertightMeshesFromOpenOnes) {
     // The generated meshes: the box and the sphere are closed (the sphere's pole vertices and
     // seam repeat positions, welded), the plane is not.
@@ -92,10 +112,7 @@ TEST(MeshUtils, ComputeClosedKnowsWatertightMeshesFromOpenOnes) {
     EXPECT_FALSE(makePlaneMesh(2.0f, 4)->closed);
 
     // The box with flat normals (every triangle its own vertices) is still closed.
-    MeshData flat = *makeBoxMesh(glm::vec3(1.0f));
-    makeFlatNormals(flat);
-    computeClosed(flat);
-    EXPECT_TRUE(flat.closed);
+    EXPECT_TRUE(flatBox().closed);
 
     // One face missing: open. One face doubled: an edge of four triangles, not closed either.
     MeshData box = *makeBoxMesh(glm::vec3(1.0f));
@@ -123,11 +140,7 @@ TEST(MeshUtils, ComputeClosedKnowsWatertightMeshesFromOpenOnes) {
 
     // A tetrahedron far from the origin, and the same with one vertex 1e-9 of the extent off
     // its twin (welded) and 1e-3 off (not).
-    const glm::vec3 o(1e5f, -3e4f, 7e3f);
-    MeshData tet;
-    tet.positions = {o, o + glm::vec3(1, 0, 0), o + glm::vec3(0, 1, 0), o + glm::vec3(0, 0, 1)};
-    tet.indices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
-    computeClosed(tet);
+    const MeshData tet = farTetrahedron();
     EXPECT_TRUE(tet.closed);
     MeshData split;
     split.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1e-9f, 0, 0}, {1e-3f, 0, 0}};
@@ -144,18 +157,11 @@ TEST(MeshUtils, SolidMeansClosedWoundAlikeAndOutwardInEveryPart) {
     EXPECT_TRUE(makeBoxMesh(glm::vec3(0.5f, 0.2f, 1.0f))->solid);
     EXPECT_TRUE(makeSphereMesh(0.5f, 48, 24)->solid);
     EXPECT_FALSE(makePlaneMesh(2.0f, 4)->solid);
-    MeshData flat = *makeBoxMesh(glm::vec3(1.0f));
-    makeFlatNormals(flat);
-    computeClosed(flat);
-    EXPECT_TRUE(flat.solid);
+    EXPECT_TRUE(flatBox().solid);
 
     // The tetrahedron far from the origin (its volume 1/6 in double about its centre), and the
     // same turned inside out: closed, not solid.
-    const glm::vec3 o(1e5f, -3e4f, 7e3f);
-    MeshData tet;
-    tet.positions = {o, o + glm::vec3(1, 0, 0), o + glm::vec3(0, 1, 0), o + glm::vec3(0, 0, 1)};
-    tet.indices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
-    computeClosed(tet);
+    const MeshData tet = farTetrahedron();
     EXPECT_TRUE(tet.solid);
     MeshData inverted = tet;
     for (std::size_t t = 0; t < inverted.indices.size(); t += 3)
@@ -176,7 +182,7 @@ TEST(MeshUtils, SolidMeansClosedWoundAlikeAndOutwardInEveryPart) {
     // the sum of their volumes is positive (the outward part is the larger).
     MeshData two = *makeBoxMesh(glm::vec3(1.0f));
     const std::uint32_t base = static_cast<std::uint32_t>(two.positions.size());
-    for (const glm::vec3& p : tet.positions) two.positions.push_back(p - o + glm::vec3(5.0f, 0.0f, 0.0f));
+    for (const glm::vec3& p : tet.positions) two.positions.push_back(p - kFar + glm::vec3(5.0f, 0.0f, 0.0f));
     two.normals.resize(two.positions.size(), glm::vec3(0.0f, 1.0f, 0.0f));
     for (std::uint32_t i : tet.indices) two.indices.push_back(base + i);
     computeClosed(two);

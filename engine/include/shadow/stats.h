@@ -29,8 +29,9 @@ struct LightShadowStats {
     int layersReused = 0;   ///< unchanged since the last frame, not redrawn
     int layersCleared = 0;  ///< no caster in the layer's frustum: cleared, not drawn
     int castersDrawn = 0;   ///< draw calls into this light's layers
-    /// Of `castersDrawn`: solid meshes (`MeshData::solid`) drawn with their back faces culled,
-    /// the nearest depths unchanged at about half the fragments.
+    /// Of `castersDrawn`: solid meshes (`MeshData::solid`) and game casters
+    /// (`ShadowCasterDraw::solid`) drawn with their back faces culled, the nearest depths
+    /// unchanged at about half the fragments.
     int castersCulled = 0;
     /// PCF, PCSS: the depth texels their min/max pyramids read this frame, over the layers
     /// rebuilt: the tiles that hold a texel the layer's casters can have drawn (the others are

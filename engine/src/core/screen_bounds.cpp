@@ -8,8 +8,6 @@ namespace shadow {
 PixelRect screenBounds(const ShadowLightPlan& plan, const ScreenView& view) {
     const PixelRect whole{0, 0, view.width, view.height};
     if (plan.light.type == LightType::Directional || !(plan.light.range > 0.0f)) return whole;
-    // The eight corners of the sphere's box, projected; any at or behind the eye plane: whole.
-    glm::dvec2 lo(1e300), hi(-1e300);
     DAabb reach;
     reach.extend(plan.wsPosition - glm::dvec3(plan.light.range));
     reach.extend(plan.wsPosition + glm::dvec3(plan.light.range));
@@ -18,9 +16,15 @@ PixelRect screenBounds(const ShadowLightPlan& plan, const ScreenView& view) {
         reach.max = glm::min(reach.max, view.wsGeometry.max);
         if (reach.empty()) return {};  // nothing drawn within its range
     }
+    return projectedBounds(view.clipFromWorld, reach, view.width, view.height);
+}
+
+PixelRect projectedBounds(const glm::dmat4& clipFromWorld, const DAabb& box, int width, int height) {
+    const PixelRect whole{0, 0, width, height};
+    glm::dvec2 lo(1e300), hi(-1e300);
     for (int c = 0; c < 8; ++c) {
-        const glm::dvec3 corner = reach.corner(c);
-        const glm::dvec4 clip = view.clipFromWorld * glm::dvec4(corner, 1.0);
+        const glm::dvec3 corner = box.corner(c);
+        const glm::dvec4 clip = clipFromWorld * glm::dvec4(corner, 1.0);
         if (!(clip.w > 1e-9)) return whole;
         const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
         lo = glm::min(lo, ndc);
@@ -30,8 +34,7 @@ PixelRect screenBounds(const ShadowLightPlan& plan, const ScreenView& view) {
         const double p = (ndc * 0.5 + 0.5) * size;
         return static_cast<int>(std::clamp(up ? std::ceil(p) : std::floor(p), 0.0, static_cast<double>(size)));
     };
-    return {pixel(lo.x, view.width, false), pixel(lo.y, view.height, false), pixel(hi.x, view.width, true),
-            pixel(hi.y, view.height, true)};
+    return {pixel(lo.x, width, false), pixel(lo.y, height, false), pixel(hi.x, width, true), pixel(hi.y, height, true)};
 }
 
 PixelRect unite(const PixelRect& a, const PixelRect& b) {

@@ -10,7 +10,7 @@
 
 namespace shadow {
 
-/// A rectangle of pixels, [x0, x1) x [y0, y1), GL's bottom-up rows.
+/// A rectangle of pixels (or of a shadow map's texels), [x0, x1) x [y0, y1), GL's bottom-up rows.
 struct PixelRect {
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 
@@ -21,6 +21,11 @@ struct PixelRect {
 
 /// The smallest rectangle holding `a` and `b` (an empty one adds nothing).
 PixelRect unite(const PixelRect& a, const PixelRect& b);
+
+/// The pixels of a `width` x `height` target that the box `box` covers through `clipFromWorld`:
+/// the rectangle of its eight corners' projections, pixels whose centre it may hold rounded out;
+/// the whole target where a corner lies at or behind the eye plane (w <= 0: no bounded image).
+PixelRect projectedBounds(const glm::dmat4& clipFromWorld, const DAabb& box, int width, int height);
 
 /// What the packing needs of the view to bound each light on screen.
 struct ScreenView {

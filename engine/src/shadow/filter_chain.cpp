@@ -90,7 +90,7 @@ FilterChainBuilder::Pass makePass(const std::string& label, const std::string& f
 }  // namespace
 
 long long FilterChainBuilder::build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer,
-                                    float momentScale, int fromLevel, int toLevel, const TexelRect& drawn) {
+                                    float momentScale, int fromLevel, int toLevel, const PixelRect& drawn) {
     gl.BindSampler(SG_UNIT_MINMAX_SOURCE, 0);  // the textures' own nearest filtering, no comparison
     long long read = 0;
     switch (chain.kind) {
@@ -118,7 +118,7 @@ const FilterChainBuilder::Programs& FilterChainBuilder::computePrograms(FilterCh
 }
 
 long long FilterChainBuilder::buildMinMax(GLuint depthArray, const FilterChain& chain, int mapSize, int layer,
-                                          const TexelRect& drawn) {
+                                          const PixelRect& drawn) {
     long long read = 0;
     const Programs& programs = computePrograms(FilterChainKind::MinMax);
     int size = FilterChain::baseSize(chain.kind, mapSize);

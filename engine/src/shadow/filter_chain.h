@@ -15,6 +15,7 @@
 
 #include <shadow/components.h>
 
+#include "core/screen_bounds.h"
 #include "gl/objects.h"
 #include "shadow/map_memory.h"
 
@@ -59,25 +60,6 @@ struct FilterChain {
     [[nodiscard]] long long bytes(int mapSize, int layers) const { return chainBytes(kind, mapSize, layers, levels); }
 };
 
-/// The map texels [x0, x1) x [y0, y1) of a layer that its casters may have drawn: every texel
-/// outside holds the far depth. Empty when nothing was drawn.
-struct TexelRect {
-    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-    [[nodiscard]] bool empty() const { return x1 <= x0 || y1 <= y0; }
-    /// The smallest rectangle holding this one and `other`.
-    void extend(const TexelRect& other) {
-        if (other.empty()) return;
-        if (empty()) {
-            *this = other;
-            return;
-        }
-        x0 = std::min(x0, other.x0);
-        y0 = std::min(y0, other.y0);
-        x1 = std::max(x1, other.x1);
-        y1 = std::max(y1, other.y1);
-    }
-};
-
 /// The programs that build chains, shared by every light; built on first use.
 class FilterChainBuilder {
 public:
@@ -87,11 +69,11 @@ public:
     /// most the top level); the first straight from the depth map (each texel the mean
     /// over its 2^fromLevel-texel tile), each above from the one below. The levels outside are not
     /// built (ShadowLayerPlan::chainFirstLevel, chainLastLevel). The min/max pyramid reads the
-    /// depth map only within `drawn`, the texels the layer's casters may have drawn: its tiles
-    /// outside are cleared to the far depth's range. Returns the depth texels the pyramid's
+    /// depth map only within `drawn`, the texels the layer's casters may have drawn (every texel
+    /// outside holds the far depth): its tiles outside are cleared to the far depth's range. Returns the depth texels the pyramid's
     /// level 0 read (0 for the other kinds).
     long long build(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale,
-                    int fromLevel, int toLevel, const TexelRect& drawn);
+                    int fromLevel, int toLevel, const PixelRect& drawn);
 
     /// A compute program and its uniforms.
     struct Pass {
@@ -100,7 +82,7 @@ public:
     };
 
 private:
-    long long buildMinMax(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, const TexelRect& drawn);
+    long long buildMinMax(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, const PixelRect& drawn);
     void buildMoments(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, int fromLevel, int toLevel);
     void buildSummedArea(GLuint depthArray, const FilterChain& chain, int mapSize, int layer, float momentScale);
 

@@ -21,7 +21,6 @@
 #include <array>
 #include <charconv>
 #include <cmath>
-#include <limits>
 #include <optional>
 #include <string_view>
 
@@ -46,7 +45,7 @@ struct ShadowMapGpu {
     std::vector<int> chainFirstLevel;
     std::vector<int> chainLastLevel;
     /// Per layer: the texels its casters may have drawn when last drawn (casterTexels).
-    std::vector<TexelRect> drawnTexels;
+    std::vector<PixelRect> drawnTexels;
     /// Made this frame (a new light, or a new map size or layer count): its texture name changed.
     bool allocatedThisFrame = true;
 };
@@ -120,7 +119,7 @@ std::unique_ptr<ShadowMapGpu> allocate(const ShadowLightPlan& plan) {
     map->mapSize = plan.mapSize;
     map->layers = static_cast<int>(plan.layers.size());
     map->depthScales.assign(plan.layers.size(), 1.0f);
-    map->drawnTexels.assign(plan.layers.size(), TexelRect{0, 0, map->mapSize, map->mapSize});
+    map->drawnTexels.assign(plan.layers.size(), PixelRect{0, 0, map->mapSize, map->mapSize});
     map->array = gpu::makeTexture(label + "/array", GL_TEXTURE_2D_ARRAY);
     gl.TextureStorage3D(map->array.get(), 1, GL_DEPTH_COMPONENT32F, map->mapSize, map->mapSize, map->layers);
     gl.TextureParameteri(map->array.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -330,6 +329,7 @@ GLenum solidCulledFaces(const ShadowLayerPlan& layer, const glm::dmat4& worldFro
     // Clip z + w, affine in light-view coordinates, is positive beyond the near plane: its least
     // value over the caster's light-view box, with a margin for the float clipping of vertices.
     const DAabb box = transformBounds(lightFromLocal, localBounds);
+    if (box.empty()) return 0;
     const glm::dmat4& p = layer.clipFromLight;
     double least = p[3][2] + p[3][3];
     double scale = std::abs(least);
@@ -338,7 +338,7 @@ GLenum solidCulledFaces(const ShadowLayerPlan& layer, const glm::dmat4& worldFro
         least += k * (k > 0.0 ? box.min[axis] : box.max[axis]);
         scale += std::abs(k * box.min[axis]) + std::abs(k * box.max[axis]);
     }
-    if (box.empty() || !(least > 1e-5 * scale)) return 0;
+    if (!(least > 1e-5 * scale)) return 0;
     // A face towards the light: counter-clockwise in the window when the projection keeps the
     // orientation of the view's x-y plane (the light looks down -Z) and the transform does not
     // mirror.
@@ -347,34 +347,13 @@ GLenum solidCulledFaces(const ShadowLayerPlan& layer, const glm::dmat4& worldFro
     return mirror > 0.0 ? GL_BACK : GL_FRONT;
 }
 
-/// The texels of a `mapSize`^2 layer that a caster within world bounds `bounds` can draw, one
-/// texel wider on each side than the bounds' projection; the whole layer without bounds or where
-/// they reach to the light's plane (a perspective projection has no bounded image there).
-TexelRect casterTexels(const ShadowLayerPlan& layer, int mapSize, const WorldBounds* bounds) {
-    const TexelRect whole{0, 0, mapSize, mapSize};
-    if (bounds == nullptr) return whole;
+/// The texels of a `mapSize`^2 layer that a caster within world bounds `bounds` can draw: its
+/// projection (`projectedBounds`) one texel wider on each side; the whole layer without bounds.
+PixelRect casterTexels(const ShadowLayerPlan& layer, int mapSize, const WorldBounds* bounds) {
+    if (bounds == nullptr) return {0, 0, mapSize, mapSize};
     if (bounds->box.empty()) return {};
-    const DAabb box = transformBounds(layer.lightFromWorld, bounds->box);
-    glm::dvec2 lo(std::numeric_limits<double>::infinity());
-    glm::dvec2 hi(-std::numeric_limits<double>::infinity());
-    for (int corner = 0; corner < 8; ++corner) {
-        const glm::dvec4 ls((corner & 1) != 0 ? box.max.x : box.min.x, (corner & 2) != 0 ? box.max.y : box.min.y,
-                            (corner & 4) != 0 ? box.max.z : box.min.z, 1.0);
-        const glm::dvec4 clip = layer.clipFromLight * ls;
-        if (!(clip.w > 1e-9 * (std::abs(clip.x) + std::abs(clip.y) + std::abs(clip.w)))) return whole;
-        lo = glm::min(lo, glm::dvec2(clip) / clip.w);
-        hi = glm::max(hi, glm::dvec2(clip) / clip.w);
-    }
-    if (!std::isfinite(lo.x) || !std::isfinite(lo.y) || !std::isfinite(hi.x) || !std::isfinite(hi.y)) return whole;
-    // A texel is drawn when its centre is covered: those within the image, and one more.
-    const double size = mapSize;
-    const auto first = [size](double ndc) {
-        return static_cast<int>(std::clamp(std::floor((ndc * 0.5 + 0.5) * size) - 1.0, 0.0, size));
-    };
-    const auto end = [size](double ndc) {
-        return static_cast<int>(std::clamp(std::ceil((ndc * 0.5 + 0.5) * size) + 1.0, 0.0, size));
-    };
-    return TexelRect{first(lo.x), first(lo.y), end(hi.x), end(hi.y)};
+    const PixelRect r = projectedBounds(layer.clipFromLight * layer.lightFromWorld, bounds->box, mapSize, mapSize);
+    return {std::max(r.x0 - 1, 0), std::max(r.y0 - 1, 0), std::min(r.x1 + 1, mapSize), std::min(r.y1 + 1, mapSize)};
 }
 
 /// The faces culled in a depth pass, set only when they change (0: none, as beginDepthOnly
@@ -401,9 +380,17 @@ struct CasterPass {
     /// A nearest-depth layer: a rigid, opaque solid mesh (or a game's solid indexed draw) is
     /// drawn with its back faces culled (`solidCulledFaces`), counted in `culled`.
     bool cullSolids = false;
+    /// A layer whose min/max pyramid reads the texels its casters drew: gathered in `texels`
+    /// (`casterTexels`); the whole layer otherwise.
+    bool gatherTexels = false;
     int mapSize = 0;
     int culled = 0;
-    TexelRect texels;  ///< the texels the casters drawn may cover (casterTexels)
+    PixelRect texels;
+
+    /// Adds the texels a caster within world bounds `bounds` can draw, when gathering them.
+    void gather(const ShadowLayerPlan& layer, const WorldBounds* bounds) {
+        if (gatherTexels) texels = unite(texels, casterTexels(layer, mapSize, bounds));
+    }
 };
 
 /// Draws every caster of `layer` into the bound framebuffer, with `opaque` (current, its layer
@@ -439,7 +426,7 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
             const bool rigidOpaqueSolid = pass.cullSolids && mesh->data->solid && skin == nullptr && !alphaTested;
             const GLenum faces = rigidOpaqueSolid ? solidCulledFaces(layer, wt->worldFromLocal, mesh->data->bounds) : 0;
             pass.culled += cull.set(faces) ? 1 : 0;
-            pass.texels.extend(casterTexels(layer, pass.mapSize, world.tryGet<WorldBounds>(caster)));
+            pass.gather(layer, world.tryGet<WorldBounds>(caster));
             choose(alphaTested ? *cutout : opaque);
             const GLuint name = current->program.get();
             if (alphaTested) {
@@ -459,7 +446,7 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
             const bool solid = pass.cullSolids && own->solid && !own->draw;
             pass.culled += cull.set(solid ? solidCulledFaces(layer, wt->worldFromLocal, own->localBounds) : 0) ? 1 : 0;
             const WorldBounds box{transformBounds(wt->worldFromLocal, own->localBounds)};
-            pass.texels.extend(casterTexels(layer, pass.mapSize, &box));
+            pass.gather(layer, &box);
             choose(opaque);
             gl.ProgramUniform1i(opaque.program.get(), opaque.skinned, 0);
             drawOwnCaster(*own, *wt, context);
@@ -518,11 +505,12 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
     // The second-depth modes need the far side of every caster: only a nearest layer culls.
     CasterPass pass;
     pass.cullSolids = mode == DepthMode::Nearest;
+    pass.gatherTexels = map.chain && map.chain->kind == FilterChainKind::MinMax;
     pass.mapSize = map.mapSize;
     ls.castersDrawn +=
         drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, false, pass);
     ls.castersCulled += pass.culled;
-    map.drawnTexels[k] = pass.texels;
+    map.drawnTexels[k] = pass.gatherTexels ? pass.texels : PixelRect{0, 0, map.mapSize, map.mapSize};
     if (mode != DepthMode::Nearest) gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
     ++ls.layersDrawn;
 }
