@@ -4,7 +4,8 @@
 // of the frame (render targets, light records, sampler arrays, branches, pre-pass, screen masks)
 // should follow measurements. Each probe is one small synthetic fragment shader drawn over a
 // full-screen triangle at 1280x720 into a framebuffer object (or, for the overdraw probes, the
-// meshes of a real scene); its row in the table is the wall-clock time of one frame between
+// meshes of a real scene; the compute probes of group 13 store a screen-sized image from a
+// compute shader instead); its row in the table is the wall-clock time of one frame between
 // glFinish fences. Timer queries do not cover rasterisation on a CPU rasteriser (see BENCHMARKS.md),
 // so only the wall clock is used. Every probe gets warm-up frames first (the first one includes
 // the JIT compile of the shader variant, reported separately), then the timed frames are taken
@@ -30,9 +31,11 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <iomanip>
@@ -230,6 +233,29 @@ layout(binding = MASK_UNIT) uniform sampler2D uMask;
 void main() { oColor = vec4(texelFetch(uMask, ivec2(gl_FragCoord.xy), 0).r, vUv, 1.0); }
 )";
 
+// Compute probes: one invocation per column walks its column, as the summed-area table's
+// passes do (shadow_summed_area.comp.glsl), storing every texel of a screen-sized image once
+// (IMAGE_FORMAT, STORED the stored value), or loading each first (LOAD_FIRST: the table's
+// column pass, in place).
+constexpr const char* kColumnStoresCs = R"(
+layout(local_size_x = 64) in;
+layout(binding = 0, IMAGE_FORMAT) uniform IMAGE_TYPE uImage;
+void main() {
+    int x = int(gl_GlobalInvocationID.x);
+    ivec2 size = imageSize(uImage);
+    if (x >= size.x) return;
+    STORED_TYPE sum = STORED_TYPE(0);
+    for (int y = 0; y < size.y; ++y) {
+#ifdef LOAD_FIRST
+        sum = imageLoad(uImage, ivec2(x, y)) + STORED_TYPE(1);
+#else
+        sum += STORED_TYPE(1);
+#endif
+        imageStore(uImage, ivec2(x, y), sum);
+    }
+}
+)";
+
 constexpr const char* kDepthOnlyFs = R"(
 void main() {}
 )";
@@ -383,6 +409,9 @@ public:
     std::vector<Probe> listProbes();
     /// Counts fragments of the overdraw probes (untimed).
     SceneCounts countSceneFragments();
+    /// Throws unless every store-only compute probe left its column's count, y + 1, in texel
+    /// (x, y) of the last column and row.
+    void checkComputeProbes() const;
 
 private:
     GLuint program(const std::string& label, const char* vertex, const std::vector<const char*>& parts,
@@ -391,12 +420,16 @@ private:
                      const std::vector<const char*>& parts, const std::vector<std::string>& defines = {},
                      bool blend = false);
     Probe compareTaps(const std::string& name, const std::string& baseline, const std::vector<std::string>& defines);
+    /// Compute probe: kColumnStoresCs over a screen-sized image of `format` (an RGBA32F or
+    /// unsigned-integer format), loading each texel first when `loadFirst`.
+    Probe columnStores(const std::string& name, const std::string& baseline, GLenum format, bool loadFirst = false);
     void drawScene(GLuint program);
 
     std::vector<gpu::Program> programs_;
     gpu::VertexArray emptyVao_;
     Target rgba8_, rgba16f_, rgba32f_, r8_, r16f_, aovs_, sceneTarget_;
     gpu::Texture shadowMap_, maskR8_, maskR16f_;
+    std::vector<gpu::Texture> images_;  ///< the compute probes' images, in probe order
     gpu::Buffer lightSsbo_, lightUbo_;
     MeshCache meshes_;
     std::vector<SceneDraw> sceneDraws_;
@@ -496,6 +529,37 @@ Probe FragmentCosts::fullScreen(const std::string& name, const std::string& base
 Probe FragmentCosts::compareTaps(const std::string& name, const std::string& baseline,
                                  const std::vector<std::string>& defines) {
     return fullScreen(name, baseline, rgba16f_, {kIo, kCompareTapsFs}, defines);
+}
+
+Probe FragmentCosts::columnStores(const std::string& name, const std::string& baseline, GLenum format, bool loadFirst) {
+    struct Format {
+        GLenum format;
+        const char* layout;
+        const char* stored;
+    };
+    static constexpr std::array<Format, 4> kFormats{{{GL_RGBA32F, "rgba32f", "vec4"},
+                                                     {GL_RGBA32UI, "rgba32ui", "uvec4"},
+                                                     {GL_RG32UI, "rg32ui", "uvec4"},
+                                                     {GL_R32UI, "r32ui", "uvec4"}}};
+    const auto* f =
+        std::find_if(kFormats.begin(), kFormats.end(), [format](const Format& k) { return k.format == format; });
+    if (f == kFormats.end()) throw std::logic_error("columnStores: no probe for this image format");
+    const bool floats = format == GL_RGBA32F;
+    std::string text = std::string("#version 450 core\n#define IMAGE_FORMAT ") + f->layout + "\n#define IMAGE_TYPE " +
+                       (floats ? "image2D" : "uimage2D") + "\n#define STORED_TYPE " + f->stored + "\n" +
+                       (loadFirst ? "#define LOAD_FIRST\n" : "") + "#line 1 1\n" + kColumnStoresCs;
+    const GLuint p =
+        programs_.emplace_back(gpu::linkComputeProgram("FragmentCosts/" + name, {std::move(text), {"defines", name}}))
+            .get();
+    gpu::Texture& image = images_.emplace_back(gpu::makeTexture("FragmentCosts/" + name, GL_TEXTURE_2D));
+    gl.TextureStorage2D(image.get(), 1, format, kWidth, kHeight);
+    const GLuint texture = image.get();
+    return {name, baseline, [p, texture, format] {
+                gl.UseProgram(p);
+                gl.BindImageTexture(0, texture, 0, GL_FALSE, 0, GL_READ_WRITE, format);
+                gl.DispatchCompute((kWidth + 63) / 64, 1, 1);
+                gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            }};
 }
 
 void FragmentCosts::drawScene(GLuint program) {
@@ -653,7 +717,35 @@ std::vector<Probe> FragmentCosts::listProbes() {
                      gl.BindFramebuffer(GL_FRAMEBUFFER, maskFbo);
                      clearTarget(r8);
                  }});
+
+    // 13. Compute stores: the summed-area table (VSSM) is written by compute passes, one
+    // invocation per line, each storing every texel of its line; against the fragment write of
+    // the same texels (row 1).
+    const std::string storeRgba32f = "13. compute: store each texel, RGBA32F";
+    p.push_back(columnStores(storeRgba32f, "1. const → RGBA32F", GL_RGBA32F));
+    p.push_back(columnStores("13. compute: store each texel, RGBA32UI", storeRgba32f, GL_RGBA32UI));
+    p.push_back(columnStores("13. compute: store each texel, RG32UI", storeRgba32f, GL_RG32UI));
+    p.push_back(columnStores("13. compute: store each texel, R32UI", storeRgba32f, GL_R32UI));
+    p.push_back(columnStores("13. compute: load + store each texel, RGBA32F", storeRgba32f, GL_RGBA32F, true));
     return p;
+}
+
+void FragmentCosts::checkComputeProbes() const {
+    gl.MemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    for (std::size_t i = 0; i + 1 < images_.size(); ++i) {  // the last one loads first
+        std::array<std::uint32_t, 4> texel{};
+        const bool floats = i == 0;
+        gl.GetTextureSubImage(images_[i].get(), 0, kWidth - 1, kHeight - 1, 0, 1, 1, 1,
+                              floats ? GL_RGBA : GL_RGBA_INTEGER, floats ? GL_FLOAT : GL_UNSIGNED_INT, sizeof(texel),
+                              texel.data());
+        float first = 0.0f;
+        std::memcpy(&first, texel.data(), sizeof(first));
+        const double value = floats ? static_cast<double>(first) : static_cast<double>(texel[0]);
+        if (value != kHeight) {
+            throw std::logic_error("compute probe " + std::to_string(i) + " stored " + std::to_string(value) +
+                                   " in its last texel, not " + std::to_string(kHeight));
+        }
+    }
 }
 
 SceneCounts FragmentCosts::countSceneFragments() {
@@ -840,6 +932,13 @@ std::string markdown(const std::vector<Probe>& probes, const SceneCounts& counts
        << fixed(sceneShadingPerMFrag / screenShadingPerMPix) << ")\n"
        << "- pre-pass + EQUAL vs LESS: " << fixed(prePass) << " ms vs " << fixed(less) << " ms ("
        << (prePass <= less ? "saves " : "costs ") << fixed(std::abs(less - prePass)) << " ms)\n";
+    const double storeRgba = median("13. compute: store each texel, RGBA32F");
+    md << "\nCompute stores (the summed-area table's passes store every texel of the layer; ms / MPix is ns per "
+          "texel): one RGBA32F texel "
+       << "stored by a compute shader costs " << fixed(storeRgba / kMegapixels, 1) << " ns, "
+       << fixed(storeRgba / median("1. const → RGBA32F")) << "× a fragment write of the same texel; "
+       << "an R32UI texel " << fixed(median("13. compute: store each texel, R32UI") / kMegapixels, 1)
+       << " ns (the store is paid per channel).\n";
     return md.str();
 }
 
@@ -876,6 +975,7 @@ int run(const Options& o) {
     std::cerr << "fragment_costs: " << probes.size() << " probes on " << renderer << "\n";
     measure(probes, o.frames);
     checkProbes(probes);
+    bench.checkComputeProbes();
     const SceneCounts counts = bench.countSceneFragments();
     gpu::checkGlError("fragment counts");
     const std::string md = markdown(probes, counts, renderer, sceneName, o.frames, loadBefore);

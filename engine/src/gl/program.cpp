@@ -208,23 +208,26 @@ Program linkProgram(const std::string& label, const ExpandedSource& vertex, cons
     return program;
 }
 
-Program buildComputeProgram(const std::string& label, const std::string& file,
-                            const std::vector<std::string>& defines) {
-    const ExpandedSource source = expandShader(file, defines, 0);
-    const std::string key = programKey(label, {&source.text});
+Program linkComputeProgram(const std::string& label, const ExpandedSource& compute) {
+    const std::string key = programKey(label, {&compute.text});
     if (std::optional<Program> cached = loadCachedProgram(key)) {
         cached->label(label);
         return std::move(*cached);
     }
-    const GLuint c = compileStage(GL_COMPUTE_SHADER, source, label + " (" + source.files.front() + ")");
+    const GLuint c = compileStage(GL_COMPUTE_SHADER, compute, label + " (" + compute.files.front() + ")");
     Program program(gl.CreateProgram());
     gl.AttachShader(program.get(), c);
     markRetrievable(program);
     gl.LinkProgram(program.get());
     gl.DeleteShader(c);
-    requireLinked(program, label, source.files);
+    requireLinked(program, label, compute.files);
     storeCachedProgram(key, program);
     return program;
+}
+
+Program buildComputeProgram(const std::string& label, const std::string& file,
+                            const std::vector<std::string>& defines) {
+    return linkComputeProgram(label, expandShader(file, defines, 0));
 }
 
 Program buildProgram(const ProgramDesc& desc) {

@@ -38,6 +38,10 @@ struct ExpandedSource {
 /// the program `label`; throws `GlError` naming the file and line of the first error.
 Program linkProgram(const std::string& label, const ExpandedSource& vertex, const ExpandedSource& fragment);
 
+/// Compiles and links one expanded compute stage (its first file names it in messages), labels
+/// the program `label`; throws `GlError` naming the file and line of the first error.
+Program linkComputeProgram(const std::string& label, const ExpandedSource& compute);
+
 /// Expands `#include`s of `file` below a `#version` line and the defines, each file once (as if
 /// every file had `#pragma once`); `#include "shadow_techniques.glsl"` expands to the dispatch
 /// over `techniques` (gl/technique_glsl.h). Throws `GlError` for a missing file, an include
