@@ -429,7 +429,13 @@ private:
     gpu::VertexArray emptyVao_;
     Target rgba8_, rgba16f_, rgba32f_, r8_, r16f_, aovs_, sceneTarget_;
     gpu::Texture shadowMap_, maskR8_, maskR16f_;
-    std::vector<gpu::Texture> images_;  ///< the compute probes' images, in probe order
+    /// A compute probe's image, its format, and whether its probe loads each texel first.
+    struct Image {
+        gpu::Texture texture;
+        GLenum format = GL_NONE;
+        bool loadFirst = false;
+    };
+    std::vector<Image> images_;
     gpu::Buffer lightSsbo_, lightUbo_;
     MeshCache meshes_;
     std::vector<SceneDraw> sceneDraws_;
@@ -551,9 +557,10 @@ Probe FragmentCosts::columnStores(const std::string& name, const std::string& ba
     const GLuint p =
         programs_.emplace_back(gpu::linkComputeProgram("FragmentCosts/" + name, {std::move(text), {"defines", name}}))
             .get();
-    gpu::Texture& image = images_.emplace_back(gpu::makeTexture("FragmentCosts/" + name, GL_TEXTURE_2D));
-    gl.TextureStorage2D(image.get(), 1, format, kWidth, kHeight);
-    const GLuint texture = image.get();
+    const Image& image =
+        images_.emplace_back(Image{gpu::makeTexture("FragmentCosts/" + name, GL_TEXTURE_2D), format, loadFirst});
+    gl.TextureStorage2D(image.texture.get(), 1, format, kWidth, kHeight);
+    const GLuint texture = image.texture.get();
     return {name, baseline, [p, texture, format] {
                 gl.UseProgram(p);
                 gl.BindImageTexture(0, texture, 0, GL_FALSE, 0, GL_READ_WRITE, format);
@@ -732,10 +739,11 @@ std::vector<Probe> FragmentCosts::listProbes() {
 
 void FragmentCosts::checkComputeProbes() const {
     gl.MemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-    for (std::size_t i = 0; i + 1 < images_.size(); ++i) {  // the last one loads first
+    for (std::size_t i = 0; i < images_.size(); ++i) {
+        if (images_[i].loadFirst) continue;
         std::array<std::uint32_t, 4> texel{};
-        const bool floats = i == 0;
-        gl.GetTextureSubImage(images_[i].get(), 0, kWidth - 1, kHeight - 1, 0, 1, 1, 1,
+        const bool floats = images_[i].format == GL_RGBA32F;
+        gl.GetTextureSubImage(images_[i].texture.get(), 0, kWidth - 1, kHeight - 1, 0, 1, 1, 1,
                               floats ? GL_RGBA : GL_RGBA_INTEGER, floats ? GL_FLOAT : GL_UNSIGNED_INT, sizeof(texel),
                               texel.data());
         float first = 0.0f;

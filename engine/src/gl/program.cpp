@@ -5,6 +5,7 @@
 #include "gl/technique_glsl.h"
 
 #include <algorithm>
+#include <initializer_list>
 #include <optional>
 #include <regex>
 #include <sstream>
@@ -182,47 +183,52 @@ void requireLinked(const Program& program, const std::string& label, const std::
 
 }  // namespace
 
-Program linkProgram(const std::string& label, const ExpandedSource& vertex, const ExpandedSource& fragment) {
-    const std::string key = programKey(label, {&vertex.text, &fragment.text});
+namespace {
+
+/// One stage of a program: its type and its expanded source.
+struct Stage {
+    GLenum type;
+    const ExpandedSource* source;
+};
+
+/// Compiles `stages`, links them into a program labelled `label` (or loads it from the program
+/// cache), and throws `GlError` naming the file and line of the first error; link messages are
+/// mapped onto the last stage's files.
+Program linkStages(const std::string& label, std::initializer_list<Stage> stages) {
+    std::vector<const std::string*> texts;
+    for (const Stage& s : stages) texts.push_back(&s.source->text);
+    const std::string key = programKey(label, texts);
     if (std::optional<Program> cached = loadCachedProgram(key)) {
         cached->label(label);
         return std::move(*cached);
     }
-    const GLuint v = compileStage(GL_VERTEX_SHADER, vertex, label + " (" + vertex.files.front() + ")");
-    GLuint f = 0;
+    std::vector<GLuint> shaders;
     try {
-        f = compileStage(GL_FRAGMENT_SHADER, fragment, label + " (" + fragment.files.front() + ")");
+        for (const Stage& s : stages) {
+            shaders.push_back(compileStage(s.type, *s.source, label + " (" + s.source->files.front() + ")"));
+        }
     } catch (...) {
-        gl.DeleteShader(v);
+        for (GLuint shader : shaders) gl.DeleteShader(shader);
         throw;
     }
     Program program(gl.CreateProgram());
-    gl.AttachShader(program.get(), v);
-    gl.AttachShader(program.get(), f);
+    for (GLuint shader : shaders) gl.AttachShader(program.get(), shader);
     markRetrievable(program);
     gl.LinkProgram(program.get());
-    gl.DeleteShader(v);
-    gl.DeleteShader(f);
-    requireLinked(program, label, fragment.files);
+    for (GLuint shader : shaders) gl.DeleteShader(shader);
+    requireLinked(program, label, (stages.end() - 1)->source->files);
     storeCachedProgram(key, program);
     return program;
 }
 
+}  // namespace
+
+Program linkProgram(const std::string& label, const ExpandedSource& vertex, const ExpandedSource& fragment) {
+    return linkStages(label, {{GL_VERTEX_SHADER, &vertex}, {GL_FRAGMENT_SHADER, &fragment}});
+}
+
 Program linkComputeProgram(const std::string& label, const ExpandedSource& compute) {
-    const std::string key = programKey(label, {&compute.text});
-    if (std::optional<Program> cached = loadCachedProgram(key)) {
-        cached->label(label);
-        return std::move(*cached);
-    }
-    const GLuint c = compileStage(GL_COMPUTE_SHADER, compute, label + " (" + compute.files.front() + ")");
-    Program program(gl.CreateProgram());
-    gl.AttachShader(program.get(), c);
-    markRetrievable(program);
-    gl.LinkProgram(program.get());
-    gl.DeleteShader(c);
-    requireLinked(program, label, compute.files);
-    storeCachedProgram(key, program);
-    return program;
+    return linkStages(label, {{GL_COMPUTE_SHADER, &compute}});
 }
 
 Program buildComputeProgram(const std::string& label, const std::string& file,

@@ -347,12 +347,12 @@ GLenum solidCulledFaces(const ShadowLayerPlan& layer, const glm::dmat4& worldFro
     return mirror > 0.0 ? GL_BACK : GL_FRONT;
 }
 
-/// The texels of a `mapSize`^2 layer that a caster within world bounds `bounds` can draw: its
+/// The texels of a `mapSize`^2 layer that a caster within world bounds `box` can draw: its
 /// projection (`projectedBounds`) one texel wider on each side; the whole layer without bounds.
-PixelRect casterTexels(const ShadowLayerPlan& layer, int mapSize, const WorldBounds* bounds) {
-    if (bounds == nullptr) return {0, 0, mapSize, mapSize};
-    if (bounds->box.empty()) return {};
-    const PixelRect r = projectedBounds(layer.clipFromLight * layer.lightFromWorld, bounds->box, mapSize, mapSize);
+PixelRect casterTexels(const ShadowLayerPlan& layer, int mapSize, const DAabb* box) {
+    if (box == nullptr) return {0, 0, mapSize, mapSize};
+    if (box->empty()) return {};
+    const PixelRect r = projectedBounds(layer.clipFromLight * layer.lightFromWorld, *box, mapSize, mapSize);
     return {std::max(r.x0 - 1, 0), std::max(r.y0 - 1, 0), std::min(r.x1 + 1, mapSize), std::min(r.y1 + 1, mapSize)};
 }
 
@@ -386,10 +386,19 @@ struct CasterPass {
     int mapSize = 0;
     int culled = 0;
     PixelRect texels;
+    FaceCulling cull;
 
-    /// Adds the texels a caster within world bounds `bounds` can draw, when gathering them.
-    void gather(const ShadowLayerPlan& layer, const WorldBounds* bounds) {
-        if (gatherTexels) texels = unite(texels, casterTexels(layer, mapSize, bounds));
+    /// Before a caster's draw (object transform `worldFromLocal`, object bounds `localBounds`):
+    /// culls its faces when `solid` (`solidCulledFaces`) and, when gathering, adds the texels it
+    /// can draw, its world box from `worldBox()` (an optional: none when unknown), asked for
+    /// only then.
+    template <class WorldBox>
+    void prepare(const ShadowLayerPlan& layer, bool solid, const glm::dmat4& worldFromLocal, const Aabb& localBounds,
+                 WorldBox worldBox) {
+        culled += cull.set(solid ? solidCulledFaces(layer, worldFromLocal, localBounds) : 0) ? 1 : 0;
+        if (!gatherTexels) return;
+        const std::optional<DAabb> box = worldBox();
+        texels = unite(texels, casterTexels(layer, mapSize, box ? &*box : nullptr));
     }
 };
 
@@ -412,7 +421,6 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
         p.use(layer, first);
         current = &p;
     };
-    FaceCulling cull;
     int drawn = 0;
     for (Entity caster : layer.casters) {
         const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
@@ -424,9 +432,10 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
             const bool alphaTested = cutout != nullptr && m != nullptr && m->cutout();
             // A posed skin may fold a part inside out, and a cut-out's holes show its inside.
             const bool rigidOpaqueSolid = pass.cullSolids && mesh->data->solid && skin == nullptr && !alphaTested;
-            const GLenum faces = rigidOpaqueSolid ? solidCulledFaces(layer, wt->worldFromLocal, mesh->data->bounds) : 0;
-            pass.culled += cull.set(faces) ? 1 : 0;
-            pass.gather(layer, world.tryGet<WorldBounds>(caster));
+            pass.prepare(layer, rigidOpaqueSolid, wt->worldFromLocal, mesh->data->bounds, [&] {
+                const WorldBounds* bounds = world.tryGet<WorldBounds>(caster);
+                return bounds != nullptr ? std::optional<DAabb>(bounds->box) : std::nullopt;
+            });
             choose(alphaTested ? *cutout : opaque);
             const GLuint name = current->program.get();
             if (alphaTested) {
@@ -443,10 +452,8 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
             const int count = gpu::MeshCacheAccess::bind(meshes, mesh->data);
             gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
         } else if (const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(caster); own != nullptr) {
-            const bool solid = pass.cullSolids && own->solid && !own->draw;
-            pass.culled += cull.set(solid ? solidCulledFaces(layer, wt->worldFromLocal, own->localBounds) : 0) ? 1 : 0;
-            const WorldBounds box{transformBounds(wt->worldFromLocal, own->localBounds)};
-            pass.gather(layer, &box);
+            pass.prepare(layer, pass.cullSolids && own->solid && !own->draw, wt->worldFromLocal, own->localBounds,
+                         [&] { return std::optional<DAabb>(transformBounds(wt->worldFromLocal, own->localBounds)); });
             choose(opaque);
             gl.ProgramUniform1i(opaque.program.get(), opaque.skinned, 0);
             drawOwnCaster(*own, *wt, context);
@@ -455,7 +462,7 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
         }
         ++drawn;
     }
-    cull.set(0);
+    pass.cull.set(0);
     if (current != &opaque) opaque.use(layer, first);  // what the caller left current
     return drawn;
 }
