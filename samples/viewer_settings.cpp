@@ -126,6 +126,9 @@ Result<double> parseSettingValue(const LightSetting& setting, std::string_view t
             return static_cast<double>(v);
         }
         case Kind::Float: {
+            if (text == "auto" && setting.shadowFloat != nullptr && isAutomatic(Shadow{}.*setting.shadowFloat)) {
+                return static_cast<double>(kAutomatic);  // a length whose default is derived from the scene
+            }
             double v = 0.0;
             const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
             if (ec != std::errc{} || end != text.data() + text.size() || !std::isfinite(v)) {

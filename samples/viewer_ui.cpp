@@ -174,7 +174,8 @@ void settingWidget(ViewerState& state, Entity light, const LightSetting& setting
         }
         case LightSetting::Kind::Float: {
             auto v = static_cast<float>(value);
-            changed = ImGui::SliderFloat(setting.label, &v, setting.min, setting.max, "%.4g",
+            // A length left automatic (kAutomatic) shows as "auto" until dragged to metres.
+            changed = ImGui::SliderFloat(setting.label, &v, setting.min, setting.max, isAutomatic(v) ? "auto" : "%.4g",
                                          setting.logarithmic ? ImGuiSliderFlags_Logarithmic : 0);
             edited = v;
             break;

@@ -12,9 +12,9 @@ sg_ReceiverPolicy sg_pcfPolicy() {
     return sg_ReceiverPolicy(0.0, sg_kNearSlopeBias, 0.5);
 }
 
-// PCF of the light's own radius (`pcfRadius`, at most `maxFilterTexels` texels).
+// PCF of the light's own radius (sg_pcfRadius).
 float sg_pcfVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
-    float radius = min(L.pcfRadius, L.maxFilterTexels * r.texelMetres);
+    float radius = sg_pcfRadius(L, r);
     sg_Tap center = sg_lateralTap(L, r, vec2(0.0));
     float known = sg_regionVisibility(slot, L, r, center, radius);
     int taps = known >= 0.0 ? 0 : sg_tapsFor(radius / r.texelMetres, L.pcfSamples);

@@ -218,7 +218,7 @@ sg_Receiver sg_makeReceiver(sg_GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 
     // receiver from the camera) and |ls| (the point from the layer's origin), good to a few ulps.
     vec3 ls = (sg_layers[L.firstLayer + r.layer].lightFromCs * vec4(r.csPosition, 1.0)).xyz;
     float floatError = sg_kDepthPrecision * (length(ls) + length(r.csPosition));
-    r.depthBias = L.constantBias + policy.slopeBiasShare * L.slopeBias * r.texelMetres * r.slope + floatError;
+    r.depthBias = L.constantBias + L.constantBiasTexels * r.texelMetres + policy.slopeBiasShare * L.slopeBias * r.texelMetres * r.slope + floatError;
 
     // Lateral axes perpendicular to the ray, then slid along the ray onto the tangent plane.
     vec3 t1, t2;
@@ -249,6 +249,12 @@ sg_Receiver sg_makeReceiver(sg_GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 
     sg_planeSteps(geoNormal, r.toLight, t1, t2, r.texelMetres, r.geoStep1, r.geoStep2);
     r.refPerTexel = sg_planeDepthPerTexel(L, r.layer, r.csPosition, r.geoStep1, r.geoStep2);
     return r;
+}
+
+// The fixed filter radius (m) of PCF and VSM at the receiver: the light's `pcfRadius` in metres,
+// or, when automatic, in texel footprints (one of the two is 0), at most `maxFilterTexels` texels.
+float sg_pcfRadius(sg_GpuLight L, sg_Receiver r) {
+    return min(L.pcfRadius + L.pcfRadiusTexels * r.texelMetres, L.maxFilterTexels * r.texelMetres);
 }
 
 // The tap at lateral offset `offset` (m) from the receiver, on its tangent plane.

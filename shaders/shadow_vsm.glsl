@@ -13,7 +13,7 @@ float sg_vsmVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
     sg_Tap center = sg_lateralTap(L, r, vec2(0.0));
     if (sg_outsideMap(center)) return 1.0;
     // PCF's disk of pcfRadius at the receiver, at most maxFilterTexels.
-    vec2 m = sg_regionMoments(slot, L, r, center, min(L.pcfRadius, L.maxFilterTexels * r.texelMetres)).xy;
+    vec2 m = sg_regionMoments(slot, L, r, center, sg_pcfRadius(L, r)).xy;
     return sg_momentsVisibility(L, m, sg_momentsReference(r, center), sg_varianceFloor(r, m));
 }
 

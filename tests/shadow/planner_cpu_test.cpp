@@ -180,8 +180,9 @@ TEST(Planner, ClampShadowSettingsClampsAndNamesTheLightAndField) {
     {
         Shadow s;
         s.mapSize = 100000;
-        s.constantBias = -1.0f;
+        s.constantBias = -2.0f;  // negative, and not kAutomatic
         s.pcfRadius = std::nanf("");
+        s.sdfMinStep = kAutomatic;  // stays automatic, without a warning
         Light l;
         l.radius = -2.0f;
         std::vector<Warning> warnings;
@@ -191,6 +192,7 @@ TEST(Planner, ClampShadowSettingsClampsAndNamesTheLightAndField) {
         EXPECT_EQ(s.constantBias, 0.0f);
         EXPECT_EQ(s.pcfRadius, 0.0f) << "NaN goes to the low end";
         EXPECT_EQ(l.radius, 0.0f);
+        EXPECT_TRUE(isAutomatic(s.sdfMinStep));
         EXPECT_EQ(test::countWarnings(warnings, WarningCode::SettingClamped, "lamp"), 4) << test::describe(warnings);
         EXPECT_EQ(warnings.size(), 4u);
     }

@@ -188,9 +188,11 @@ TEST(DistanceFieldShadows, PlatesPenumbraAgainstTheRayTracedTruth) {
 
 // Contact: the contact suite's plate, 1 mm thick and 1 mm above the ground, under a sun
 // straight down. A march starts `sdfStartOffset` off the receiver, so it passes over a caster
-// nearer than that: with the default 2.5 mm the plate casts nothing (measured: every ground
-// pixel under it lit); with an offset under the gap it casts its whole shadow, and the open
-// ground around it stays lit.
+// nearer than that: with 2.5 mm (the default in metres before it followed the fields' voxels)
+// the plate casts nothing (measured: every ground pixel under it lit); with an offset under the
+// gap it casts its whole shadow, and the open ground around it stays lit. The automatic default,
+// an eighth of the plate's own voxel (the flat field's voxel is about 2.4 mm: 0.3 mm), is such
+// an offset.
 TEST(DistanceFieldShadows, ACasterNearerThanTheStartOffsetNeedsASmallerOffset) {
     auto darkUnderPlate = [](float startOffset, double& litAround) {
         Scene scene;
@@ -213,9 +215,14 @@ TEST(DistanceFieldShadows, ACasterNearerThanTheStartOffsetNeedsASmallerOffset) {
         return under.darkFraction();
     };
     double litAround = 0.0;
-    const double defaultOffset = darkUnderPlate(Shadow{}.sdfStartOffset, litAround);
-    report("sdf, plate 1 mm above the ground, default start offset: dark under the plate", defaultOffset);
-    EXPECT_LE(defaultOffset, 0.01) << "the default offset is above the 1 mm gap: the march starts beyond the plate";
+    const double wide = darkUnderPlate(0.0025f, litAround);
+    report("sdf, plate 1 mm above the ground, start offset 2.5 mm: dark under the plate", wide);
+    EXPECT_LE(wide, 0.01) << "an offset above the 1 mm gap: the march starts beyond the plate";
+    const double automatic = darkUnderPlate(kAutomatic, litAround);
+    report("sdf, plate 1 mm above the ground, automatic start offset: dark under the plate", automatic);
+    report("sdf, automatic start offset: open ground lit around the plate", litAround);
+    EXPECT_GE(automatic, 0.99);
+    EXPECT_GE(litAround, 0.999);
     const double small = darkUnderPlate(0.0005f, litAround);
     report("sdf, plate 1 mm above the ground, start offset 0.5 mm: dark under the plate", small);
     report("sdf, start offset 0.5 mm: open ground lit around the plate", litAround);

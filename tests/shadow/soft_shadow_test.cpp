@@ -368,8 +368,11 @@ BaseGap measureBaseGap(const glm::dvec3& casterCentre, const glm::dvec3& casterH
     const ShadowLightPlan& plan = runner.shadows().frame().lights.at(0);
     BaseGap g;
     g.texel = test::orthoTexel(plan.layers.at(0), plan.mapSize);
-    // shadow_sampling.glsl: constantBias + slopeBias * texel * tan(angle to the normal).
-    g.bias = settings.constantBias + settings.slopeBias * g.texel / std::tan(elevation);
+    // shadow_receiver.glsl: constantBias (automatic: kAutoConstantBiasTexels texels) + slopeBias *
+    // texel * tan(angle to the normal).
+    const double constant = isAutomatic(settings.constantBias) ? kAutoConstantBiasTexels * g.texel
+                                                               : static_cast<double>(settings.constantBias);
+    g.bias = constant + settings.slopeBias * g.texel / std::tan(elevation);
     Profile darkness(kBaseX, kBaseX + 0.1, 50);
     const FrameImages& im = frame.images;
     for (int y = 0; y < im.position.height; ++y) {

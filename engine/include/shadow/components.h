@@ -245,6 +245,24 @@ enum class DepthMode : std::uint8_t {
 /// The depth mode named `name`, or nullopt for an unknown name.
 [[nodiscard]] std::optional<DepthMode> depthModeFromName(std::string_view name);
 
+/// The value of a length setting of `Shadow` that asks for one derived from the scene: each
+/// such setting says what it is relative to (the shadow texel's footprint at the receiver, the
+/// distance field's voxel), so that the same asset at any scale casts the same shadow. A user's
+/// explicit metres still win. glTF `extras.shadow` spells it "auto" (or -1).
+inline constexpr float kAutomatic = -1.0f;
+/// `Shadow::constantBias` when automatic: this fraction of the shadow texel's footprint (m) at
+/// the receiver (0.5 mm at the 1 cm texels of a 2048^2 spot 4 m from its receiver).
+inline constexpr float kAutoConstantBiasTexels = 0.05f;
+/// `Shadow::pcfRadius` when automatic: this many shadow texels at the receiver.
+inline constexpr float kAutoPcfRadiusTexels = 1.5f;
+/// `Shadow::sdfStartOffset` when automatic: this fraction of the smallest field voxel.
+inline constexpr float kAutoSdfStartOffsetVoxels = 0.125f;
+/// `Shadow::sdfMinStep` when automatic: this fraction of the smallest field voxel.
+inline constexpr float kAutoSdfMinStepVoxels = 0.25f;
+
+/// Whether a length setting asks for the automatic value (`kAutomatic`).
+[[nodiscard]] inline bool isAutomatic(float setting) { return setting == kAutomatic; }
+
 /// Per-light shadow settings. A light with no `Shadow` component, or technique `None`, gets no
 /// shadow map at all. Values out of range are clamped to the stated range by the shadow system
 /// and the clamp is reported in stats.json.
@@ -252,12 +270,12 @@ struct Shadow {
     ShadowTechnique technique = ShadowTechnique::Hard;
     /// Edge of one shadow-map layer in texels, [1, GL_MAX_TEXTURE_SIZE]. Default 1024.
     int mapSize = 1024;
-    /// Constant depth bias (m), [0, 10]. Default 0.0005: a margin for surfaces whose
-    /// interpolated normals leave their triangles. The float error of the compared depths is
-    /// covered by the sampler itself (a few ulps of the magnitudes involved), so a caster nearer
-    /// its receiver than this along the light ray still shadows it (a plate 1 mm above the
-    /// ground does; with the former default of 2 mm it leaked).
-    float constantBias = 0.0005f;
+    /// Constant depth bias (m), [0, 10], or `kAutomatic` (the default): `kAutoConstantBiasTexels`
+    /// of the shadow texel's footprint at the receiver, so that the margin follows the scale of the
+    /// scene. A margin for surfaces whose interpolated normals leave their triangles; the float
+    /// error of the compared depths is covered by the sampler itself (a few ulps of the magnitudes
+    /// involved), so a caster nearer its receiver than this along the light ray still shadows it.
+    float constantBias = kAutomatic;
     /// Slope-scaled bias in shadow-map texels: the depth offset grows with the texel's world
     /// footprint times tan(angle between normal and light), [0, 16]. Default 1.5. Each texel a
     /// tap compares is compared with the receiver's plane at that texel's own centre, so a plane
@@ -270,8 +288,11 @@ struct Shadow {
     /// umbra next to a caster (on the bunny, half a texel took the sun's hard-shadow umbra leak
     /// from 2.6 to 6.0 %). The seeds' textbook PCSS adds one texel to it.
     float normalOffset = 0.0f;
-    /// PCF filter radius (m) at the receiver, [0, 10]. Default 0.05. VSM filters the same radius.
-    float pcfRadius = 0.05f;
+    /// PCF filter radius (m) at the receiver, [0, 10], or `kAutomatic` (the default):
+    /// `kAutoPcfRadiusTexels` shadow texels at the receiver, which holds at any scale of the scene
+    /// (a radius in metres blurs a centimetre-sized asset away and leaves a city block hard). VSM
+    /// filters the same radius.
+    float pcfRadius = kAutomatic;
     /// VSM and VSSM light-bleeding reduction: Chebyshev bounds below this fraction read as shadow
     /// and the rest is stretched back to [0, 1], [0, 0.95]. Default 0. Higher removes more of the
     /// light that leaks where casters overlap at different depths, and narrows and darkens every
@@ -313,18 +334,20 @@ struct Shadow {
     /// ends earlier when it leaves every field caster's bounds, reaches the light or is hit.
     int sdfSteps = 48;
     /// Technique sdf: how far (m) the march starts from the receiver, along its normal and
-    /// along the ray, [0, 1]. Default 0.0025. A caster nearer its receiver than this is passed
-    /// over; a march starting closer reads the receiver's own field, whose interpolation error
-    /// near a curved surface is a fraction of a voxel, and darkens lit surfaces (acne). Measured
-    /// on builtin:bunny (fields of 64^3 voxels, voxel 2 cm) against the ray-traced truth, per
-    /// light (`shadow_render builtin:bunny --technique sdf --sdf-start-offset M`, then
-    /// `shadow_compare --mask lit_<i>.exr`): 1 mm made 2-13 times the acne of 2.5 mm
-    /// (0.09-0.15 % of lit pixels); 5 mm, 1 cm and the former default 2 cm let 1.7-2.3, 3.2-4.8
-    /// and 5-9 times as many umbra pixels above 0.5 into the bunny's shadows.
-    float sdfStartOffset = 0.0025f;
-    /// Technique sdf: the shortest step (m), [1e-4, 1]. Default 0.005. Smaller follows thin
-    /// gaps closer, at more steps.
-    float sdfMinStep = 0.005f;
+    /// along the ray, [0, 1], or `kAutomatic` (the default): `kAutoSdfStartOffsetVoxels` of the
+    /// smallest voxel (m) of the light's field casters. A caster nearer its receiver than this is
+    /// passed over; a march starting closer reads the receiver's own field, whose interpolation
+    /// error near a curved surface is a fraction of a voxel, and darkens lit surfaces (acne).
+    /// Measured on builtin:bunny (fields of 64^3 voxels, voxel 2 cm) against the ray-traced truth,
+    /// per light (`shadow_render builtin:bunny --technique sdf --sdf-start-offset M`, then
+    /// `shadow_compare --mask lit_<i>.exr`): 1 mm made 2-13 times the acne of 2.5 mm (1/8 voxel,
+    /// 0.09-0.15 % of lit pixels); 5 mm, 1 cm and 2 cm let 1.7-2.3, 3.2-4.8 and 5-9 times as many
+    /// umbra pixels above 0.5 into the bunny's shadows.
+    float sdfStartOffset = kAutomatic;
+    /// Technique sdf: the shortest step (m), [1e-4, 1], or `kAutomatic` (the default):
+    /// `kAutoSdfMinStepVoxels` of the smallest voxel of the light's field casters. Smaller follows
+    /// thin gaps closer, at more steps.
+    float sdfMinStep = kAutomatic;
 };
 
 /// A perspective camera looking along its node's -Z.

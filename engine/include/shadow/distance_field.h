@@ -98,6 +98,11 @@ struct DistanceField {
 /// ±kMaxWorldCoordinate: `LimitExceeded`; settings out of range: `InvalidArgument`.
 [[nodiscard]] Result<DistanceField> bakeDistanceField(const MeshData& mesh, const DistanceFieldSettings& settings = {});
 
+/// The voxel edge (in `bounds`' units) a bake of a mesh with these bounds lays out: the smallest
+/// for which the padded grid fits `settings.voxelBudget` (what `bakeDistanceField` gives as
+/// `DistanceField::voxelSize`). Bounds of no extent on any axis: 0.
+[[nodiscard]] float distanceFieldVoxel(const Aabb& bounds, const DistanceFieldSettings& settings = {});
+
 /// The field's distance at mesh-local `localPoint`. Inside the box spanned by the voxel centres:
 /// trilinear between the eight nearest centres, never more than √3/2·voxelSize above the true
 /// distance (the centres are exact and the distance is 1-Lipschitz) and exact where the distance

@@ -27,7 +27,7 @@ namespace shadow::gpu {
 #undef SG_INT
 
 // std430 rounds a struct's array stride up to its alignment (16); so does alignas in C++.
-static_assert(sizeof(GpuLight) % 16 == 0 && sizeof(GpuLight) == 144);
+static_assert(sizeof(GpuLight) % 16 == 0 && sizeof(GpuLight) == 160);
 static_assert(sizeof(GpuShadowLayer) % 16 == 0 && sizeof(GpuShadowLayer) == 160);
 
 }  // namespace shadow::gpu

@@ -16,10 +16,10 @@ SG_FLOAT cosOuter;      // spot: cos of the cut-off half-angle
 SG_FLOAT cosInner;      // spot: cos of the full-intensity half-angle
 SG_INT technique;       // SG_TECH_*
 SG_INT layerCount;      // layers of this light's array: cascades, 1, or 6
-SG_FLOAT constantBias;  // m
+SG_FLOAT constantBias;  // m, plus constantBiasTexels texel footprints
 SG_FLOAT slopeBias;     // texels
 SG_FLOAT normalOffset;  // texels
-SG_FLOAT pcfRadius;     // m at the receiver
+SG_FLOAT pcfRadius;     // m at the receiver, plus pcfRadiusTexels texel footprints
 SG_INT pcfSamples;
 SG_INT blockerSamples;
 SG_FLOAT maxFilterTexels;
@@ -35,7 +35,10 @@ SG_FLOAT sdfStartOffset;       // sdf: m along the normal and the ray before the
 SG_FLOAT sdfMinStep;           // sdf: shortest step (m)
 SG_INT sdfClusterFirst;        // sdf: its first cluster of SG_SDF_CLUSTER field casters
 SG_INT regionTest;             // PCF, PCSS: 1 when the lookups read the min/max pyramid, 0 when it was not built
+SG_FLOAT constantBiasTexels;    // texel footprints added to constantBias (Shadow::constantBias automatic)
+SG_FLOAT pcfRadiusTexels;       // texel footprints added to pcfRadius (Shadow::pcfRadius automatic)
 SG_FLOAT reserved2;
+SG_FLOAT reserved3;
 SG_END_STRUCT
 
 // One layer (cascade, spot map or cube face) of a light's shadow-map array.

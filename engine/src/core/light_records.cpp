@@ -26,10 +26,13 @@ void packShadow(const ShadowLightPlan& plan, const glm::dvec3& wsCamera, int fir
     const Shadow& s = plan.settings;
     g.technique = static_cast<int>(plan.technique());
     g.layerCount = static_cast<int>(plan.layers.size());
-    g.constantBias = s.constantBias;
+    // Automatic lengths in texel footprints at the receiver: the shader adds both parts.
+    g.constantBias = isAutomatic(s.constantBias) ? 0.0f : s.constantBias;
+    g.constantBiasTexels = isAutomatic(s.constantBias) ? kAutoConstantBiasTexels : 0.0f;
     g.slopeBias = s.slopeBias;
     g.normalOffset = s.normalOffset;
-    g.pcfRadius = s.pcfRadius;
+    g.pcfRadius = isAutomatic(s.pcfRadius) ? 0.0f : s.pcfRadius;
+    g.pcfRadiusTexels = isAutomatic(s.pcfRadius) ? kAutoPcfRadiusTexels : 0.0f;
     g.pcfSamples = s.pcfSamples;
     g.blockerSamples = s.blockerSamples;
     g.maxFilterTexels = s.maxFilterTexels;

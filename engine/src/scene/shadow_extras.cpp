@@ -74,8 +74,19 @@ constexpr const char* kDepthModeKey = "depthMode";
 /// of them: the parser reads these, and the unknown-key check knows these.
 struct LightKnobs {
     std::array<Knob<int>, 5> ints;
-    std::array<Knob<float>, 14> floats;
+    std::array<Knob<float>, 10> floats;
+    /// Lengths whose default is derived from the scene: a number >= 0 or "auto" (`kAutomatic`).
+    std::array<Knob<float>, 4> lengths;
 };
+
+/// A length knob: a number >= 0 (metres), or "auto" for the value derived from the scene.
+Result<float> readLengthOrAuto(const tinygltf::Value& v, const std::string& where) {
+    if (v.IsString()) {
+        if (v.Get<std::string>() == "auto") return kAutomatic;
+        return elementError(where, "must be a number >= 0 or \"auto\"");
+    }
+    return readNonNegativeFloat(v, where);
+}
 
 LightKnobs lightKnobs(LightShadowExtras& out) {
     Shadow& s = out.shadow;
@@ -86,16 +97,16 @@ LightKnobs lightKnobs(LightShadowExtras& out) {
               {"sdfSteps", &s.sdfSteps}}},
             {{{"radius", &out.radius},
               {"angularRadius", &out.angularRadius},
-              {"constantBias", &s.constantBias},
               {"slopeBias", &s.slopeBias},
               {"normalOffset", &s.normalOffset},
-              {"pcfRadius", &s.pcfRadius},
               {"lightBleedReduction", &s.lightBleedReduction},
               {"maxFilterTexels", &s.maxFilterTexels},
               {"cascadeSplitLambda", &s.cascadeSplitLambda},
               {"cascadeBlend", &s.cascadeBlend},
               {"shadowDistance", &s.shadowDistance},
-              {"nearPlane", &s.nearPlane},
+              {"nearPlane", &s.nearPlane}}},
+            {{{"constantBias", &s.constantBias},
+              {"pcfRadius", &s.pcfRadius},
               {"sdfStartOffset", &s.sdfStartOffset},
               {"sdfMinStep", &s.sdfMinStep}}}};
 }
@@ -115,6 +126,7 @@ std::vector<std::string_view> knownKeys(bool light) {
         keys = {kTechniqueKey, kKernelKey, kDepthModeKey};
         add(knobs.ints);
         add(knobs.floats);
+        add(knobs.lengths);
     } else {
         MeshShadowFlags scratch;
         add(meshKnobs(scratch));
@@ -166,6 +178,7 @@ Result<LightShadowExtras> parseShadowExtras(const tinygltf::Value& extras, const
     const LightKnobs knobs = lightKnobs(out);
     if (auto st = readKnobs(*object, knobs.ints, readPositiveInt); !st) return st.error();
     if (auto st = readKnobs(*object, knobs.floats, readNonNegativeFloat); !st) return st.error();
+    if (auto st = readKnobs(*object, knobs.lengths, readLengthOrAuto); !st) return st.error();
     return out;
 }
 

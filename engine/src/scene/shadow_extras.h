@@ -5,9 +5,10 @@
 //   technique        a name of the technique table (techniques.h)  (default "hard")
 //   kernel           "vogel" | "poisson" | "uniform"; depthMode "nearest" | "midpoint" | "second"
 //   mapSize, pcfSamples, blockerSamples, cascades, sdfSteps   positive integers
-//   radius, angularRadius, constantBias, slopeBias, normalOffset, pcfRadius, lightBleedReduction,
-//   maxFilterTexels, cascadeSplitLambda, shadowDistance, nearPlane, sdfStartOffset, sdfMinStep
-//                                                             finite numbers >= 0
+//   radius, angularRadius, slopeBias, normalOffset, lightBleedReduction, maxFilterTexels,
+//   cascadeSplitLambda, shadowDistance, nearPlane             finite numbers >= 0
+//   constantBias, pcfRadius, sdfStartOffset, sdfMinStep       finite numbers >= 0 (m), or "auto"
+//                                                             (the default: derived from the scene)
 // Mesh node extras (`nodes[i].extras.shadow`):
 //   cast, receive                                             booleans (default true)
 //

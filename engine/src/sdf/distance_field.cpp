@@ -227,4 +227,10 @@ float sampleDistance(const DistanceField& field, const glm::vec3& localPoint) {
     return std::max(glm::length(toBox), value - toCentres);
 }
 
+float distanceFieldVoxel(const Aabb& bounds, const DistanceFieldSettings& settings) {
+    const glm::vec3 extent = bounds.max - bounds.min;
+    if (!(std::max({extent.x, extent.y, extent.z}) > 0.0f)) return 0.0f;
+    return layOut(bounds, settings).voxelSize;
+}
+
 }  // namespace shadow

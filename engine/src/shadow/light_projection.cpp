@@ -15,18 +15,23 @@
 namespace shadow {
 namespace {
 
-/// Rounds `x` > 0 up to a multiple of a power of two near x/16, so that values differing by
-/// rounding noise (a camera that only rotated) give the same result.
-double quantizeUp(double x) {
-    if (!(x > 0.0)) return 1e-6;
-    const double step = std::exp2(std::floor(std::log2(x)) - 4.0);
+/// The step `quantizeUp` and `quantizeDown` round `x` > 0 to: `unit` times a power of two near
+/// x / (16 unit). `unit` is a length the scene defines and keeps (the camera's far plane), so that
+/// the same scene at another scale rounds to the same steps of its own size.
+double quantizationStep(double x, double unit) { return unit * std::exp2(std::floor(std::log2(x / unit)) - 4.0); }
+
+/// Rounds `x` > 0 up to a multiple of `quantizationStep`, so that values differing by rounding
+/// noise (a camera that only rotated) give the same result.
+double quantizeUp(double x, double unit) {
+    if (!(x > 0.0)) return 1e-6 * unit;
+    const double step = quantizationStep(x, unit);
     return std::ceil(x / step) * step;
 }
 
 /// Rounds `x` > 0 down to a multiple of the same step as `quantizeUp`.
-double quantizeDown(double x) {
+double quantizeDown(double x, double unit) {
     if (!(x > 0.0)) return x;
-    const double step = std::exp2(std::floor(std::log2(x)) - 4.0);
+    const double step = quantizationStep(x, unit);
     return std::floor(x / step) * step;
 }
 
@@ -315,18 +320,19 @@ struct CascadeSquare {
 /// the receivers' bounds when they fit inside it; within reach of the camera; snapped to whole
 /// texels so that a moving camera moves the map by whole texels only.
 CascadeSquare fitCascadeSquare(const CameraView& cam, double near, double far, const glm::dmat4& rotation,
-                               const DAabb& lsReceivers, const glm::dvec3& lsCamera, int mapSize) {
+                               const DAabb& lsReceivers, const glm::dvec3& lsCamera, int mapSize, double lengthUnit) {
     const auto corners = sliceCorners(cam, near, far);
     glm::dvec3 center(0.0);
     for (const glm::dvec3& c : corners) center += c / 8.0;
     double radius = 0.0;
     for (const glm::dvec3& c : corners) radius = std::max(radius, glm::distance(c, center));
-    CascadeSquare sq{glm::dvec2(rotation * glm::dvec4(center, 1.0)), 2.0 * quantizeUp(radius)};
+    const double unit = lengthUnit;
+    CascadeSquare sq{glm::dvec2(rotation * glm::dvec4(center, 1.0)), 2.0 * quantizeUp(radius, unit)};
     // When every receiver fits inside the sphere's square, fit the receivers instead: tighter,
     // and just as stable since they only move when the scene does.
     const glm::dvec3 recvSize = lsReceivers.extent();
     if (!lsReceivers.empty() && std::max(recvSize.x, recvSize.y) <= sq.extent) {
-        sq.extent = quantizeUp(std::max({recvSize.x, recvSize.y, 1e-3}));
+        sq.extent = quantizeUp(std::max({recvSize.x, recvSize.y, 1e-6 * unit}), unit);
         sq.lsCenter = glm::dvec2(lsReceivers.center());
     }
     // Within reach of the camera (kMaxShadowReach), whatever the receivers' spread.
@@ -340,11 +346,12 @@ CascadeSquare fitCascadeSquare(const CameraView& cam, double near, double far, c
 
 /// The light-space depth range [zBottom, zTop] of the column over the square [lo, hi]: what the
 /// receivers and casters in it span, within reach of the camera, rounded out to steps of an
-/// eighth of its power of two (stable while things move inside it). `casterTop`: the top of the
+/// eighth of `unit` times its power of two (stable while things move inside it; `unit` as for
+/// `quantizationStep`). `casterTop`: the top of the
 /// highest caster in the column (-infinity without one).
 void cascadeDepthRange(const glm::dmat4& rotation, const SceneGeometry& g, const DAabb& lsReceivers,
-                       const glm::dvec3& lsCamera, const glm::dvec2& lo, const glm::dvec2& hi, double& zTop,
-                       double& zBottom, double& casterTop) {
+                       const glm::dvec3& lsCamera, const glm::dvec2& lo, const glm::dvec2& hi, double unit,
+                       double& zTop, double& zBottom, double& casterTop) {
     casterTop = -std::numeric_limits<double>::infinity();
     // The bottom is the receivers' or a lower caster's: the walk need only look for the latter.
     zBottom = lsReceivers.empty() ? -1.0 : lsReceivers.min.z;
@@ -352,7 +359,7 @@ void cascadeDepthRange(const glm::dmat4& rotation, const SceneGeometry& g, const
     zTop = std::max(lsReceivers.empty() ? 0.0 : lsReceivers.max.z, casterTop);
     zTop = std::clamp(zTop, lsCamera.z - kMaxShadowReach, lsCamera.z + kMaxShadowReach);
     zBottom = std::clamp(zBottom, lsCamera.z - kMaxShadowReach, zTop);
-    const double step = std::exp2(std::ceil(std::log2(std::max(zTop - zBottom, 1e-3) / 8.0)));
+    const double step = unit * std::exp2(std::ceil(std::log2(std::max(zTop - zBottom, 1e-6 * unit) / (8.0 * unit))));
     zTop = (std::floor(zTop / step) + 1.0) * step;
     zBottom = (std::ceil(zBottom / step) - 1.0) * step;
 }
@@ -367,12 +374,12 @@ void cascadeDepthRange(const glm::dmat4& rotation, const SceneGeometry& g, const
 /// With no receiver visible (or the range unmeasured) the cascades reach from the receivers'
 /// bounding box's nearest point to its farthest corner, the distances along rays instead of the
 /// camera's axis: still where a shadow can first be seen once the camera turns to them.
-DepthInterval cascadeSpan(const CameraView& cam, const SceneGeometry& g, double reach) {
+DepthInterval cascadeSpan(const CameraView& cam, const SceneGeometry& g, double reach, double unit) {
     const double znear = cam.znear;
     if (const std::optional<DepthInterval> visible = visibleDepthRange(g.visible, reach)) {
         // visibleDepthRange keeps near <= nearest <= farthest <= reach.
-        const double nearest = std::min(std::max(quantizeDown(visible->nearest), znear), visible->nearest);
-        return {nearest, std::min(quantizeUp(visible->farthest), reach)};
+        const double nearest = std::min(std::max(quantizeDown(visible->nearest, unit), znear), visible->nearest);
+        return {nearest, std::min(quantizeUp(visible->farthest, unit), reach)};
     }
     // No receiver lies beyond the farthest corner of their bounds: do not spread texels there.
     const double toFarthestReceiver = farthestCorner(cam.wsPosition, g.receivers);
@@ -392,20 +399,20 @@ void planDirectional(const LayerInputs& s, const CameraView& cam, const SceneGeo
     assert(s.cascades >= 1 && s.cascades <= SG_MAX_CASCADES);  // clamped by the planner
     std::array<double, SG_MAX_CASCADES + 1> splitStorage{};
     const std::span<double> splits(splitStorage.data(), static_cast<std::size_t>(s.cascades) + 1);
-    const DepthInterval span = cascadeSpan(cam, g, reach);
+    const DepthInterval span = cascadeSpan(cam, g, reach, s.lengthUnit);
     cascadeSplits(span.nearest, span.farthest, s.cascadeSplitLambda, splits);
     const DAabb lsReceivers = transformBounds(rotation, g.receivers);
 
     layers.resize(static_cast<std::size_t>(s.cascades));
     for (int k = 0; k < s.cascades; ++k) {
         const CascadeSquare sq =
-            fitCascadeSquare(cam, splits[k], splits[k + 1], rotation, lsReceivers, lsCamera, s.mapSize);
+            fitCascadeSquare(cam, splits[k], splits[k + 1], rotation, lsReceivers, lsCamera, s.mapSize, s.lengthUnit);
         const glm::dvec2 lsCenter = sq.lsCenter;
         const double extent = sq.extent;
         double zTop = 0.0;
         double zBottom = 0.0;
         double casterTop = 0.0;
-        cascadeDepthRange(rotation, g, lsReceivers, lsCamera, lsCenter - 0.5 * extent, lsCenter + 0.5 * extent, zTop,
+        cascadeDepthRange(rotation, g, lsReceivers, lsCamera, lsCenter - 0.5 * extent, lsCenter + 0.5 * extent, s.lengthUnit, zTop,
                           zBottom, casterTop);
 
         ShadowLayerPlan& layer = layers[static_cast<std::size_t>(k)];
@@ -425,12 +432,13 @@ void planDirectional(const LayerInputs& s, const CameraView& cam, const SceneGeo
 }
 
 /// Far plane of a perspective light: its range, or else the whole scene rounded up to a power
-/// of two, so that an object moving at the edge of the scene does not change every layer's
+/// of two times `LayerInputs::lengthUnit`, so that an object moving at the edge of the scene does not change every layer's
 /// projection (and force a redraw of layers whose casters did not move).
 double perspectiveFar(const LayerInputs& light, const SceneGeometry& g) {
     if (light.range > 0.0f) return std::clamp<double>(light.range, 1e-3, kMaxShadowReach);
+    const double unit = light.lengthUnit;
     const double fitted =
-        std::exp2(std::ceil(std::log2(std::max(farthestCorner(light.pose.wsPosition, g.everything), 1e-3))));
+        unit * std::exp2(std::ceil(std::log2(std::max(farthestCorner(light.pose.wsPosition, g.everything), 1e-6 * unit) / unit)));
     return std::min(fitted, kMaxShadowReach);
 }
 
@@ -461,9 +469,10 @@ Frustum widestFrustum(const glm::dmat4& lightFromWorld, const PerspectiveReach& 
                                lightFromWorld);
 }
 
-/// The largest power of two not above `x` > 0: a near plane that stays put while the nearest
-/// caster moves a little, so layers whose own casters did not move are not redrawn.
-double powerOfTwoBelow(double x) { return std::exp2(std::floor(std::log2(x))); }
+/// The largest power-of-two multiple of `unit` (LayerInputs::lengthUnit) not above `x` > 0: a
+/// near plane that stays put while the nearest caster moves a little, so layers whose own
+/// casters did not move are not redrawn.
+double powerOfTwoBelow(double x, double unit) { return unit * std::exp2(std::floor(std::log2(x / unit))); }
 
 /// One perspective layer of `light` looking along `direction`, into `layer`. Without a fixed
 /// near plane it is fitted just before the nearest caster in the layer's widest frustum. Returns
@@ -488,7 +497,7 @@ double perspectiveLayer(const LayerInputs& light, const glm::dvec3& direction, c
         // The near plane clips by depth along the axis; a caster at distance d can be as shallow
         // as d times the cosine of the frustum's corner angle.
         const double cornerCos = 1.0 / cornerSecant(tanHalf, tanHalf);
-        near = std::clamp(powerOfTwoBelow(std::max(0.9 * nearest * cornerCos, minNear)), minNear, 0.5 * far);
+        near = std::clamp(powerOfTwoBelow(std::max(0.9 * nearest * cornerCos, minNear), light.lengthUnit), minNear, 0.5 * far);
     }
     layer.clipFromLight = glm::perspective(fov, 1.0, near, far);
     // Stored depth is the distance from the light; the farthest point of the frustum is a
@@ -560,8 +569,9 @@ void cascadeSplits(double near, double far, double lambda, std::span<double> spl
     splits.back() = far;
 }
 
-LayerInputs layerInputs(const ShadowLightPlan& plan, const LightPose& pose) {
+LayerInputs layerInputs(const ShadowLightPlan& plan, const LightPose& pose, double lengthUnit) {
     LayerInputs in;
+    in.lengthUnit = lengthUnit > 0.0 && std::isfinite(lengthUnit) ? lengthUnit : 1.0;
     in.type = plan.light.type;
     in.pose = pose;
     in.mapSize = plan.mapSize;
@@ -600,7 +610,7 @@ void planLayers(const LayerInputs& light, const CameraView& camera, const SceneG
     for (ShadowLayerPlan& layer : layers) layer.blockerNear = static_cast<float>(std::max(nearest, clipped));
 }
 
-void fitChainLevels(const LayerInputs& light, ShadowTechnique technique, double radius, double maxFilterTexels,
+void fitChainLevels(const LayerInputs& light, ShadowTechnique technique, FilterRadius radius, double maxFilterTexels,
                     int levels, const SceneGeometry& geometry, std::span<ShadowLayerPlan> layers) {
     // A lookup reads level log2(radius in the receiver's texels) (sg_regionMoments) and the one
     // above (trilinear), least where the texel is largest, most where it is smallest: a
@@ -619,7 +629,7 @@ void fitChainLevels(const LayerInputs& light, ShadowTechnique technique, double 
         layer.chainFirstLevel = base;
         layer.chainLastLevel = levels - 1;
     }
-    if (technique != ShadowTechnique::Vsm || !(radius > 0.0)) return;
+    if (technique != ShadowTechnique::Vsm || !(radius.metres > 0.0 || radius.texels > 0.0)) return;
     const bool known = !geometry.everything.empty();
     const double farthest =
         known ? farthestCorner(light.pose.wsPosition, geometry.everything) : std::numeric_limits<double>::infinity();
@@ -628,7 +638,7 @@ void fitChainLevels(const LayerInputs& light, ShadowTechnique technique, double 
         const double perAxial = 2.0 / (layer.clipFromLight[0][0] * light.mapSize);  // texel per axial m
         const double widest =
             perAxial * (layer.orthographic ? 1.0 : std::min(farthest, static_cast<double>(layer.depthScale)));
-        const double texels = std::min(radius / (widest * kTexelMargin), maxFilterTexels);
+        const double texels = std::min(radius.metres / (widest * kTexelMargin) + radius.texels, maxFilterTexels);
         while (layer.chainFirstLevel + 1 < levels && std::exp2(layer.chainFirstLevel + 1) <= texels)
             ++layer.chainFirstLevel;
         // The frustum's corner: tangents 1 / P00 and 1 / P11 from the axis.
@@ -637,7 +647,7 @@ void fitChainLevels(const LayerInputs& light, ShadowTechnique technique, double 
                                : 1.0 / cornerSecant(1.0 / layer.clipFromLight[0][0], 1.0 / layer.clipFromLight[1][1]);
         const double narrowest = perAxial * (layer.orthographic ? 1.0 : nearest * cornerCos) / kTexelMargin;
         if (!(narrowest > 0.0)) continue;  // a receiver may stand at the light: every level
-        const double most = radius / narrowest;
+        const double most = radius.metres / narrowest + radius.texels * kTexelMargin;
         const int floorLevel = most > 1.0 ? static_cast<int>(std::floor(std::log2(most))) : 0;
         layer.chainLastLevel = std::clamp(floorLevel + 1, layer.chainFirstLevel, levels - 1);
     }

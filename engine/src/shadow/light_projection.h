@@ -62,11 +62,15 @@ struct LayerInputs {
     /// VSSM (FilterChainKind::SummedMoments in filter_chain.h): the layers' `momentScale` is
     /// fitted to their casters. (plan.technique() is None until the layers exist.)
     bool summedMoments = false;
+    /// A length the scene defines and keeps (the camera's far plane): the layers' extents, depth
+    /// ranges and far planes are rounded (for stability while things move) to power-of-two
+    /// multiples of it, so that the same scene at another scale gets the same layers at that scale.
+    double lengthUnit = 1.0;
     friend bool operator==(const LayerInputs&, const LayerInputs&) = default;
 };
 
-/// The layer inputs of the clamped `plan` at `pose`.
-[[nodiscard]] LayerInputs layerInputs(const ShadowLightPlan& plan, const LightPose& pose);
+/// The layer inputs of the clamped `plan` at `pose`, rounding to multiples of `lengthUnit`.
+[[nodiscard]] LayerInputs layerInputs(const ShadowLightPlan& plan, const LightPose& pose, double lengthUnit = 1.0);
 
 /// Fits the layers of a light into `layers`: cascades (directional), one frustum (spot), six
 /// faces (point), each with the casters that fall in it. Every field of every layer is written
@@ -79,14 +83,21 @@ struct LayerInputs {
 void planLayers(const LayerInputs& light, const CameraView& camera, const SceneGeometry& geometry, bool follow,
                 std::vector<ShadowLayerPlan>& layers);
 
+/// A fixed filter radius at the receiver: `metres` plus `texels` of the receiver's texel footprint
+/// (`Shadow::pcfRadius`, automatic or not: one of the two is 0).
+struct FilterRadius {
+    double metres = 0.0;
+    double texels = 0.0;
+};
+
 /// Sets each layer's `chainFirstLevel` and `chainLastLevel` (ShadowLayerPlan): for a VSM light
-/// the lowest level of its moment chain a lookup reads, `radius` m at the receiver (at most
+/// the lowest level of its moment chain a lookup reads, `radius` at the receiver (at most
 /// `maxFilterTexels`) in the largest texel a receiver of the layer can have (at the farthest
 /// corner of the scene's known bounds for a perspective layer), at least 1 (its lookups take level
 /// 0 from the depth map), and the highest, the level above log2 of `radius` in the smallest texel
 /// (a cascade's one texel; at the nearest point of the bounds, seen at the frustum's corner),
 /// within `levels`; for MSM-soft 1 and the top; 0 and the top for every other light.
-void fitChainLevels(const LayerInputs& light, ShadowTechnique technique, double radius, double maxFilterTexels,
+void fitChainLevels(const LayerInputs& light, ShadowTechnique technique, FilterRadius radius, double maxFilterTexels,
                     int levels, const SceneGeometry& geometry, std::span<ShadowLayerPlan> layers);
 
 /// Whether `planLayers(light, camera, geometry, layers)` would give `layers` back, field for

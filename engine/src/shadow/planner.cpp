@@ -39,6 +39,12 @@ void clampField(T& value, T lo, T hi, std::string_view who, const char* field, s
     }
 }
 
+/// `clampField` for a length setting that may be `kAutomatic`, which stays as it is.
+void clampLength(float& value, float lo, float hi, std::string_view who, const char* field,
+                 std::vector<Warning>& warnings) {
+    if (!isAutomatic(value)) clampField(value, lo, hi, who, field, warnings);
+}
+
 const char* lightName(const World& world, Entity e) {
     const Name* n = world.tryGet<Name>(e);
     return n != nullptr ? n->value.c_str() : "light";
@@ -232,6 +238,36 @@ void takeFieldCasters(const World& world, ShadowLightPlan& plan, std::vector<War
     warnings.push_back({WarningCode::CasterWithoutField, plan.name, msg.str()});
 }
 
+/// Technique sdf: the march lengths of `plan` left automatic (`kAutomatic`), from the smallest
+/// voxel (m) among its field casters: the voxel a field of `voxelBudget` voxels has over the
+/// caster's mesh scaled by its transform's smallest axis scale. Without field casters nothing is
+/// marched, and the lengths are those of a field one metre across.
+void resolveFieldLengths(const World& world, int voxelBudget, ShadowLightPlan& plan) {
+    Shadow& s = plan.settings;
+    if (!isAutomatic(s.sdfStartOffset) && !isAutomatic(s.sdfMinStep)) return;
+    DistanceFieldSettings settings;
+    settings.voxelBudget = voxelBudget;
+    double voxel = std::numeric_limits<double>::infinity();
+    const MeshData* last = nullptr;
+    double lastVoxel = 0.0;
+    for (Entity caster : plan.fieldCasters) {
+        const Mesh* mesh = world.tryGet<Mesh>(caster);
+        const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
+        if (mesh == nullptr || mesh->data == nullptr || wt == nullptr) continue;
+        if (mesh->data.get() != last) {  // instances of one mesh stand together more often than not
+            last = mesh->data.get();
+            lastVoxel = distanceFieldVoxel(last->bounds, settings);
+        }
+        const double scale = std::min({glm::length(glm::dvec3(wt->worldFromLocal[0])),
+                                       glm::length(glm::dvec3(wt->worldFromLocal[1])),
+                                       glm::length(glm::dvec3(wt->worldFromLocal[2]))});
+        if (lastVoxel * scale > 0.0) voxel = std::min(voxel, lastVoxel * scale);
+    }
+    if (!std::isfinite(voxel)) voxel = 1.0 / std::cbrt(static_cast<double>(voxelBudget));
+    if (isAutomatic(s.sdfStartOffset)) s.sdfStartOffset = static_cast<float>(kAutoSdfStartOffsetVoxels * voxel);
+    if (isAutomatic(s.sdfMinStep)) s.sdfMinStep = static_cast<float>(std::max(kAutoSdfMinStepVoxels * voxel, 1e-9));
+}
+
 /// Where each light's field casters and their clusters stand in the shader's instance buffer:
 /// every light's casters in scene-light order, then every light's clusters of SG_SDF_CLUSTER.
 void numberFieldCasters(std::vector<ShadowLightPlan>& lights) {
@@ -296,10 +332,10 @@ void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, co
         s.technique = replacement;
     }
     clampField(s.mapSize, 1, std::max(1, limits.maxTextureSize), who, "mapSize", warnings);
-    clampField(s.constantBias, 0.0f, 10.0f, who, "constantBias", warnings);
+    clampLength(s.constantBias, 0.0f, 10.0f, who, "constantBias", warnings);
     clampField(s.slopeBias, 0.0f, 16.0f, who, "slopeBias", warnings);
     clampField(s.normalOffset, 0.0f, 16.0f, who, "normalOffset", warnings);
-    clampField(s.pcfRadius, 0.0f, 10.0f, who, "pcfRadius", warnings);
+    clampLength(s.pcfRadius, 0.0f, 10.0f, who, "pcfRadius", warnings);
     clampField(s.lightBleedReduction, 0.0f, 0.95f, who, "lightBleedReduction", warnings);
     clampField(s.pcfSamples, 1, 64, who, "pcfSamples", warnings);
     clampField(s.blockerSamples, 1, 64, who, "blockerSamples", warnings);
@@ -310,8 +346,8 @@ void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, co
     clampField(s.shadowDistance, 0.0f, 1e7f, who, "shadowDistance", warnings);
     clampField(s.nearPlane, 0.0f, 1e7f, who, "nearPlane", warnings);
     clampField(s.sdfSteps, 4, 256, who, "sdfSteps", warnings);
-    clampField(s.sdfStartOffset, 0.0f, 1.0f, who, "sdfStartOffset", warnings);
-    clampField(s.sdfMinStep, 1e-4f, 1.0f, who, "sdfMinStep", warnings);
+    clampLength(s.sdfStartOffset, 0.0f, 1.0f, who, "sdfStartOffset", warnings);
+    clampLength(s.sdfMinStep, 1e-4f, 1.0f, who, "sdfMinStep", warnings);
     if (static_cast<int>(s.depthMode) > static_cast<int>(DepthMode::Second)) {
         warnings.push_back({WarningCode::SettingClamped, who,
                             who + ": depthMode " + std::to_string(static_cast<int>(s.depthMode)) +
@@ -420,7 +456,7 @@ const ShadowFrame& ShadowPlanner::prepare(const World& world, const CameraView& 
 void ShadowPlanner::planMap(const World& world, const CameraView& camera, ShadowLightPlan& plan, bool cameraMoved) {
     PlannedFrom& planned = scratch_->planned[static_cast<std::size_t>(plan.sceneIndex)];
     planned = {plan.entity, caching_ && plan.settings.technique != ShadowTechnique::Sdf, plan.affectsView,
-               layerInputs(plan, {plan.wsPosition, plan.wsDirection}), plan.settings.depthMode};
+               layerInputs(plan, {plan.wsPosition, plan.wsDirection}, camera.zfar), plan.settings.depthMode};
     // plan.layers still holds what this scene light was planned to last frame (describeLight).
     const auto index = static_cast<std::size_t>(plan.sceneIndex);
     const bool samePlan = index < scratch_->lastPlanned.size() && scratch_->lastPlanned[index].keepable &&
@@ -432,9 +468,13 @@ void ShadowPlanner::planMap(const World& world, const CameraView& camera, Shadow
         if (plan.settings.technique == ShadowTechnique::Sdf) takeFieldCasters(world, plan, frame_.warnings);
         markDirty(world, plan);
     }
+    if (plan.settings.technique == ShadowTechnique::Sdf) resolveFieldLengths(world, frame_.distanceFieldVoxels, plan);
     plan.regionTest = pyramidPays(plan, camera, frame_.wsGeometry, limits_.pyramidTexelsPerPixel);
     const ShadowTechnique technique = plan.technique();
-    fitChainLevels(planned.inputs, technique, plan.settings.pcfRadius, plan.settings.maxFilterTexels,
+    const bool texelRadius = isAutomatic(plan.settings.pcfRadius);
+    fitChainLevels(planned.inputs, technique,
+                   {texelRadius ? 0.0 : plan.settings.pcfRadius, texelRadius ? kAutoPcfRadiusTexels : 0.0},
+                   plan.settings.maxFilterTexels,
                    chainLevels(technique, plan.mapSize, plan.settings.maxFilterTexels), scratch_->geometry,
                    plan.layers);
 }
