@@ -4,7 +4,8 @@
 // Frame of reference (docs/output_contract.md): depths are linear metres from the light (perspective
 // layers) or along its axis (orthographic layers). Filter radii are lateral distances in
 // metres at the receiver, measured perpendicular to the light ray. A tap at lateral offset o
-// is placed on the receiver's tangent plane along the light ray, so its reference depth is the
+// is placed on the plane of the receiver's triangle along the light ray (the tangent plane of the
+// surface the map stored, not of the interpolated normal), so its reference depth is the
 // plane's own depth there (receiver-plane depth bias, exact for planar receivers), and it is
 // projected into whichever layer it lands in, which makes point-light filtering seamless
 // across cube faces. Each of the 2x2 texels a tap reads is then compared with the receiver's
@@ -61,7 +62,7 @@ struct sg_Receiver {
     vec3 csNormal;    // the shading normal (unit)
     vec3 toLight;     // unit direction from the receiver towards the light
     vec3 csTangent1;  // lateral axes (perpendicular to the light ray), stretched onto the
-    vec3 csTangent2;  // receiver's tangent plane: a lateral offset o lands at o.x*t1 + o.y*t2
+    vec3 csTangent2;  // receiver triangle's plane: a lateral offset o lands at o.x*t1 + o.y*t2
     float slope;      // tan of the angle between normal and light, clamped
     int layer;        // layer for directional/spot lights (point lights choose per tap)
     float texelMetres;  // world size of one shadow texel at the receiver
@@ -223,13 +224,20 @@ sg_Receiver sg_makeReceiver(sg_GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 
     // Lateral axes perpendicular to the ray, then slid along the ray onto the tangent plane.
     vec3 t1, t2;
     sg_perpendicularBasis(r.toLight, t1, t2);
-    float nDotL = dot(wsNormal, r.toLight);
+    // The taps lie on the plane of the receiver's own triangle (turned to the shading normal's
+    // side), not on the plane of its interpolated normal: those normals leave the triangles of a
+    // smooth low-poly mesh by up to half a facet's angle, and taps on their plane are compared
+    // with depths no triangle has, which darkens whole facets of the lit side
+    // (tests/shadow/terminator_test.cpp: PCF's RMSE against the truth 0.034 -> 0.012 on a
+    // 360-triangle sphere under a sun, 0.053 -> 0.013 under a spot).
+    vec3 planeNormal = dot(geoNormal, wsNormal) < 0.0 ? -geoNormal : geoNormal;
+    float nDotL = dot(planeNormal, r.toLight);
     // Keep the stretch finite at grazing light: beyond sg_kMaxPlaneSlope the plane is treated as that steep.
     float denom = sign(nDotL) * max(abs(nDotL), 1.0 / sqrt(1.0 + sg_kMaxPlaneSlope * sg_kMaxPlaneSlope));
     if (denom == 0.0) denom = 1.0;
-    r.csTangent1 = t1 - r.toLight * (dot(wsNormal, t1) / denom);
-    r.csTangent2 = t2 - r.toLight * (dot(wsNormal, t2) / denom);
-    r.depthSlope = length(vec2(dot(wsNormal, t1), dot(wsNormal, t2))) / abs(denom);
+    r.csTangent1 = t1 - r.toLight * (dot(planeNormal, t1) / denom);
+    r.csTangent2 = t2 - r.toLight * (dot(planeNormal, t2) / denom);
+    r.depthSlope = length(vec2(dot(planeNormal, t1), dot(planeNormal, t2))) / abs(denom);
 
     sg_GpuShadowLayer S = sg_layers[L.firstLayer + r.layer];
     mat3 linear = mat3(S.lightFromCs);

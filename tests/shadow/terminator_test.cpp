@@ -1,0 +1,81 @@
+// The shadow terminator of smooth-shaded low-poly meshes: a UV sphere of 360 triangles with
+// interpolated normals, under a sun and a spot, against the ray-traced truth (shadow rays from the
+// triangles themselves). Where the interpolated normal leaves the triangle's plane, a filter that
+// lays its taps on the plane of the shading normal compares them with depths the triangles never
+// had, and the lit side shows facet-shaped acne. At their defaults PCF and PCSS must do no worse
+// than hard shadows there.
+#include <gtest/gtest.h>
+#include <shadow/metrics.h>
+#include <shadow/reference.h>
+#include <shadow/scene.h>
+
+#include <cstdio>
+#include <string>
+
+#include "render/render_test_support.h"
+#include "shadow/soft_test_support.h"
+#include "test_support.h"
+
+namespace shadow::test {
+namespace {
+
+constexpr int kWidth = 160;
+constexpr int kHeight = 120;
+
+/// A low-poly smooth sphere (20 segments, 10 rings: 360 triangles) 1 m in radius standing on a
+/// ground, lit by `type` from above and to the side; light 0 is the light.
+Scene lowPolySphere(LightType type, ShadowTechnique technique) {
+    Scene scene;
+    addGround(scene, 6.0f);
+    addMeshInstance(scene.world, "sphere", makeSphereMesh(1.0f, 20, 10), placed({0.0, 1.05, 0.0}));
+    Light light = pointSizedLight(type, 0.6f);
+    if (type == LightType::Directional) light.angularRadius = 0.02f;
+    else light.radius = 0.1f;
+    const glm::dvec3 direction = glm::normalize(glm::dvec3(-0.8, -1.0, -0.3));
+    addLight(scene, "light", light, shadowWith(technique, 1024), -6.0 * direction + glm::dvec3(0.0, 1.0, 0.0),
+             direction);
+    addCamera(scene, "camera", Camera{}, {2.5, 2.6, 4.0}, {0.0, 0.9, 0.0});
+    return scene;
+}
+
+/// RMSE of light 0's visibility against the traced truth over the pixels the light shades.
+double rmseAgainstTruth(LightType type, ShadowTechnique technique) {
+    Scene scene = lowPolySphere(type, technique);
+    glContext();
+    FrameRunner runner;
+    const RenderedFrame frame = renderFrame(runner, scene, kWidth, kHeight);
+    reference::ReferenceOptions options;
+    options.width = kWidth;
+    options.height = kHeight;
+    options.samples = 64;
+    options.wsPositions = &frame.images.position;
+    const Result<reference::ReferenceResult> truth = reference::traceVisibility(scene, runner.lastCamera(), options);
+    EXPECT_TRUE(static_cast<bool>(truth)) << (truth ? "" : truth.error().message);
+    if (!truth) return 1.0;
+    const Result<VisibilityErrors> e =
+        compareVisibility(frame.images.visibility.at(0), truth->visibility.at(0), &truth->lit.at(0));
+    EXPECT_TRUE(static_cast<bool>(e)) << (e ? "" : e.error().message);
+    return e ? e->rmse : 1.0;
+}
+
+void expectFiltersNoWorseThanHard(LightType type) {
+    const double hard = rmseAgainstTruth(type, ShadowTechnique::Hard);
+    std::printf("[ measured ] low-poly sphere, %s, hard: RMSE %.4f\n", lightTypeName(type), hard);
+    for (ShadowTechnique t : {ShadowTechnique::Pcf, ShadowTechnique::Pcss}) {
+        const double filtered = rmseAgainstTruth(type, t);
+        std::printf("[ measured ] low-poly sphere, %s, %s: RMSE %.4f\n", lightTypeName(type), techniqueName(t), filtered);
+        EXPECT_LE(filtered, hard * 1.02 + 1e-3)
+            << lightTypeName(type) << ", " << techniqueName(t) << ": RMSE " << filtered << " against hard's " << hard;
+    }
+}
+
+TEST(Terminator, PcfAndPcssAtTheirDefaultsAreNoWorseThanHardOnALowPolySmoothSphereUnderASun) {
+    expectFiltersNoWorseThanHard(LightType::Directional);
+}
+
+TEST(Terminator, PcfAndPcssAtTheirDefaultsAreNoWorseThanHardOnALowPolySmoothSphereUnderASpot) {
+    expectFiltersNoWorseThanHard(LightType::Spot);
+}
+
+}  // namespace
+}  // namespace shadow::test
