@@ -110,6 +110,26 @@ TEST(GltfImport, RejectsStringWhereNumberDue) {
                    "KHR_lights_punctual.lights[0].intensity: must be a number");
 }
 
+// The lengths whose default follows the scene take "auto" (the default itself) or metres.
+TEST(GltfImport, LengthSettingsTakeAutoOrMetres) {
+    Doc doc;
+    doc.light({{"type", "spot"},
+               {"spot", json::object()},
+               {"extras",
+                {{"shadow",
+                  {{"pcfRadius", "auto"}, {"constantBias", 0.002}, {"sdfStartOffset", "auto"}, {"sdfMinStep", 0.01}}}}}});
+    doc.node({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    const Result<Scene> scene = loadGltf(doc.write(testDir() / "auto.gltf").string());
+    ASSERT_TRUE(scene) << scene.error().message;
+    const Shadow& s = scene->world.get<Shadow>(scene->lights.at(0));
+    EXPECT_TRUE(isAutomatic(s.pcfRadius));
+    EXPECT_TRUE(isAutomatic(s.sdfStartOffset));
+    EXPECT_FLOAT_EQ(s.constantBias, 0.002f);
+    EXPECT_FLOAT_EQ(s.sdfMinStep, 0.01f);
+    EXPECT_MESSAGE(lightShadowError({{"constantBias", "automatic"}}),
+                   "KHR_lights_punctual.lights[1].extras.shadow.constantBias: must be a number >= 0 or \"auto\"");
+}
+
 // A misspelt key of extras.shadow does nothing: it is warned about, naming the key, with the
 // known key it is closest to.
 TEST(GltfImport, UnknownShadowKeysAreWarnedWithTheClosestKnownKey) {
