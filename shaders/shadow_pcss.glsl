@@ -1,57 +1,12 @@
-// Percentage-closer soft shadows: blocker search, penumbra width from similar triangles in the
-// emitter's physical size (docs/output_contract.md, conventions), then PCF over that width. The
-// min/max pyramid answers for the whole search region first: where it holds no blocker or only
-// blockers, neither the search nor the filter takes a tap.
+// Percentage-closer soft shadows: the PCSS filter (shadow_pcss_filter.glsl) over the light's map.
 //
 // Reference: R. Fernando, "Percentage-Closer Soft Shadows", SIGGRAPH 2005 sketch.
 #ifndef SG_SHADOW_PCSS
 #define SG_SHADOW_PCSS
-#include "shadow_filter.glsl"
-#include "shadow_region.glsl"
-#include "shadow_debug.glsl"
-#include "shadow_penumbra.glsl"
+#include "shadow_pcss_filter.glsl"
 
 sg_ReceiverPolicy sg_pcssPolicy() { return sg_planePolicy(); }
 
-float sg_pcssVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
-    float maxRadius = L.maxFilterTexels * r.texelMetres;
-    sg_Tap center = sg_lateralTap(L, r, vec2(0.0));
-    float dReceiver = center.depth;
-    float size = max(L.emitterSize, 0.0);
-    bool pointEmitter = size <= 0.0 || maxRadius <= 0.0;  // a hard shadow: one tap at the receiver
-    float searchRadius = clamp(sg_blockerSearchRadius(L, r, dReceiver, size), r.texelMetres, maxRadius);
-    float known = pointEmitter ? -1.0 : sg_regionVisibility(slot, L, r, center, searchRadius);
-
-    // The search gathers 2x2 depth texels at blockerSamples / 2 points of the disk (textureGather,
-    // GL 4.0): twice the depths of single taps for half the fetches, at the same error (fewer
-    // points cluster; docs/tuning.md).
-    int gathers = (L.blockerSamples + 1) / 2;
-    sg_DiskWalk disk = sg_beginDisk(sg_pixelRotation(), gathers);
-    int searchGathers = known >= 0.0 || pointEmitter ? 0 : gathers;
-    float blockerSum = 0.0;
-    float blockers = 0.0;
-    SG_ISOLATED
-    for (int i = 0; i < searchGathers; ++i) {
-        sg_Tap t = sg_lateralTap(L, r, sg_nextDiskSample(L.kernel, disk, i) * searchRadius);
-        float scale = t.layer == r.layer ? r.depthScale : sg_layers[L.firstLayer + t.layer].depthScale;
-        vec2 f, quadUv;
-        vec4 references = sg_quadReferences(L, r, t, f, quadUv) * scale;
-        vec4 stored = textureGather(sg_shadowDepth[slot], vec3(quadUv, float(t.layer))) * scale;
-        vec4 blocks = vec4(lessThan(stored, references));
-        // Blocker depth expressed at the center's lateral position: the tap's own shift along
-        // the tangent plane is removed so a sloped receiver does not bias it.
-        blockerSum += dot(blocks, stored + (dReceiver - t.depth));
-        blockers += dot(blocks, vec4(1.0));
-    }
-    float dBlocker = clamp(blockerSum / max(blockers, 1.0), 0.0, dReceiver);
-    // Penumbra half-width at the receiver (m), by similar triangles.
-    float penumbra = blockers > 0.0 ? min(sg_penumbraRadius(L, dReceiver, dBlocker, size), maxRadius) : 0.0;
-    int taps = pointEmitter ? 1 : (blockers > 0.0 ? sg_tapsFor(penumbra / r.texelMetres, L.pcfSamples) : 0);
-    float filtered = sg_pcfTaps(slot, L, r, penumbra, taps, false);
-    SG_DEBUG_STORE(sg_debugBlockerDepth, blockers > 0.0 ? dBlocker : 0.0);
-    SG_DEBUG_STORE(sg_debugPenumbra, penumbra);
-    if (known >= 0.0) return known;
-    return taps > 0 ? filtered : 1.0;
-}
+float sg_pcssVisibility(int slot, sg_GpuLight L, sg_Receiver r) { return sg_pcssFilter(slot, L, r); }
 
 #endif

@@ -27,8 +27,9 @@
 // then the casters of the clusters the cone meets are tested by bounding sphere against the cone
 // around the ray segment (a flat caster the ray leaves behind is dropped), and only the
 // SG_SDF_MAX_NEAR nearest casters it meets are sampled per step; the march ends where the ray
-// leaves the last of them, at the light, after `sdfSteps` steps, or in full umbra. Casters without a field (a game's own
-// draws, non-uniform scales) stay in the light's shadow map: one hard tap, multiplied in.
+// leaves the last of them, at the light, after `sdfSteps` steps, or in full umbra. Casters
+// without a field (open or thinner than two voxels of their field, skinned, cut-out, sheared, a
+// game's own draws) stay in the light's shadow map, filtered as PCSS and multiplied in.
 //
 // Instance records (SG_SDF_INSTANCE_TEXELS vec4 of the buffer texture per field caster, written
 // by engine/src/shadow/distance_field_atlas.cpp):
@@ -46,6 +47,7 @@
 #define SG_SHADOW_SDF
 #include "shadow_taps.glsl"
 #include "shadow_debug.glsl"
+#include "shadow_pcss_filter.glsl"
 
 layout(binding = SG_UNIT_SDF_ATLAS) uniform sampler3D sg_sdfAtlas;
 layout(binding = SG_UNIT_SDF_INSTANCES) uniform samplerBuffer sg_sdfInstances;
@@ -327,8 +329,13 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
     return visible;
 }
 
+// The march's visibility times that of the casters the light's map holds instead (open and thin
+// meshes, skinned and cut-out ones, a game's own draws), filtered as PCSS filters them: the
+// product of the two occluders' visible fractions (exact where they cover the emitter
+// independently). A light whose map holds no caster skips the map.
 float sg_sdfVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
-    float mapped = sg_compareTap(slot, L, r, sg_lateralTap(L, r, vec2(0.0)));
+    float mapped = 1.0;
+    SG_ISOLATED for (int k = 0; k < L.sdfMapCasters; ++k) mapped = sg_pcssFilter(slot, L, r);
     return mapped <= 0.0 ? 0.0 : mapped * sg_sdfMarch(L, r);
 }
 

@@ -12,6 +12,7 @@
 #include "shadow_region.glsl"
 #include "shadow_debug.glsl"
 #include "shadow_penumbra.glsl"
+#include "shadow_pcss_filter.glsl"
 #include "shadow_moments.glsl"
 #include "shadow_soft_moments.glsl"
 #include "shadow_summed_area_format.glsl"

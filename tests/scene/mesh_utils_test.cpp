@@ -152,6 +152,28 @@ TEST(MeshUtils, ComputeClosedKnowsWatertightMeshesFromOpenOnes) {
     EXPECT_FALSE(split.closed);
 }
 
+// Thickness = 2 x volume / area: a slab's thickness (to its edges' share of the area), two thirds
+// of a sphere's radius (the UV sphere's facets a little under); 0 for an open mesh. Planar: every
+// vertex in one plane, turned or not.
+TEST(MeshUtils, ThicknessAndPlanarity) {
+    const auto slab = makeBoxMesh({1.0f, 0.01f, 1.0f});
+    EXPECT_NEAR(slab->thickness, 2.0 * (2.0 * 0.02 * 2.0) / (2.0 * 4.0 + 4.0 * 2.0 * 0.02), 1e-5);
+    EXPECT_FALSE(slab->planar);
+    const auto sphere = makeSphereMesh(1.5f, 64, 32);
+    EXPECT_NEAR(sphere->thickness, 1.0, 0.01);
+    const auto plane = makePlaneMesh(2.0f, 3);
+    EXPECT_EQ(plane->thickness, 0.0f);
+    EXPECT_TRUE(plane->planar);
+    MeshData turned = *plane;
+    for (glm::vec3& p : turned.positions) p = glm::vec3(p.x, 0.6f * p.z + 3.0f, 0.8f * p.z);  // a tilted plane
+    computeBounds(turned);
+    computeClosed(turned);
+    EXPECT_TRUE(turned.planar);
+    turned.positions[0].y += 0.01f;  // one vertex 1 cm off its plane
+    computeClosed(turned);
+    EXPECT_FALSE(turned.planar);
+}
+
 TEST(MeshUtils, SolidMeansClosedWoundAlikeAndOutwardInEveryPart) {
     // The generated closed meshes are wound counter-clockwise seen from outside.
     EXPECT_TRUE(makeBoxMesh(glm::vec3(0.5f, 0.2f, 1.0f))->solid);

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "render/render_test_support.h"
 #include "shadow/soft_test_support.h"
@@ -186,48 +187,66 @@ TEST(DistanceFieldShadows, PlatesPenumbraAgainstTheRayTracedTruth) {
     EXPECT_EQ(sdf["counts"]["nonFinite"].get<int>(), 0);
 }
 
-// Contact: the contact suite's plate, 1 mm thick and 1 mm above the ground, under a sun
-// straight down. A march starts `sdfStartOffset` off the receiver, so it passes over a caster
-// nearer than that: with 2.5 mm (the default in metres before it followed the fields' voxels)
-// the plate casts nothing (measured: every ground pixel under it lit); with an offset under the
-// gap it casts its whole shadow, and the open ground around it stays lit. The automatic default,
-// an eighth of the plate's own voxel (the flat field's voxel is about 2.4 mm: 0.3 mm), is such
-// an offset.
+// Contact: a plate 1 mm above the ground under a sun straight down. A march starts
+// `sdfStartOffset` off the receiver, so it passes over a caster nearer than that. A slab 2 cm
+// thick (five voxels of its field) is marched: with 2 cm (the first sample, about twice the
+// offset up, lies over the slab) it casts nothing (measured: every ground pixel under it lit);
+// with 0.5 mm, or the automatic default, an eighth of the slab's own voxel (3.8 mm: 0.5 mm),
+// its whole shadow, and the open ground around it stays lit. A plate 1 mm thick, thinner than
+// two voxels of its field, casts through the light's map instead, whatever the offset, and is
+// warned about.
+struct PlateShadow {
+    double darkUnder = 0.0;  ///< fraction of the ground under the plate in shadow
+    double litAround = 0.0;  ///< fraction of the open ground around it lit
+    std::vector<Warning> warnings;
+};
+
+PlateShadow plateOneMillimetreUp(double thickness, float startOffset) {
+    Scene scene;
+    test::addGround(scene, 1.0f);
+    test::addBox(scene, "plate", {0.0, 0.001 + 0.5 * thickness, 0.0}, {0.3, 0.5 * thickness, 0.3});
+    Shadow s = test::shadowWith(ShadowTechnique::Sdf, 1024);
+    s.sdfStartOffset = startOffset;
+    addLight(scene, "sun", test::pointSizedLight(LightType::Directional), s, {0.0, 3.0, 0.0}, {0, -1, 0});
+    addCamera(scene, "camera", Camera{}, {0.0, -2.0, 0.3}, {0.0, 0.0, 0.0});  // from below
+    test::glContext();
+    FrameRunner runner;
+    const test::RenderedFrame frame = test::renderFrame(runner, scene, 192, 192);
+    const test::GroundCounts under = test::countGround(
+        frame.images, 0, [](const glm::dvec3& p) { return std::abs(p.x) < 0.25 && std::abs(p.z) < 0.25; });
+    const test::GroundCounts around = test::countGround(
+        frame.images, 0, [](const glm::dvec3& p) { return std::max(std::abs(p.x), std::abs(p.z)) > 0.35; });
+    EXPECT_GT(under.ground, 1000);
+    EXPECT_GT(around.ground, 1000);
+    return {under.darkFraction(), 1.0 - around.darkFraction(), frame.stats.warnings};
+}
+
 TEST(DistanceFieldShadows, ACasterNearerThanTheStartOffsetNeedsASmallerOffset) {
-    auto darkUnderPlate = [](float startOffset, double& litAround) {
-        Scene scene;
-        test::addGround(scene, 1.0f);
-        test::addBox(scene, "plate", {0.0, 0.0015, 0.0}, {0.3, 0.0005, 0.3});
-        Shadow s = test::shadowWith(ShadowTechnique::Sdf, 1024);
-        s.sdfStartOffset = startOffset;
-        addLight(scene, "sun", test::pointSizedLight(LightType::Directional), s, {0.0, 3.0, 0.0}, {0, -1, 0});
-        addCamera(scene, "camera", Camera{}, {0.0, -2.0, 0.3}, {0.0, 0.0, 0.0});  // from below
-        test::glContext();
-        FrameRunner runner;
-        const test::RenderedFrame frame = test::renderFrame(runner, scene, 192, 192);
-        const test::GroundCounts under = test::countGround(
-            frame.images, 0, [](const glm::dvec3& p) { return std::abs(p.x) < 0.25 && std::abs(p.z) < 0.25; });
-        const test::GroundCounts around = test::countGround(
-            frame.images, 0, [](const glm::dvec3& p) { return std::max(std::abs(p.x), std::abs(p.z)) > 0.35; });
-        EXPECT_GT(under.ground, 1000);
-        EXPECT_GT(around.ground, 1000);
-        litAround = 1.0 - around.darkFraction();
-        return under.darkFraction();
-    };
-    double litAround = 0.0;
-    const double wide = darkUnderPlate(0.0025f, litAround);
-    report("sdf, plate 1 mm above the ground, start offset 2.5 mm: dark under the plate", wide);
-    EXPECT_LE(wide, 0.01) << "an offset above the 1 mm gap: the march starts beyond the plate";
-    const double automatic = darkUnderPlate(kAutomatic, litAround);
-    report("sdf, plate 1 mm above the ground, automatic start offset: dark under the plate", automatic);
-    report("sdf, automatic start offset: open ground lit around the plate", litAround);
-    EXPECT_GE(automatic, 0.99);
-    EXPECT_GE(litAround, 0.999);
-    const double small = darkUnderPlate(0.0005f, litAround);
-    report("sdf, plate 1 mm above the ground, start offset 0.5 mm: dark under the plate", small);
-    report("sdf, start offset 0.5 mm: open ground lit around the plate", litAround);
-    EXPECT_GE(small, 0.99);
-    EXPECT_GE(litAround, 0.999);
+    const PlateShadow wide = plateOneMillimetreUp(0.02, 0.02f);
+    report("sdf, slab 2 cm thick 1 mm above the ground, start offset 2 cm: dark under it", wide.darkUnder);
+    EXPECT_LE(wide.darkUnder, 0.01) << "the march starts beyond the slab";
+    for (const float offset : {kAutomatic, 0.0005f}) {
+        const PlateShadow near = plateOneMillimetreUp(0.02, offset);
+        const std::string what = offset == kAutomatic ? "automatic start offset" : "start offset 0.5 mm";
+        report("sdf, slab 2 cm thick 1 mm above the ground, " + what + ": dark under it", near.darkUnder);
+        report("sdf, " + what + ": open ground lit around the plate", near.litAround);
+        EXPECT_GE(near.darkUnder, 0.99) << what;
+        EXPECT_GE(near.litAround, 0.999) << what;
+        EXPECT_TRUE(near.warnings.empty()) << test::describe(near.warnings);
+    }
+}
+
+TEST(DistanceFieldShadows, AClosedCasterThinnerThanTwoVoxelsCastsThroughTheMapAtAnyOffset) {
+    for (const float offset : {0.0025f, kAutomatic}) {
+        const PlateShadow box = plateOneMillimetreUp(0.001, offset);
+        report("sdf, box 1 mm thick 1 mm above the ground: dark under the plate", box.darkUnder);
+        EXPECT_GE(box.darkUnder, 0.99);
+        EXPECT_GE(box.litAround, 0.999);
+        ASSERT_EQ(test::countWarnings(box.warnings, WarningCode::CasterWithoutField, "sun"), 1)
+            << test::describe(box.warnings);
+        EXPECT_NE(box.warnings.front().message.find("1 thinner than two voxels"), std::string::npos)
+            << box.warnings.front().message;
+    }
 }
 
 }  // namespace

@@ -85,13 +85,20 @@ struct MeshData {
     /// outside its bounds stores the same nearest depths with its back faces culled, drawing
     /// about half its fragments (see `computeClosed`).
     bool solid = false;
+    /// A closed mesh's mean thickness, 2 x volume / area (mesh units; see `computeClosed`): a
+    /// slab's thickness, two thirds of a sphere's radius. 0 for an open mesh. What tells whether
+    /// a distance field of some voxel holds the mesh's inside at all.
+    float thickness = 0.0f;
+    /// Every vertex lies in one plane (to 1e-5 of the bounds' diagonal): a sheet, which a
+    /// distance field holds exactly (an open mesh's field is unsigned).
+    bool planar = false;
 };
 
 /// Computes `bounds` from `positions`.
 void computeBounds(MeshData& mesh);
 /// Computes `jointBounds` from `positions`, `joints` and `weights` (empty without them).
 void computeJointBounds(MeshData& mesh);
-/// Computes `closed` and `solid`: vertices at the same position count as one (a mesh with flat
+/// Computes `closed`, `solid`, `thickness` and `planar`: vertices at the same position count as one (a mesh with flat
 /// normals repeats them per face), degenerate triangles are ignored, and every remaining edge
 /// must belong to exactly two triangles (`solid`: one in each direction, and each connected
 /// part of positive volume).

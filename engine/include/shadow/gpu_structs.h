@@ -37,7 +37,7 @@ SG_INT sdfClusterFirst;        // sdf: its first cluster of SG_SDF_CLUSTER field
 SG_INT regionTest;             // PCF, PCSS: 1 when the lookups read the min/max pyramid, 0 when it was not built
 SG_FLOAT constantBiasTexels;    // texel footprints added to constantBias (Shadow::constantBias automatic)
 SG_FLOAT pcfRadiusTexels;       // texel footprints added to pcfRadius (Shadow::pcfRadius automatic)
-SG_FLOAT reserved2;
+SG_INT sdfMapCasters;           // sdf: 1 when some caster of its layers casts through the map (no field)
 SG_FLOAT reserved3;
 SG_END_STRUCT
 

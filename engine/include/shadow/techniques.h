@@ -46,7 +46,7 @@
       "moment shadow map: the Hamburger bound of four moments over one texel, edges antialiased")                 \
     X(MsmSoft, MSM_SOFT, "msm-soft", "shadow_msm_soft.glsl", msmSoft, FourMoments, 0, Public,                     \
       "moment soft shadows: vssm's blocker search and penumbra, the Hamburger bound over it")                     \
-    X(Sdf, SDF, "sdf", "shadow_sdf.glsl", sdf, None, 3, Public,                                                   \
+    X(Sdf, SDF, "sdf", "shadow_sdf.glsl", sdf, None, 5, Public,                                                   \
       "distance-field soft shadows: a cone marched to the emitter through the casters' signed distance fields")
 
 namespace shadow {

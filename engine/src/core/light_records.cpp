@@ -45,6 +45,10 @@ void packShadow(const ShadowLightPlan& plan, const glm::dvec3& wsCamera, int fir
     g.sdfClusterFirst = plan.fieldClusterFirst;
     g.regionTest = plan.regionTest ? 1 : 0;
     g.sdfCount = static_cast<int>(plan.fieldCasters.size());
+    g.sdfMapCasters = std::any_of(plan.layers.begin(), plan.layers.end(),
+                                  [](const ShadowLayerPlan& layer) { return !layer.casters.empty(); })
+                          ? 1
+                          : 0;
     g.sdfSteps = s.sdfSteps;
     g.sdfStartOffset = s.sdfStartOffset;
     g.sdfMinStep = s.sdfMinStep;

@@ -91,6 +91,46 @@ bool everyPartOutward(const MeshData& mesh, const std::vector<std::array<std::ui
     return true;
 }
 
+/// 2 |volume| / area of the closed surface `triangles` (the divergence theorem about the box's
+/// centre, in double): the thickness of a slab. A surface wound inconsistently gives less (parts
+/// of its volume cancel), never more.
+float meanThickness(const MeshData& mesh, const std::vector<std::array<std::uint32_t, 3>>& triangles, const Aabb& box) {
+    const glm::dvec3 centre = 0.5 * (glm::dvec3(box.min) + glm::dvec3(box.max));
+    double volume = 0.0;
+    double area = 0.0;
+    for (const auto& t : triangles) {
+        const glm::dvec3 a = glm::dvec3(mesh.positions[t[0]]) - centre;
+        const glm::dvec3 b = glm::dvec3(mesh.positions[t[1]]) - centre;
+        const glm::dvec3 c = glm::dvec3(mesh.positions[t[2]]) - centre;
+        volume += glm::dot(a, glm::cross(b, c)) / 6.0;
+        area += 0.5 * glm::length(glm::cross(b - a, c - a));
+    }
+    return area > 0.0 ? static_cast<float>(2.0 * std::abs(volume) / area) : 0.0f;
+}
+
+/// Whether every vertex of `triangles` lies within 1e-5 of the box's diagonal of the plane of
+/// their largest triangle (in double about the box's centre).
+bool allInOnePlane(const MeshData& mesh, const std::vector<std::array<std::uint32_t, 3>>& triangles, const Aabb& box) {
+    const glm::dvec3 centre = 0.5 * (glm::dvec3(box.min) + glm::dvec3(box.max));
+    glm::dvec3 normal(0.0);
+    glm::dvec3 origin(0.0);
+    for (const auto& t : triangles) {
+        const glm::dvec3 a = glm::dvec3(mesh.positions[t[0]]) - centre;
+        const glm::dvec3 n = glm::cross(glm::dvec3(mesh.positions[t[1]]) - centre - a,
+                                        glm::dvec3(mesh.positions[t[2]]) - centre - a);
+        if (glm::length(n) > glm::length(normal)) normal = n, origin = a;
+    }
+    if (!(glm::length(normal) > 0.0)) return false;
+    normal = glm::normalize(normal);
+    const double tolerance = 1e-5 * glm::length(glm::dvec3(box.max) - glm::dvec3(box.min));
+    for (const auto& t : triangles) {
+        for (std::uint32_t v : t) {
+            if (!(std::abs(glm::dot(glm::dvec3(mesh.positions[v]) - centre - origin, normal)) <= tolerance)) return false;
+        }
+    }
+    return true;
+}
+
 }  // namespace
 
 // Welds the positions (weldByPosition), then sorts the edges and checks that each appears
@@ -129,6 +169,8 @@ void computeClosed(MeshData& mesh) {
         i = j;
     }
     mesh.solid = mesh.closed && wound && !box.empty() && everyPartOutward(mesh, triangles, welded, ids, box);
+    mesh.thickness = mesh.closed ? meanThickness(mesh, triangles, box) : 0.0f;
+    mesh.planar = !box.empty() && allInOnePlane(mesh, triangles, box);
 }
 
 namespace {

@@ -187,54 +187,90 @@ bool knownClosed(const World& world, Entity caster) {
     return own != nullptr && own->closed;
 }
 
-/// Whether `caster` can be marched through a distance field: a mesh (its field is baked from
-/// its data) placed by a rotation and a scale along its own axes (a non-uniform scale gets a
-/// field of its own, baked with the scale applied); a shear would break the distance bound the
-/// march steps by. A skinned mesh (its field would be its bind pose) and a cut-out (its field
-/// would have no holes) are not: they cast through the light's map, which poses and cuts them.
-bool hasField(const World& world, Entity caster) {
+/// Thinnest closed caster, in voxels of its own field, that the march reads from its field: a
+/// thinner one has few or no voxels inside, and rays crossing it between samples see it as a
+/// sheet of clearance near half a voxel, which lets light into its umbra.
+constexpr float kMinFieldThicknessVoxels = 2.0f;
+
+/// Why a caster of an sdf light is or is not marched through a distance field.
+enum class FieldVerdict : std::uint8_t {
+    Field,      ///< marched through its field
+    Unfielded,  ///< a game's own draw, a skinned or cut-out mesh, or a sheared transform
+    Open,       ///< not closed nor planar: its field has no inside, and rays pass between its sheets
+    Thin,       ///< closed, but thinner than kMinFieldThicknessVoxels of its field
+};
+
+/// Whether `caster` can be marched through a distance field: a planar mesh (a sheet: a ground, a
+/// plate) or a closed one at least kMinFieldThicknessVoxels of its field thick (its field is
+/// baked from its data), placed by a rotation and
+/// a scale along its own axes (a non-uniform scale gets a field of its own, baked with the scale
+/// applied); a shear would break the distance bound the march steps by. A skinned mesh (its
+/// field would be its bind pose) and a cut-out (its field would have no holes) are not, nor an
+/// open or thin one: they cast through the light's map, which poses and cuts them and holds any
+/// surface, filtered as PCSS filters it.
+FieldVerdict fieldVerdict(const World& world, Entity caster, int voxelBudget) {
     const Mesh* mesh = world.tryGet<Mesh>(caster);
     const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
     if (mesh == nullptr || mesh->data == nullptr || mesh->data->indices.empty() || wt == nullptr || !wt->finite) {
-        return false;
+        return FieldVerdict::Unfielded;
     }
     const Material* material = world.tryGet<Material>(caster);
-    if (world.has<Skin>(caster) || (material != nullptr && material->cutout())) return false;
+    if (world.has<Skin>(caster) || (material != nullptr && material->cutout())) return FieldVerdict::Unfielded;
     std::array<glm::dvec3, 3> axes{};
     for (int c = 0; c < 3; ++c) {
         axes[static_cast<std::size_t>(c)] = glm::dvec3(wt->worldFromLocal[c]);
-        if (!(glm::length(axes[static_cast<std::size_t>(c)]) > 0.0)) return false;
+        if (!(glm::length(axes[static_cast<std::size_t>(c)]) > 0.0)) return FieldVerdict::Unfielded;
         axes[static_cast<std::size_t>(c)] = glm::normalize(axes[static_cast<std::size_t>(c)]);
     }
-    return std::abs(glm::dot(axes[0], axes[1])) < 1e-4 && std::abs(glm::dot(axes[1], axes[2])) < 1e-4 &&
-           std::abs(glm::dot(axes[0], axes[2])) < 1e-4;
+    const bool alongAxes = std::abs(glm::dot(axes[0], axes[1])) < 1e-4 && std::abs(glm::dot(axes[1], axes[2])) < 1e-4 &&
+                           std::abs(glm::dot(axes[0], axes[2])) < 1e-4;
+    if (!alongAxes) return FieldVerdict::Unfielded;
+    const MeshData& data = *mesh->data;
+    if (!data.closed) return data.planar ? FieldVerdict::Field : FieldVerdict::Open;
+    DistanceFieldSettings settings;
+    settings.voxelBudget = voxelBudget;
+    const float voxel = distanceFieldVoxel(data.bounds, settings);
+    return data.thickness >= kMinFieldThicknessVoxels * voxel ? FieldVerdict::Field : FieldVerdict::Thin;
 }
 
 /// Technique sdf: moves the casters with a field out of `plan`'s layers into `fieldCasters`
-/// (once each), and warns once (`CasterWithoutField`) about those left to the map.
-void takeFieldCasters(const World& world, ShadowLightPlan& plan, std::vector<Warning>& warnings) {
-    int without = 0;
+/// (once each), and warns once (`CasterWithoutField`) about those left to the map, by reason.
+void takeFieldCasters(const World& world, int voxelBudget, ShadowLightPlan& plan, std::vector<Warning>& warnings) {
+    std::array<int, 4> left{};  // per FieldVerdict
     Entity first;
     for (ShadowLayerPlan& layer : plan.layers) {
         std::erase_if(layer.casters, [&](Entity caster) {
-            if (hasField(world, caster)) {
+            const FieldVerdict verdict = fieldVerdict(world, caster, voxelBudget);
+            if (verdict == FieldVerdict::Field) {
                 plan.fieldCasters.push_back(caster);
                 return true;
             }
-            if (without++ == 0) first = caster;
+            if (left[1] + left[2] + left[3] == 0) first = caster;
+            ++left[static_cast<std::size_t>(verdict)];
             return false;
         });
     }
     std::sort(plan.fieldCasters.begin(), plan.fieldCasters.end(),
               [](Entity a, Entity b) { return a.index() < b.index(); });
     plan.fieldCasters.erase(std::unique(plan.fieldCasters.begin(), plan.fieldCasters.end()), plan.fieldCasters.end());
+    const int without = left[1] + left[2] + left[3];
     if (without == 0) return;
     const Name* name = world.tryGet<Name>(first);
     std::ostringstream msg;
     msg << plan.name << ": technique sdf: " << without << " caster draw" << (without == 1 ? "" : "s")
-        << " without a distance field (a game's own draw, a skinned or cut-out mesh, or a sheared transform; \""
-        << (name != nullptr ? name->value : std::string("entity ") + std::to_string(first.index()))
-        << "\" first) cast through the light's shadow map";
+        << " without a distance field (";
+    const char* sep = "";
+    const auto part = [&](int n, const char* what) {
+        if (n == 0) return;
+        msg << sep << n << " " << what;
+        sep = ", ";
+    };
+    part(left[static_cast<std::size_t>(FieldVerdict::Open)], "open and not flat: a field holds no inside");
+    part(left[static_cast<std::size_t>(FieldVerdict::Thin)], "thinner than two voxels of their field");
+    part(left[static_cast<std::size_t>(FieldVerdict::Unfielded)],
+         "a game's own draw, a skinned or cut-out mesh, or a sheared transform");
+    msg << "; \"" << (name != nullptr ? name->value : std::string("entity ") + std::to_string(first.index()))
+        << "\" first) cast through the light's shadow map, filtered as PCSS";
     warnings.push_back({WarningCode::CasterWithoutField, plan.name, msg.str()});
 }
 
@@ -465,7 +501,9 @@ void ShadowPlanner::planMap(const World& world, const CameraView& camera, Shadow
         // Once a frame, and only in a frame with a sun: where receivers are visible on screen.
         if (plan.light.type == LightType::Directional) measureVisibleReceivers(camera, scratch_->geometry);
         planLayers(planned.inputs, camera, scratch_->geometry, samePlan, plan.layers);
-        if (plan.settings.technique == ShadowTechnique::Sdf) takeFieldCasters(world, plan, frame_.warnings);
+        if (plan.settings.technique == ShadowTechnique::Sdf) {
+            takeFieldCasters(world, frame_.distanceFieldVoxels, plan, frame_.warnings);
+        }
         markDirty(world, plan);
     }
     if (plan.settings.technique == ShadowTechnique::Sdf) resolveFieldLengths(world, frame_.distanceFieldVoxels, plan);
