@@ -6,11 +6,11 @@
 #include "shadow_filter.glsl"
 #include "shadow_region.glsl"
 
-// A fixed radius reaches beyond the penumbra on curved receivers: PCF's taps follow the
-// surface's bend (half the curvature times the reach squared, capped by the slope bias).
-sg_ReceiverPolicy sg_pcfPolicy() {
-    return sg_ReceiverPolicy(0.0, sg_kNearSlopeBias, 0.5);
-}
+// PCF's taps lie on the receiver triangle's plane as every filter's do (sg_planePolicy). A bend
+// term (taps following the shading normal's curvature, half of it times the reach squared in
+// bias) served the former metre-valued radius; at the default of 1.5 texels it measured more
+// error, not less (docs/tuning.md).
+sg_ReceiverPolicy sg_pcfPolicy() { return sg_planePolicy(); }
 
 // PCF of the light's own radius (sg_pcfRadius).
 float sg_pcfVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
