@@ -6,8 +6,6 @@
 // warning, the rest is marched. Each must keep its umbra (interior leak under 1 %) and err
 // within 1.5 times PCSS's RMSE plus 0.01.
 #include <gtest/gtest.h>
-#include <shadow/metrics.h>
-#include <shadow/reference.h>
 #include <shadow/scene.h>
 
 #include <cstdio>
@@ -17,6 +15,7 @@
 
 #include "render/render_test_support.h"
 #include "shadow/soft_test_support.h"
+#include "shadow/truth_test_support.h"
 #include "test_support.h"
 
 namespace shadow::test {
@@ -65,38 +64,16 @@ Scene casterScene(std::shared_ptr<const MeshData> mesh, const glm::dvec3& positi
     return scene;
 }
 
-struct Measured {
-    VisibilityErrors errors;
-    std::vector<Warning> warnings;
-};
-
-Measured measure(const std::shared_ptr<const MeshData>& mesh, const glm::dvec3& position, float lightRadius,
-                 ShadowTechnique technique) {
+AgainstTruth measure(const std::shared_ptr<const MeshData>& mesh, const glm::dvec3& position, float lightRadius,
+                     ShadowTechnique technique) {
     Scene scene = casterScene(mesh, position, lightRadius, technique);
-    glContext();
-    FrameRunner runner;
-    const RenderedFrame frame = renderFrame(runner, scene, kWidth, kHeight);
-    reference::ReferenceOptions options;
-    options.width = kWidth;
-    options.height = kHeight;
-    options.samples = 256;
-    options.wsPositions = &frame.images.position;
-    const Result<reference::ReferenceResult> truth = reference::traceVisibility(scene, runner.lastCamera(), options);
-    EXPECT_TRUE(static_cast<bool>(truth)) << (truth ? "" : truth.error().message);
-    Measured m;
-    m.warnings = frame.stats.warnings;
-    if (!truth) return m;
-    const Result<VisibilityErrors> e =
-        compareVisibility(frame.images.visibility.at(0), truth->visibility.at(0), &truth->lit.at(0));
-    EXPECT_TRUE(static_cast<bool>(e)) << (e ? "" : e.error().message);
-    if (e) m.errors = *e;
-    return m;
+    return renderAgainstTruth(scene, kWidth, kHeight, 256);
 }
 
 void expectUmbraKept(const std::string& name, const std::shared_ptr<const MeshData>& mesh, const glm::dvec3& position,
                      float lightRadius, bool castThroughMap) {
-    const Measured sdf = measure(mesh, position, lightRadius, ShadowTechnique::Sdf);
-    const Measured pcss = measure(mesh, position, lightRadius, ShadowTechnique::Pcss);
+    const AgainstTruth sdf = measure(mesh, position, lightRadius, ShadowTechnique::Sdf);
+    const AgainstTruth pcss = measure(mesh, position, lightRadius, ShadowTechnique::Pcss);
     std::printf("[ measured ] %s: sdf RMSE %.4f, interior leak %.4f (%lld interior umbra px); pcss RMSE %.4f\n",
                 name.c_str(), sdf.errors.rmse, sdf.errors.interiorLeakFraction,
                 static_cast<long long>(sdf.errors.interiorUmbraPixels), pcss.errors.rmse);

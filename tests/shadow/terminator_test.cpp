@@ -5,8 +5,6 @@
 // had, and the lit side shows facet-shaped acne. At their defaults PCF and PCSS must do no worse
 // than hard shadows there.
 #include <gtest/gtest.h>
-#include <shadow/metrics.h>
-#include <shadow/reference.h>
 #include <shadow/scene.h>
 
 #include <cstdio>
@@ -14,6 +12,7 @@
 
 #include "render/render_test_support.h"
 #include "shadow/soft_test_support.h"
+#include "shadow/truth_test_support.h"
 #include "test_support.h"
 
 namespace shadow::test {
@@ -41,21 +40,7 @@ Scene lowPolySphere(LightType type, ShadowTechnique technique) {
 /// RMSE of light 0's visibility against the traced truth over the pixels the light shades.
 double rmseAgainstTruth(LightType type, ShadowTechnique technique) {
     Scene scene = lowPolySphere(type, technique);
-    glContext();
-    FrameRunner runner;
-    const RenderedFrame frame = renderFrame(runner, scene, kWidth, kHeight);
-    reference::ReferenceOptions options;
-    options.width = kWidth;
-    options.height = kHeight;
-    options.samples = 64;
-    options.wsPositions = &frame.images.position;
-    const Result<reference::ReferenceResult> truth = reference::traceVisibility(scene, runner.lastCamera(), options);
-    EXPECT_TRUE(static_cast<bool>(truth)) << (truth ? "" : truth.error().message);
-    if (!truth) return 1.0;
-    const Result<VisibilityErrors> e =
-        compareVisibility(frame.images.visibility.at(0), truth->visibility.at(0), &truth->lit.at(0));
-    EXPECT_TRUE(static_cast<bool>(e)) << (e ? "" : e.error().message);
-    return e ? e->rmse : 1.0;
+    return renderAgainstTruth(scene, kWidth, kHeight, 64).errors.rmse;
 }
 
 void expectFiltersNoWorseThanHard(LightType type) {

@@ -262,9 +262,9 @@ inline constexpr float kAutomatic = -1.0f;
 inline constexpr float kAutoConstantBiasTexels = 0.05f;
 /// `Shadow::pcfRadius` when automatic: this many shadow texels at the receiver.
 inline constexpr float kAutoPcfRadiusTexels = 1.5f;
-/// `Shadow::sdfStartOffset` when automatic: this fraction of the smallest field voxel.
+/// `Shadow::sdfStartOffset` when automatic: this fraction of the median field voxel.
 inline constexpr float kAutoSdfStartOffsetVoxels = 0.125f;
-/// `Shadow::sdfMinStep` when automatic: this fraction of the smallest field voxel.
+/// `Shadow::sdfMinStep` when automatic: this fraction of the median field voxel.
 inline constexpr float kAutoSdfMinStepVoxels = 0.25f;
 
 /// Whether a length setting asks for the automatic value (`kAutomatic`).
@@ -342,7 +342,7 @@ struct Shadow {
     int sdfSteps = 48;
     /// Technique sdf: how far (m) the march starts from the receiver, along its normal and
     /// along the ray, [0, 1], or `kAutomatic` (the default): `kAutoSdfStartOffsetVoxels` of the
-    /// smallest voxel (m) of the light's field casters. A caster nearer its receiver than this is
+    /// median voxel (m) of the light's field casters. A caster nearer its receiver than this is
     /// passed over; a march starting closer reads the receiver's own field, whose interpolation
     /// error near a curved surface is a fraction of a voxel, and darkens lit surfaces (acne).
     /// Measured on builtin:bunny (fields of 64^3 voxels, voxel 2 cm) against the ray-traced truth,
@@ -352,7 +352,7 @@ struct Shadow {
     /// umbra pixels above 0.5 into the bunny's shadows.
     float sdfStartOffset = kAutomatic;
     /// Technique sdf: the shortest step (m), [1e-4, 1], or `kAutomatic` (the default):
-    /// `kAutoSdfMinStepVoxels` of the smallest voxel of the light's field casters. Smaller follows
+    /// `kAutoSdfMinStepVoxels` of the median voxel of the light's field casters. Smaller follows
     /// thin gaps closer, at more steps.
     float sdfMinStep = kAutomatic;
 };

@@ -274,32 +274,39 @@ void takeFieldCasters(const World& world, int voxelBudget, ShadowLightPlan& plan
     warnings.push_back({WarningCode::CasterWithoutField, plan.name, msg.str()});
 }
 
-/// Technique sdf: the march lengths of `plan` left automatic (`kAutomatic`), from the smallest
-/// voxel (m) among its field casters: the voxel a field of `voxelBudget` voxels has over the
-/// caster's mesh scaled by its transform's smallest axis scale. Without field casters nothing is
-/// marched, and the lengths are those of a field one metre across.
-void resolveFieldLengths(const World& world, int voxelBudget, ShadowLightPlan& plan) {
+/// Technique sdf: the march lengths of `plan` left automatic (`kAutomatic`), from the median voxel
+/// (m) of its field casters that are not flat: the voxel a field of `voxelBudget` voxels has over
+/// the caster's mesh bounds scaled by its transform's axis scales (as the atlas bakes a
+/// non-uniform scale). A flat caster's field is exact (a ground's voxel, large, says nothing of
+/// the interpolation error the start offset keeps clear of). The median (the lower of two), not
+/// the smallest: one small caster must not shorten every step of the light's march (a march out
+/// of steps before the light reads lit). Without such casters, the flat ones' median; without
+/// any, the lengths of a field one metre across. `voxels` is scratch storage.
+void resolveFieldLengths(const World& world, int voxelBudget, ShadowLightPlan& plan, std::vector<double>& voxels) {
     Shadow& s = plan.settings;
     if (!isAutomatic(s.sdfStartOffset) && !isAutomatic(s.sdfMinStep)) return;
     DistanceFieldSettings settings;
     settings.voxelBudget = voxelBudget;
-    double voxel = std::numeric_limits<double>::infinity();
-    const MeshData* last = nullptr;
-    double lastVoxel = 0.0;
-    for (Entity caster : plan.fieldCasters) {
-        const Mesh* mesh = world.tryGet<Mesh>(caster);
-        const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
-        if (mesh == nullptr || mesh->data == nullptr || wt == nullptr) continue;
-        if (mesh->data.get() != last) {  // instances of one mesh stand together more often than not
-            last = mesh->data.get();
-            lastVoxel = distanceFieldVoxel(last->bounds, settings);
+    double voxel = 1.0 / std::cbrt(static_cast<double>(voxelBudget));
+    for (const bool flat : {false, true}) {
+        voxels.clear();
+        for (Entity caster : plan.fieldCasters) {
+            const Mesh* mesh = world.tryGet<Mesh>(caster);
+            const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
+            if (mesh == nullptr || mesh->data == nullptr || wt == nullptr || mesh->data->planar != flat) continue;
+            const glm::vec3 scale(glm::length(glm::dvec3(wt->worldFromLocal[0])),
+                                  glm::length(glm::dvec3(wt->worldFromLocal[1])),
+                                  glm::length(glm::dvec3(wt->worldFromLocal[2])));
+            const double v = distanceFieldVoxel(Aabb{mesh->data->bounds.min * scale, mesh->data->bounds.max * scale},
+                                                settings);
+            if (v > 0.0) voxels.push_back(v);
         }
-        const double scale = std::min({glm::length(glm::dvec3(wt->worldFromLocal[0])),
-                                       glm::length(glm::dvec3(wt->worldFromLocal[1])),
-                                       glm::length(glm::dvec3(wt->worldFromLocal[2]))});
-        if (lastVoxel * scale > 0.0) voxel = std::min(voxel, lastVoxel * scale);
+        if (voxels.empty()) continue;
+        const auto middle = voxels.begin() + static_cast<std::ptrdiff_t>((voxels.size() - 1) / 2);
+        std::nth_element(voxels.begin(), middle, voxels.end());
+        voxel = *middle;
+        break;
     }
-    if (!std::isfinite(voxel)) voxel = 1.0 / std::cbrt(static_cast<double>(voxelBudget));
     if (isAutomatic(s.sdfStartOffset)) s.sdfStartOffset = static_cast<float>(kAutoSdfStartOffsetVoxels * voxel);
     if (isAutomatic(s.sdfMinStep)) s.sdfMinStep = static_cast<float>(std::max(kAutoSdfMinStepVoxels * voxel, 1e-9));
 }
@@ -421,6 +428,7 @@ struct ShadowPlanner::Scratch {
     std::vector<PlannedFrom> planned;      ///< this frame's, by scene light
     std::vector<PlannedFrom> lastPlanned;  ///< the last frame's
     std::optional<CameraView> lastCamera;
+    std::vector<double> fieldVoxels;  ///< resolveFieldLengths' scratch
 };
 
 ShadowPlanner::ShadowPlanner() : scratch_(std::make_unique<Scratch>()) {}
@@ -506,7 +514,7 @@ void ShadowPlanner::planMap(const World& world, const CameraView& camera, Shadow
         }
         markDirty(world, plan);
     }
-    if (plan.settings.technique == ShadowTechnique::Sdf) resolveFieldLengths(world, frame_.distanceFieldVoxels, plan);
+    if (plan.settings.technique == ShadowTechnique::Sdf) resolveFieldLengths(world, frame_.distanceFieldVoxels, plan, scratch_->fieldVoxels);
     plan.regionTest = pyramidPays(plan, camera, frame_.wsGeometry, limits_.pyramidTexelsPerPixel);
     const ShadowTechnique technique = plan.technique();
     const bool texelRadius = isAutomatic(plan.settings.pcfRadius);
