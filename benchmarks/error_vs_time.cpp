@@ -44,6 +44,9 @@ struct Config {
     DepthMode depthMode = DepthMode::Nearest;  ///< midpoint and second with zero constant and slope bias
     int sdfSteps = 48;
     int fieldVoxels = 64;  ///< sdf: voxels along each field's edge (ShadowLimits::distanceFieldVoxels, cubed)
+    /// PCF and VSM: the filter radius (m) set on every light, or kAutomatic to leave each light's
+    /// own (the default: 1.5 texels).
+    float pcfRadius = kAutomatic;
 
     /// The series of the chart it belongs to: its technique, and the depth mode when not nearest
     /// (the field's resolution for sdf).
@@ -62,6 +65,7 @@ struct Config {
         s << techniqueName(technique) << " map" << mapSize;
         if (depthMode != DepthMode::Nearest) s << " " << depthModeName(depthMode);
         if (technique == ShadowTechnique::Pcf) s << " taps" << pcfSamples;
+        if (!isAutomatic(pcfRadius)) s << " r" << pcfRadius << "m";
         if (technique == ShadowTechnique::Pcss || technique == ShadowTechnique::PcssTextbook) {
             s << " taps" << blockerSamples << "+" << pcfSamples;
         }
@@ -91,6 +95,13 @@ std::vector<Config> sweep() {
     for (ShadowTechnique t : {ShadowTechnique::Vsm, ShadowTechnique::Vssm}) {
         for (int size : {512, 1024, 2048}) out.push_back({t, size, 1, 1, FilterKernel::Vogel, 0.0f});
         for (float bleed : {0.2f, 0.4f}) out.push_back({t, 1024, 1, 1, FilterKernel::Vogel, bleed});
+    }
+    // The fixed radius in metres the defaults had before they followed the texel (5 cm), for PCF
+    // and VSM: a wide filter suits these metre-scale scenes' wide emitters, not any scale.
+    for (ShadowTechnique t : {ShadowTechnique::Pcf, ShadowTechnique::Vsm}) {
+        Config c{t, 1024, 16, 1, FilterKernel::Vogel};
+        c.pcfRadius = 0.05f;
+        out.push_back(c);
     }
     for (ShadowTechnique t : {ShadowTechnique::Msm, ShadowTechnique::MsmSoft}) {
         for (int size : {512, 1024, 2048}) out.push_back({t, size, 1, 1, FilterKernel::Vogel, 0.0f});
@@ -128,6 +139,7 @@ void applyConfig(Scene& scene, const Config& c) {
         s.lightBleedReduction = c.lightBleedReduction;
         samples::applyDepthMode(s, c.depthMode);
         s.sdfSteps = c.sdfSteps;
+        if (!isAutomatic(c.pcfRadius)) s.pcfRadius = c.pcfRadius;
     });
 }
 
