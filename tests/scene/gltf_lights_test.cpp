@@ -113,11 +113,12 @@ TEST(GltfImport, RejectsStringWhereNumberDue) {
 // The lengths whose default follows the scene take "auto" (the default itself) or metres.
 TEST(GltfImport, LengthSettingsTakeAutoOrMetres) {
     Doc doc;
-    doc.light({{"type", "spot"},
-               {"spot", json::object()},
-               {"extras",
-                {{"shadow",
-                  {{"pcfRadius", "auto"}, {"constantBias", 0.002}, {"sdfStartOffset", "auto"}, {"sdfMinStep", 0.01}}}}}});
+    doc.light(
+        {{"type", "spot"},
+         {"spot", json::object()},
+         {"extras",
+          {{"shadow",
+            {{"pcfRadius", "auto"}, {"constantBias", 0.002}, {"sdfStartOffset", "auto"}, {"sdfMinStep", 0.01}}}}}});
     doc.node({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
     const Result<Scene> scene = loadGltf(doc.write(testDir() / "auto.gltf").string());
     ASSERT_TRUE(scene) << scene.error().message;

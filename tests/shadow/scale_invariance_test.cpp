@@ -98,9 +98,7 @@ void expectScaleFree(const std::string& name, int mapSize) {
     }
 }
 
-TEST(ScaleInvariance, PlatesCastTheSameShadowsAtAHundredthAndAHundredTimesTheirSize) {
-    expectScaleFree("plates", 512);
-}
+TEST(ScaleInvariance, PlatesCastTheSameShadowsAtAHundredthAndAHundredTimesTheirSize) { expectScaleFree("plates", 512); }
 
 TEST(ScaleInvariance, BunnyUnderThreeLightTypesCastsTheSameShadowsAtAnyScale) {
     if (!std::filesystem::exists(kBunnyObjPath)) GTEST_SKIP() << "no " << kBunnyObjPath;

@@ -98,9 +98,10 @@ TEST(SdfFallback, ACasterOfTwoOpenPartsCastsThroughTheMapAndKeepsItsUmbra) {
 
 TEST(SdfFallback, ThinClosedPlatesHighAboveTheGroundKeepTheirUmbraUnderAWideLight) {
     for (const double thickness : {0.01, 0.03, 0.1}) {
-        const std::shared_ptr<MeshData> plate = makeBoxMesh(glm::vec3(0.5f, 0.5f * static_cast<float>(thickness), 0.5f));
-        expectUmbraKept("closed plate " + std::to_string(thickness) + " m thick, 2 m up", plate, {0.0, 2.0, 0.0},
-                        0.3f, thickness < 0.02);
+        const std::shared_ptr<MeshData> plate =
+            makeBoxMesh(glm::vec3(0.5f, 0.5f * static_cast<float>(thickness), 0.5f));
+        expectUmbraKept("closed plate " + std::to_string(thickness) + " m thick, 2 m up", plate, {0.0, 2.0, 0.0}, 0.3f,
+                        thickness < 0.02);
     }
 }
 

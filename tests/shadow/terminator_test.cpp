@@ -28,8 +28,10 @@ Scene lowPolySphere(LightType type, ShadowTechnique technique) {
     addGround(scene, 6.0f);
     addMeshInstance(scene.world, "sphere", makeSphereMesh(1.0f, 20, 10), placed({0.0, 1.05, 0.0}));
     Light light = pointSizedLight(type, 0.6f);
-    if (type == LightType::Directional) light.angularRadius = 0.02f;
-    else light.radius = 0.1f;
+    if (type == LightType::Directional)
+        light.angularRadius = 0.02f;
+    else
+        light.radius = 0.1f;
     const glm::dvec3 direction = glm::normalize(glm::dvec3(-0.8, -1.0, -0.3));
     addLight(scene, "light", light, shadowWith(technique, 1024), -6.0 * direction + glm::dvec3(0.0, 1.0, 0.0),
              direction);
@@ -48,7 +50,8 @@ void expectFiltersNoWorseThanHard(LightType type) {
     std::printf("[ measured ] low-poly sphere, %s, hard: RMSE %.4f\n", lightTypeName(type), hard);
     for (ShadowTechnique t : {ShadowTechnique::Pcf, ShadowTechnique::Pcss}) {
         const double filtered = rmseAgainstTruth(type, t);
-        std::printf("[ measured ] low-poly sphere, %s, %s: RMSE %.4f\n", lightTypeName(type), techniqueName(t), filtered);
+        std::printf("[ measured ] low-poly sphere, %s, %s: RMSE %.4f\n", lightTypeName(type), techniqueName(t),
+                    filtered);
         EXPECT_LE(filtered, hard * 1.02 + 1e-3)
             << lightTypeName(type) << ", " << techniqueName(t) << ": RMSE " << filtered << " against hard's " << hard;
     }

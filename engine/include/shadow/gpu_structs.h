@@ -35,9 +35,9 @@ SG_FLOAT sdfStartOffset;       // sdf: m along the normal and the ray before the
 SG_FLOAT sdfMinStep;           // sdf: shortest step (m)
 SG_INT sdfClusterFirst;        // sdf: its first cluster of SG_SDF_CLUSTER field casters
 SG_INT regionTest;             // PCF, PCSS: 1 when the lookups read the min/max pyramid, 0 when it was not built
-SG_FLOAT constantBiasTexels;    // texel footprints added to constantBias (Shadow::constantBias automatic)
-SG_FLOAT pcfRadiusTexels;       // texel footprints added to pcfRadius (Shadow::pcfRadius automatic)
-SG_INT sdfMapCasters;           // sdf: 1 when some caster of its layers casts through the map (no field)
+SG_FLOAT constantBiasTexels;   // texel footprints added to constantBias (Shadow::constantBias automatic)
+SG_FLOAT pcfRadiusTexels;      // texel footprints added to pcfRadius (Shadow::pcfRadius automatic)
+SG_INT sdfMapCasters;          // sdf: 1 when some caster of its layers casts through the map (no field)
 SG_FLOAT reserved3;
 SG_END_STRUCT
 

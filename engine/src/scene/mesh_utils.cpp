@@ -116,8 +116,8 @@ bool allInOnePlane(const MeshData& mesh, const std::vector<std::array<std::uint3
     glm::dvec3 origin(0.0);
     for (const auto& t : triangles) {
         const glm::dvec3 a = glm::dvec3(mesh.positions[t[0]]) - centre;
-        const glm::dvec3 n = glm::cross(glm::dvec3(mesh.positions[t[1]]) - centre - a,
-                                        glm::dvec3(mesh.positions[t[2]]) - centre - a);
+        const glm::dvec3 n =
+            glm::cross(glm::dvec3(mesh.positions[t[1]]) - centre - a, glm::dvec3(mesh.positions[t[2]]) - centre - a);
         if (glm::length(n) > glm::length(normal)) normal = n, origin = a;
     }
     if (!(glm::length(normal) > 0.0)) return false;
@@ -125,7 +125,8 @@ bool allInOnePlane(const MeshData& mesh, const std::vector<std::array<std::uint3
     const double tolerance = 1e-5 * glm::length(glm::dvec3(box.max) - glm::dvec3(box.min));
     for (const auto& t : triangles) {
         for (std::uint32_t v : t) {
-            if (!(std::abs(glm::dot(glm::dvec3(mesh.positions[v]) - centre - origin, normal)) <= tolerance)) return false;
+            if (!(std::abs(glm::dot(glm::dvec3(mesh.positions[v]) - centre - origin, normal)) <= tolerance))
+                return false;
         }
     }
     return true;

@@ -412,8 +412,8 @@ void planDirectional(const LayerInputs& s, const CameraView& cam, const SceneGeo
         double zTop = 0.0;
         double zBottom = 0.0;
         double casterTop = 0.0;
-        cascadeDepthRange(rotation, g, lsReceivers, lsCamera, lsCenter - 0.5 * extent, lsCenter + 0.5 * extent, s.lengthUnit, zTop,
-                          zBottom, casterTop);
+        cascadeDepthRange(rotation, g, lsReceivers, lsCamera, lsCenter - 0.5 * extent, lsCenter + 0.5 * extent,
+                          s.lengthUnit, zTop, zBottom, casterTop);
 
         ShadowLayerPlan& layer = layers[static_cast<std::size_t>(k)];
         const std::optional<LayerMatrices> had = resetLayer(layer, follow);
@@ -438,7 +438,8 @@ double perspectiveFar(const LayerInputs& light, const SceneGeometry& g) {
     if (light.range > 0.0f) return std::clamp<double>(light.range, 1e-3, kMaxShadowReach);
     const double unit = light.lengthUnit;
     const double fitted =
-        unit * std::exp2(std::ceil(std::log2(std::max(farthestCorner(light.pose.wsPosition, g.everything), 1e-6 * unit) / unit)));
+        unit * std::exp2(std::ceil(
+                   std::log2(std::max(farthestCorner(light.pose.wsPosition, g.everything), 1e-6 * unit) / unit)));
     return std::min(fitted, kMaxShadowReach);
 }
 
@@ -497,7 +498,8 @@ double perspectiveLayer(const LayerInputs& light, const glm::dvec3& direction, c
         // The near plane clips by depth along the axis; a caster at distance d can be as shallow
         // as d times the cosine of the frustum's corner angle.
         const double cornerCos = 1.0 / cornerSecant(tanHalf, tanHalf);
-        near = std::clamp(powerOfTwoBelow(std::max(0.9 * nearest * cornerCos, minNear), light.lengthUnit), minNear, 0.5 * far);
+        near = std::clamp(powerOfTwoBelow(std::max(0.9 * nearest * cornerCos, minNear), light.lengthUnit), minNear,
+                          0.5 * far);
     }
     layer.clipFromLight = glm::perspective(fov, 1.0, near, far);
     // Stored depth is the distance from the light; the farthest point of the frustum is a

@@ -297,8 +297,8 @@ void resolveFieldLengths(const World& world, int voxelBudget, ShadowLightPlan& p
             const glm::vec3 scale(glm::length(glm::dvec3(wt->worldFromLocal[0])),
                                   glm::length(glm::dvec3(wt->worldFromLocal[1])),
                                   glm::length(glm::dvec3(wt->worldFromLocal[2])));
-            const double v = distanceFieldVoxel(Aabb{mesh->data->bounds.min * scale, mesh->data->bounds.max * scale},
-                                                settings);
+            const double v =
+                distanceFieldVoxel(Aabb{mesh->data->bounds.min * scale, mesh->data->bounds.max * scale}, settings);
             if (v > 0.0) voxels.push_back(v);
         }
         if (voxels.empty()) continue;
@@ -514,15 +514,15 @@ void ShadowPlanner::planMap(const World& world, const CameraView& camera, Shadow
         }
         markDirty(world, plan);
     }
-    if (plan.settings.technique == ShadowTechnique::Sdf) resolveFieldLengths(world, frame_.distanceFieldVoxels, plan, scratch_->fieldVoxels);
+    if (plan.settings.technique == ShadowTechnique::Sdf)
+        resolveFieldLengths(world, frame_.distanceFieldVoxels, plan, scratch_->fieldVoxels);
     plan.regionTest = pyramidPays(plan, camera, frame_.wsGeometry, limits_.pyramidTexelsPerPixel);
     const ShadowTechnique technique = plan.technique();
     const bool texelRadius = isAutomatic(plan.settings.pcfRadius);
     fitChainLevels(planned.inputs, technique,
                    {texelRadius ? 0.0 : plan.settings.pcfRadius, texelRadius ? kAutoPcfRadiusTexels : 0.0},
-                   plan.settings.maxFilterTexels,
-                   chainLevels(technique, plan.mapSize, plan.settings.maxFilterTexels), scratch_->geometry,
-                   plan.layers);
+                   plan.settings.maxFilterTexels, chainLevels(technique, plan.mapSize, plan.settings.maxFilterTexels),
+                   scratch_->geometry, plan.layers);
 }
 
 bool ShadowPlanner::keepLayers(const World& world, ShadowLightPlan& plan, bool cameraMoved) {
