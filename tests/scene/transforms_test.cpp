@@ -63,6 +63,29 @@ TEST(Transforms, NothingSkippedReportsNothing) {
 
 // A glTF file can chain nodes deeper than the stack holds frames; resolving the chain must not
 // recurse (a chain of 100000 overflowed the 8 MB stack when it did).
+// The moved flag speaks of one update; the version counts the updates that moved the entity, so
+// that a consumer that skipped updates still sees the move. A child moves with its parent.
+TEST(Transforms, VersionCountsTheUpdatesThatMovedTheEntity) {
+    World world;
+    const Entity parent = world.create();
+    world.emplace<Transform>(parent);
+    const Entity child = world.create();
+    Transform t;
+    t.parent = parent;
+    world.emplace<Transform>(child, t);
+    (void)updateTransforms(world);
+    EXPECT_EQ(world.get<WorldTransform>(child).version, 1u);  // new: moved
+    (void)updateTransforms(world);
+    EXPECT_EQ(world.get<WorldTransform>(child).version, 1u);
+    EXPECT_FALSE(world.get<WorldTransform>(child).movedThisFrame);
+    world.get<Transform>(parent).translation.x = 2.0;
+    (void)updateTransforms(world);
+    (void)updateTransforms(world);  // a second update: the flag is gone, the version stays
+    EXPECT_FALSE(world.get<WorldTransform>(child).movedThisFrame);
+    EXPECT_EQ(world.get<WorldTransform>(child).version, 2u);
+    EXPECT_EQ(world.get<WorldTransform>(parent).version, 2u);
+}
+
 TEST(Transforms, ResolvesAParentChainDeeperThanTheStack) {
     constexpr int kDepth = 300000;
     World world;

@@ -257,5 +257,35 @@ TEST(Cache, CasterMovingAtTheSceneEdgeRedrawsOnlyItsFace) {
     expectOnlyTheMoversFaceRedrawn(0.0f, {0, 2.5, 8.5}, {0, 0, 1}, 4);
 }
 
+// A game with a fixed-step simulation updates its transforms more often than it renders: a
+// caster moved, then `updateTransforms` run once, twice or three times before the frame (whose
+// own update then sees nothing move) must still redraw the layers holding it. Each layer's
+// validity is the transform versions it was drawn from, not a per-update moved flag. Against a
+// runner without caching, bit for bit; with no update between frames, the layers are reused.
+TEST(Cache, ACasterMovedThenUpdatedSeveralTimesBeforeTheFrameIsRedrawn) {
+    for (int updates : {0, 1, 2, 3}) {
+        ThreeAreas cachedAreas = makeThreeAreas();
+        ThreeAreas uncachedAreas = makeThreeAreas();
+        for (ThreeAreas* s : {&cachedAreas, &uncachedAreas}) s->scene.world.remove<ProceduralMotion>(s->mover);
+        test::glContext();
+        FrameRunner cached;
+        FrameRunner uncached;
+        uncached.shadows().planner().setCaching(false);
+        (void)test::renderFrame(cached, cachedAreas.scene, 128, 96);
+        (void)test::renderFrame(uncached, uncachedAreas.scene, 128, 96);
+        for (ThreeAreas* s : {&cachedAreas, &uncachedAreas}) {
+            s->scene.world.get<Transform>(s->mover).translation = {-4.0, 1.0, -0.4};  // over box A
+            for (int u = 0; u < updates; ++u) (void)updateTransforms(s->scene.world);
+        }
+        const test::RenderedFrame a = test::renderFrame(cached, cachedAreas.scene, 128, 96);
+        const test::RenderedFrame b = test::renderFrame(uncached, uncachedAreas.scene, 128, 96);
+        EXPECT_EQ(a.stats.lights.at(0).layersDrawn, 1) << updates << " updates: the moved caster's layer was reused";
+        EXPECT_EQ(bitDifferences(a.images.visibility.at(0), b.images.visibility.at(0)), 0)
+            << updates << " updates before the frame: a stale shadow";
+        const test::RenderedFrame still = test::renderFrame(cached, cachedAreas.scene, 128, 96);
+        EXPECT_EQ(still.stats.lights.at(0).layersDrawn, 0) << updates << " updates: nothing moved, yet it redrew";
+    }
+}
+
 }  // namespace
 }  // namespace shadow

@@ -48,8 +48,14 @@ inline constexpr double kMaxWorldCoordinate = 1e9;
 /// Written by `updateTransforms`; read by everything after it.
 struct WorldTransform {
     glm::dmat4 worldFromLocal{1.0};
-    /// The matrix differs from last frame's (or the entity is new this frame).
+    /// The matrix differs from the last `updateTransforms`' (or the entity is new). It speaks of
+    /// one update only: a consumer that may miss updates compares `version` instead.
     bool movedThisFrame = true;
+    /// Counts the updates that moved the entity (its matrix, `finite`, or a skinned mesh's pose
+    /// changed): whoever remembers the version it last saw knows whether the entity moved since,
+    /// however many updates ran in between (a fixed-step simulation updates more often than the
+    /// game renders). Starts at 1 with the entity's first update.
+    std::uint64_t version = 0;
     /// False when the matrix has a NaN or Inf, or places the entity (a mesh: any of its
     /// vertices) beyond `kMaxWorldCoordinate`; such entities are skipped by rendering.
     bool finite = true;

@@ -219,6 +219,9 @@ private:
         glm::dmat4 lightFromWorld{0.0};
         glm::dmat4 clipFromLight{0.0};
         std::vector<Entity> casters;
+        /// Each caster's `WorldTransform::version` when the layer was drawn: what its validity is
+        /// keyed on, however many transform updates ran between two frames.
+        std::vector<std::uint64_t> versions;
     };
     struct LightMemory {
         int mapSize = 0;

@@ -175,6 +175,11 @@ TransformStats updateTransforms(World& world) {
         }
     });
     poseSkins(world, stats);
+    // Last, once skinned meshes have their moved flag from their joints: a version step for each
+    // update that moved the entity.
+    world.view<WorldTransform>().each([](Entity, WorldTransform& wt) {
+        if (wt.movedThisFrame) ++wt.version;
+    });
     return stats;
 }
 

@@ -18,9 +18,12 @@ namespace shadow {
 struct BoundedEntity {
     Entity entity;
     DAabb bounds;
-    /// Its transform moved this frame, or (a game's caster) it says its geometry changed: the
-    /// layers holding it are redrawn even if its bounds stayed.
+    /// (A game's caster) it says its geometry changed this frame: the layers holding it are
+    /// redrawn even if its bounds stayed.
     bool moved = false;
+    /// Its transform's `WorldTransform::version`: a caster whose version differs from the one a
+    /// layer was drawn or a list was gathered with moved since, even within its bounds.
+    std::uint64_t version = 0;
 };
 
 /// A bounding-volume hierarchy over a list of boxes (`BoundedEntity::bounds`), built once

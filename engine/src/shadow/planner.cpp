@@ -569,7 +569,7 @@ void ShadowPlanner::markDirty(const World& world, ShadowLightPlan& plan) {
         for (std::size_t c = 0; !dirty && c < layer.casters.size(); ++c) {
             const WorldTransform* wt = world.tryGet<WorldTransform>(layer.casters[c]);
             const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(layer.casters[c]);
-            dirty = wt == nullptr || wt->movedThisFrame || (own != nullptr && own->changedThisFrame);
+            dirty = wt == nullptr || wt->version != last.versions[c] || (own != nullptr && own->changedThisFrame);
         }
         layer.dirty = dirty;
         if (dirty) {
@@ -579,6 +579,12 @@ void ShadowPlanner::markDirty(const World& world, ShadowLightPlan& plan) {
             // costs no allocation here either.
             last.casters.reserve(layer.casters.capacity());
             last.casters = layer.casters;
+            last.versions.reserve(layer.casters.capacity());
+            last.versions.clear();
+            for (Entity caster : layer.casters) {
+                const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
+                last.versions.push_back(wt != nullptr ? wt->version : 0);
+            }
         }
     }
 }

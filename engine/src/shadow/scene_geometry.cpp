@@ -36,7 +36,7 @@ CasterDiff diffCasters(const std::vector<BoundedEntity>& last, const std::vector
             diff.sameEntities = false;
         } else {
             const bool boundsMoved = !(last[i].bounds == now[j].bounds);
-            if (boundsMoved || now[j].moved) {
+            if (boundsMoved || now[j].moved || now[j].version != last[i].version) {
                 changed.push_back(last[i]);  // left (the same box when it moved within its bounds)
                 changed.push_back(now[j]);   // took
             }
@@ -64,7 +64,7 @@ void gatherGeometry(const World& world, SceneGeometry& out) {
             // A mesh with no triangles draws nothing: it must not widen any layer's fit either.
             if (!wt.finite || wb.box.empty() || mesh.data == nullptr || mesh.data->indices.empty()) return;
             out.everything.extend(wb.box);
-            if (mesh.castShadows) out.casters.push_back({e, wb.box, wt.movedThisFrame});
+            if (mesh.castShadows) out.casters.push_back({e, wb.box, false, wt.version});
             if (mesh.receiveShadows) {
                 out.receiverBoxes.push_back(wb.box);
                 out.receivers.extend(wb.box);
@@ -76,7 +76,7 @@ void gatherGeometry(const World& world, SceneGeometry& out) {
             if (!wt.finite || !c.drawsSomething() || c.localBounds.empty()) return;
             const DAabb box = transformBounds(wt.worldFromLocal, c.localBounds);
             out.everything.extend(box);
-            out.casters.push_back({e, box, wt.movedThisFrame || c.changedThisFrame});
+            out.casters.push_back({e, box, c.changedThisFrame, wt.version});
         });
     // Views walk back to front; entity order keeps caster lists comparable frame to frame. A
     // world that only ever created its casters comes out exactly reversed.
