@@ -57,7 +57,8 @@ void leaveHostError() { gl.Enable(0x7fff); }
 /// test off with GREATER and no writes, front-face culling, clockwise front faces, blending with
 /// its own function and a MIN equation, a partial colour mask, every capability of
 /// `gpu::kPassOffCapabilities` on (rasterizer discard, depth clamp, logic op INVERT, sRGB, ...),
-/// every pack parameter off its default with read clamping on, texture unit 5 active, uniform
+/// every pack parameter off its default with read clamping on, unpack parameters off theirs with
+/// an unpack buffer bound, the first vertex provoking, texture unit 5 active, uniform
 /// buffers on bindings 0-3 and an image on the pyramid builder's image unit.
 struct HostObjects {
     GLuint framebuffer = 0, colour = 0, vertexArray = 0, program = 0, buffer = 0;
@@ -178,6 +179,15 @@ struct HostObjects {
         gl.PixelStorei(GL_PACK_LSB_FIRST, GL_TRUE);
         gl.ClampColor(GL_CLAMP_READ_COLOR, GL_TRUE);
         gl.BindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
+        // Unpack off its defaults with an unpack buffer bound (the engine's texture uploads read
+        // client memory), and the first vertex provoking (the moment passes' flat outputs).
+        gl.PixelStorei(GL_UNPACK_ALIGNMENT, 8);
+        gl.PixelStorei(GL_UNPACK_ROW_LENGTH, 7);
+        gl.PixelStorei(GL_UNPACK_SKIP_PIXELS, 1);
+        gl.PixelStorei(GL_UNPACK_SKIP_ROWS, 2);
+        gl.PixelStorei(GL_UNPACK_SWAP_BYTES, GL_TRUE);
+        gl.BindBuffer(GL_PIXEL_UNPACK_BUFFER, buffer);
+        gl.ProvokingVertex(GL_FIRST_VERTEX_CONVENTION);
         // Every target of unit 0, then textures of other targets on the units the lookups use.
         gl.ActiveTexture(GL_TEXTURE0);
         for (std::size_t t = 0; t < textures.size(); ++t) gl.BindTexture(gpu::kTextureTargets[t], textures[t]);
@@ -272,9 +282,20 @@ void checkCall(const HostObjects& host, const std::string& name, const std::func
 }
 
 /// A scene with more lights than one pass takes (blending adds the later passes) and a light of
-/// every technique: the three of `threeLightScene` and seven local spots.
+/// every technique: the three of `threeLightScene` and seven local spots; and a textured box, so
+/// that the first frame uploads a texture from client memory (a 3x2 image: rows of 12 bytes,
+/// which an unpack alignment of 8 or a row length would misread).
 Scene hostileScene() {
     Scene scene = test::threeLightScene();
+    auto image = std::make_shared<Texture>();
+    image->name = "host test 3x2";
+    image->width = 3;
+    image->height = 2;
+    image->rgba = {255, 0,   0, 255, 0, 255, 0,   255, 0,   0, 255, 255,
+                   255, 255, 0, 255, 0, 255, 255, 255, 255, 0, 255, 255};
+    Material textured;
+    textured.baseColorTexture = image;
+    addMeshInstance(scene.world, "textured box", makeBoxMesh(glm::vec3(0.2f)), test::placed({1.2, 0.2, 1.0}), textured);
     const ShadowTechnique techniques[] = {ShadowTechnique::Vsm,     ShadowTechnique::Vssm,         ShadowTechnique::Msm,
                                           ShadowTechnique::MsmSoft, ShadowTechnique::PcssTextbook, ShadowTechnique::Pcf,
                                           ShadowTechnique::Hard};
@@ -463,9 +484,11 @@ Pictures drawEverything(Scene& scene, const HostObjects* hostile, const std::vec
     GLuint depth = 0, target = 0;
     gl.CreateTextures(GL_TEXTURE_2D, 1, &depth);
     gl.TextureStorage2D(depth, 1, GL_DEPTH_COMPONENT32F, 64, 48);
-    hostProc<PFNGLPIXELSTOREIPROC>("glPixelStorei")(GL_UNPACK_ALIGNMENT, 4);
-    hostProc<PFNGLTEXTURESUBIMAGE2DPROC>("glTextureSubImage2D")(depth, 0, 0, 0, 64, 48, GL_DEPTH_COMPONENT, GL_FLOAT,
-                                                                maskDepth->data());
+    {
+        const gpu::UnpackDefaults unpack;  // the test's own upload, past the host's unpack state
+        hostProc<PFNGLTEXTURESUBIMAGE2DPROC>("glTextureSubImage2D")(depth, 0, 0, 0, 64, 48, GL_DEPTH_COMPONENT,
+                                                                    GL_FLOAT, maskDepth->data());
+    }
     gl.CreateTextures(GL_TEXTURE_2D, 1, &target);
     gl.TextureStorage2D(target, 1, GL_RGBA8, 64, 48);
     ShadowMaskRequest request;

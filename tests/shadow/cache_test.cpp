@@ -195,7 +195,7 @@ TEST(Cache, LayerWhoseCastersDidNotMoveIsReused) {
 
 /// Renders frames of a point light at (0, 2.5, 0) with `range` over a 10 m ground, a static
 /// box in its +X face and a small box bobbing along `moverAxis` about `moverCentre`, inside face
-/// `moverFace` only (shadow_sampling.glsl's cubeFace order +X, -X, +Y, -Y, +Z, -Z), and expects
+/// `moverFace` only (shadow_receiver.glsl's sg_cubeFace order +X, -X, +Y, -Y, +Z, -Z), and expects
 /// from frame 2 on that face alone to be redrawn.
 void expectOnlyTheMoversFaceRedrawn(float range, const glm::dvec3& moverCentre, const glm::dvec3& moverAxis,
                                     std::size_t moverFace) {

@@ -34,9 +34,13 @@ TEST(GlRequired, EngineTypesBuiltBeforeLoadGlThrowAClearError) {
 
 TEST(GlRequired, WithoutExceptionsTheSameErrorComesBackAsAValue) {
     // The factories a game built without exceptions calls: no throw, the same message.
-    for (const auto& [error, who] : {std::pair{ShadowSystem::create().error().message, "ShadowSystem"},
-                                     std::pair{MeshCache::create().error().message, "MeshCache"}}) {
-        EXPECT_NE(error.find(who), std::string::npos) << error;
+    // GlUnavailable (no GL to call, as loadGl's own failures say), the call named once.
+    for (const auto& [result, who] : {std::pair{ShadowSystem::create().error(), "ShadowSystem"},
+                                      std::pair{MeshCache::create().error(), "MeshCache"}}) {
+        const std::string& error = result.message;
+        EXPECT_EQ(result.code, ErrorCode::GlUnavailable) << error;
+        EXPECT_EQ(error.find(who), 0u) << error;
+        EXPECT_EQ(error.find(who, 1), std::string::npos) << "the call named twice: " << error;
         EXPECT_NE(error.find("loadGl"), std::string::npos) << error;
     }
     ShadowBindingPoints clash;

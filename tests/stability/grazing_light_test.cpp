@@ -2,7 +2,7 @@
 //
 // At elevation e the plane's depth changes by cot(e) metres per metre across the light's view
 // (114 at 0.5 degrees), so every texel-sized error of the lookup becomes a large depth error.
-// The sampling code places every tap on the receiver's tangent plane (shadow_sampling.glsl,
+// The sampling code places every tap on the receiver's tangent plane (shadow_receiver.glsl,
 // sg_makeReceiver); the test holds that to its promise down to 0.5 degrees for every technique.
 #include <gtest/gtest.h>
 

@@ -27,6 +27,13 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+/// The `GlError` of a call made before `loadGl` (no OpenGL to call): what the calls returning an
+/// error value report as `ErrorCode::GlUnavailable`.
+class GlNotLoaded : public GlError {
+public:
+    using GlError::GlError;
+};
+
 /// Resolves one GL entry point by name; returns null when the context lacks it.
 using GlProcLoader = std::function<void*(const char* name)>;
 

@@ -1,7 +1,7 @@
 // Buffer layouts shared by the C++ engine and the GLSL shaders (uniform blocks, std140, whose
 // layout of these structs is the same as std430). The including side
 // defines SG_STRUCT, SG_END_STRUCT, SG_VEC3, SG_MAT4, SG_FLOAT and SG_INT first: GLSL as the
-// plain GLSL types, C++ as glm types with std430 alignment (see engine/src/render/gpu_types.h).
+// plain GLSL types, C++ as glm types with std430 alignment (see engine/include/shadow/gpu_records.h).
 // Every vec3 is followed by one scalar so that the layout has no hidden padding.
 
 // One light of a pass. Positions are camera-relative world space (cs = world - camera).

@@ -3,7 +3,7 @@
 // the GLSL constants (SG_TECH_* in shared_constants.h, checked at compile time), the GLSL each
 // program compiles (shaders/shadow_techniques.glsl and the dispatch the engine writes per
 // program), the filter chain a light's map carries, the CLI's help and the README's table
-// (tests/shadow/technique_table_test.cpp).
+// (tests/gl/technique_glsl_test.cpp).
 //
 // Adding a technique is one row here, its constant in shared_constants.h, and one GLSL include
 // in shaders/ defining `sg_<glsl>Policy()` (its share of bias and normal offset) and

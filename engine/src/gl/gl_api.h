@@ -48,6 +48,7 @@ namespace shadow::gpu {
     X(PFNGLFINISHPROC, Finish)                                             \
     X(PFNGLFLUSHPROC, Flush)                                               \
     X(PFNGLPIXELSTOREIPROC, PixelStorei)                                   \
+    X(PFNGLPROVOKINGVERTEXPROC, ProvokingVertex)                           \
     X(PFNGLREADPIXELSPROC, ReadPixels)                                     \
     X(PFNGLDRAWELEMENTSPROC, DrawElements)                                 \
     X(PFNGLDRAWELEMENTSBASEVERTEXPROC, DrawElementsBaseVertex)             \

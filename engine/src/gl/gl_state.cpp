@@ -37,8 +37,8 @@ GLuint stillNamed(GLenum identifier, GLint name, std::uint64_t mark) {
 
 void requireLoaded(std::string_view who) {
     if (gl.GetError == nullptr || gl.GetIntegerv == nullptr) {
-        throw GlError(std::string(who) +
-                      ": OpenGL is not loaded; make a 4.5 core context current and call loadGl first");
+        throw GlNotLoaded(std::string(who) +
+                          ": OpenGL is not loaded; make a 4.5 core context current and call loadGl first");
     }
 }
 
@@ -94,11 +94,12 @@ void captureRaster(GlState& s) {
     gl.GetIntegerv(GL_BLEND_EQUATION_RGB, s.blendEquation.data());
     gl.GetIntegerv(GL_BLEND_EQUATION_ALPHA, s.blendEquation.data() + 1);
     gl.GetBooleanv(GL_COLOR_WRITEMASK, s.colorMask.data());
+    gl.GetIntegerv(GL_PROVOKING_VERTEX, &s.provokingVertex);
     for (std::size_t i = 0; i < kPassOffCapabilities.size(); ++i)
         s.offCapabilities[i] = enabled(kPassOffCapabilities[i]);
 }
 
-/// The pixel-pack state of `GlState`.
+/// The pixel-pack and -unpack state of `GlState`.
 void capturePack(GlState& s) {
     gl.GetIntegerv(GL_PACK_ALIGNMENT, &s.packAlignment);
     gl.GetIntegerv(GL_PACK_ROW_LENGTH, &s.packRowLength);
@@ -110,6 +111,8 @@ void capturePack(GlState& s) {
     gl.GetBooleanv(GL_PACK_LSB_FIRST, &s.packLsbFirst);
     gl.GetIntegerv(GL_CLAMP_READ_COLOR, &s.clampReadColor);
     gl.GetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &s.pixelPackBuffer);
+    for (std::size_t i = 0; i < kUnpackParameters.size(); ++i) gl.GetIntegerv(kUnpackParameters[i], &s.unpack[i]);
+    gl.GetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &s.pixelUnpackBuffer);
 }
 
 /// The texture units, uniform-buffer bindings and image units named.
@@ -180,7 +183,25 @@ void setPassDefaults() {
     gl.Disable(GL_POLYGON_OFFSET_FILL);
     gl.Disable(GL_BLEND);
     gl.BlendEquationSeparate(GL_FUNC_ADD, GL_FUNC_ADD);
+    gl.ProvokingVertex(GL_LAST_VERTEX_CONVENTION);
     for (const GLenum cap : kPassOffCapabilities) gl.Disable(cap);
+}
+
+namespace {
+/// Tightly packed client memory: alignment 1, the rest 0 or false (kUnpackParameters' order).
+constexpr std::array<GLint, 8> kUnpackDefaults{1, 0, 0, 0, 0, 0, GL_FALSE, GL_FALSE};
+}  // namespace
+
+UnpackDefaults::UnpackDefaults() {
+    for (std::size_t i = 0; i < kUnpackParameters.size(); ++i) gl.GetIntegerv(kUnpackParameters[i], &saved_[i]);
+    gl.GetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &buffer_);
+    gl.BindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    for (std::size_t i = 0; i < kUnpackParameters.size(); ++i) gl.PixelStorei(kUnpackParameters[i], kUnpackDefaults[i]);
+}
+
+UnpackDefaults::~UnpackDefaults() {
+    for (std::size_t i = 0; i < kUnpackParameters.size(); ++i) gl.PixelStorei(kUnpackParameters[i], saved_[i]);
+    gl.BindBuffer(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(buffer_));
 }
 
 void setReadbackDefaults() {
@@ -217,6 +238,7 @@ void restoreRaster(const GlState& s) {
                          static_cast<GLenum>(s.blendFunc[2]), static_cast<GLenum>(s.blendFunc[3]));
     gl.BlendEquationSeparate(static_cast<GLenum>(s.blendEquation[0]), static_cast<GLenum>(s.blendEquation[1]));
     gl.ColorMask(s.colorMask[0], s.colorMask[1], s.colorMask[2], s.colorMask[3]);
+    gl.ProvokingVertex(static_cast<GLenum>(s.provokingVertex));
     for (std::size_t i = 0; i < kPassOffCapabilities.size(); ++i)
         setEnabled(kPassOffCapabilities[i], s.offCapabilities[i]);
 }
@@ -232,6 +254,8 @@ void restorePack(const GlState& s, std::uint64_t mark) {
     gl.PixelStorei(GL_PACK_LSB_FIRST, s.packLsbFirst);
     gl.ClampColor(GL_CLAMP_READ_COLOR, static_cast<GLenum>(s.clampReadColor));
     gl.BindBuffer(GL_PIXEL_PACK_BUFFER, stillNamed(GL_BUFFER, s.pixelPackBuffer, mark));
+    for (std::size_t i = 0; i < kUnpackParameters.size(); ++i) gl.PixelStorei(kUnpackParameters[i], s.unpack[i]);
+    gl.BindBuffer(GL_PIXEL_UNPACK_BUFFER, stillNamed(GL_BUFFER, s.pixelUnpackBuffer, mark));
 }
 
 void restoreBindings(const GlState& s, std::uint64_t mark) {

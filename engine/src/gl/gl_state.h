@@ -109,6 +109,11 @@ inline constexpr std::array<GLenum, 21> kPassOffCapabilities{
     GL_CLIP_DISTANCE6,
     GL_CLIP_DISTANCE7};
 
+/// The pixel-unpack parameters, in the order `GlState::unpack` and `UnpackDefaults` keep them.
+inline constexpr std::array<GLenum, 8> kUnpackParameters{
+    GL_UNPACK_ALIGNMENT, GL_UNPACK_ROW_LENGTH,  GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS,
+    GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_IMAGES, GL_UNPACK_SWAP_BYTES,   GL_UNPACK_LSB_FIRST};
+
 /// The pieces of GL state the shadow system and the renderer change (see the header comment).
 /// Texture units and uniform-buffer binding points are captured only for the ones named.
 struct GlState {
@@ -145,6 +150,12 @@ struct GlState {
     GLboolean packLsbFirst = GL_FALSE;
     GLint clampReadColor = GL_FIXED_ONLY;
     GLint pixelPackBuffer = 0;
+    /// Pixel unpack, in `kUnpackParameters` order, and the unpack buffer (uploads set their own
+    /// for their scope, `UnpackDefaults`).
+    std::array<GLint, 8> unpack{4, 0, 0, 0, 0, 0, GL_FALSE, GL_FALSE};
+    GLint pixelUnpackBuffer = 0;
+    /// Which vertex of a triangle gives its flat outputs (the moment passes' flat varyings).
+    GLint provokingVertex = GL_LAST_VERTEX_CONVENTION;
     GLint activeTexture = GL_TEXTURE0;
     GLint uniformBuffer = 0;  ///< the generic GL_UNIFORM_BUFFER binding
     struct Unit {
@@ -198,7 +209,7 @@ void restoreGlState(const GlState& state, std::uint64_t mark = UINT64_MAX);
 /// The raster state every pass of the engine assumes, whatever the host left: scissor test off,
 /// colour writes on, counter-clockwise front faces, filled polygons, no polygon offset, no
 /// blending (additive equation for the passes that enable it), GL's clip control and depth
-/// range, and every capability of `kPassOffCapabilities` off. Each pass sets the rest
+/// range, the last vertex provoking, and every capability of `kPassOffCapabilities` off. Each pass sets the rest
 /// (framebuffer, viewport, depth, culling) itself. Every piece is in `GlState`.
 void setPassDefaults();
 
@@ -206,6 +217,21 @@ void setPassDefaults();
 /// rows tightly packed from the first pixel (alignment 1, no row length, image height or skips,
 /// no byte swapping), float colours read unclamped. Every piece is in `GlState`.
 void setReadbackDefaults();
+
+/// For its scope, pixel-unpack state for uploading from tightly packed client memory, whatever
+/// the host left (a row length, an alignment, an unpack buffer bound), and the host's put back
+/// after: every upload of client memory into a texture stands in one.
+class UnpackDefaults {
+public:
+    UnpackDefaults();
+    ~UnpackDefaults();
+    UnpackDefaults(const UnpackDefaults&) = delete;
+    UnpackDefaults& operator=(const UnpackDefaults&) = delete;
+
+private:
+    std::array<GLint, 8> saved_{};
+    GLint buffer_ = 0;
+};
 
 /// Captures on construction, restores on destruction (also when the scope is left by a throw).
 class GlStateGuard {

@@ -59,9 +59,10 @@ gpu::Texture uploadTexture(const Texture& t) {
     gpu::Texture texture = gpu::makeTexture("Texture/" + t.name, GL_TEXTURE_2D);
     const GLuint name = texture.get();
     gl.TextureStorage2D(name, mipLevels(t.width, t.height), GL_SRGB8_ALPHA8, t.width, t.height);
-    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    gl.TextureSubImage2D(name, 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
-    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    {
+        const gpu::UnpackDefaults unpack;  // rows of 4-byte texels from client memory, whatever the host set
+        gl.TextureSubImage2D(name, 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
+    }
     gl.GenerateTextureMipmap(name);
     gl.TextureParameteri(name, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     gl.TextureParameteri(name, GL_TEXTURE_MAG_FILTER, GL_LINEAR);

@@ -2,6 +2,7 @@
 // inside the library (built with them) and what it would throw comes back as an `Error`.
 #pragma once
 
+#include <shadow/context.h>
 #include <shadow/result.h>
 
 #include <exception>
@@ -12,14 +13,27 @@
 
 namespace shadow::gpu {
 
-/// Runs `f` and returns its value, or an `Error` naming `call` and what `f` threw.
+/// `what` prefixed with `call` (once: a message that already starts with it keeps its own).
+inline std::string namedByCall(std::string_view call, std::string_view what) {
+    if (what.substr(0, call.size()) == call) return std::string(what);
+    return std::string(call) + ": " + std::string(what);
+}
+
+/// Runs `f` and returns its value, or an `Error` naming `call` and what `f` threw: a call made
+/// before `loadGl` (`GlNotLoaded`) as `GlUnavailable`, anything else as `Internal`.
 template <typename T, typename F>
 Result<T> noThrow(std::string_view call, F&& f) noexcept {
     try {
         return Result<T>(std::forward<F>(f)());
+    } catch (const GlNotLoaded& e) {
+        try {
+            return Error{ErrorCode::GlUnavailable, namedByCall(call, e.what())};
+        } catch (...) {
+            return Error(ErrorCode::Internal, "out of memory");
+        }
     } catch (const std::exception& e) {
         try {
-            return Error{ErrorCode::Internal, std::string(call) + ": " + e.what()};
+            return Error{ErrorCode::Internal, namedByCall(call, e.what())};
         } catch (...) {
             return Error(ErrorCode::Internal, "out of memory");  // no memory left even for the message
         }

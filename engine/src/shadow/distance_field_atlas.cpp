@@ -3,6 +3,7 @@
 #include <shadow/shared_constants.h>
 
 #include "gl/gl_api.h"
+#include "gl/gl_state.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -20,32 +21,6 @@ namespace {
 /// Edge of the atlas in x and y (texels); it grows in z as fields are added. A field wider than
 /// this is baked again with an eighth of the voxels until it fits.
 constexpr int kAtlasEdge = 128;
-
-/// The host's pixel-unpack state, set to tightly packed client memory for the uploads and put
-/// back after (a game may have left a row length or an unpack buffer bound).
-class UnpackDefaults {
-public:
-    UnpackDefaults() {
-        for (std::size_t i = 0; i < kNames.size(); ++i) gl.GetIntegerv(kNames[i], &saved_[i]);
-        gl.GetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &buffer_);
-        gl.BindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-        for (std::size_t i = 0; i < kNames.size(); ++i) gl.PixelStorei(kNames[i], kDefaults[i]);
-    }
-    ~UnpackDefaults() {
-        for (std::size_t i = 0; i < kNames.size(); ++i) gl.PixelStorei(kNames[i], saved_[i]);
-        gl.BindBuffer(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(buffer_));
-    }
-    UnpackDefaults(const UnpackDefaults&) = delete;
-    UnpackDefaults& operator=(const UnpackDefaults&) = delete;
-
-private:
-    static constexpr std::array<GLenum, 8> kNames{GL_UNPACK_ALIGNMENT,   GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT,
-                                                  GL_UNPACK_SKIP_PIXELS, GL_UNPACK_SKIP_ROWS,  GL_UNPACK_SKIP_IMAGES,
-                                                  GL_UNPACK_SWAP_BYTES,  GL_UNPACK_LSB_FIRST};
-    static constexpr std::array<GLint, 8> kDefaults{4, 0, 0, 0, 0, 0, GL_FALSE, GL_FALSE};
-    std::array<GLint, 8> saved_{};
-    GLint buffer_ = 0;
-};
 
 /// The scale along each of a transform's own axes (the planner keeps transforms without shear).
 glm::dvec3 axisScales(const glm::dmat4& m) {
@@ -112,7 +87,7 @@ FieldBrick DistanceFieldAtlas::place(const DistanceField& field) {
     b.lastCentre = field.voxelCentre(s - 1);
     b.sheet = std::none_of(field.distances.begin(), field.distances.end(), [](float d) { return d < 0.0f; });
     {
-        const UnpackDefaults unpack;
+        const gpu::UnpackDefaults unpack;
         gl.TextureSubImage3D(atlas_.get(), 0, b.origin.x, b.origin.y, b.origin.z, s.x, s.y, s.z, GL_RED, GL_FLOAT,
                              field.distances.data());
     }
