@@ -628,6 +628,61 @@ TEST_F(HostStateTest, MapsTheEngineFreesAreNeverBoundBack) {
     });
 }
 
+// Binding the inputs binds their blocks, units and samplers and nothing else: the host's generic
+// GL_UNIFORM_BUFFER binding stays, and without an sdf light so do the distance-field units.
+TEST_F(HostStateTest, BindingTheInputsChangesOnlyWhatTheyBind) {
+    Scene scene = test::threeLightScene();  // no sdf light
+    FrameRunner runner;
+    test::renderFrame(runner, scene, 64, 48);
+    ShadowSystem& shadows = runner.shadows();
+    const std::array<int, 3> lights{0, 1, 2};
+    const ShadowShaderInputs& inputs = shadows.shaderInputs(lights, runner.lastCamera().wsPosition);
+    ASSERT_EQ(inputs.techniques & techniqueBit(ShadowTechnique::Sdf), 0u);
+    GLuint buffer = 0;
+    GLuint textures[2] = {0, 0};
+    gl.CreateBuffers(1, &buffer);
+    gl.NamedBufferStorage(buffer, 256, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    gl.CreateTextures(GL_TEXTURE_3D, 1, &textures[0]);
+    gl.CreateTextures(GL_TEXTURE_BUFFER, 1, &textures[1]);
+    gl.BindBuffer(GL_UNIFORM_BUFFER, buffer);
+    const ShadowBindingPoints points;
+    gl.BindTextureUnit(static_cast<GLuint>(points.sdfAtlasUnit), textures[0]);
+    gl.BindTextureUnit(static_cast<GLuint>(points.sdfInstanceUnit), textures[1]);
+    shadows.bindShaderInputs(inputs, points);
+    GLint generic = 0;
+    gl.GetIntegerv(GL_UNIFORM_BUFFER_BINDING, &generic);
+    EXPECT_EQ(static_cast<GLuint>(generic), buffer) << "the host's generic uniform-buffer binding changed";
+    GLint atlas = 0, instances = 0;
+    gl.ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(points.sdfAtlasUnit));
+    gl.GetIntegerv(GL_TEXTURE_BINDING_3D, &atlas);
+    gl.ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(points.sdfInstanceUnit));
+    gl.GetIntegerv(GL_TEXTURE_BINDING_BUFFER, &instances);
+    gl.ActiveTexture(GL_TEXTURE0);
+    EXPECT_EQ(static_cast<GLuint>(atlas), textures[0]) << "a distance-field unit bound without an sdf light";
+    EXPECT_EQ(static_cast<GLuint>(instances), textures[1]) << "a distance-field unit bound without an sdf light";
+    gl.BindBuffer(GL_UNIFORM_BUFFER, 0);
+    gl.DeleteTextures(2, textures);
+    gl.DeleteBuffers(1, &buffer);
+    EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+// The distance-field instances, uploaded for a new camera, report an error the host left
+// pending as the host's, as every other call does, instead of throwing it as their own.
+TEST_F(HostStateTest, FieldInstancesReportTheHostsPendingError) {
+    Scene scene = test::threeLightScene();
+    scene.world.get<Shadow>(scene.lights.at(0)).technique = ShadowTechnique::Sdf;
+    FrameRunner runner;
+    test::renderFrame(runner, scene, 64, 48);
+    ShadowMaps& maps = runner.shadows().maps();
+    maps.clearWarnings();
+    leaveHostError();
+    GlTexture instances{};
+    EXPECT_NO_THROW(instances = maps.fieldInstances(runner.lastCamera().wsPosition + glm::dvec3(0.5, 0.0, 0.0)));
+    EXPECT_NE(instances.name, 0u);
+    EXPECT_EQ(hostErrors(maps.warnings(), "ShadowMaps::fieldInstances"), 1);
+    EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
 TEST_F(HostStateTest, TheMaskLeavesTheHostsShaderInputsAlone) {
     // The host binds the inputs of its forward pass (lights 0-2), then asks for a mask of other
     // lights in another order: its buffers, bindings, units and samplers hold what it bound.

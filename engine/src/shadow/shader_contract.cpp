@@ -126,9 +126,13 @@ Result<const ShadowShaderInputs*> ShadowShaderContract::tryInputs(const ShadowFr
 void ShadowShaderContract::bind(const ShadowShaderInputs& inputs, const ShadowBindingPoints& points) {
     gpu::reportHostGlErrors("ShadowShaderContract::bind", impl_->pending, gpu::kMaxPendingWarnings);
     // The maps are those the inputs name: bind them by name, whatever maps object made them.
+    // Binding an indexed point binds the generic GL_UNIFORM_BUFFER too: the host's is put back.
+    GLint generic = 0;
+    gl.GetIntegerv(GL_UNIFORM_BUFFER_BINDING, &generic);
     gl.BindBufferBase(GL_UNIFORM_BUFFER, static_cast<GLuint>(points.lightBlock), inputs.lightBuffer.name);
     gl.BindBufferBase(GL_UNIFORM_BUFFER, static_cast<GLuint>(points.layerBlock), inputs.layerBuffer.name);
     gl.BindBufferBase(GL_UNIFORM_BUFFER, static_cast<GLuint>(points.kernelBlock), inputs.kernelBuffer.name);
+    gl.BindBuffer(GL_UNIFORM_BUFFER, static_cast<GLuint>(generic));
     for (int slot = 0; slot < SG_MAX_LIGHTS_PER_PASS; ++slot) {
         const auto s = static_cast<std::size_t>(slot);
         const bool used = slot < inputs.lights;
@@ -141,6 +145,9 @@ void ShadowShaderContract::bind(const ShadowShaderInputs& inputs, const ShadowBi
         // The texture's own filtering: nearest per level for a pyramid, trilinear for moments.
         gl.BindSampler(static_cast<GLuint>(points.minMaxUnit + slot), 0);
     }
+    // The distance-field units only when some light of the inputs marches fields: without an sdf
+    // light the host's units (26-27 by default) stay as they are.
+    if ((inputs.techniques & techniqueBit(ShadowTechnique::Sdf)) == 0) return;
     gl.BindTextureUnit(static_cast<GLuint>(points.sdfAtlasUnit), inputs.fieldAtlas.name);
     gl.BindSampler(static_cast<GLuint>(points.sdfAtlasUnit), 0);
     gl.BindTextureUnit(static_cast<GLuint>(points.sdfInstanceUnit), inputs.fieldInstances.name);

@@ -630,7 +630,10 @@ GlTexture ShadowMaps::filterChainOf(std::size_t i) const {
 GlTexture ShadowMaps::fieldAtlas() const { return GlTexture{impl_->fields ? impl_->fields->atlas() : 0u}; }
 
 GlTexture ShadowMaps::fieldInstances(const glm::dvec3& wsCamera) const {
-    return GlTexture{impl_->fields ? impl_->fields->instances(wsCamera) : 0u};
+    if (!impl_->fields) return GlTexture{0u};
+    // An error the host left pending is the host's: reported, not thrown as the upload's.
+    gpu::reportHostGlErrors("ShadowMaps::fieldInstances", impl_->pending, gpu::kMaxPendingWarnings);
+    return GlTexture{impl_->fields->instances(wsCamera)};
 }
 
 GlTexture ShadowMaps::fieldInstances() const {
