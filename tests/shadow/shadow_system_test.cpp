@@ -168,5 +168,24 @@ TEST(ShadowSystem, OwnsTheMeshCacheItDrawsFromWhenGivenNone) {
     EXPECT_EQ(shadows.meshes().size(), 2u) << "its owner collects it";
 }
 
+// A game that drives the shadow system alone (its own shaders) sees the programs its passes build:
+// some on the first frame (the depth pass and a VSM light's filter chain), none once they exist.
+TEST(ShadowSystem, CountsTheProgramsItsPassesBuild) {
+    test::glContext();
+    Scene scene = test::threeLightScene();
+    scene.world.get<Shadow>(scene.lights.at(0)).technique = ShadowTechnique::Vsm;
+    updateTransforms(scene.world);
+    const CameraView camera = makeCameraView(scene.world, scene.cameras.at(0), 4.0f / 3.0f);
+    ShadowSystem shadows;
+    FrameStats first;
+    shadows.prepare(scene.world, camera, scene.lights);
+    shadows.render(scene.world, first);
+    EXPECT_GE(first.programsCompiled, 2) << "the depth pass and the moments' chain";
+    FrameStats second;
+    shadows.prepare(scene.world, camera, scene.lights);
+    shadows.render(scene.world, second);
+    EXPECT_EQ(second.programsCompiled, 0);
+}
+
 }  // namespace
 }  // namespace shadow

@@ -77,7 +77,9 @@ struct FrameStats {
     int shadowDrawCalls = 0;
     int mainDrawCalls = 0;
     int mainPasses = 0;
-    int programsCompiled = 0;  ///< shader programs built this frame (0 in steady state)
+    /// Shader programs built this frame (compiled, or loaded from the program cache) by the shadow
+    /// passes, the mask and the lit passes; 0 in steady state.
+    int programsCompiled = 0;
     /// GPU memory of the nearest-depth scratch the second-depth modes draw through (one 32-bit
     /// depth texture of the largest map in such a mode, shared by every light; 0 without one).
     long long shadowScratchBytes = 0;

@@ -4,6 +4,7 @@
 #include "gl/shader_sources.h"
 #include "gl/technique_glsl.h"
 
+#include <atomic>
 #include <algorithm>
 #include <initializer_list>
 #include <optional>
@@ -194,7 +195,11 @@ struct Stage {
 /// Compiles `stages`, links them into a program labelled `label` (or loads it from the program
 /// cache), and throws `GlError` naming the file and line of the first error; link messages are
 /// mapped onto the last stage's files.
+/// Programs made by linkStages in this process (compiled, or loaded from the program cache).
+std::atomic<std::uint64_t> programsMade{0};
+
 Program linkStages(const std::string& label, std::initializer_list<Stage> stages) {
+    ++programsMade;
     std::vector<const std::string*> texts;
     for (const Stage& s : stages) texts.push_back(&s.source->text);
     const std::string key = programKey(label, texts);
@@ -222,6 +227,8 @@ Program linkStages(const std::string& label, std::initializer_list<Stage> stages
 }
 
 }  // namespace
+
+std::uint64_t programsBuilt() { return programsMade.load(); }
 
 Program linkProgram(const std::string& label, const ExpandedSource& vertex, const ExpandedSource& fragment) {
     return linkStages(label, {{GL_VERTEX_SHADER, &vertex}, {GL_FRAGMENT_SHADER, &fragment}});

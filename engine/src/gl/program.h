@@ -7,6 +7,7 @@
 
 #include "gl/objects.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,10 @@ struct ProgramDesc {
 
 /// Compiles and links; throws `GlError` naming the file and line of the first error.
 Program buildProgram(const ProgramDesc& desc);
+/// How many programs this process has built (compiled or loaded from the program cache): a pass
+/// that builds its programs as it first needs them counts its frame's share into
+/// `FrameStats::programsCompiled` as the difference across the frame.
+[[nodiscard]] std::uint64_t programsBuilt();
 
 /// Compiles and links the compute shader `file`; throws `GlError` like `buildProgram`.
 Program buildComputeProgram(const std::string& label, const std::string& file, const std::vector<std::string>& defines);

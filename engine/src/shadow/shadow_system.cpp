@@ -6,6 +6,7 @@
 #include "gl/gl_state.h"
 #include "gl/mesh_cache_access.h"
 #include "gl/no_throw.h"
+#include "gl/program.h"
 
 #include <optional>
 
@@ -65,7 +66,9 @@ void ShadowSystem::render(const World& world, MeshCache& meshes, FrameStats& sta
     gpu::movePendingWarnings(s.pending, stats.warnings);
     drain(s.contract.warnings(), stats.warnings);
     s.contract.clearWarnings();
+    const std::uint64_t built = gpu::programsBuilt();  // the passes build their programs on first use
     s.maps.render(s.planner.frame(), world, meshes, stats);
+    stats.programsCompiled += static_cast<int>(gpu::programsBuilt() - built);
 }
 
 Status ShadowSystem::tryRender(const World& world, FrameStats& stats) noexcept {
@@ -97,8 +100,10 @@ void ShadowSystem::bindShaderInputs(const ShadowShaderInputs& inputs, const Shad
 void ShadowSystem::renderMask(std::span<const int> sceneLights, const ShadowMaskRequest& request, FrameStats& stats) {
     Impl& s = *impl_;
     gpu::reportHostGlErrors("ShadowSystem::renderMask", stats);
+    const std::uint64_t built = gpu::programsBuilt();
     if (!s.mask) s.mask.emplace();
     s.mask->render(s.planner.frame(), s.maps, sceneLights, request, stats);
+    stats.programsCompiled += static_cast<int>(gpu::programsBuilt() - built);
 }
 
 Status ShadowSystem::tryRenderMask(std::span<const int> sceneLights, const ShadowMaskRequest& request,
