@@ -5,8 +5,8 @@
 //
 //     <the text of shadowShaderSource(points, techniques)>
 //     ...
-//     ShadowSurface s = shadowSurface(csPosition, wsNormal);   // uniform control flow
-//     float v = shadowLightVisibility(slot, csPosition, s, viewDistance);
+//     sg_Surface s = sg_surface(csPosition, wsNormal);   // uniform control flow
+//     float v = sg_lightVisibility(slot, csPosition, s, viewDistance);
 //
 // where `csPosition` is the shaded point minus the camera's world position (the `wsCamera` given
 // to `ShadowShaderContract::inputs`), `wsNormal` its interpolated world normal and `viewDistance`
@@ -80,8 +80,9 @@ struct ShadowShaderInputs {
     GlSampler depthSampler;    ///< for the raw-depth units
     unsigned techniques = 0;   ///< `techniqueBit`s of the slots' techniques
     /// Per slot: the light's SG_LIGHT_*, SG_TECH_* and SG_KERNEL_*, for a shader specialised per
-    /// light configuration (`shadowVisibility(slot, shadowSlotLight(slot, type, technique,
-    /// kernel), ...)` with compile-time constants, as the module's own passes do).
+    /// light configuration (`sg_shadowVisibility(slot, sg_slotLight(slot, type, technique,
+    /// kernel), csPosition, s.normal, s.geoNormal, s.curvature, viewDistance)` with compile-time
+    /// constants, as the module's own passes do).
     std::array<int, SG_MAX_LIGHTS_PER_PASS> type{}, technique{}, kernel{};
 };
 
