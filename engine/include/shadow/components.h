@@ -264,7 +264,7 @@ enum class DepthMode : std::uint8_t {
 /// explicit metres still win. glTF `extras.shadow` spells it "auto" (or -1).
 inline constexpr float kAutomatic = -1.0f;
 /// `Shadow::constantBias` when automatic: this fraction of the shadow texel's footprint (m) at
-/// the receiver (0.5 mm at the 1 cm texels of a 2048^2 spot 4 m from its receiver).
+/// the receiver (0.5 mm where a texel covers 1 cm).
 inline constexpr float kAutoConstantBiasTexels = 0.05f;
 /// `Shadow::pcfRadius` when automatic: this many shadow texels at the receiver.
 inline constexpr float kAutoPcfRadiusTexels = 1.5f;
