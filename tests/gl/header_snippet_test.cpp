@@ -1,7 +1,8 @@
 // Drift: the GLSL a public header shows a game compiles. The example at the top of
 // engine/include/shadow/shadow_shaders.h (its indented `//     ` lines, less the placeholders) is
 // read from the header itself and compiled after `shadowShaderSource()`'s text, as a game's
-// fragment shader would hold it; so is the specialised call `ShadowShaderInputs` describes.
+// fragment shader would hold it; so is the specialised call `ShadowShaderInputs`' comment writes,
+// read from the header as well.
 #include <gtest/gtest.h>
 #include <shadow/shadow_shaders.h>
 
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "gl/gl_api.h"
+#include "gl/gl_test_support.h"
 #include "render/render_test_support.h"
 
 namespace shadow {
@@ -32,18 +34,27 @@ std::vector<std::string> headerExample(const std::string& path) {
     return code;
 }
 
-/// Compiles `source` as a fragment shader; the info log when it fails, empty when it compiles.
-std::string compileFragment(const std::string& source) {
-    const GLuint shader = gl.CreateShader(GL_FRAGMENT_SHADER);
-    const char* text = source.c_str();
-    gl.ShaderSource(shader, 1, &text, nullptr);
-    gl.CompileShader(shader);
-    GLint ok = GL_FALSE;
-    gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    std::string log(8192, '\0');
-    gl.GetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
-    gl.DeleteShader(shader);
-    return ok == GL_TRUE ? std::string() : std::string(log.c_str());
+/// The code between the backquotes of `path`'s doc comment that start with `opening` (a call
+/// written across comment lines: their `///` and the indents dropped).
+std::string backquotedCall(const std::string& path, const std::string& opening) {
+    std::ifstream in(path);
+    std::ostringstream text;
+    std::string line;
+    while (std::getline(in, line)) {
+        const std::size_t slashes = line.find("///");
+        if (slashes != std::string::npos) text << line.substr(slashes + 3) << ' ';
+    }
+    const std::string all = text.str();
+    const std::size_t start = all.find("`" + opening);
+    if (start == std::string::npos) return {};
+    const std::size_t end = all.find('`', start + 1);
+    std::string call = all.substr(start + 1, end - start - 1);
+    std::string squeezed;  // runs of blanks (the comment's line breaks) as one
+    for (char c : call) {
+        if (c == ' ' && !squeezed.empty() && squeezed.back() == ' ') continue;
+        squeezed += c;
+    }
+    return squeezed;
 }
 
 TEST(HeaderSnippets, TheShaderContractsExampleCompilesAsWritten) {
@@ -64,11 +75,18 @@ void main() {
 )" + body.str() + R"(    outColor = vec4(v);
 }
 )";
-    EXPECT_EQ(compileFragment(source), "") << "shadow_shaders.h's example:\n" << body.str();
+    const test::CompiledShader compiled = test::compileShader(GL_FRAGMENT_SHADER, source);
+    EXPECT_TRUE(compiled.ok()) << compiled.log << "shadow_shaders.h's example:\n" << body.str();
+    gl.DeleteShader(compiled.shader);
 }
 
 TEST(HeaderSnippets, TheSpecialisedCallOfTheShaderInputsCompiles) {
     test::glContext();
+    const std::string call = backquotedCall(std::string(SHADOW_SOURCE_DIR) + "/engine/include/shadow/shadow_shaders.h",
+                                            "sg_shadowVisibility(");
+    ASSERT_FALSE(call.empty()) << "ShadowShaderInputs' specialised call was not found";
+    // Its names as a game's shader would have them: the surface, and the slot's configuration as
+    // compile-time constants.
     const std::string source = "#version 450 core\n" + shadowShaderSource() + R"(
 in vec3 csPosition;
 in vec3 wsNormal;
@@ -76,13 +94,14 @@ in float viewDistance;
 layout(location = 0) out vec4 outColor;
 void main() {
     sg_Surface s = sg_surface(csPosition, wsNormal);
-    const int slot = 0;
-    float v = sg_shadowVisibility(slot, sg_slotLight(slot, SG_LIGHT_SPOT, SG_TECH_PCSS, SG_KERNEL_VOGEL), csPosition,
-                                  s.normal, s.geoNormal, s.curvature, viewDistance);
+    const int slot = 0, type = SG_LIGHT_SPOT, technique = SG_TECH_PCSS, kernel = SG_KERNEL_VOGEL;
+    float v = )" + call + R"(;
     outColor = vec4(v);
 }
 )";
-    EXPECT_EQ(compileFragment(source), "");
+    const test::CompiledShader compiled = test::compileShader(GL_FRAGMENT_SHADER, source);
+    EXPECT_TRUE(compiled.ok()) << compiled.log << "the call: " << call;
+    gl.DeleteShader(compiled.shader);
 }
 
 }  // namespace

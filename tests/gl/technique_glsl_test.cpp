@@ -17,6 +17,7 @@
 
 #include "gl/gl_api.h"
 #include "gl/shader_sources.h"
+#include "gl/gl_test_support.h"
 #include "render/render_test_support.h"
 
 namespace shadow {
@@ -160,16 +161,9 @@ void main() {
     outColor = vec4(sg_lightVisibility(0, vCsPosition, s, 1.0));
 }
 )";
-        const GLuint shader = gl.CreateShader(GL_FRAGMENT_SHADER);
-        const char* source = text.c_str();
-        gl.ShaderSource(shader, 1, &source, nullptr);
-        gl.CompileShader(shader);
-        GLint ok = GL_FALSE;
-        gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-        std::string log(4096, '\0');
-        gl.GetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
-        EXPECT_EQ(ok, GL_TRUE) << techniqueName(t) << ": " << log.c_str();
-        gl.DeleteShader(shader);
+        const test::CompiledShader compiled = test::compileShader(GL_FRAGMENT_SHADER, text);
+        EXPECT_TRUE(compiled.ok()) << techniqueName(t) << ": " << compiled.log;
+        gl.DeleteShader(compiled.shader);
     }
 }
 

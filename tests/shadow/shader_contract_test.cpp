@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "gl/gl_test_support.h"
 #include "render/render_test_support.h"
 
 namespace shadow {
@@ -74,18 +75,9 @@ void main() {
 )";
 
 GLuint compile(GLenum stage, const std::string& text) {
-    const GLuint shader = gl.CreateShader(stage);
-    const char* src = text.c_str();
-    gl.ShaderSource(shader, 1, &src, nullptr);
-    gl.CompileShader(shader);
-    GLint ok = GL_FALSE;
-    gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (ok != GL_TRUE) {
-        std::array<char, 4096> log{};
-        gl.GetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
-        ADD_FAILURE() << "host shader: " << log.data();
-    }
-    return shader;
+    const test::CompiledShader compiled = test::compileShader(stage, text);
+    if (!compiled.ok()) ADD_FAILURE() << "host shader: " << compiled.log;
+    return compiled.shader;
 }
 
 /// The host's program: its own vertex shader, its fragment shader around the public text.

@@ -236,7 +236,11 @@ FieldVerdict fieldVerdict(const World& world, Entity caster, int voxelBudget) {
 /// Technique sdf: moves the casters with a field out of `plan`'s layers into `fieldCasters`
 /// (once each), and warns once (`CasterWithoutField`) about those left to the map, by reason.
 void takeFieldCasters(const World& world, int voxelBudget, ShadowLightPlan& plan, std::vector<Warning>& warnings) {
-    std::array<int, 4> left{};  // per FieldVerdict
+    std::array<int, 4> left{};  // casters left to the map, per FieldVerdict
+    const auto count = [&left](FieldVerdict v) { return left[static_cast<std::size_t>(v)]; };
+    const auto leftInAll = [&] {
+        return count(FieldVerdict::Unfielded) + count(FieldVerdict::Open) + count(FieldVerdict::Thin);
+    };
     Entity first;
     for (ShadowLayerPlan& layer : plan.layers) {
         std::erase_if(layer.casters, [&](Entity caster) {
@@ -245,7 +249,7 @@ void takeFieldCasters(const World& world, int voxelBudget, ShadowLightPlan& plan
                 plan.fieldCasters.push_back(caster);
                 return true;
             }
-            if (left[1] + left[2] + left[3] == 0) first = caster;
+            if (leftInAll() == 0) first = caster;
             ++left[static_cast<std::size_t>(verdict)];
             return false;
         });
@@ -253,7 +257,7 @@ void takeFieldCasters(const World& world, int voxelBudget, ShadowLightPlan& plan
     std::sort(plan.fieldCasters.begin(), plan.fieldCasters.end(),
               [](Entity a, Entity b) { return a.index() < b.index(); });
     plan.fieldCasters.erase(std::unique(plan.fieldCasters.begin(), plan.fieldCasters.end()), plan.fieldCasters.end());
-    const int without = left[1] + left[2] + left[3];
+    const int without = leftInAll();
     if (without == 0) return;
     const Name* name = world.tryGet<Name>(first);
     std::ostringstream msg;
@@ -265,10 +269,9 @@ void takeFieldCasters(const World& world, int voxelBudget, ShadowLightPlan& plan
         msg << sep << n << " " << what;
         sep = ", ";
     };
-    part(left[static_cast<std::size_t>(FieldVerdict::Open)], "open and not flat: a field holds no inside");
-    part(left[static_cast<std::size_t>(FieldVerdict::Thin)], "thinner than two voxels of their field");
-    part(left[static_cast<std::size_t>(FieldVerdict::Unfielded)],
-         "a game's own draw, a skinned or cut-out mesh, or a sheared transform");
+    part(count(FieldVerdict::Open), "open and not flat: a field holds no inside");
+    part(count(FieldVerdict::Thin), "thinner than two voxels of their field");
+    part(count(FieldVerdict::Unfielded), "a game's own draw, a skinned or cut-out mesh, or a sheared transform");
     msg << "; \"" << (name != nullptr ? name->value : std::string("entity ") + std::to_string(first.index()))
         << "\" first) cast through the light's shadow map, filtered as PCSS";
     warnings.push_back({WarningCode::CasterWithoutField, plan.name, msg.str()});
