@@ -52,6 +52,8 @@ struct Options {
     int fieldVoxels = 64;                 ///< technique sdf: voxels along each mesh field's edge (cubed: the budget)
     std::optional<float> sdfStartOffset;  ///< absent: each light keeps its own
     std::string shaderCache;
+    std::string screenVisibility = "off";
+    bool contactShadows = false;    ///< turn every shadowed light's contact shadows on
     std::optional<float> exposure;  ///< absent: from the first frame read back (autoExposure)
 };
 
@@ -115,6 +117,11 @@ int run(const Options& o) {
         if (!t) return fail(kExitBadInput, "--technique: " + t.error().message);
         technique = *t;
     }
+    const std::optional<ScreenVisibility> screenVisibility = parseScreenVisibility(o.screenVisibility);
+    if (!screenVisibility) {
+        return fail(kExitBadInput, "--screen-visibility: unknown setting '" + o.screenVisibility +
+                                       "' (known: off, auto, full, half, quarter)");
+    }
     std::optional<DepthMode> depthMode;
     if (o.depthMode) {
         depthMode = depthModeFromName(*o.depthMode);
@@ -152,6 +159,9 @@ int run(const Options& o) {
     if (depthMode) {
         scene.world.view<Shadow>().each([&](Entity, Shadow& s) { samples::applyDepthMode(s, *depthMode); });
     }
+    if (o.contactShadows) {
+        scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.contactShadows = true; });
+    }
     if (o.sdfStartOffset) {
         scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.sdfStartOffset = *o.sdfStartOffset; });
     }
@@ -172,6 +182,7 @@ int run(const Options& o) {
     options.aovs = selection->anyAov() || *debug == DebugView::Visibility;
     options.debugView = *debug;
     options.debugLight = o.debugLight;
+    options.screenVisibility = *screenVisibility;
     // The size against the context's limits and the renderer's memory cap, before anything is
     // allocated (an over-large size would otherwise end in an incomplete framebuffer).
     if (Status s = checkRenderSize(options, static_cast<int>(scene.lights.size())); !s) {
@@ -248,6 +259,12 @@ int main(int argc, char** argv) {
         "technique sdf: voxels along the edge of each mesh's distance field, [16, 256] (default 64: 64^3 voxels)");
     app.add_option("--sdf-start-offset", o.sdfStartOffset,
                    "technique sdf: override every light's sdfStartOffset (m), [0, 1]");
+    app.add_option("--screen-visibility", o.screenVisibility,
+                   "lights' visibility: off (forward, each lit fragment filters), auto (screen-space stage: hard "
+                   "shadows at full resolution, soft ones at half, upsampled along surfaces), full, half, quarter");
+    app.add_flag("--contact-shadows", o.contactShadows,
+                 "turn on every shadowed light's screen-space contact shadows (drawn by the screen-space "
+                 "visibility stage: with --screen-visibility off they are left out)");
     app.add_option("--shader-cache", o.shaderCache,
                    "folder of linked program binaries, read and written (the driver's own cache aside)");
     if (const std::optional<int> exit = samples::parseCommandLine(app, argc, argv, "shadow_render")) return *exit;

@@ -9,16 +9,28 @@
 // those costs).
 // Depth comes from the depth pre-pass (depth test EQUAL), so each visible pixel is shaded once;
 // further passes (more lights) add with blending.
+//
+// With SG_DEFERRED the pass is the screen-space visibility stage's last (RenderOptions::
+// screenVisibility): one full-screen triangle that reads each pixel's surface from the surface
+// pass's targets and each light's visibility from the stage (SG_READS_GBUFFER), no technique run.
 #include "shadow_visibility.glsl"
 #include "shadow_surface.glsl"
 #include "lighting.glsl"
+#include "screen_gbuffer.glsl"
 
 #if SG_MAX_LIGHTS_PER_PASS != 8
 #error "main() below shades groups 0-7: one SG_SHADE_ONE/SG_SHADE_MANY choice per possible group"
 #endif
 
+#ifdef SG_DEFERRED
+layout(binding = SG_UNIT_GBUFFER_ALBEDO) uniform sampler2D sg_gbufferAlbedo;
+layout(binding = SG_UNIT_GBUFFER_SPECULAR) uniform sampler2D sg_gbufferSpecular;
+// Slots 0-3 of the pass in layer 0, 4-7 in layer 1 (screen_visibility.frag.glsl).
+layout(binding = SG_UNIT_SCREEN_VISIBILITY) uniform sampler2DArray sg_screenVisibility;
+#else
 in vec4 vCsPositionU;  // lit.vert.glsl: position and texture u
 in vec4 vWsNormalV;    // normal and texture v
+#endif
 
 uniform int uReceiveShadows;
 uniform vec3 uAlbedo;
@@ -77,8 +89,7 @@ vec3 debugColor = vec3(0.0);
         sg_GpuLight L = sg_slotLight(slot, SG_GROUP##g##_TYPE, SG_GROUP##g##_TECH, SG_GROUP##g##_KERNEL); \
         vec3 shading = shadeSurface(L, s);                                                     \
         float v = 1.0;                                                                            \
-        if (shadowWanted(SG_GROUP##g##_TECH, shading))                                            \
-            v = SG_GROUP##g##_VISIBILITY(slot, L, s.csPosition, s.normal, s.geoNormal, s.curvature, viewDistance); \
+        SG_LIGHT_VISIBILITY(g, slot)                                                              \
         color += v * shading;                                                                     \
         SG_STORE_VISIBILITY(slot, v)                                                              \
         SG_DEBUG_CAPTURE(slot, v)                                                                 \
@@ -98,6 +109,15 @@ vec3 debugColor = vec3(0.0);
         for (int k = 0; k < SG_GROUP##g##_COUNT + sg_runtimeZero(); ++k) SG_SHADE_LIGHT(g, slots[k]) \
     }
 
+#ifdef SG_DEFERRED
+#define SG_LIGHT_VISIBILITY(g, slot) \
+    if (SG_GROUP##g##_TECH != SG_TECH_NONE && receiveShadows) v = screenVisibility[(slot) / 4][(slot) % 4];
+#else
+#define SG_LIGHT_VISIBILITY(g, slot)                  \
+    if (shadowWanted(SG_GROUP##g##_TECH, shading)) \
+        v = SG_GROUP##g##_VISIBILITY(slot, L, s.csPosition, s.normal, s.geoNormal, s.curvature, viewDistance);
+#endif
+
 #ifdef SG_WRITE_AOVS
 #define SG_STORE_VISIBILITY(slot, v) visibility[slot] = v;
 #else
@@ -105,6 +125,27 @@ vec3 debugColor = vec3(0.0);
 #endif
 
 void main() {
+#ifdef SG_DEFERRED
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    vec4 gPosition = texelFetch(sg_gbufferPosition, pixel, 0);
+    vec4 gNormals = texelFetch(sg_gbufferNormals, pixel, 0);
+    vec4 gAlbedo = texelFetch(sg_gbufferAlbedo, pixel, 0);
+    vec4 gSpecular = texelFetch(sg_gbufferSpecular, pixel, 0);
+    bool covered = sg_gbufferCovered(gPosition.w);
+    bool receiveShadows = sg_gbufferReceives(gPosition.w);
+    vec4 screenVisibility[2] = vec4[](texelFetch(sg_screenVisibility, ivec3(pixel, 0), 0),
+                                      SG_PASS_LIGHTS > 4 ? texelFetch(sg_screenVisibility, ivec3(pixel, 1), 0) : vec4(1.0));
+    vec3 vCsPosition = covered ? gPosition.xyz : vec3(0.0, 0.0, -1.0);
+    Surface s;
+    s.csPosition = vCsPosition;
+    s.toViewer = normalize(-vCsPosition);
+    s.geoNormal = sg_octDecode(gNormals.zw);
+    s.curvature = sg_gbufferCurvature(gPosition.w);
+    s.normal = sg_octDecode(gNormals.xy);
+    s.albedo = gAlbedo.rgb;
+    s.specular = gSpecular.rgb;
+    s.shininess = gAlbedo.a;
+#else
     vec3 vCsPosition = vCsPositionU.xyz;
     vec3 vWsNormal = vWsNormalV.xyz;
     vec2 vTexcoord = vec2(vCsPositionU.w, vWsNormalV.w);
@@ -122,6 +163,8 @@ void main() {
     s.albedo = uAlbedo * base;
     s.specular = uSpecular * mix(vec3(1.0), base, uMetallic);
     s.shininess = uShininess;
+    const bool covered = true;
+#endif
 
     float viewDistance = dot(vCsPosition, uCameraForward);
     vec3 color = uAmbient * s.albedo;
@@ -171,12 +214,13 @@ void main() {
 #ifdef SG_DEBUG_VIEWS
     outColor = vec4(debugColor, 1.0);
 #else
-    outColor = vec4(color, 1.0);
+    outColor = vec4(covered ? color : vec3(0.0), 1.0);
 #endif
 #ifdef SG_WRITE_AOVS
-    outPosition = vec4(vCsPosition, 1.0);
-    outDepth = length(vCsPosition);
-    outVisibility0 = vec4(visibility[0], visibility[1], visibility[2], visibility[3]);
-    outVisibility1 = vec4(visibility[4], visibility[5], visibility[6], visibility[7]);
+    // What the forward pass leaves on background: the targets' clear values.
+    outPosition = covered ? vec4(vCsPosition, 1.0) : vec4(0.0);
+    outDepth = covered ? length(vCsPosition) : 0.0;
+    outVisibility0 = covered ? vec4(visibility[0], visibility[1], visibility[2], visibility[3]) : vec4(1.0);
+    outVisibility1 = covered ? vec4(visibility[4], visibility[5], visibility[6], visibility[7]) : vec4(1.0);
 #endif
 }

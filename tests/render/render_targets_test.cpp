@@ -141,9 +141,17 @@ TEST(RenderTargets, ASizeOverTheLimitsOrTheMemoryCapIsRefusedBeforeAllocating) {
     const Status withAovs = checkRenderSize(options);
     ASSERT_FALSE(withAovs.ok());
     EXPECT_NE(withAovs.error().message.find("kMaxRenderTargetBytes"), std::string::npos) << withAovs.error().message;
+    // The screen-space visibility stage's targets count too (72 more bytes a pixel at full
+    // resolution): 8192^2 fits without them, not with them.
+    options.aovs = false;
+    options.screenVisibility = ScreenVisibility::Auto;
+    const Status withStage = checkRenderSize(options);
+    ASSERT_FALSE(withStage.ok());
+    EXPECT_NE(withStage.error().message.find("screen-space visibility"), std::string::npos)
+        << withStage.error().message;
+    options.screenVisibility = ScreenVisibility::Off;
     options.width = maxTexture + 1;
     options.height = 1;
-    options.aovs = false;
     const Status beyond = checkRenderSize(options);
     ASSERT_FALSE(beyond.ok());
     EXPECT_NE(beyond.error().message.find("GL_MAX_TEXTURE_SIZE"), std::string::npos) << beyond.error().message;

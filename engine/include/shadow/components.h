@@ -272,6 +272,12 @@ inline constexpr float kAutoPcfRadiusTexels = 1.5f;
 inline constexpr float kAutoSdfStartOffsetVoxels = 0.125f;
 /// `Shadow::sdfMinStep` when automatic: this fraction of the median field voxel.
 inline constexpr float kAutoSdfMinStepVoxels = 0.25f;
+/// `Shadow::contactLength` when automatic: the shorter of this many shadow texels' footprint at
+/// the receiver (the detail the map's bias and filter lose) and `kAutoContactLengthPixels`
+/// pixels' footprint on screen (what the image resolves, and a bound on the march's false
+/// hits behind objects).
+inline constexpr float kAutoContactLengthTexels = 4.0f;
+inline constexpr float kAutoContactLengthPixels = 32.0f;
 
 /// Whether a length setting asks for the automatic value (`kAutomatic`).
 [[nodiscard]] inline bool isAutomatic(float setting) { return setting == kAutomatic; }
@@ -361,6 +367,17 @@ struct Shadow {
     /// `kAutoSdfMinStepVoxels` of the median voxel of the light's field casters. Smaller follows
     /// thin gaps closer, at more steps.
     float sdfMinStep = kAutomatic;
+    /// Screen-space contact shadows: a short march from each receiver toward the light through
+    /// the surfaces on screen, multiplied into the light's visibility, for detail the map's texels
+    /// cannot hold (a small object on the ground under a sun whose cascades span hundreds of
+    /// metres). Drawn by the renderer's screen-space visibility stage (`RenderOptions::
+    /// screenVisibility`, which `Auto` turns on for such a light); forward passes and a game's own
+    /// shader leave them out. Default off.
+    bool contactShadows = false;
+    /// How far (m) the contact march reaches, [0, 10], or `kAutomatic` (the default): the
+    /// shorter of `kAutoContactLengthTexels` shadow texels and `kAutoContactLengthPixels` screen
+    /// pixels at the receiver.
+    float contactLength = kAutomatic;
 };
 
 /// A perspective camera looking along its node's -Z.

@@ -17,7 +17,9 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace shadow {
@@ -35,6 +37,27 @@ enum class DebugView {
     Closest,       ///< sdf: the march's smallest clearance over the cone, -1 (black) to 1 (white)
 };
 
+/// Where the lit passes get their lights' visibility (`RenderOptions::screenVisibility`).
+enum class ScreenVisibility {
+    /// Forward: each lit fragment runs its lights' techniques.
+    Off,
+    /// The screen-space visibility stage: the scene drawn once into surface targets, each group
+    /// of four lights' visibility computed over the screen, at full resolution for hard-edged
+    /// shadows (technique hard) and at half resolution for soft ones (their penumbrae are
+    /// low-frequency), brought back to full resolution by an upsample that never blends samples
+    /// of another surface (a pixel with none runs its filters at full resolution), then the
+    /// lights shaded by one full-screen pass. Debug views render forward.
+    Auto,
+    Full,     ///< the stage, every light at full resolution
+    Half,     ///< the stage, every light at half resolution (upsampled)
+    Quarter,  ///< the stage, every light at quarter resolution (upsampled)
+};
+
+/// "off", "auto", "full", "half", "quarter".
+[[nodiscard]] const char* screenVisibilityName(ScreenVisibility v);
+/// The setting named `name`, if one is.
+[[nodiscard]] std::optional<ScreenVisibility> parseScreenVisibility(std::string_view name);
+
 /// What to render.
 struct RenderOptions {
     int width = 640;
@@ -49,6 +72,8 @@ struct RenderOptions {
     /// overdraw it saves (BENCHMARKS.md, fragment costs: overdraw 1.01 on the bunny scene, the
     /// pre-pass +44 ms at 1280x720); on a GPU with deep overdraw it pays.
     bool depthPrepass = false;
+    /// Forward lit passes, or the screen-space visibility stage (`ScreenVisibility`).
+    ScreenVisibility screenVisibility = ScreenVisibility::Off;
 };
 
 /// Most GPU memory the renderer's targets may take (bytes): colour and depth (20 bytes a pixel),

@@ -84,6 +84,18 @@
 // Lights one shadow mask holds: one per channel.
 #define SG_MAX_MASK_LIGHTS 4
 
+// The renderer's screen-space visibility stage (RenderOptions::screenVisibility): units of its
+// surface targets (camera-relative position, normals, albedo, specular and coverage) and of the
+// per-light visibility it resolves, read by the stage's passes and the deferred lit pass. The
+// stage and the lit pass bind the shadow units too: these take the units above them.
+#define SG_UNIT_GBUFFER_POSITION 24
+#define SG_UNIT_GBUFFER_NORMALS 25
+#define SG_UNIT_GBUFFER_ALBEDO 29
+#define SG_UNIT_GBUFFER_SPECULAR 30
+#define SG_UNIT_SCREEN_VISIBILITY 31
+// The reduced-resolution stage's sample depths, read by its resolve (no albedo read there).
+#define SG_UNIT_SCREEN_DEPTH 29
+
 // Unit the pyramid builder reads its source from.
 #define SG_UNIT_MINMAX_SOURCE 0
 // Image unit the pyramid builder writes a level through.

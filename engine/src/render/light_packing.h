@@ -22,6 +22,8 @@ struct LitVariant {
     std::array<std::uint8_t, SG_MAX_LIGHTS_PER_PASS> technique{};  ///< SG_TECH_*
     std::array<std::uint8_t, SG_MAX_LIGHTS_PER_PASS> kernel{};     ///< SG_KERNEL_*
     bool aovs = false;
+    /// The screen-space visibility stage's lit pass: surfaces and visibility read per pixel.
+    bool deferred = false;
     int debugView = SG_DEBUG_NONE;  ///< SG_DEBUG_*
     int debugSlot = -1;             ///< slot the debug view shows, -1 none
 

@@ -28,8 +28,10 @@ MeshUniforms meshUniforms(GLuint program) {
 
 LitProgram buildLit(const LitVariant& variant) {
     LitProgram p;
-    p.program = gpu::buildProgram(
-        {variantLabel(variant), "lit.vert.glsl", "lit.frag.glsl", variantDefines(variant), variantTechniques(variant)});
+    // The deferred variant reads its lights' visibility: it compiles no technique.
+    p.program = gpu::buildProgram({variantLabel(variant), variant.deferred ? "fullscreen.vert.glsl" : "lit.vert.glsl",
+                                   "lit.frag.glsl", variantDefines(variant),
+                                   variant.deferred ? 0u : variantTechniques(variant)});
     const GLuint id = p.program.get();
     auto loc = [id](const char* n) { return gl.GetUniformLocation(id, n); };
     p.mesh = meshUniforms(id);
@@ -55,6 +57,7 @@ std::string variantLabel(const LitVariant& v) {
         name += techniqueName(static_cast<ShadowTechnique>(v.technique[static_cast<std::size_t>(i)]));
     }
     if (v.aovs) name += name.empty() ? "AOV" : ",AOV";
+    if (v.deferred) name += name.empty() ? "deferred" : ",deferred";
     if (v.debugView != SG_DEBUG_NONE) name += ",debug" + std::to_string(v.debugView);
     return "Main/Lit[" + name + "]";
 }
@@ -76,7 +79,12 @@ std::vector<std::string> variantDefines(const LitVariant& v) {
     gpu::appendSlotGroupDefines(
         std::span(slots).first(static_cast<std::size_t>(std::clamp(v.lights, 0, SG_MAX_LIGHTS_PER_PASS))),
         SG_MAX_LIGHTS_PER_PASS, defines);
-    gpu::appendTechniqueDefines(variantTechniques(v), defines);
+    if (v.deferred) {
+        defines.emplace_back("SG_DEFERRED");
+        defines.emplace_back("SG_READS_GBUFFER");
+    } else {
+        gpu::appendTechniqueDefines(variantTechniques(v), defines);
+    }
     if (v.aovs) defines.emplace_back("SG_WRITE_AOVS");
     if (v.debugView != SG_DEBUG_NONE) {
         defines.emplace_back("SG_DEBUG_VIEWS");
@@ -103,6 +111,25 @@ DepthPrepassProgram buildDepthPrepass(bool alphaTested) {
     p.mesh = meshUniforms(p.program.get());
     p.alpha = gl.GetUniformLocation(p.program.get(), "uAlpha");
     p.alphaCutoff = gl.GetUniformLocation(p.program.get(), "uAlphaCutoff");
+    return p;
+}
+
+SurfaceProgram buildSurfaceProgram(bool alphaTested) {
+    SurfaceProgram p;
+    p.program =
+        gpu::buildProgram({alphaTested ? "Main/Surfaces/alpha" : "Main/Surfaces", "lit.vert.glsl", "gbuffer.frag.glsl",
+                           alphaTested ? std::vector<std::string>{"SG_ALPHA_TESTED"} : std::vector<std::string>{}});
+    const GLuint id = p.program.get();
+    auto loc = [id](const char* n) { return gl.GetUniformLocation(id, n); };
+    p.mesh = meshUniforms(id);
+    p.receiveShadows = loc("uReceiveShadows");
+    p.albedo = loc("uAlbedo");
+    p.specular = loc("uSpecular");
+    p.shininess = loc("uShininess");
+    p.metallic = loc("uMetallic");
+    p.textured = loc("uTextured");
+    p.alpha = loc("uAlpha");
+    p.alphaCutoff = loc("uAlphaCutoff");
     return p;
 }
 

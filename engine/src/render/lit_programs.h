@@ -53,4 +53,15 @@ private:
 
 DepthPrepassProgram buildDepthPrepass(bool alphaTested);
 
+/// The screen-space visibility stage's surface pass (gbuffer.frag.glsl): the lit vertex shader,
+/// the material's uniforms, and (alpha-tested, for cut-out materials) the alpha test.
+struct SurfaceProgram {
+    gpu::Program program;
+    MeshUniforms mesh;
+    GLint receiveShadows = -1, albedo = -1, specular = -1, shininess = -1, metallic = -1, textured = -1, alpha = -1,
+          alphaCutoff = -1;
+};
+
+SurfaceProgram buildSurfaceProgram(bool alphaTested);
+
 }  // namespace shadow::render

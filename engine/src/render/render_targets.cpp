@@ -1,5 +1,7 @@
 #include "render/render_targets.h"
 
+#include "render/screen_visibility.h"
+
 #include <shadow/context.h>
 #include <shadow/renderer.h>
 #include <shadow/shared_constants.h>
@@ -20,7 +22,7 @@ gpu::Texture makeTarget(const std::string& label, GLenum format, int w, int h) {
 
 }  // namespace
 
-std::string renderSizeProblem(int width, int height, bool aovs, int passes) {
+std::string renderSizeProblem(int width, int height, bool aovs, int passes, bool screenStage) {
     GLint maxTexture = 0, maxWidth = 0, maxHeight = 0, maxRenderbuffer = 0;
     gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
     gl.GetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &maxWidth);
@@ -33,11 +35,13 @@ std::string renderSizeProblem(int width, int height, bool aovs, int passes) {
         return "beyond this context's limits (" + std::to_string(maxW) + "x" + std::to_string(maxH) +
                ": GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE, GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT)";
     }
-    const std::int64_t bytes = RenderTargets::bytesFor(width, height, aovs, passes);
+    const std::int64_t bytes =
+        RenderTargets::bytesFor(width, height, aovs, passes) + (screenStage ? ScreenStage::bytesFor(width, height) : 0);
     if (bytes > kMaxRenderTargetBytes) {
         const double mib = 1024.0 * 1024.0;
         return "the targets would take " + std::to_string(std::llround(static_cast<double>(bytes) / mib)) + " MiB" +
-               (aovs ? " with the AOVs" : "") + ", over the renderer's cap of " +
+               (aovs ? " with the AOVs" : "") + (screenStage ? " and the screen-space visibility stage" : "") +
+               ", over the renderer's cap of " +
                std::to_string(std::llround(static_cast<double>(kMaxRenderTargetBytes) / mib)) +
                " MiB (kMaxRenderTargetBytes)";
     }

@@ -12,9 +12,10 @@ namespace shadow::render {
 
 /// What keeps targets of `width` x `height` (with `aovs`, for `passes` passes) from being made:
 /// a size beyond the context's texture, renderbuffer or framebuffer limits, or targets over
-/// `kMaxRenderTargetBytes`, said without the size (the caller names it); empty when they can
-/// be. Reads the limits from the current context.
-[[nodiscard]] std::string renderSizeProblem(int width, int height, bool aovs, int passes);
+/// `kMaxRenderTargetBytes` (with `screenStage`, the screen-space visibility stage's targets
+/// counted too), said without the size (the caller names it); empty when they can be. Reads the
+/// limits from the current context.
+[[nodiscard]] std::string renderSizeProblem(int width, int height, bool aovs, int passes, bool screenStage = false);
 
 class RenderTargets {
 public:
@@ -33,6 +34,7 @@ public:
     void clear();
 
     [[nodiscard]] GLuint framebuffer() const { return framebuffer_.get(); }
+    [[nodiscard]] GLuint depthBuffer() const { return depthBuffer_.get(); }
     [[nodiscard]] int width() const { return width_; }
     [[nodiscard]] int height() const { return height_; }
     [[nodiscard]] bool aovs() const { return aovs_; }

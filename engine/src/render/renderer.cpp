@@ -14,11 +14,14 @@
 #include "render/light_packing.h"
 #include "render/lit_programs.h"
 #include "render/render_targets.h"
+#include "render/screen_visibility.h"
 
+#include <glm/gtc/matrix_access.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <numeric>
 #include <optional>
 
@@ -70,12 +73,32 @@ struct PassBlocks {
 struct MainCamera {
     glm::mat4 clipFromCs{1.0f};
     glm::vec3 forward{0.0f, 0.0f, -1.0f};
+    render::ScreenRays rays;  ///< the screen-space visibility stage's view of it
 };
 
-MainCamera mainCamera(const CameraView& cam) {
+/// Whether a mesh of `world` has a cut-out material (its holes need an alpha test).
+bool hasCutouts(const World& world) {
+    bool cutouts = false;
+    world.view<Mesh, Material>().each([&](Entity, const Mesh&, const Material& m) { cutouts = cutouts || m.cutout(); });
+    return cutouts;
+}
+
+MainCamera mainCamera(const CameraView& cam, int width, int height) {
     MainCamera m;
-    m.clipFromCs = glm::mat4(cameraClipFromCs(cam, cameraClipFromView(cam)));
+    const glm::dmat4 clipFromView = cameraClipFromView(cam);
+    m.clipFromCs = glm::mat4(cameraClipFromCs(cam, clipFromView));
     m.forward = cameraForward(cam);
+    // View axes in world space (rows of the view's rotation) scaled to a pixel at unit depth.
+    const glm::dmat3 viewRotation(cam.viewFromWorld);
+    const glm::dvec3 right = glm::row(viewRotation, 0), up = glm::row(viewRotation, 1);
+    const double tanX = 1.0 / std::abs(clipFromView[0][0]), tanY = 1.0 / std::abs(clipFromView[1][1]);
+    const double w = std::max(width, 1), h = std::max(height, 1);
+    m.rays.forward = m.forward;
+    m.rays.pixelAngle = static_cast<float>(2.0 * tanY / h);
+    m.rays.ray00 = glm::vec3(glm::dvec3(m.forward) - right * tanX - up * tanY);
+    m.rays.dx = glm::vec3(right * (2.0 * tanX / w));
+    m.rays.dy = glm::vec3(up * (2.0 * tanY / h));
+    m.rays.clipFromCs = m.clipFromCs;
     return m;
 }
 
@@ -85,16 +108,20 @@ struct Renderer::Impl {
     MeshCache meshes;                ///< owned and collected here (Renderer::meshes)
     gpu::ShaderResources resources;  ///< the samplers and kernel the lit passes bind
     render::LitProgramCache programs;
-    std::optional<render::DepthPrepassProgram> prepass;        ///< built on first use
-    std::optional<render::DepthPrepassProgram> prepassCutout;  ///< alpha-tested; built on first use
+    std::optional<render::DepthPrepassProgram> prepass;            ///< built on first use
+    std::optional<render::DepthPrepassProgram> prepassCutout;      ///< alpha-tested; built on first use
+    std::optional<render::ScreenStage> screen;                     ///< made on first use
+    std::optional<render::SurfaceProgram> surface, surfaceCutout;  ///< built on first use
     render::RenderTargets targets;
     std::vector<PassLights> passes;
     std::vector<const render::LitProgram*> passPrograms;  ///< per pass, into `programs` (stable)
     std::vector<render::PackingEntry> packingOrder;       ///< scratch of packLights
     PassBlocks lightBlocks, layerBlocks;
     GLint uniformAlignment = 256;
-    std::size_t lightCount = 0;  ///< scene lights of the last frame
-    bool prepassRan = false;     ///< this frame: asked for, or needed by a cut-out material
+    std::size_t lightCount = 0;          ///< scene lights of the last frame
+    bool prepassRan = false;             ///< this frame: asked for, or needed by a cut-out material
+    bool deferred = false;               ///< this frame runs the screen-space visibility stage
+    const ShadowFrame* frame = nullptr;  ///< this frame's, during `render`
     bool softwareRenderer = false;
     gpu::PassTimer timer;          ///< the main passes'
     std::vector<Warning> pending;  ///< host errors found by calls without a FrameStats
@@ -115,6 +142,13 @@ struct Renderer::Impl {
     void depthPrepass(const World& world, const CameraView& cam, const MainCamera& mc, bool cutouts, FrameStats& stats);
     void litPass(const World& world, const CameraView& cam, const MainCamera& mc, std::size_t index,
                  const ShadowMaps& maps, const RenderOptions& options, FrameStats& stats);
+    /// The screen-space visibility stage's surface pass.
+    void surfacePass(const World& world, const CameraView& cam, const MainCamera& mc, FrameStats& stats);
+    /// Lit pass `index` of the stage: its lights' visibility over the screen, then their shading.
+    void screenLitPass(const MainCamera& mc, std::size_t index, const RenderOptions& options);
+    /// The stage's visibility of pass `index`'s lights.
+    void screenVisibilityPass(const MainCamera& mc, std::size_t index, const ShadowMaps& maps,
+                              const RenderOptions& options, FrameStats& stats);
 };
 
 Renderer::Impl::Impl() : softwareRenderer(queryGlInfo().softwareRenderer), timer(softwareRenderer) {
@@ -127,6 +161,7 @@ void Renderer::Impl::preparePrograms(const RenderOptions& options, FrameStats& s
     for (PassLights& pass : passes) {
         render::LitVariant& v = pass.variant;
         v.aovs = options.aovs;
+        v.deferred = deferred;
         v.debugView = debugViewId(options.debugView);
         const auto* const slot = std::find(pass.sceneLight.begin(), pass.sceneLight.end(), options.debugLight);
         v.debugSlot = slot != pass.sceneLight.end() && v.debugView != SG_DEBUG_NONE
@@ -221,6 +256,80 @@ void Renderer::Impl::depthPrepass(const World& world, const CameraView& cam, con
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
+void Renderer::Impl::surfacePass(const World& world, const CameraView& cam, const MainCamera& mc, FrameStats& stats) {
+    const bool cutouts = hasCutouts(world);
+    for (auto [program, alphaTested] : {std::pair{&surface, false}, std::pair{&surfaceCutout, true}}) {
+        if (alphaTested && !cutouts) continue;
+        if (!*program) {
+            *program = render::buildSurfaceProgram(alphaTested);
+            ++stats.programsCompiled;
+        }
+        gl.ProgramUniformMatrix4fv((*program)->program.get(), (*program)->mesh.clipFromCs, 1, GL_FALSE,
+                                   glm::value_ptr(mc.clipFromCs));
+    }
+    screen->beginSurfaces();
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LESS);
+    drawMeshes(
+        world, cam, nullptr,
+        [this](const Mesh& mesh, const Material& m) {
+            const render::SurfaceProgram& p = m.cutout() ? *surfaceCutout : *surface;
+            const GLuint id = p.program.get();
+            gl.ProgramUniform1i(id, p.receiveShadows, mesh.receiveShadows ? 1 : 0);
+            gl.ProgramUniform3fv(id, p.albedo, 1, glm::value_ptr(m.albedo));
+            gl.ProgramUniform3fv(id, p.specular, 1, glm::value_ptr(m.specular));
+            gl.ProgramUniform1f(id, p.shininess, std::clamp(m.shininess, 1.0f, 4096.0f));
+            gl.ProgramUniform1f(id, p.metallic, std::clamp(m.metallic, 0.0f, 1.0f));
+            gl.ProgramUniform1i(id, p.textured, m.baseColorTexture != nullptr ? 1 : 0);
+            if (m.cutout()) {
+                gl.ProgramUniform1f(id, p.alpha, m.alpha);
+                gl.ProgramUniform1f(id, p.alphaCutoff, m.alphaCutoff);
+            }
+            gpu::MeshCacheAccess::bindTexture(meshes, m.baseColorTexture, SG_UNIT_BASE_COLOR);
+            return std::pair<GLuint, const render::MeshUniforms*>{id, &p.mesh};
+        },
+        stats.mainDrawCalls);
+}
+
+void Renderer::Impl::screenVisibilityPass(const MainCamera& mc, std::size_t index, const ShadowMaps& maps,
+                                          const RenderOptions& options, FrameStats& stats) {
+    const PassLights& pass = passes[index];
+    lightBlocks.bind(SG_BINDING_LIGHTS, index);
+    layerBlocks.bind(SG_BINDING_LAYERS, index);
+    gpu::bindShadowResources(resources, maps, pass.sceneLight, ShadowBindingPoints{});
+    screen->computeVisibility(*frame, pass, options.screenVisibility, mc.rays, stats);
+}
+
+void Renderer::Impl::screenLitPass(const MainCamera& mc, std::size_t index, const RenderOptions& options) {
+    const PassLights& pass = passes[index];
+    const render::LitProgram& p = *passPrograms[index];
+    lightBlocks.bind(SG_BINDING_LIGHTS, index);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, targets.framebuffer());
+    gl.Viewport(0, 0, options.width, options.height);
+    if (index == 0 || options.aovs) targets.bindPass(static_cast<int>(index));
+    screen->bindForLighting();
+    gl.Disable(GL_DEPTH_TEST);
+    gl.DepthMask(GL_FALSE);
+    if (index > 0) {
+        gl.Enablei(GL_BLEND, 0);
+        gl.BlendFunc(GL_ONE, GL_ONE);
+    }
+    const bool scissored = !options.aovs && pass.bounds != PixelRect{0, 0, options.width, options.height};
+    if (scissored) {
+        gl.Enable(GL_SCISSOR_TEST);
+        gl.Scissor(pass.bounds.x0, pass.bounds.y0, pass.bounds.x1 - pass.bounds.x0, pass.bounds.y1 - pass.bounds.y0);
+    }
+    const GLuint id = p.program.get();
+    gl.UseProgram(id);
+    gl.ProgramUniform3fv(id, p.cameraForward, 1, glm::value_ptr(mc.forward));
+    const glm::vec3 ambient = index == 0 ? options.ambient : glm::vec3(0.0f);
+    gl.ProgramUniform3fv(id, p.ambient, 1, glm::value_ptr(ambient));
+    gl.BindVertexArray(screen->emptyVertexArray());
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    gl.Disable(GL_BLEND);
+    gl.Disable(GL_SCISSOR_TEST);
+}
+
 void Renderer::Impl::litPass(const World& world, const CameraView& cam, const MainCamera& mc, std::size_t index,
                              const ShadowMaps& maps, const RenderOptions& options, FrameStats& stats) {
     const PassLights& pass = passes[index];
@@ -273,16 +382,19 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
 namespace {
 
 /// The texture units and uniform-buffer binding points the lit passes bind.
-/// The three sampler arrays' units, the distance-field technique's two and the base colour's.
-constexpr std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS + 3> litTextureUnits() {
-    std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS + 3> units{};
-    std::iota(units.begin(), units.end() - 3, 0);
-    units[units.size() - 3] = SG_UNIT_SDF_ATLAS;
-    units[units.size() - 2] = SG_UNIT_SDF_INSTANCES;
-    units[units.size() - 1] = SG_UNIT_BASE_COLOR;
+/// The three sampler arrays' units, the distance-field technique's two, the base colour's and the
+/// screen-space visibility stage's five.
+constexpr std::size_t kLitUnitCount = SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS + 8;
+constexpr std::array<GLint, kLitUnitCount> litTextureUnits() {
+    std::array<GLint, kLitUnitCount> units{};
+    std::iota(units.begin(), units.end() - 8, 0);
+    const std::array<GLint, 8> others{SG_UNIT_SDF_ATLAS,        SG_UNIT_SDF_INSTANCES,    SG_UNIT_BASE_COLOR,
+                                      SG_UNIT_GBUFFER_POSITION, SG_UNIT_GBUFFER_NORMALS,  SG_UNIT_GBUFFER_ALBEDO,
+                                      SG_UNIT_GBUFFER_SPECULAR, SG_UNIT_SCREEN_VISIBILITY};
+    std::copy(others.begin(), others.end(), units.end() - 8);
     return units;
 }
-constexpr std::array<GLint, SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS + 3> kLitTextureUnits = litTextureUnits();
+constexpr std::array<GLint, kLitUnitCount> kLitTextureUnits = litTextureUnits();
 constexpr std::array<GLint, 3> kLitUniformBindings{SG_BINDING_LIGHTS, SG_BINDING_LAYERS, SG_BINDING_KERNELS};
 
 }  // namespace
@@ -290,7 +402,8 @@ constexpr std::array<GLint, 3> kLitUniformBindings{SG_BINDING_LIGHTS, SG_BINDING
 Status checkRenderSize(const RenderOptions& options, int lights) {
     gpu::requireLoaded("checkRenderSize");
     const int passes = std::max(1, (lights + SG_MAX_LIGHTS_PER_PASS - 1) / SG_MAX_LIGHTS_PER_PASS);
-    const std::string why = render::renderSizeProblem(options.width, options.height, options.aovs, passes);
+    const std::string why = render::renderSizeProblem(options.width, options.height, options.aovs, passes,
+                                                      options.screenVisibility != ScreenVisibility::Off);
     if (!why.empty()) return Error{ErrorCode::LimitExceeded, why};
     return Ok{};
 }
@@ -328,11 +441,24 @@ void Renderer::render(const World& world, const CameraView& camera, const Shadow
     render::packLights(frame, camera.wsPosition, view, r.passes, r.packingOrder);
     // Technique sdf: the field casters' records relative to this camera, which every pass binds.
     if ((frame.techniquesInUse & techniqueBit(ShadowTechnique::Sdf)) != 0) (void)maps.fieldInstances(camera.wsPosition);
+    r.deferred =
+        options.debugView == DebugView::None && render::screenStagePays(options.screenVisibility, frame, r.passes);
+    r.frame = &frame;
     r.preparePrograms(options, stats);
     r.uploadPasses();
     r.targets.ensure(options.width, options.height, options.aovs, static_cast<int>(r.passes.size()));
+    if (r.deferred) {
+        const std::string why = render::renderSizeProblem(options.width, options.height, options.aovs,
+                                                          static_cast<int>(r.passes.size()), true);
+        if (!why.empty()) {
+            throw GlError("main pass targets of " + std::to_string(options.width) + "x" +
+                          std::to_string(options.height) + ": " + why);
+        }
+        if (!r.screen) r.screen.emplace();
+        r.screen->ensure(options.width, options.height, r.targets.depthBuffer());
+    }
 
-    const MainCamera mc = mainCamera(camera);
+    const MainCamera mc = mainCamera(camera, options.width, options.height);
     gpu::PassTimer& timer = r.timer;
     gl.BindFramebuffer(GL_FRAMEBUFFER, r.targets.framebuffer());
     gl.Viewport(0, 0, options.width, options.height);
@@ -340,24 +466,46 @@ void Renderer::render(const World& world, const CameraView& camera, const Shadow
     gl.CullFace(GL_BACK);
     gl.Enable(GL_DEPTH_TEST);
     r.targets.clear();
-    // A cut-out material needs the pre-pass: it leaves the holes out, so that the lit passes,
-    // whose cost a discard would raise for every pixel on a CPU rasteriser, need no alpha test.
-    bool cutouts = false;
-    world.view<Mesh, Material>().each([&](Entity, const Mesh&, const Material& m) { cutouts = cutouts || m.cutout(); });
-    r.prepassRan = options.depthPrepass || cutouts;
-    if (r.prepassRan) {
-        gpu::ScopedPass timed(timer, "Main/DepthPrepass");
-        r.depthPrepass(world, camera, mc, cutouts, stats);
-    }
-    {
-        gpu::ScopedPass timed(timer, "Main/Lit");
-        r.litPass(world, camera, mc, 0, maps, options, stats);
-    }
-    if (r.passes.size() > 1) {
-        // Timed as one: a fence per small pass would cost more than many of them.
-        gpu::ScopedPass timed(timer, "Main/LitMore");
-        for (std::size_t pass = 1; pass < r.passes.size(); ++pass)
-            r.litPass(world, camera, mc, pass, maps, options, stats);
+    if (r.deferred) {
+        {
+            gpu::ScopedPass timed(timer, "Main/Surfaces");
+            r.surfacePass(world, camera, mc, stats);
+        }
+        {
+            gpu::ScopedPass timed(timer, "Main/ScreenVisibility");
+            r.screenVisibilityPass(mc, 0, maps, options, stats);
+        }
+        {
+            gpu::ScopedPass timed(timer, "Main/Lit");
+            r.screenLitPass(mc, 0, options);
+        }
+        if (r.passes.size() > 1) {
+            gpu::ScopedPass timed(timer, "Main/LitMore");
+            for (std::size_t pass = 1; pass < r.passes.size(); ++pass) {
+                r.screenVisibilityPass(mc, pass, maps, options, stats);
+                r.screenLitPass(mc, pass, options);
+            }
+        }
+        r.prepassRan = false;
+    } else {
+        // A cut-out material needs the pre-pass: it leaves the holes out, so that the lit passes,
+        // whose cost a discard would raise for every pixel on a CPU rasteriser, need no alpha test.
+        const bool cutouts = hasCutouts(world);
+        r.prepassRan = options.depthPrepass || cutouts;
+        if (r.prepassRan) {
+            gpu::ScopedPass timed(timer, "Main/DepthPrepass");
+            r.depthPrepass(world, camera, mc, cutouts, stats);
+        }
+        {
+            gpu::ScopedPass timed(timer, "Main/Lit");
+            r.litPass(world, camera, mc, 0, maps, options, stats);
+        }
+        if (r.passes.size() > 1) {
+            // Timed as one: a fence per small pass would cost more than many of them.
+            gpu::ScopedPass timed(timer, "Main/LitMore");
+            for (std::size_t pass = 1; pass < r.passes.size(); ++pass)
+                r.litPass(world, camera, mc, pass, maps, options, stats);
+        }
     }
     stats.mainPasses += static_cast<int>(r.passes.size());
     gl.DepthMask(GL_TRUE);
@@ -441,6 +589,25 @@ FrameImages Renderer::readback(const CameraView& camera, FrameStats& stats) cons
     timer.collect(stats);
     gpu::checkGlError("readback");
     return out;
+}
+
+const char* screenVisibilityName(ScreenVisibility v) {
+    switch (v) {
+        case ScreenVisibility::Off: return "off";
+        case ScreenVisibility::Auto: return "auto";
+        case ScreenVisibility::Full: return "full";
+        case ScreenVisibility::Half: return "half";
+        case ScreenVisibility::Quarter: return "quarter";
+    }
+    return "off";
+}
+
+std::optional<ScreenVisibility> parseScreenVisibility(std::string_view name) {
+    for (const ScreenVisibility v : {ScreenVisibility::Off, ScreenVisibility::Auto, ScreenVisibility::Full,
+                                     ScreenVisibility::Half, ScreenVisibility::Quarter}) {
+        if (name == screenVisibilityName(v)) return v;
+    }
+    return std::nullopt;
 }
 
 }  // namespace shadow

@@ -76,7 +76,8 @@ struct LightKnobs {
     std::array<Knob<int>, 5> ints;
     std::array<Knob<float>, 10> floats;
     /// Lengths whose default is derived from the scene: a number >= 0 or "auto" (`kAutomatic`).
-    std::array<Knob<float>, 4> lengths;
+    std::array<Knob<float>, 5> lengths;
+    std::array<Knob<bool>, 1> bools;
 };
 
 /// A length knob: a number >= 0 (metres), or "auto" for the value derived from the scene.
@@ -108,7 +109,9 @@ LightKnobs lightKnobs(LightShadowExtras& out) {
             {{{"constantBias", &s.constantBias},
               {"pcfRadius", &s.pcfRadius},
               {"sdfStartOffset", &s.sdfStartOffset},
-              {"sdfMinStep", &s.sdfMinStep}}}};
+              {"sdfMinStep", &s.sdfMinStep},
+              {"contactLength", &s.contactLength}}},
+            {{{"contactShadows", &s.contactShadows}}}};
 }
 
 /// A mesh node's knobs.
@@ -127,6 +130,7 @@ std::vector<std::string_view> knownKeys(bool light) {
         add(knobs.ints);
         add(knobs.floats);
         add(knobs.lengths);
+        add(knobs.bools);
     } else {
         MeshShadowFlags scratch;
         add(meshKnobs(scratch));
@@ -179,6 +183,7 @@ Result<LightShadowExtras> parseShadowExtras(const tinygltf::Value& extras, const
     if (auto st = readKnobs(*object, knobs.ints, readPositiveInt); !st) return st.error();
     if (auto st = readKnobs(*object, knobs.floats, readNonNegativeFloat); !st) return st.error();
     if (auto st = readKnobs(*object, knobs.lengths, readLengthOrAuto); !st) return st.error();
+    if (auto st = readKnobs(*object, knobs.bools, readBool); !st) return st.error();
     return out;
 }
 

@@ -394,6 +394,7 @@ void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, co
     clampField(s.sdfSteps, 4, 256, who, "sdfSteps", warnings);
     clampLength(s.sdfStartOffset, 0.0f, 1.0f, who, "sdfStartOffset", warnings);
     clampLength(s.sdfMinStep, 1e-4f, 1.0f, who, "sdfMinStep", warnings);
+    clampLength(s.contactLength, 0.0f, 10.0f, who, "contactLength", warnings);
     if (static_cast<int>(s.depthMode) > static_cast<int>(DepthMode::Second)) {
         warnings.push_back({WarningCode::SettingClamped, who,
                             who + ": depthMode " + std::to_string(static_cast<int>(s.depthMode)) +

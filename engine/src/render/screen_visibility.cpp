@@ -1,0 +1,302 @@
+#include "render/screen_visibility.h"
+
+#include <shadow/context.h>
+#include <shadow/shared_constants.h>
+
+#include "gl/program.h"
+#include "gl/technique_glsl.h"
+#include "render/lit_programs.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace shadow::render {
+namespace {
+
+gpu::Texture makeTarget(const std::string& label, GLenum format, int w, int h, int layers = 0) {
+    gpu::Texture t = gpu::makeTexture(label, layers > 0 ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D);
+    if (layers > 0) {
+        gl.TextureStorage3D(t.get(), 1, format, w, h, layers);
+    } else {
+        gl.TextureStorage2D(t.get(), 1, format, w, h);
+    }
+    return t;
+}
+
+/// Points the contact march projects onto the screen.
+constexpr int kContactSteps = 12;
+
+int divisorIndex(int divisor) { return divisor == 4 ? 2 : divisor == 2 ? 1 : 0; }
+
+/// Pixels of a target of 1/`divisor` the screen's size.
+int reduced(int size, int divisor) { return (size + divisor - 1) / divisor; }
+
+/// Slots `first` .. `first + count - 1` of a pass's variant as a variant of their own.
+LitVariant groupVariant(const LitVariant& pass, int first, int count) {
+    LitVariant g;
+    g.lights = count;
+    for (int i = 0; i < count; ++i) {
+        const auto d = static_cast<std::size_t>(i), s = static_cast<std::size_t>(first + i);
+        g.type[d] = pass.type[s];
+        g.technique[d] = pass.technique[s];
+        g.kernel[d] = pass.kernel[s];
+    }
+    return g;
+}
+
+}  // namespace
+
+int visibilityDivisor(ScreenVisibility setting, const LitVariant& variant, int firstSlot, int slots) {
+    switch (setting) {
+        case ScreenVisibility::Full: return 1;
+        case ScreenVisibility::Half: return 2;
+        case ScreenVisibility::Quarter: return 4;
+        case ScreenVisibility::Off:
+        case ScreenVisibility::Auto: break;
+    }
+    for (int i = firstSlot; i < firstSlot + slots; ++i) {
+        const int t = variant.technique[static_cast<std::size_t>(i)];
+        if (t != SG_TECH_NONE && t != SG_TECH_HARD) return 2;
+    }
+    return 1;
+}
+
+float contactLengthUniform(const ShadowLightPlan& light) {
+    const Shadow& s = light.settings;
+    if (!s.contactShadows || light.technique() == ShadowTechnique::None) return 0.0f;
+    return isAutomatic(s.contactLength) ? -1.0f : s.contactLength;
+}
+
+bool screenStagePays(ScreenVisibility setting, const ShadowFrame& frame, const std::vector<PassLights>& passes) {
+    if (setting == ScreenVisibility::Off) return false;
+    if (setting != ScreenVisibility::Auto) return true;
+    int filtered = 0;
+    for (const PassLights& pass : passes) {
+        for (int i = 0; i < pass.variant.lights; ++i) {
+            const int light = pass.sceneLight[static_cast<std::size_t>(i)];
+            if (light >= 0 && contactLengthUniform(frame.lights[static_cast<std::size_t>(light)]) != 0.0f) return true;
+            const int t = pass.variant.technique[static_cast<std::size_t>(i)];
+            if (t == SG_TECH_SDF) return true;
+            if (t != SG_TECH_NONE && t != SG_TECH_HARD) ++filtered;
+        }
+    }
+    return filtered >= 2;
+}
+
+ScreenStage::ScreenStage() {
+    GLuint vao = 0;
+    gl.CreateVertexArrays(1, &vao);
+    empty_ = gpu::VertexArray(vao);
+}
+
+std::int64_t ScreenStage::bytesFor(int width, int height) {
+    const std::int64_t pixels = std::int64_t{width} * height;
+    // Position, normals, albedo, specular RGBA32F; two RGBA8 layers at full, half and quarter size.
+    return pixels * (4 * 16 + 2 * 4) + (pixels / 4 + pixels / 16) * 2 * 4;
+}
+
+void ScreenStage::ensure(int width, int height, GLuint depthBuffer) {
+    if (surfaces_ && width_ == width && height_ == height) {
+        gl.NamedFramebufferTexture(surfaces_.get(), GL_DEPTH_ATTACHMENT, depthBuffer, 0);
+        return;
+    }
+    width_ = width;
+    height_ = height;
+    stage_ = {};
+    stageDepth_ = {};
+    surfaces_ = gpu::makeFramebuffer("Main/Surfaces/framebuffer");
+    visibility_ = gpu::makeFramebuffer("Main/ScreenVisibility/framebuffer");
+    // Float targets throughout: the shadow lookups compare depths on the receiver's plane, which
+    // half floats would move by more than the automatic bias (0.05 texel).
+    position_ = makeTarget("Main/Surfaces/position", GL_RGBA32F, width, height);
+    normals_ = makeTarget("Main/Surfaces/normals", GL_RGBA32F, width, height);
+    albedo_ = makeTarget("Main/Surfaces/albedo", GL_RGBA16F, width, height);
+    specular_ = makeTarget("Main/Surfaces/specular", GL_RGBA16F, width, height);
+    full_ = makeTarget("Main/ScreenVisibility/full", GL_RGBA8, width, height, 2);
+    refine_ = makeTarget("Main/ScreenVisibility/refine", GL_DEPTH_COMPONENT32F, width, height);
+    const GLuint fb = surfaces_.get();
+    gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, position_.get(), 0);
+    gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, normals_.get(), 0);
+    gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT2, albedo_.get(), 0);
+    gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT3, specular_.get(), 0);
+    gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, depthBuffer, 0);
+    const std::array<GLenum, 4> buffers{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                                        GL_COLOR_ATTACHMENT3};
+    gl.NamedFramebufferDrawBuffers(fb, 4, buffers.data());
+    if (gl.CheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        throw GlError("screen-space visibility: the surface framebuffer is incomplete");
+    }
+}
+
+void ScreenStage::ensureStageTarget(int divisor) {
+    const auto i = static_cast<std::size_t>(divisorIndex(divisor));
+    if (stage_[i]) return;
+    const int w = reduced(width_, divisor), h = reduced(height_, divisor);
+    stage_[i] = makeTarget("Main/ScreenVisibility/stage" + std::to_string(divisor), GL_RGBA8, w, h, 2);
+    stageDepth_[i] = makeTarget("Main/ScreenVisibility/stageDepth" + std::to_string(divisor), GL_R32F, w, h);
+    // The resolve gathers 2x2 samples: clamped at the border, never filtered.
+    for (const GLuint t : {stage_[i].get(), stageDepth_[i].get()}) {
+        gl.TextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        gl.TextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        gl.TextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl.TextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+}
+
+void ScreenStage::beginSurfaces() {
+    const GLuint fb = surfaces_.get();
+    gl.BindFramebuffer(GL_FRAMEBUFFER, fb);
+    gl.Viewport(0, 0, width_, height_);
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    const float farDepth = 1.0f;
+    gl.DepthMask(GL_TRUE);
+    gl.ClearNamedFramebufferfv(fb, GL_DEPTH, 0, &farDepth);
+    // Only the position target's w (coverage) is read where nothing was drawn.
+    gl.ClearNamedFramebufferfv(fb, GL_COLOR, 0, zero);
+}
+
+ScreenStage::Program& ScreenStage::program(const LitVariant& group, int firstSlot, int divisor, bool resolve,
+                                           bool contact, FrameStats& stats) {
+    const Key key{group, firstSlot, divisor, resolve, contact};
+    auto it = programs_.find(key);
+    if (it != programs_.end()) return it->second;
+    std::vector<std::string> defines{"SG_SLOT_BASE " + std::to_string(firstSlot),
+                                     "SG_VIS_DIVISOR " + std::to_string(divisor), "SG_READS_GBUFFER"};
+    if (resolve) defines.emplace_back("SG_VIS_RESOLVE");
+    if (contact) {
+        defines.emplace_back("SG_VIS_CONTACT");
+        defines.push_back("SG_CONTACT_STEPS " + std::to_string(kContactSteps));
+        defines.push_back("SG_CONTACT_AUTO_TEXELS " + std::to_string(kAutoContactLengthTexels));
+        defines.push_back("SG_CONTACT_AUTO_PIXELS " + std::to_string(kAutoContactLengthPixels));
+    }
+    defines.push_back("SG_VIS_LIGHTS " + std::to_string(group.lights));
+    std::array<gpu::SlotConfig, SG_MAX_MASK_LIGHTS> slots{};
+    for (int i = 0; i < group.lights; ++i) {
+        const auto s = static_cast<std::size_t>(i);
+        slots[s] = {group.type[s], group.technique[s], group.kernel[s]};
+    }
+    gpu::appendSlotGroupDefines(std::span(slots).first(static_cast<std::size_t>(group.lights)), SG_MAX_MASK_LIGHTS,
+                                defines);
+    const unsigned techniques = variantTechniques(group);
+    gpu::appendTechniqueDefines(techniques, defines);
+    std::string label = variantLabel(group);  // "Main/Lit[...]"
+    label = "Main/ScreenVisibility" + label.substr(label.find('[')) + (resolve ? "/resolve" : "") +
+            (contact ? "/contact" : "") + "/" + std::to_string(divisor);
+    Program p;
+    p.program = gpu::buildProgram({label, "fullscreen.vert.glsl", "screen_visibility.frag.glsl", defines, techniques});
+    ++stats.programsCompiled;
+    const GLuint id = p.program.get();
+    p.cameraForward = gl.GetUniformLocation(id, "uCameraForward");
+    p.pixelAngle = gl.GetUniformLocation(id, "uPixelAngle");
+    p.stageLayer = gl.GetUniformLocation(id, "uStageLayer");
+    p.ray00 = gl.GetUniformLocation(id, "uRay00");
+    p.rayDx = gl.GetUniformLocation(id, "uRayDx");
+    p.rayDy = gl.GetUniformLocation(id, "uRayDy");
+    p.contactLength = gl.GetUniformLocation(id, "uContactLength");
+    p.clipFromCs = gl.GetUniformLocation(id, "uClipFromCs");
+    return programs_.emplace(key, std::move(p)).first->second;
+}
+
+void ScreenStage::computeVisibility(const ShadowFrame& frame, const PassLights& pass, ScreenVisibility setting,
+                                    const ScreenRays& rays, FrameStats& stats) {
+    const GLuint fb = visibility_.get();
+    gl.BindFramebuffer(GL_FRAMEBUFFER, fb);
+    gl.Disable(GL_DEPTH_TEST);
+    gl.Disable(GL_BLEND);
+    gl.DepthMask(GL_FALSE);
+    gl.BindVertexArray(empty_.get());
+    gl.BindTextureUnit(SG_UNIT_GBUFFER_POSITION, position_.get());
+    gl.BindTextureUnit(SG_UNIT_GBUFFER_NORMALS, normals_.get());
+    for (const GLuint unit :
+         {SG_UNIT_GBUFFER_POSITION, SG_UNIT_GBUFFER_NORMALS, SG_UNIT_SCREEN_DEPTH, SG_UNIT_SCREEN_VISIBILITY}) {
+        gl.BindSampler(unit, 0);
+    }
+    const PixelRect& b = pass.bounds;
+    gl.Enable(GL_SCISSOR_TEST);
+    for (int first = 0; first < pass.variant.lights; first += 4) {
+        const int count = std::min(4, pass.variant.lights - first);
+        const int layer = first / 4;
+        const LitVariant group = groupVariant(pass.variant, first, count);
+        if (variantTechniques(group) == (1u << SG_TECH_NONE)) continue;  // no shadowed light: read as lit
+        const int d = visibilityDivisor(setting, pass.variant, first, count);
+        glm::vec4 contactLength(0.0f);
+        for (int i = 0; i < count; ++i) {
+            const int light = pass.sceneLight[static_cast<std::size_t>(first + i)];
+            if (light >= 0) contactLength[i] = contactLengthUniform(frame.lights[static_cast<std::size_t>(light)]);
+        }
+        const bool contact = contactLength != glm::vec4(0.0f);
+        auto draw = [&](Program& p, int divisor) {
+            const GLuint id = p.program.get();
+            gl.ProgramUniform4fv(id, p.contactLength, 1, glm::value_ptr(contactLength));
+            gl.ProgramUniformMatrix4fv(id, p.clipFromCs, 1, GL_FALSE, glm::value_ptr(rays.clipFromCs));
+            gl.ProgramUniform3fv(id, p.cameraForward, 1, glm::value_ptr(rays.forward));
+            gl.ProgramUniform1f(id, p.pixelAngle, rays.pixelAngle);
+            gl.ProgramUniform3fv(id, p.ray00, 1, glm::value_ptr(rays.ray00));
+            gl.ProgramUniform3fv(id, p.rayDx, 1, glm::value_ptr(rays.dx));
+            gl.ProgramUniform3fv(id, p.rayDy, 1, glm::value_ptr(rays.dy));
+            gl.ProgramUniform1i(id, p.stageLayer, layer);
+            // The pass's bounds at this resolution, a sample wider so the resolve finds its four.
+            const int pad = divisor > 1 ? 1 : 0;
+            const int x0 = std::max(b.x0 / divisor - pad, 0), y0 = std::max(b.y0 / divisor - pad, 0);
+            const int x1 = std::min(reduced(b.x1, divisor) + pad, reduced(width_, divisor));
+            const int y1 = std::min(reduced(b.y1, divisor) + pad, reduced(height_, divisor));
+            gl.Viewport(0, 0, reduced(width_, divisor), reduced(height_, divisor));
+            gl.Scissor(x0, y0, x1 - x0, y1 - y0);
+            gl.UseProgram(id);
+            gl.DrawArrays(GL_TRIANGLES, 0, 3);
+        };
+        if (d > 1) {
+            ensureStageTarget(d);
+            const GLuint stage = stage_[static_cast<std::size_t>(divisorIndex(d))].get();
+            const GLuint depth = stageDepth_[static_cast<std::size_t>(divisorIndex(d))].get();
+            gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, stage, 0, layer);
+            gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, depth, 0);
+            const std::array<GLenum, 2> both{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+            gl.NamedFramebufferDrawBuffers(fb, 2, both.data());
+            draw(program(group, first, d, false, contact, stats), d);
+            gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, 0, 0);
+            gl.BindTextureUnit(SG_UNIT_SCREEN_VISIBILITY, stage);
+            gl.BindTextureUnit(SG_UNIT_SCREEN_DEPTH, depth);
+        }
+        const GLenum one = GL_COLOR_ATTACHMENT0;
+        gl.NamedFramebufferDrawBuffers(fb, 1, &one);
+        gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, full_.get(), 0, layer);
+        if (d == 1) {
+            draw(program(group, first, 1, false, contact, stats), 1);
+            continue;
+        }
+        // The resolve marks in depth the pixels it cannot upsample; the full-resolution stage
+        // then runs where the depth test (GREATER than the mark, at the triangle's depth 0.5) lets it.
+        gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, refine_.get(), 0);
+        gl.Enable(GL_DEPTH_TEST);
+        gl.DepthMask(GL_TRUE);
+        gl.DepthFunc(GL_ALWAYS);
+        draw(program(group, first, d, true, contact, stats), 1);
+        gl.DepthMask(GL_FALSE);
+        gl.DepthFunc(GL_GREATER);
+        draw(program(group, first, 1, false, contact, stats), 1);
+        gl.DepthFunc(GL_LESS);
+        gl.Disable(GL_DEPTH_TEST);
+        gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, 0, 0);
+    }
+    gl.Disable(GL_SCISSOR_TEST);
+    gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, 0, 0, 0);
+}
+
+void ScreenStage::bindForLighting() const {
+    gl.BindTextureUnit(SG_UNIT_GBUFFER_POSITION, position_.get());
+    gl.BindTextureUnit(SG_UNIT_GBUFFER_NORMALS, normals_.get());
+    gl.BindTextureUnit(SG_UNIT_GBUFFER_ALBEDO, albedo_.get());
+    gl.BindTextureUnit(SG_UNIT_GBUFFER_SPECULAR, specular_.get());
+    gl.BindTextureUnit(SG_UNIT_SCREEN_VISIBILITY, full_.get());
+    for (const GLuint unit : {SG_UNIT_GBUFFER_POSITION, SG_UNIT_GBUFFER_NORMALS, SG_UNIT_GBUFFER_ALBEDO,
+                              SG_UNIT_GBUFFER_SPECULAR, SG_UNIT_SCREEN_VISIBILITY}) {
+        gl.BindSampler(unit, 0);
+    }
+}
+
+}  // namespace shadow::render

@@ -1,0 +1,97 @@
+// The screen-space visibility stage of the renderer (RenderOptions::screenVisibility): the
+// scene drawn once into surface targets (camera-relative position, normals, material), then per
+// lit pass each group of four lights' visibility computed over the screen at the resolution its
+// penumbrae need and brought back to full resolution without crossing geometric edges
+// (shaders/screen_visibility.frag.glsl), then the pass's lights shaded by one full-screen
+// triangle that reads both (lit.frag.glsl with SG_DEFERRED).
+//
+// Why: a soft shadow's penumbra is low-frequency, yet the forward lit pass pays its filter at
+// every fragment of the scene, at a CPU rasteriser's scene rate (small triangles shade partly
+// covered blocks: twice a full-screen pass's cost per pixel, BENCHMARKS.md fragment costs).
+#pragma once
+
+#include "gl/objects.h"
+#include "render/light_packing.h"
+
+#include <shadow/renderer.h>
+#include <shadow/stats.h>
+
+#include <glm/glm.hpp>
+
+#include <array>
+#include <map>
+#include <tuple>
+
+namespace shadow::render {
+
+/// The divisor of the screen resolution at which a group of lights' visibility is computed:
+/// `setting` when it forces one (Full, Half, Quarter); for Auto 1 when every shadowed light of
+/// the group has hard-edged shadows (technique hard, or none), else 2. Pure CPU.
+[[nodiscard]] int visibilityDivisor(ScreenVisibility setting, const LitVariant& variant, int firstSlot, int slots);
+
+/// Whether a frame of `passes` (lights of `frame`) runs the stage under `setting`: never when
+/// Off, always when it forces a resolution; for Auto when a light asks for contact shadows, which
+/// only the stage draws, or when the stage measured faster than forward passes on a CPU
+/// rasteriser (BENCHMARKS.md, screen-space visibility): a light with technique sdf, or two or
+/// more lights whose techniques filter (anything but hard). One PCF or PCSS light alone stays
+/// forward: the surface pass and the full-screen lit pass cost more than its filter saves.
+[[nodiscard]] bool screenStagePays(ScreenVisibility setting, const ShadowFrame& frame,
+                                   const std::vector<PassLights>& passes);
+
+/// The contact march's length of `light` as the stage's shader takes it: metres (> 0), -1 for
+/// the automatic length, 0 without contact shadows or technique.
+[[nodiscard]] float contactLengthUniform(const ShadowLightPlan& light);
+
+/// The camera as the stage's passes see it (camera-relative, world axes).
+struct ScreenRays {
+    glm::vec3 forward{0.0f, 0.0f, -1.0f};  ///< unit view direction
+    float pixelAngle = 0.0f;               ///< a pixel's height per metre of depth
+    /// The ray through pixel centre p at unit depth: ray00 + (p.x + 0.5) dx + (p.y + 0.5) dy.
+    glm::vec3 ray00{0.0f}, dx{0.0f}, dy{0.0f};
+    glm::mat4 clipFromCs{1.0f};  ///< camera-relative world -> clip
+};
+
+/// The stage's targets and programs. Requires a current context with `loadGl` done.
+class ScreenStage {
+public:
+    ScreenStage();
+    /// GPU memory (bytes) of the stage's targets for `width` x `height`.
+    [[nodiscard]] static std::int64_t bytesFor(int width, int height);
+    /// Makes the targets fit `width` x `height`, the surface framebuffer sharing `depthBuffer`.
+    void ensure(int width, int height, GLuint depthBuffer);
+    /// Binds the surface framebuffer and clears it (coverage 0, depth far).
+    void beginSurfaces();
+    /// Runs the visibility of pass `pass` (whose records and shadow resources are bound) into the
+    /// full-resolution visibility array, group by group; leaves the stage's framebuffer bound.
+    /// Contact shadows for the lights of `frame` that ask for them (`Shadow::contactShadows`).
+    void computeVisibility(const ShadowFrame& frame, const PassLights& pass, ScreenVisibility setting,
+                           const ScreenRays& rays, FrameStats& stats);
+    /// Binds the surface targets and the full-resolution visibility for the deferred lit pass.
+    void bindForLighting() const;
+    /// An empty vertex array for full-screen triangles.
+    [[nodiscard]] GLuint emptyVertexArray() const { return empty_.get(); }
+
+private:
+    struct Program {
+        gpu::Program program;
+        GLint cameraForward = -1, pixelAngle = -1, stageLayer = -1, ray00 = -1, rayDx = -1, rayDy = -1;
+        GLint contactLength = -1, clipFromCs = -1;
+    };
+    /// Group slots' configuration, first slot, divisor, resolve, contact shadows.
+    using Key = std::tuple<LitVariant, int, int, bool, bool>;
+    Program& program(const LitVariant& group, int firstSlot, int divisor, bool resolve, bool contact,
+                     FrameStats& stats);
+    void ensureStageTarget(int divisor);
+
+    int width_ = 0, height_ = 0;
+    gpu::Framebuffer surfaces_, visibility_;
+    gpu::Texture position_, normals_, albedo_, specular_;
+    gpu::Texture full_;                       ///< RGBA8 array: slots 0-3, 4-7 of the pass
+    gpu::Texture refine_;                     ///< depth 0 marks the pixels the refine pass recomputes
+    std::array<gpu::Texture, 3> stage_;       ///< reduced-resolution arrays by divisor 2, 4 (index 1, 2)
+    std::array<gpu::Texture, 3> stageDepth_;  ///< their samples' depths along the view (R32F)
+    gpu::VertexArray empty_;
+    std::map<Key, Program> programs_;
+};
+
+}  // namespace shadow::render

@@ -1,0 +1,231 @@
+// Screen-space visibility stage (render/screen_visibility.h): the shadow visibility of up to
+// four lights of a lit pass (slots SG_SLOT_BASE + 0..3, one per channel) at the surfaces the
+// surface pass drew, read back per pixel instead of recomputed per fragment of the scene.
+//
+// Two programs per light configuration:
+// - the stage (SG_VIS_DIVISOR d): one pixel of the target per d x d block of the screen, the
+//   visibility at the block's centre pixel's surface; d = 1 is the visibility at full resolution.
+// - the resolve (SG_VIS_RESOLVE, with SG_VIS_DIVISOR d > 1): back to full resolution. Each pixel
+//   blends the four nearest samples of the stage with bilinear weights, keeping only samples that
+//   lie on its own surface (within a pixel footprint of its triangle's plane, normals within
+//   37 degrees), so a penumbra is never blurred across a geometric edge; a pixel with no such
+//   sample (silhouettes, thin parts) runs its lights' filters itself, at full resolution.
+// Slots are specialised and grouped like the lit passes' (SG_VIS_LIGHTS, SG_PASS_GROUPS,
+// SG_GROUP<g>_*).
+#include "shadow_visibility.glsl"
+#include "screen_gbuffer.glsl"
+
+uniform vec3 uCameraForward;  // unit, world space
+uniform float uPixelAngle;    // 2 tan(fov / 2) / height: a pixel's footprint per metre of depth
+// The camera-relative ray through pixel centre p, scaled to unit depth along the view:
+// uRay00 + (p.x + 0.5) uRayDx + (p.y + 0.5) uRayDy.
+uniform vec3 uRay00, uRayDx, uRayDy;
+
+#ifdef SG_VIS_CONTACT
+// Per channel: the contact march's length, metres when > 0, automatic when < 0, none when 0 (a
+// light without contact shadows).
+uniform vec4 uContactLength;
+uniform mat4 uClipFromCs;  // camera-relative world -> clip
+#ifndef SG_CONTACT_THICKNESS
+#define SG_CONTACT_THICKNESS 0.25
+#endif
+#endif
+
+#ifdef SG_VIS_RESOLVE
+// The stage's visibility (a layer per group) and its samples' depths along the view, with
+// clamp-to-edge addressing for gathers.
+layout(binding = SG_UNIT_SCREEN_VISIBILITY) uniform sampler2DArray uStageVisibility;
+// Kept samples differing by more than this send a pixel to the refine pass.
+#define SG_VIS_REFINE_SPREAD 0.25
+layout(binding = SG_UNIT_SCREEN_DEPTH) uniform sampler2D uStageDepth;
+uniform int uStageLayer;
+layout(location = 0) out vec4 outVisibility;
+#else
+layout(location = 0) out vec4 outVisibility;
+layout(location = 1) out float outDepth;  // the sample's depth along the view (0: no receiver)
+#endif
+
+// Light `slot` of the group, of group g (as lit.frag.glsl's SG_SHADE_LIGHT), at pass slot
+// SG_SLOT_BASE + slot.
+#define SG_VIS_LIGHT(g, slot)                                                                          \
+    {                                                                                                  \
+        sg_GpuLight L = sg_slotLight(SG_SLOT_BASE + slot, SG_GROUP##g##_TYPE, SG_GROUP##g##_TECH,       \
+                                     SG_GROUP##g##_KERNEL);                                            \
+        if (SG_GROUP##g##_TECH != SG_TECH_NONE)                                                        \
+            mask[slot] = SG_GROUP##g##_VISIBILITY(SG_SLOT_BASE + slot, L, cs, normal, geoNormal,       \
+                                                  curvature, viewDistance);                            \
+    }
+#define SG_VIS_ONE(g) \
+    if (g < SG_PASS_GROUPS) SG_VIS_LIGHT(g, SG_GROUP##g##_FIRST)
+#define SG_VIS_MANY(g)                                                                                 \
+    if (g < SG_PASS_GROUPS) {                                                                          \
+        const int slots[SG_GROUP##g##_COUNT] = SG_GROUP##g##_SLOTS;                                    \
+        for (int k = 0; k < SG_GROUP##g##_COUNT + sg_runtimeZero(); ++k) SG_VIS_LIGHT(g, slots[k])     \
+    }
+
+#ifdef SG_VIS_CONTACT
+// Screen-space contact shadow: 0 when a surface on screen stands between the receiver at `cs`
+// (triangle normal `geoNormal`, pixel `p`) and its light within `length` metres toward it
+// (`toLight`), else 1. SG_CONTACT_STEPS points along the segment (jittered per pixel), each
+// projected to the screen: it is occluded when it lies behind the tangent plane of the surface
+// drawn there, and past that surface along the view by less than SG_CONTACT_THICKNESS x `length`
+// (the depth a surface is assumed to have: a surface far in front hides the point from the
+// camera, not from the light). The march starts a pixel's footprint off the receiver's plane, and a point
+// above its own plane is never behind it, so flat and gently curved ground casts nothing on
+// itself.
+float sg_contactVisibility(vec3 cs, vec3 geoNormal, vec3 toLight, float length, ivec2 p) {
+    float footprint = max(dot(cs, uCameraForward), 0.0) * uPixelAngle;
+    vec3 n = dot(geoNormal, toLight) < 0.0 ? -geoNormal : geoNormal;
+    vec3 start = cs + n * footprint;
+    vec2 size = vec2(textureSize(sg_gbufferPosition, 0));
+    // Interleaved gradient noise: a different start on each pixel of a 4x4 block.
+    float jitter = fract(52.9829189 * fract(dot(vec2(p), vec2(0.06711056, 0.00583715))));
+    float v = 1.0;
+    float thickness = SG_CONTACT_THICKNESS * length;
+    for (int k = 0; k < SG_CONTACT_STEPS; ++k) {
+        vec3 q = start + toLight * (length * (float(k) + jitter) / float(SG_CONTACT_STEPS));
+        vec4 clip = uClipFromCs * vec4(q, 1.0);
+        vec2 ndc = clip.xy / max(clip.w, 1e-20);
+        ivec2 pixel = ivec2((ndc * 0.5 + 0.5) * size);
+        bool onScreen = clip.w > 0.0 && all(greaterThanEqual(pixel, ivec2(0))) && all(lessThan(pixel, ivec2(size)));
+        pixel = clamp(pixel, ivec2(0), ivec2(size) - 1);
+        vec4 there = texelFetch(sg_gbufferPosition, pixel, 0);
+        vec3 thereNormal = sg_octDecode(texelFetch(sg_gbufferNormals, pixel, 0).zw);
+        // Behind the plane of the surface there, as seen from the camera: its normal turned to face it.
+        vec3 facing = dot(thereNormal, there.xyz) > 0.0 ? -thereNormal : thereNormal;
+        float behind = dot(there.xyz - q, facing);
+        float deeper = dot(q - there.xyz, uCameraForward);  // along the view: how far past it q lies
+        // The receiver's own pixel and its neighbours are its own surface at the screen's
+        // resolution: a march that stays on them resolves nothing the screen can show.
+        bool away = max(abs(pixel.x - p.x), abs(pixel.y - p.y)) > 1;
+        if (onScreen && away && sg_gbufferCovered(there.w) && behind > 0.0 && deeper < thickness) v = 0.0;
+    }
+    return v;
+}
+#endif
+
+// The group's visibility at the surface drawn at full-resolution pixel `p`, whose position
+// target holds `position`.
+vec4 visibilityAt(ivec2 p, vec4 position) {
+    vec4 normals = texelFetch(sg_gbufferNormals, p, 0);
+    vec3 cs = position.xyz;
+    float curvature = sg_gbufferCurvature(position.w);
+    vec3 normal = sg_octDecode(normals.xy);
+    vec3 geoNormal = sg_octDecode(normals.zw);
+    float viewDistance = dot(cs, uCameraForward);
+    vec4 mask = vec4(1.0);
+#if SG_GROUP0_COUNT == 1
+    SG_VIS_ONE(0)
+#else
+    SG_VIS_MANY(0)
+#endif
+#if SG_GROUP1_COUNT == 1
+    SG_VIS_ONE(1)
+#else
+    SG_VIS_MANY(1)
+#endif
+#if SG_GROUP2_COUNT == 1
+    SG_VIS_ONE(2)
+#else
+    SG_VIS_MANY(2)
+#endif
+#if SG_GROUP3_COUNT == 1
+    SG_VIS_ONE(3)
+#else
+    SG_VIS_MANY(3)
+#endif
+#ifdef SG_VIS_CONTACT
+    for (int c = 0; c < SG_VIS_LIGHTS; ++c) {
+        // A loop of one trip or none: a light without contact shadows runs no march.
+        for (int i = 0; i < int(uContactLength[c] != 0.0); ++i) {
+            sg_GpuLight L = sg_lights[SG_SLOT_BASE + c];
+            vec3 toLight = L.type == SG_LIGHT_DIRECTIONAL ? -L.wsDirection : normalize(L.csPosition - cs);
+            // Automatic: the shorter of SG_CONTACT_AUTO_TEXELS of the map's texels here (what its
+            // bias and filter lose) and SG_CONTACT_AUTO_PIXELS pixels (what the screen resolves).
+            float texel = sg_texelMetresAt(L, sg_selectLayer(L, cs, viewDistance), cs);
+            float length = uContactLength[c] > 0.0
+                               ? uContactLength[c]
+                               : min(SG_CONTACT_AUTO_TEXELS * texel, SG_CONTACT_AUTO_PIXELS * max(viewDistance, 0.0) * uPixelAngle);
+            mask[c] = min(mask[c], sg_contactVisibility(cs, geoNormal, toLight, length, p));
+        }
+    }
+#endif
+    return mask;
+}
+
+// The full-resolution pixel whose surface stage sample `q` holds.
+ivec2 stageSource(ivec2 q) {
+    return min(q * SG_VIS_DIVISOR + SG_VIS_DIVISOR / 2, textureSize(sg_gbufferPosition, 0) - 1);
+}
+
+#ifndef SG_VIS_RESOLVE
+void main() {
+    ivec2 src = stageSource(ivec2(gl_FragCoord.xy));
+    vec4 position = texelFetch(sg_gbufferPosition, src, 0);
+    bool receives = sg_gbufferReceives(position.w);
+    // A loop, not an if: a CPU rasteriser skips a loop no pixel of its block enters (background).
+    vec4 v = vec4(1.0);
+    for (int i = 0; i < int(receives); ++i) v = visibilityAt(src, position);
+    outVisibility = v;
+    outDepth = receives ? dot(position.xyz, uCameraForward) : 0.0;
+}
+#else
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec4 position = texelFetch(sg_gbufferPosition, p, 0);
+    bool receives = sg_gbufferReceives(position.w);
+    vec3 geoNormal = sg_octDecode(texelFetch(sg_gbufferNormals, p, 0).zw);
+    // How far off this pixel's plane a sample of the same surface may lie: a stage sample is up
+    // to 1.5 blocks away, and a curved surface leaves its tangent plane by about that much.
+    float footprint = max(dot(position.xyz, uCameraForward), 0.0) * uPixelAngle;
+    float tolerance = 1.5 * float(SG_VIS_DIVISOR) * footprint;
+    float planeOffset = dot(position.xyz, geoNormal);
+    vec2 stageSize = vec2(textureSize(uStageDepth, 0));
+    // Samples sit at block centres q * d + d / 2: the four around p, p's place between them, and
+    // their 2x2 gathered at the corner they share (texels (base + 1) / size; gather order
+    // (0,1), (1,1), (1,0), (0,0)).
+    ivec2 base = ivec2(floor((vec2(p) - float(SG_VIS_DIVISOR / 2)) / float(SG_VIS_DIVISOR)));
+    vec2 t = (vec2(p) - vec2(base * SG_VIS_DIVISOR + SG_VIS_DIVISOR / 2)) / float(SG_VIS_DIVISOR);
+    vec2 corner = vec2(base + 1) / stageSize;
+    vec4 depths = textureGather(uStageDepth, corner, 0);
+    const ivec2 offsets[4] = ivec2[](ivec2(0, 1), ivec2(1, 1), ivec2(1, 0), ivec2(0, 0));
+    vec4 weights;
+    for (int k = 0; k < 4; ++k) {
+        // The sample's point from its depth along its pixel's ray; kept when on p's plane.
+        ivec2 src = stageSource(clamp(base + offsets[k], ivec2(0), ivec2(stageSize) - 1));
+        vec3 ray = uRay00 + (float(src.x) + 0.5) * uRayDx + (float(src.y) + 0.5) * uRayDy;
+        bool same = depths[k] > 0.0 && abs(depths[k] * dot(ray, geoNormal) - planeOffset) <= tolerance;
+        float w = (offsets[k].x == 1 ? t.x : 1.0 - t.x) * (offsets[k].y == 1 ? t.y : 1.0 - t.y);
+        weights[k] = same ? max(w, 1e-4) : 0.0;
+    }
+    float weight = weights.x + weights.y + weights.z + weights.w;
+    vec4 v = vec4(1.0);
+    vec4 w = weights / max(weight, 1e-30);
+    bvec4 kept = greaterThan(weights, vec4(0.0));
+    float spread = 0.0;  // the largest disagreement of the kept samples, over the lights
+    vec3 at = vec3(corner, float(uStageLayer));
+#define SG_VIS_CHANNEL(c)                                                                     \
+    {                                                                                         \
+        vec4 g = textureGather(uStageVisibility, at, c);                                      \
+        vec4 hi = mix(vec4(0.0), g, kept), lo = mix(vec4(1.0), g, kept);                      \
+        v[c] = dot(w, g);                                                                     \
+        spread = max(spread, max(max(hi.x, hi.y), max(hi.z, hi.w)) - min(min(lo.x, lo.y), min(lo.z, lo.w))); \
+    }
+    SG_VIS_CHANNEL(0)
+#if SG_VIS_LIGHTS > 1
+    SG_VIS_CHANNEL(1)
+#endif
+#if SG_VIS_LIGHTS > 2
+    SG_VIS_CHANNEL(2)
+#endif
+#if SG_VIS_LIGHTS > 3
+    SG_VIS_CHANNEL(3)
+#endif
+    // Where no sample lies on this surface, or the kept ones disagree (an edge sharper than the
+    // stage's blocks: a contact shadow, a hard shadow's edge), the refine pass recomputes the
+    // pixel at full resolution: depth 0 marks it for that pass's depth test, which skips whole
+    // blocks without one (the filters' code then costs nothing where it does not run).
+    gl_FragDepth = receives && (weight == 0.0 || spread > SG_VIS_REFINE_SPREAD) ? 0.0 : 1.0;
+    outVisibility = receives ? v : vec4(1.0);
+}
+#endif
