@@ -26,11 +26,13 @@
 namespace shadow {
 namespace {
 
-/// Texture units and uniform-buffer binding points checked: every one the engine binds, and one
-/// beyond.
+/// Texture units checked: the first 32 (every one the engine binds, up to the screen-space
+/// visibility stage's SG_UNIT_SCREEN_VISIBILITY; as many as GlState holds). Uniform-buffer
+/// binding points: every one the engine binds, and one beyond.
 std::vector<GLint> unitsChecked() {
+    static_assert(SG_UNIT_SCREEN_VISIBILITY < 32);
     std::vector<GLint> units;
-    for (GLint i = 0; i <= SG_UNIT_MASK_NORMAL + 1; ++i) units.push_back(i);
+    for (GLint i = 0; i < 32; ++i) units.push_back(i);
     return units;
 }
 const std::vector<GLint> kBindingsChecked{0, 1, 2, 3};
@@ -197,6 +199,9 @@ struct HostObjects {
         bindOn(SG_UNIT_SHADOW_MINMAX + 1, GL_TEXTURE_2D_ARRAY, array);
         bindOn(SG_UNIT_MASK_DEPTH, GL_TEXTURE_CUBE_MAP, cube);
         bindOn(SG_UNIT_MASK_NORMAL, GL_TEXTURE_2D, flat);
+        bindOn(SG_UNIT_GBUFFER_ALBEDO, GL_TEXTURE_CUBE_MAP, cube);
+        bindOn(SG_UNIT_SCREEN_VISIBILITY, GL_TEXTURE_2D_ARRAY, array);
+        gl.BindSampler(SG_UNIT_SCREEN_VISIBILITY, samplers[1]);
         gl.BindSampler(0, samplers[0]);
         gl.BindSampler(SG_UNIT_SHADOW_DEPTH, samplers[1]);
         gl.BindSampler(SG_UNIT_MASK_DEPTH, samplers[2]);
@@ -351,6 +356,21 @@ TEST_F(HostStateTest, EveryPublicCallLeavesTheHostStateAsItFoundIt) {
         [&] {
             stats.reset();
             renderer.render(scene.world, runner.lastCamera(), shadows, options, stats);
+        },
+        frameWarnings);
+    // The screen-space visibility stage: its surface, visibility, resolve, refine and deferred
+    // lit passes (two groups of lights, contact shadows) put the host's state back too.
+    scene.world.view<Shadow>().each([](Entity, Shadow& s) { s.contactShadows = true; });
+    shadows.prepare(scene.world, runner.lastCamera(), scene.lights);
+    RenderOptions screen = options;
+    screen.screenVisibility = ScreenVisibility::Half;
+    stats.reset();
+    renderer.render(scene.world, runner.lastCamera(), shadows, screen, stats);  // its programs built
+    checkCall(
+        host, "Renderer::render",
+        [&] {
+            stats.reset();
+            renderer.render(scene.world, runner.lastCamera(), shadows, screen, stats);
         },
         frameWarnings);
     FrameImages images;
