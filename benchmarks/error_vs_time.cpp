@@ -47,19 +47,25 @@ struct Config {
     /// PCF and VSM: the filter radius (m) set on every light, or kAutomatic to leave each light's
     /// own (the default: 1.5 texels).
     float pcfRadius = kAutomatic;
+    /// Where the renderer computes visibility: forward (Off) or the screen-space stage at a
+    /// forced resolution (Full, Half, Quarter).
+    ScreenVisibility screen = ScreenVisibility::Off;
 
-    /// The series of the chart it belongs to: its technique, and the depth mode when not nearest
-    /// (the field's resolution for sdf).
+    /// The series of the chart it belongs to: its technique, the depth mode when not nearest (the
+    /// field's resolution for sdf), and the screen-space stage's resolution when it runs.
     [[nodiscard]] std::string series() const {
-        if (technique == ShadowTechnique::Sdf) return "sdf-field" + std::to_string(fieldVoxels);
+        const std::string stage = screen == ScreenVisibility::Off ? "" : std::string("-screen");
+        if (technique == ShadowTechnique::Sdf) return "sdf-field" + std::to_string(fieldVoxels) + stage;
         return std::string(techniqueName(technique)) +
-               (depthMode == DepthMode::Nearest ? "" : std::string("-") + depthModeName(depthMode));
+               (depthMode == DepthMode::Nearest ? "" : std::string("-") + depthModeName(depthMode)) + stage;
     }
 
     [[nodiscard]] std::string label() const {
         std::ostringstream s;
+        const std::string stage =
+            screen == ScreenVisibility::Off ? "" : std::string(" screen-") + screenVisibilityName(screen);
         if (technique == ShadowTechnique::Sdf) {
-            s << "sdf field" << fieldVoxels << " steps" << sdfSteps;
+            s << "sdf field" << fieldVoxels << " steps" << sdfSteps << stage;
             return s.str();
         }
         s << techniqueName(technique) << " map" << mapSize;
@@ -76,6 +82,7 @@ struct Config {
         } else if (technique != ShadowTechnique::Hard) {
             s << " " << filterKernelName(kernel);
         }
+        s << stage;
         return s.str();
     }
 };
@@ -114,6 +121,21 @@ std::vector<Config> sweep() {
         for (int steps : {24, 48, 96}) {
             out.push_back(
                 {ShadowTechnique::Sdf, 1024, 1, 1, FilterKernel::Vogel, 0.0f, DepthMode::Nearest, steps, voxels});
+        }
+    }
+    // The screen-space visibility stage (RenderOptions::screenVisibility) at the resolutions it
+    // offers, for the default setting of each filtered technique: what its upsample costs in
+    // error, next to the same setting forward above.
+    for (const ScreenVisibility screen : {ScreenVisibility::Full, ScreenVisibility::Half, ScreenVisibility::Quarter}) {
+        for (const Config base :
+             {Config{ShadowTechnique::Pcf, 1024, 16, 1, FilterKernel::Vogel},
+              Config{ShadowTechnique::Pcss, 1024, 16, 16, FilterKernel::Vogel},
+              Config{ShadowTechnique::Vssm, 1024, 1, 1, FilterKernel::Vogel},
+              Config{ShadowTechnique::MsmSoft, 1024, 1, 1, FilterKernel::Vogel},
+              Config{ShadowTechnique::Sdf, 1024, 1, 1, FilterKernel::Vogel, 0.0f, DepthMode::Nearest, 48, 64}}) {
+            Config c = base;
+            c.screen = screen;
+            out.push_back(c);
         }
     }
     return out;
@@ -163,6 +185,7 @@ Result<Row> measure(const std::string& spec, const Config& config, const Options
     RenderOptions options;
     options.width = width;
     options.height = height;
+    options.screenVisibility = config.screen;
     std::vector<double> frame, shadow, main;
     for (int f = 0; f <= o.frames; ++f) {
         const FrameStats s = runner.runFrame(scene, 0.0, camera, options);

@@ -54,7 +54,11 @@ second-depth maps (`depthMode` midpoint: each layer drawn twice, the mean of the
 surfaces stored) with zero constant and slope bias; rows `sdf fieldN stepsM` the distance-field
 march through fields of N voxels along the edge (`ShadowLimits::distanceFieldVoxels` = N³) at M
 steps, which draws no map (its shadow column is 0; its fields are baked once, before the timed
-frames).
+frames). Rows ending `screen-full`, `screen-half` and `screen-quarter` run the same setting
+through the renderer's screen-space visibility stage (`--screen-visibility`): the visibility
+computed over the screen at that resolution, upsampled along surfaces and refined at full
+resolution where the samples disagree; their main column includes the stage's surface pass
+and full-screen lit pass, and their error is the upsample's as well as the technique's.
 Every configuration of a scene draws the same depth layers, so no technique's frame can be shorter
 than the scene's fastest frame of all configurations (a hard shadow from the smallest map): the
 last column, textbook time over that frame, bounds the speed-up any filter could show.

@@ -131,6 +131,11 @@ void applyDepthMode(Shadow& s, DepthMode mode) {
     if (mode != DepthMode::Nearest) s.constantBias = s.slopeBias = 0.0f;
 }
 
+Result<ScreenVisibility> parseScreenVisibilitySetting(const std::string& name) {
+    if (const auto v = parseScreenVisibility(name)) return *v;
+    return Error{ErrorCode::InvalidArgument, "unknown setting '" + name + "' (known: off, auto, full, half, quarter)"};
+}
+
 Result<ShadowTechnique> parseTechnique(const std::string& name) {
     if (const auto t = techniqueFromName(name)) return *t;
     return Error{ErrorCode::InvalidArgument, "unknown technique '" + name + "' (known: " + techniqueNameList() + ")"};

@@ -62,6 +62,13 @@ struct Spread {
 /// Parses a technique name; error names the value.
 [[nodiscard]] Result<ShadowTechnique> parseTechnique(const std::string& name);
 
+/// `--screen-visibility`'s help text, and its value parsed (error names the value).
+inline constexpr const char* kScreenVisibilityHelp =
+    "where lights' visibility is computed: auto (the default: the screen-space stage when a light filters its "
+    "shadow or has contact shadows, soft shadows at half resolution, upsampled along surfaces), off (forward: "
+    "every lit fragment runs its lights' filters), or the stage forced at full, half or quarter resolution";
+[[nodiscard]] Result<ScreenVisibility> parseScreenVisibilitySetting(const std::string& name);
+
 /// The range of `--field-voxels`, voxels along a distance field's edge: the cube roots of the
 /// bake's limits (kMinDistanceFieldVoxels, kMaxDistanceFieldVoxels).
 inline constexpr int kMinFieldEdge = 16;

@@ -52,7 +52,7 @@ struct Options {
     int fieldVoxels = 64;                 ///< technique sdf: voxels along each mesh field's edge (cubed: the budget)
     std::optional<float> sdfStartOffset;  ///< absent: each light keeps its own
     std::string shaderCache;
-    std::string screenVisibility = "off";
+    std::string screenVisibility = "auto";
     bool contactShadows = false;    ///< turn every shadowed light's contact shadows on
     std::optional<float> exposure;  ///< absent: from the first frame read back (autoExposure)
 };
@@ -117,11 +117,8 @@ int run(const Options& o) {
         if (!t) return fail(kExitBadInput, "--technique: " + t.error().message);
         technique = *t;
     }
-    const std::optional<ScreenVisibility> screenVisibility = parseScreenVisibility(o.screenVisibility);
-    if (!screenVisibility) {
-        return fail(kExitBadInput, "--screen-visibility: unknown setting '" + o.screenVisibility +
-                                       "' (known: off, auto, full, half, quarter)");
-    }
+    const Result<ScreenVisibility> screenVisibility = samples::parseScreenVisibilitySetting(o.screenVisibility);
+    if (!screenVisibility) return fail(kExitBadInput, "--screen-visibility: " + screenVisibility.error().message);
     std::optional<DepthMode> depthMode;
     if (o.depthMode) {
         depthMode = depthModeFromName(*o.depthMode);
@@ -259,9 +256,7 @@ int main(int argc, char** argv) {
         "technique sdf: voxels along the edge of each mesh's distance field, [16, 256] (default 64: 64^3 voxels)");
     app.add_option("--sdf-start-offset", o.sdfStartOffset,
                    "technique sdf: override every light's sdfStartOffset (m), [0, 1]");
-    app.add_option("--screen-visibility", o.screenVisibility,
-                   "lights' visibility: off (forward, each lit fragment filters), auto (screen-space stage: hard "
-                   "shadows at full resolution, soft ones at half, upsampled along surfaces), full, half, quarter");
+    app.add_option("--screen-visibility", o.screenVisibility, samples::kScreenVisibilityHelp);
     app.add_flag("--contact-shadows", o.contactShadows,
                  "turn on every shadowed light's screen-space contact shadows (drawn by the screen-space "
                  "visibility stage: with --screen-visibility off they are left out)");

@@ -52,6 +52,7 @@ struct Options {
     std::optional<int> frames;
     double dt = 1.0 / 30.0;
     std::string screenshotDir;
+    std::string screenVisibility = "auto";
 };
 
 int fail(int code, const std::string& message) { return samples::failAs("shadow_viewer", code, message); }
@@ -305,6 +306,8 @@ int run(const Options& o) {
         return fail(kExitBadInput, "--frames: must be in [1, 100000]");
     auto debug = parseDebugView(o.debug);
     if (!debug) return fail(kExitBadInput, "--debug: " + debug.error().message);
+    const Result<ScreenVisibility> screenVisibility = samples::parseScreenVisibilitySetting(o.screenVisibility);
+    if (!screenVisibility) return fail(kExitBadInput, "--screen-visibility: " + screenVisibility.error().message);
     std::optional<ShadowTechnique> technique;
     if (o.technique) {
         auto t = samples::parseTechnique(*o.technique);
@@ -351,6 +354,7 @@ int run(const Options& o) {
     if (technique) app.state.scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.technique = *technique; });
     app.state.options.debugView = *debug;
     app.state.options.debugLight = o.debugLight;
+    app.state.options.screenVisibility = *screenVisibility;
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -383,6 +387,7 @@ int main(int argc, char** argv) {
     app.add_option("--technique", o.technique, "override every shadowed light: " + techniqueNameList());
     app.add_option("--debug", o.debug, "debug view: none|cascade|blocker|penumbra|visibility|steps|closest");
     app.add_option("--debug-light", o.debugLight, "scene light index the debug view shows");
+    app.add_option("--screen-visibility", o.screenVisibility, samples::kScreenVisibilityHelp);
     auto* script = app.add_option("--script", o.script, "run this script (docs/viewer.md) and exit");
     auto* frames = app.add_option("--frames", o.frames, "render N frames from --time, then exit");
     app.add_option("--dt", o.dt, "time step between the frames of --frames (s)");

@@ -107,6 +107,17 @@ void drawViewSection(ViewerState& state) {
         ImGui::EndCombo();
     }
     if (view != DebugView::None && lightCombo("debug light", state, state.options.debugLight)) state.dirty = true;
+    ScreenVisibility& screen = state.options.screenVisibility;
+    if (ImGui::BeginCombo("screen visibility", screenVisibilityName(screen))) {
+        for (const ScreenVisibility v : {ScreenVisibility::Auto, ScreenVisibility::Off, ScreenVisibility::Full,
+                                         ScreenVisibility::Half, ScreenVisibility::Quarter}) {
+            if (ImGui::Selectable(screenVisibilityName(v), v == screen)) {
+                screen = v;
+                state.dirty = true;
+            }
+        }
+        ImGui::EndCombo();
+    }
     ShadowMapView& map = state.mapView;
     if (ImGui::Checkbox("show a shadow map", &map.shown)) map.stale = true;
     if (map.shown) {

@@ -82,6 +82,7 @@ std::vector<std::string> variantDefines(const LitVariant& v) {
     if (v.deferred) {
         defines.emplace_back("SG_DEFERRED");
         defines.emplace_back("SG_READS_GBUFFER");
+        defines.emplace_back("SG_FULLSCREEN_FAR");  // depth-tested: only the surfaces' pixels run
     } else {
         gpu::appendTechniqueDefines(variantTechniques(v), defines);
     }

@@ -308,7 +308,10 @@ void Renderer::Impl::screenLitPass(const MainCamera& mc, std::size_t index, cons
     gl.Viewport(0, 0, options.width, options.height);
     if (index == 0 || options.aovs) targets.bindPass(static_cast<int>(index));
     screen->bindForLighting();
-    gl.Disable(GL_DEPTH_TEST);
+    // Only the pixels the surface pass drew (GREATER than its depth, at the far plane): the
+    // background keeps the targets' clear values, as forward leaves it.
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_GREATER);
     gl.DepthMask(GL_FALSE);
     if (index > 0) {
         gl.Enablei(GL_BLEND, 0);

@@ -74,17 +74,15 @@ float contactLengthUniform(const ShadowLightPlan& light) {
 bool screenStagePays(ScreenVisibility setting, const ShadowFrame& frame, const std::vector<PassLights>& passes) {
     if (setting == ScreenVisibility::Off) return false;
     if (setting != ScreenVisibility::Auto) return true;
-    int filtered = 0;
     for (const PassLights& pass : passes) {
         for (int i = 0; i < pass.variant.lights; ++i) {
             const int light = pass.sceneLight[static_cast<std::size_t>(i)];
             if (light >= 0 && contactLengthUniform(frame.lights[static_cast<std::size_t>(light)]) != 0.0f) return true;
             const int t = pass.variant.technique[static_cast<std::size_t>(i)];
-            if (t == SG_TECH_SDF) return true;
-            if (t != SG_TECH_NONE && t != SG_TECH_HARD) ++filtered;
+            if (t != SG_TECH_NONE && t != SG_TECH_HARD) return true;
         }
     }
-    return filtered >= 2;
+    return false;
 }
 
 ScreenStage::ScreenStage() {
@@ -101,11 +99,13 @@ std::int64_t ScreenStage::bytesFor(int width, int height) {
 
 void ScreenStage::ensure(int width, int height, GLuint depthBuffer) {
     if (surfaces_ && width_ == width && height_ == height) {
+        depthBuffer_ = depthBuffer;
         gl.NamedFramebufferTexture(surfaces_.get(), GL_DEPTH_ATTACHMENT, depthBuffer, 0);
         return;
     }
     width_ = width;
     height_ = height;
+    depthBuffer_ = depthBuffer;
     stage_ = {};
     stageDepth_ = {};
     surfaces_ = gpu::makeFramebuffer("Main/Surfaces/framebuffer");
@@ -167,6 +167,8 @@ ScreenStage::Program& ScreenStage::program(const LitVariant& group, int firstSlo
     std::vector<std::string> defines{"SG_SLOT_BASE " + std::to_string(firstSlot),
                                      "SG_VIS_DIVISOR " + std::to_string(divisor), "SG_READS_GBUFFER"};
     if (resolve) defines.emplace_back("SG_VIS_RESOLVE");
+    // At full resolution (the stage, or the refine after a resolve) it runs depth-tested.
+    if (divisor == 1) defines.emplace_back("SG_FULLSCREEN_FAR");
     if (contact) {
         defines.emplace_back("SG_VIS_CONTACT");
         defines.push_back("SG_CONTACT_STEPS " + std::to_string(kContactSteps));
@@ -266,11 +268,19 @@ void ScreenStage::computeVisibility(const ShadowFrame& frame, const PassLights& 
         gl.NamedFramebufferDrawBuffers(fb, 1, &one);
         gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, full_.get(), 0, layer);
         if (d == 1) {
+            // Only where the surface pass drew (GREATER than its depth, at the far plane).
+            gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, depthBuffer_, 0);
+            gl.Enable(GL_DEPTH_TEST);
+            gl.DepthFunc(GL_GREATER);
             draw(program(group, first, 1, false, contact, stats), 1);
+            gl.DepthFunc(GL_LESS);
+            gl.Disable(GL_DEPTH_TEST);
+            gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, 0, 0);
             continue;
         }
-        // The resolve marks in depth the pixels it cannot upsample; the full-resolution stage
-        // then runs where the depth test (GREATER than the mark, at the triangle's depth 0.5) lets it.
+        // The resolve marks in depth the pixels it cannot upsample (0; 1 elsewhere); the
+        // full-resolution stage then runs where the depth test (GREATER than the mark, at the far
+        // plane) lets it.
         gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, refine_.get(), 0);
         gl.Enable(GL_DEPTH_TEST);
         gl.DepthMask(GL_TRUE);
