@@ -105,7 +105,7 @@ struct FrameImages {
 
 /// The forward renderer. Requires a current OpenGL 4.5 context with `loadGl` done.
 /// `render` and `readback` put back the GL state they change (as `ShadowSystem::render` does;
-/// here also every texture target of units 0-23 and 26-28 with their samplers, uniform-buffer
+/// here also every texture target of units 0-31 it binds (0-28, and the screen-space stage's 29-31) with their samplers, uniform-buffer
 /// bindings 0-2 and the joint matrices' storage binding 3) and report an error the host left pending as a `HostGlError` warning instead of throwing
 /// it; the constructor and `present`, which have no `FrameStats`, keep theirs in `warnings()`.
 class Renderer {
