@@ -2,6 +2,7 @@
 // the coverage flags and the octahedral normal encoding (render/screen_visibility.h).
 #ifndef SG_SCREEN_GBUFFER
 #define SG_SCREEN_GBUFFER
+#include "shared_constants.h"
 
 // The position target's w: 0 where nothing was drawn, 1 + curvature (1/m) on a surface that
 // receives shadows, -(1 + curvature) on one that does not.

@@ -163,15 +163,10 @@ void main() {
     ivec2 src = stageSource(ivec2(gl_FragCoord.xy));
     vec4 position = texelFetch(sg_gbufferPosition, src, 0);
     bool receives = sg_gbufferReceives(position.w);
-#if SG_VIS_DIVISOR == 1
-    // Full resolution: depth-tested against the scene's depth (SG_FULLSCREEN_FAR), so only
-    // pixels with a surface run, straight-line.
+    // Depth-tested (SG_FULLSCREEN_FAR, GREATER) against the scene's depth at full resolution, or
+    // against the coverage at this one (screen_coverage.frag.glsl): blocks without a surface
+    // are skipped before they run, the others run straight-line.
     vec4 v = receives ? visibilityAt(src, position) : vec4(1.0);
-#else
-    // A loop, not an if: a CPU rasteriser skips a loop no pixel of its block enters (background).
-    vec4 v = vec4(1.0);
-    for (int i = 0; i < int(receives); ++i) v = visibilityAt(src, position);
-#endif
     outVisibility = v;
     outDepth = receives ? dot(position.xyz, uCameraForward) : 0.0;
 }

@@ -148,7 +148,7 @@ struct Renderer::Impl {
     void screenLitPass(const MainCamera& mc, std::size_t index, const RenderOptions& options);
     /// The stage's visibility of pass `index`'s lights.
     void screenVisibilityPass(const MainCamera& mc, std::size_t index, const ShadowMaps& maps,
-                              const RenderOptions& options, FrameStats& stats);
+                              const RenderOptions& options, FrameStats& stats, gpu::PassTimer* timer);
 };
 
 Renderer::Impl::Impl() : softwareRenderer(queryGlInfo().softwareRenderer), timer(softwareRenderer) {
@@ -292,12 +292,12 @@ void Renderer::Impl::surfacePass(const World& world, const CameraView& cam, cons
 }
 
 void Renderer::Impl::screenVisibilityPass(const MainCamera& mc, std::size_t index, const ShadowMaps& maps,
-                                          const RenderOptions& options, FrameStats& stats) {
+                                          const RenderOptions& options, FrameStats& stats, gpu::PassTimer* timer) {
     const PassLights& pass = passes[index];
     lightBlocks.bind(SG_BINDING_LIGHTS, index);
     layerBlocks.bind(SG_BINDING_LAYERS, index);
     gpu::bindShadowResources(resources, maps, pass.sceneLight, ShadowBindingPoints{});
-    screen->computeVisibility(*frame, pass, options.screenVisibility, mc.rays, stats);
+    screen->computeVisibility(*frame, pass, options.screenVisibility, mc.rays, stats, timer);
 }
 
 void Renderer::Impl::screenLitPass(const MainCamera& mc, std::size_t index, const RenderOptions& options) {
@@ -474,10 +474,7 @@ void Renderer::render(const World& world, const CameraView& camera, const Shadow
             gpu::ScopedPass timed(timer, "Main/Surfaces");
             r.surfacePass(world, camera, mc, stats);
         }
-        {
-            gpu::ScopedPass timed(timer, "Main/ScreenVisibility");
-            r.screenVisibilityPass(mc, 0, maps, options, stats);
-        }
+        r.screenVisibilityPass(mc, 0, maps, options, stats, &timer);  // times its passes itself
         {
             gpu::ScopedPass timed(timer, "Main/Lit");
             r.screenLitPass(mc, 0, options);
@@ -485,7 +482,7 @@ void Renderer::render(const World& world, const CameraView& camera, const Shadow
         if (r.passes.size() > 1) {
             gpu::ScopedPass timed(timer, "Main/LitMore");
             for (std::size_t pass = 1; pass < r.passes.size(); ++pass) {
-                r.screenVisibilityPass(mc, pass, maps, options, stats);
+                r.screenVisibilityPass(mc, pass, maps, options, stats, nullptr);
                 r.screenLitPass(mc, pass, options);
             }
         }

@@ -108,6 +108,7 @@ void ScreenStage::ensure(int width, int height, GLuint depthBuffer) {
     depthBuffer_ = depthBuffer;
     stage_ = {};
     stageDepth_ = {};
+    coverage_ = {};
     surfaces_ = gpu::makeFramebuffer("Main/Surfaces/framebuffer");
     visibility_ = gpu::makeFramebuffer("Main/ScreenVisibility/framebuffer");
     // Float targets throughout: the shadow lookups compare depths on the receiver's plane, which
@@ -138,6 +139,7 @@ void ScreenStage::ensureStageTarget(int divisor) {
     const int w = reduced(width_, divisor), h = reduced(height_, divisor);
     stage_[i] = makeTarget("Main/ScreenVisibility/stage" + std::to_string(divisor), GL_RGBA8, w, h, 2);
     stageDepth_[i] = makeTarget("Main/ScreenVisibility/stageDepth" + std::to_string(divisor), GL_R32F, w, h);
+    coverage_[i] = makeTarget("Main/ScreenVisibility/coverage" + std::to_string(divisor), GL_DEPTH_COMPONENT32F, w, h);
     // The resolve gathers 2x2 samples: clamped at the border, never filtered.
     for (const GLuint t : {stage_[i].get(), stageDepth_[i].get()}) {
         gl.TextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -147,7 +149,35 @@ void ScreenStage::ensureStageTarget(int divisor) {
     }
 }
 
+void ScreenStage::attachCoverage(int divisor, FrameStats& stats) {
+    const auto i = static_cast<std::size_t>(divisorIndex(divisor));
+    const GLuint fb = visibility_.get();
+    gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, coverage_[i].get(), 0);
+    if ((coverageDrawn_ & (1u << i)) != 0) return;
+    coverageDrawn_ |= 1u << i;
+    if (!coveragePrograms_[i]) {
+        coveragePrograms_[i] = gpu::buildProgram({"Main/ScreenVisibility/coverage" + std::to_string(divisor),
+                                                  "fullscreen.vert.glsl",
+                                                  "screen_coverage.frag.glsl",
+                                                  {"SG_VIS_DIVISOR " + std::to_string(divisor), "SG_READS_GBUFFER"}});
+        ++stats.programsCompiled;
+    }
+    // Depth only, over the whole target (the scissor is the caller's to set after).
+    const GLenum none = GL_NONE;
+    gl.NamedFramebufferDrawBuffers(fb, 1, &none);
+    gl.Disable(GL_SCISSOR_TEST);
+    gl.Viewport(0, 0, reduced(width_, divisor), reduced(height_, divisor));
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_ALWAYS);
+    gl.DepthMask(GL_TRUE);
+    gl.UseProgram(coveragePrograms_[i].get());
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    gl.DepthMask(GL_FALSE);
+    gl.Enable(GL_SCISSOR_TEST);
+}
+
 void ScreenStage::beginSurfaces() {
+    coverageDrawn_ = 0;
     const GLuint fb = surfaces_.get();
     gl.BindFramebuffer(GL_FRAMEBUFFER, fb);
     gl.Viewport(0, 0, width_, height_);
@@ -167,8 +197,8 @@ ScreenStage::Program& ScreenStage::program(const LitVariant& group, int firstSlo
     std::vector<std::string> defines{"SG_SLOT_BASE " + std::to_string(firstSlot),
                                      "SG_VIS_DIVISOR " + std::to_string(divisor), "SG_READS_GBUFFER"};
     if (resolve) defines.emplace_back("SG_VIS_RESOLVE");
-    // At full resolution (the stage, or the refine after a resolve) it runs depth-tested.
-    if (divisor == 1) defines.emplace_back("SG_FULLSCREEN_FAR");
+    // The stage (at any resolution, and the refine after a resolve) runs depth-tested.
+    if (!resolve) defines.emplace_back("SG_FULLSCREEN_FAR");
     if (contact) {
         defines.emplace_back("SG_VIS_CONTACT");
         defines.push_back("SG_CONTACT_STEPS " + std::to_string(kContactSteps));
@@ -204,7 +234,7 @@ ScreenStage::Program& ScreenStage::program(const LitVariant& group, int firstSlo
 }
 
 void ScreenStage::computeVisibility(const ShadowFrame& frame, const PassLights& pass, ScreenVisibility setting,
-                                    const ScreenRays& rays, FrameStats& stats) {
+                                    const ScreenRays& rays, FrameStats& stats, gpu::PassTimer* timer) {
     const GLuint fb = visibility_.get();
     gl.BindFramebuffer(GL_FRAMEBUFFER, fb);
     gl.Disable(GL_DEPTH_TEST);
@@ -251,16 +281,33 @@ void ScreenStage::computeVisibility(const ShadowFrame& frame, const PassLights& 
             gl.UseProgram(id);
             gl.DrawArrays(GL_TRIANGLES, 0, 3);
         };
+        // Each draw timed on its own when asked (a fence around each on a CPU rasteriser).
+        auto timed = [&](const char* what, auto&& body) {
+            if (timer == nullptr) return body();
+            gpu::ScopedPass scope(*timer, std::string("Main/ScreenVisibility/") + what);
+            body();
+        };
         if (d > 1) {
             ensureStageTarget(d);
             const GLuint stage = stage_[static_cast<std::size_t>(divisorIndex(d))].get();
             const GLuint depth = stageDepth_[static_cast<std::size_t>(divisorIndex(d))].get();
-            gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, stage, 0, layer);
-            gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, depth, 0);
-            const std::array<GLenum, 2> both{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-            gl.NamedFramebufferDrawBuffers(fb, 2, both.data());
-            draw(program(group, first, d, false, contact, stats), d);
+            timed("stage", [&] {
+                attachCoverage(d, stats);
+                gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, stage, 0, layer);
+                gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, depth, 0);
+                const std::array<GLenum, 2> both{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+                gl.NamedFramebufferDrawBuffers(fb, 2, both.data());
+                // Samples the depth test skips read as off every surface in the resolve.
+                const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+                gl.ClearNamedFramebufferfv(fb, GL_COLOR, 1, none);
+                gl.Enable(GL_DEPTH_TEST);
+                gl.DepthFunc(GL_GREATER);
+                draw(program(group, first, d, false, contact, stats), d);
+                gl.DepthFunc(GL_LESS);
+                gl.Disable(GL_DEPTH_TEST);
+            });
             gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, 0, 0);
+            gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, 0, 0);
             gl.BindTextureUnit(SG_UNIT_SCREEN_VISIBILITY, stage);
             gl.BindTextureUnit(SG_UNIT_SCREEN_DEPTH, depth);
         }
@@ -272,7 +319,7 @@ void ScreenStage::computeVisibility(const ShadowFrame& frame, const PassLights& 
             gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, depthBuffer_, 0);
             gl.Enable(GL_DEPTH_TEST);
             gl.DepthFunc(GL_GREATER);
-            draw(program(group, first, 1, false, contact, stats), 1);
+            timed("stage", [&] { draw(program(group, first, 1, false, contact, stats), 1); });
             gl.DepthFunc(GL_LESS);
             gl.Disable(GL_DEPTH_TEST);
             gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, 0, 0);
@@ -285,10 +332,10 @@ void ScreenStage::computeVisibility(const ShadowFrame& frame, const PassLights& 
         gl.Enable(GL_DEPTH_TEST);
         gl.DepthMask(GL_TRUE);
         gl.DepthFunc(GL_ALWAYS);
-        draw(program(group, first, d, true, contact, stats), 1);
+        timed("resolve", [&] { draw(program(group, first, d, true, contact, stats), 1); });
         gl.DepthMask(GL_FALSE);
         gl.DepthFunc(GL_GREATER);
-        draw(program(group, first, 1, false, contact, stats), 1);
+        timed("refine", [&] { draw(program(group, first, 1, false, contact, stats), 1); });
         gl.DepthFunc(GL_LESS);
         gl.Disable(GL_DEPTH_TEST);
         gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, 0, 0);

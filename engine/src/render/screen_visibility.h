@@ -11,6 +11,7 @@
 #pragma once
 
 #include "gl/objects.h"
+#include "gl/pass_timer.h"
 #include "render/light_packing.h"
 
 #include <shadow/renderer.h>
@@ -64,8 +65,10 @@ public:
     /// Runs the visibility of pass `pass` (whose records and shadow resources are bound) into the
     /// full-resolution visibility array, group by group; leaves the stage's framebuffer bound.
     /// Contact shadows for the lights of `frame` that ask for them (`Shadow::contactShadows`).
+    /// With `timer`, each kind of pass is timed on its own: Main/ScreenVisibility/stage, /resolve
+    /// (the upsample) and /refine.
     void computeVisibility(const ShadowFrame& frame, const PassLights& pass, ScreenVisibility setting,
-                           const ScreenRays& rays, FrameStats& stats);
+                           const ScreenRays& rays, FrameStats& stats, gpu::PassTimer* timer);
     /// Binds the surface targets and the full-resolution visibility for the deferred lit pass.
     void bindForLighting() const;
     /// An empty vertex array for full-screen triangles.
@@ -82,6 +85,8 @@ private:
     Program& program(const LitVariant& group, int firstSlot, int divisor, bool resolve, bool contact,
                      FrameStats& stats);
     void ensureStageTarget(int divisor);
+    /// The coverage of the stage at `divisor`, drawn once a frame, attached as the depth buffer.
+    void attachCoverage(int divisor, FrameStats& stats);
 
     int width_ = 0, height_ = 0;
     GLuint depthBuffer_ = 0;  ///< the renderer's, which the surface pass fills
@@ -91,6 +96,9 @@ private:
     gpu::Texture refine_;                     ///< depth 0 marks the pixels the refine pass recomputes
     std::array<gpu::Texture, 3> stage_;       ///< reduced-resolution arrays by divisor 2, 4 (index 1, 2)
     std::array<gpu::Texture, 3> stageDepth_;  ///< their samples' depths along the view (R32F)
+    std::array<gpu::Texture, 3> coverage_;    ///< their depth buffers: 0 where a sample receives
+    std::array<gpu::Program, 3> coveragePrograms_;
+    unsigned coverageDrawn_ = 0;  ///< bit per divisor index: its coverage is this frame's
     gpu::VertexArray empty_;
     std::map<Key, Program> programs_;
 };
