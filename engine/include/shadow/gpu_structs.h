@@ -3,6 +3,10 @@
 // defines SG_STRUCT, SG_END_STRUCT, SG_VEC3, SG_MAT4, SG_FLOAT and SG_INT first: GLSL as the
 // plain GLSL types, C++ as glm types with std430 alignment (see engine/include/shadow/gpu_records.h).
 // Every vec3 is followed by one scalar so that the layout has no hidden padding.
+#ifndef SG_STRUCT
+#error \
+    "shadow/gpu_structs.h lists the GPU records through macros: include shadow/gpu_records.h (C++) or shadow_types.glsl (GLSL)"
+#endif
 
 // One light of a pass. Positions are camera-relative world space (cs = world - camera).
 SG_STRUCT(GpuLight)
