@@ -169,16 +169,21 @@ TEST(ScreenVisibility, AutoRunsTheStageWhereItMeasuredFaster) {
         return p;
     };
     const std::vector<PassLights> onePcss{passWith({SG_TECH_PCSS})};
+    const std::vector<PassLights> onePcf{passWith({SG_TECH_PCF, SG_TECH_HARD})};
     const std::vector<PassLights> twoSoft{passWith({SG_TECH_PCF, SG_TECH_HARD, SG_TECH_PCSS})};
     const std::vector<PassLights> sdf{passWith({SG_TECH_SDF})};
     const std::vector<PassLights> hard{passWith({SG_TECH_HARD, SG_TECH_HARD, SG_TECH_HARD})};
     const ShadowFrame frame;
-    EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Auto, frame, onePcss));
-    EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Auto, frame, twoSoft));
-    EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Auto, frame, sdf));
-    EXPECT_FALSE(render::screenStagePays(ScreenVisibility::Auto, frame, hard));
-    EXPECT_FALSE(render::screenStagePays(ScreenVisibility::Off, frame, sdf));
-    EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Half, frame, onePcss));
+    EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Auto, frame, onePcss, 720));
+    EXPECT_FALSE(render::screenStagePays(ScreenVisibility::Auto, frame, onePcf, 720));
+    EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Auto, frame, twoSoft, 720));
+    EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Auto, frame, sdf, 720));
+    EXPECT_FALSE(render::screenStagePays(ScreenVisibility::Auto, frame, hard, 720));
+    // Small images stay forward: their penumbrae are too few pixels wide for half resolution.
+    EXPECT_FALSE(render::screenStagePays(ScreenVisibility::Auto, frame, sdf, render::kMinAutoStageHeight - 1));
+    EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Half, frame, sdf, 90));
+    EXPECT_FALSE(render::screenStagePays(ScreenVisibility::Off, frame, sdf, 720));
+    EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Half, frame, onePcss, 720));
     // A light with contact shadows, which only the stage draws.
     ShadowFrame contact;
     contact.lights.resize(1);
@@ -187,16 +192,17 @@ TEST(ScreenVisibility, AutoRunsTheStageWhereItMeasuredFaster) {
     contact.lights[0].layers.resize(1);
     std::vector<PassLights> oneHard{passWith({SG_TECH_HARD})};
     oneHard[0].sceneLight[0] = 0;
-    EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Auto, contact, oneHard));
+    EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Auto, contact, oneHard, 240));
     EXPECT_LT(render::contactLengthUniform(contact.lights[0]), 0.0f);  // automatic: pixels
     contact.lights[0].settings.contactLength = 0.25f;
     EXPECT_EQ(render::contactLengthUniform(contact.lights[0]), 0.25f);
     contact.lights[0].settings.contactShadows = false;
-    EXPECT_FALSE(render::screenStagePays(ScreenVisibility::Auto, contact, oneHard));
+    EXPECT_FALSE(render::screenStagePays(ScreenVisibility::Auto, contact, oneHard, 240));
     // Auto's resolution: full for hard edges, half for filtered ones.
-    EXPECT_EQ(render::visibilityDivisor(ScreenVisibility::Auto, twoSoft[0].variant, 1, 1), 1);
-    EXPECT_EQ(render::visibilityDivisor(ScreenVisibility::Auto, twoSoft[0].variant, 0, 3), 2);
-    EXPECT_EQ(render::visibilityDivisor(ScreenVisibility::Quarter, hard[0].variant, 0, 3), 4);
+    EXPECT_EQ(render::visibilityDivisor(ScreenVisibility::Auto, twoSoft[0].variant, 1, 1, 720), 1);
+    EXPECT_EQ(render::visibilityDivisor(ScreenVisibility::Auto, twoSoft[0].variant, 0, 3, 720), 2);
+    EXPECT_EQ(render::visibilityDivisor(ScreenVisibility::Quarter, hard[0].variant, 0, 3, 90), 4);
+    EXPECT_EQ(render::visibilityDivisor(ScreenVisibility::Auto, twoSoft[0].variant, 0, 3, 240), 1);
 }
 
 /// Ground pixels in the cube's true shadow, and how many of them and of the lit ones (not next

@@ -149,6 +149,11 @@ TEST(ShadowViewerScript, BadLineIsOneMessageNamingItExitTwoNothingWritten) {
         test::runProgram(SHADOW_BIN_DIR "/shadow_viewer", "builtin:default --size 64by36 --frames 1", tmp / "size.log");
     EXPECT_EQ(badSize.exitCode, kExitBadInput) << badSize.output;
     EXPECT_NE(badSize.output.find("--size '64by36'"), std::string::npos) << badSize.output;
+    const test::ProcessRun badStage = test::runProgram(
+        SHADOW_BIN_DIR "/shadow_viewer", "builtin:default --screen-visibility sometimes --frames 1", tmp / "stage.log");
+    EXPECT_EQ(badStage.exitCode, kExitBadInput) << badStage.output;
+    EXPECT_NE(badStage.output.find("--screen-visibility: unknown setting 'sometimes'"), std::string::npos)
+        << badStage.output;
 }
 
 }  // namespace

@@ -444,8 +444,8 @@ void Renderer::render(const World& world, const CameraView& camera, const Shadow
     render::packLights(frame, camera.wsPosition, view, r.passes, r.packingOrder);
     // Technique sdf: the field casters' records relative to this camera, which every pass binds.
     if ((frame.techniquesInUse & techniqueBit(ShadowTechnique::Sdf)) != 0) (void)maps.fieldInstances(camera.wsPosition);
-    r.deferred =
-        options.debugView == DebugView::None && render::screenStagePays(options.screenVisibility, frame, r.passes);
+    r.deferred = options.debugView == DebugView::None &&
+                 render::screenStagePays(options.screenVisibility, frame, r.passes, options.height);
     r.frame = &frame;
     r.preparePrograms(options, stats);
     r.uploadPasses();

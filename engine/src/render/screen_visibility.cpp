@@ -50,7 +50,7 @@ LitVariant groupVariant(const LitVariant& pass, int first, int count) {
 
 }  // namespace
 
-int visibilityDivisor(ScreenVisibility setting, const LitVariant& variant, int firstSlot, int slots) {
+int visibilityDivisor(ScreenVisibility setting, const LitVariant& variant, int firstSlot, int slots, int height) {
     switch (setting) {
         case ScreenVisibility::Full: return 1;
         case ScreenVisibility::Half: return 2;
@@ -58,6 +58,7 @@ int visibilityDivisor(ScreenVisibility setting, const LitVariant& variant, int f
         case ScreenVisibility::Off:
         case ScreenVisibility::Auto: break;
     }
+    if (height < kMinAutoStageHeight) return 1;
     for (int i = firstSlot; i < firstSlot + slots; ++i) {
         const int t = variant.technique[static_cast<std::size_t>(i)];
         if (t != SG_TECH_NONE && t != SG_TECH_HARD) return 2;
@@ -71,18 +72,22 @@ float contactLengthUniform(const ShadowLightPlan& light) {
     return isAutomatic(s.contactLength) ? -1.0f : s.contactLength;
 }
 
-bool screenStagePays(ScreenVisibility setting, const ShadowFrame& frame, const std::vector<PassLights>& passes) {
+bool screenStagePays(ScreenVisibility setting, const ShadowFrame& frame, const std::vector<PassLights>& passes,
+                     int height) {
     if (setting == ScreenVisibility::Off) return false;
     if (setting != ScreenVisibility::Auto) return true;
+    const bool wideEnough = height >= kMinAutoStageHeight;
+    int filtered = 0;
     for (const PassLights& pass : passes) {
         for (int i = 0; i < pass.variant.lights; ++i) {
             const int light = pass.sceneLight[static_cast<std::size_t>(i)];
             if (light >= 0 && contactLengthUniform(frame.lights[static_cast<std::size_t>(light)]) != 0.0f) return true;
             const int t = pass.variant.technique[static_cast<std::size_t>(i)];
-            if (t != SG_TECH_NONE && t != SG_TECH_HARD) return true;
+            if (wideEnough && (t == SG_TECH_PCSS || t == SG_TECH_SDF)) return true;
+            if (t != SG_TECH_NONE && t != SG_TECH_HARD) ++filtered;
         }
     }
-    return false;
+    return wideEnough && filtered >= 2;
 }
 
 ScreenStage::ScreenStage() {
@@ -254,7 +259,7 @@ void ScreenStage::computeVisibility(const ShadowFrame& frame, const PassLights& 
         const int layer = first / 4;
         const LitVariant group = groupVariant(pass.variant, first, count);
         if (variantTechniques(group) == (1u << SG_TECH_NONE)) continue;  // no shadowed light: read as lit
-        const int d = visibilityDivisor(setting, pass.variant, first, count);
+        const int d = visibilityDivisor(setting, pass.variant, first, count, height_);
         glm::vec4 contactLength(0.0f);
         for (int i = 0; i < count; ++i) {
             const int light = pass.sceneLight[static_cast<std::size_t>(first + i)];

@@ -25,19 +25,30 @@
 
 namespace shadow::render {
 
+/// Rows below which Auto renders forward: there penumbrae are too few pixels wide for half
+/// resolution. Measured against the truth (BENCHMARKS.md, error against time, rows screen-half):
+/// on builtin:default at 320x240 the upsample added 11 % (PCSS) and 33 % (sdf) to the error; at
+/// 640x360 under 1 %, and on the bunny spots none.
+inline constexpr int kMinAutoStageHeight = 360;
+
 /// The divisor of the screen resolution at which a group of lights' visibility is computed:
 /// `setting` when it forces one (Full, Half, Quarter); for Auto 1 when every shadowed light of
-/// the group has hard-edged shadows (technique hard, or none), else 2. Pure CPU.
-[[nodiscard]] int visibilityDivisor(ScreenVisibility setting, const LitVariant& variant, int firstSlot, int slots);
+/// the group has hard-edged shadows (technique hard, or none) or the image has fewer than
+/// `kMinAutoStageHeight` rows (`height`), else 2. Pure CPU.
+[[nodiscard]] int visibilityDivisor(ScreenVisibility setting, const LitVariant& variant, int firstSlot, int slots,
+                                    int height);
 
 /// Whether a frame of `passes` (lights of `frame`) runs the stage under `setting`: never when
-/// Off, always when it forces a resolution; for Auto when a light asks for contact shadows, which
-/// only the stage draws, or filters its shadow (any technique but hard), whose filter the stage
-/// runs at half resolution (BENCHMARKS.md, screen-space visibility: 1.3-2.2x faster frames on
-/// the sample scenes, within 10 % of forward on a one-light bunny). Hard shadows alone stay
-/// forward: one lookup a pixel costs less than the stage's surface and full-screen passes.
+/// Off, always when it forces a resolution. For Auto, where the stage measured faster than the
+/// forward passes on llvmpipe (BENCHMARKS.md, screen-space visibility): a light with technique
+/// pcss or sdf (their filters are the dearest: sdf 0.37 of forward's frame on the bunny spots,
+/// PCSS 0.52-1.0), or two or more lights that filter (any technique but hard: the sample scenes
+/// 0.52-0.98); and always when a light asks for contact shadows, which only the stage draws.
+/// One PCF, VSM, VSSM or MSM light alone, and hard shadows, stay forward: their lookups cost
+/// less than the stage's surface and full-screen passes (PCF 1.14-1.17 of forward). So does an
+/// image under `kMinAutoStageHeight` rows (`height`), contact shadows aside.
 [[nodiscard]] bool screenStagePays(ScreenVisibility setting, const ShadowFrame& frame,
-                                   const std::vector<PassLights>& passes);
+                                   const std::vector<PassLights>& passes, int height);
 
 /// The contact march's length of `light` as the stage's shader takes it: metres (> 0), -1 for
 /// the automatic length, 0 without contact shadows or technique.
