@@ -20,17 +20,17 @@ SPOT_TECHNIQUES = ["hard", "pcf", "pcss", "vssm", "msm-soft", "sdf"]
 SAMPLE_SCENES = ["courtyard", "contact", "character", "fence", "sunfield"]
 
 
-def run_time(stats):
+def run_time(stats, main_only=False):
     frames = stats["perFrame"][1:] or stats["perFrame"]
-    return statistics.median(f["shadowMs"] + f["mainMs"] for f in frames)
+    return statistics.median(f["mainMs"] + (0.0 if main_only else f["shadowMs"]) for f in frames)
 
 
-def timing(work, scene, technique, mode):
+def timing(work, scene, technique, mode, main_only=False):
     """Median over rounds, and whether the stage ran (its surface pass was timed)."""
     times, staged = [], False
     for path in sorted(glob.glob(f"{work}/time/{scene}_{technique}_{mode}_r*/stats.json")):
         stats = json.load(open(path))
-        times.append(run_time(stats))
+        times.append(run_time(stats, main_only))
         staged = staged or "Main/Surfaces" in stats["timingsMs"]["passes"]
     if not times:
         return None, staged, None
@@ -110,6 +110,16 @@ def main():
         cells += [err(row["error"][m]) for m in MODES]
         out.append("| " + " | ".join(cells) + " |")
     out.append("")
+    ratios = []
+    for scene in SPOT_SCENES:
+        sdf, _, _ = timing(work, scene, "sdf", "auto", main_only=True)
+        pcss, _, _ = timing(work, scene, "pcss", "off", main_only=True)
+        if sdf and pcss:
+            ratios.append(f"{scene} {sdf:.1f} / {pcss:.1f} ms = {sdf / pcss:.2f}x")
+    if ratios:
+        out.append("Main pass alone, `sdf` under `auto` against PCSS forward (median of the rounds): " +
+                   "; ".join(ratios) + ".")
+        out.append("")
     out.append("The sample scenes with their own lights and techniques (1280x720, same run):")
     out.append("")
     out.append("| scene | forward ms | auto ms | auto / forward |")

@@ -28,7 +28,7 @@ namespace shadow::render {
 /// Rows below which Auto renders forward: there penumbrae are too few pixels wide for half
 /// resolution. Measured against the truth (BENCHMARKS.md, error against time, rows screen-half):
 /// on builtin:default at 320x240 the upsample added 11 % (PCSS) and 33 % (sdf) to the error; at
-/// 640x360 under 1 %, and on the bunny spots none.
+/// 640x360 within 1.5 % per light, and on the bunny spots none.
 inline constexpr int kMinAutoStageHeight = 360;
 
 /// The divisor of the screen resolution at which a group of lights' visibility is computed:
