@@ -106,7 +106,7 @@ TEST(LitPrograms, TheCacheBuildsEachVariantOnce) {
     EXPECT_EQ(compiled, 1);
     EXPECT_NE(first.program.get(), 0u);
     EXPECT_GE(first.mesh.clipFromCs, 0) << "the vertex shader's uniforms are found";
-    EXPECT_GE(first.albedo, 0);
+    EXPECT_GE(first.material.albedo, 0);
     LitProgram& again = cache.get(v, compiled);
     EXPECT_EQ(compiled, 1) << "a variant seen before is not built again";
     EXPECT_EQ(&again, &first);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "render/render_test_support.h"
+#include "shadow/truth_test_support.h"
 #include "render/screen_visibility.h"
 
 namespace shadow {
@@ -106,22 +107,12 @@ TEST(ScreenVisibility, HalfResolutionKeepsTheErrorAgainstTheTruth) {
         FrameRunner forward, screen;
         const Rendered a = renderWith(scene, ScreenVisibility::Off, 240, 135, forward);
         const Rendered b = renderWith(scene, ScreenVisibility::Half, 240, 135, screen);
-        reference::ReferenceOptions options;
-        options.width = 240;
-        options.height = 135;
-        options.samples = 64;
-        options.wsPositions = &a.images.position;
-        const Result<reference::ReferenceResult> truth =
-            reference::traceVisibility(scene, forward.lastCamera(), options);
-        ASSERT_TRUE(static_cast<bool>(truth)) << truth.error().message;
-        const Result<VisibilityErrors> ea =
-            compareVisibility(a.images.visibility.at(0), truth->visibility.at(0), &truth->lit.at(0));
-        const Result<VisibilityErrors> eb =
-            compareVisibility(b.images.visibility.at(0), truth->visibility.at(0), &truth->lit.at(0));
-        ASSERT_TRUE(ea && eb);
-        std::printf("[ measured ] %s %s: RMSE forward %.4f, half %.4f\n", c.scene, techniqueName(c.technique), ea->rmse,
-                    eb->rmse);
-        EXPECT_LE(eb->rmse, 1.05 * ea->rmse + 0.002) << c.scene << " " << techniqueName(c.technique);
+        const std::optional<reference::ReferenceResult> truth =
+            test::truthAt(scene, forward.lastCamera(), a.images, 64);
+        ASSERT_TRUE(truth.has_value());
+        const double ea = test::light0Errors(a.images, *truth).rmse, eb = test::light0Errors(b.images, *truth).rmse;
+        std::printf("[ measured ] %s %s: RMSE forward %.4f, half %.4f\n", c.scene, techniqueName(c.technique), ea, eb);
+        EXPECT_LE(eb, 1.05 * ea + 0.002) << c.scene << " " << techniqueName(c.technique);
     }
 }
 
@@ -293,20 +284,13 @@ TEST(ContactShadows, AddNoErrorWhereTheMapHoldsTheShadow) {
         scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.contactShadows = contact; });
         FrameRunner runner;
         const Rendered frame = renderWith(scene, ScreenVisibility::Half, 240, 135, runner);
-        reference::ReferenceOptions options;
-        options.width = 240;
-        options.height = 135;
-        options.samples = 64;
-        options.wsPositions = &frame.images.position;
-        const Result<reference::ReferenceResult> truth =
-            reference::traceVisibility(scene, runner.lastCamera(), options);
-        ASSERT_TRUE(static_cast<bool>(truth)) << truth.error().message;
-        const Result<VisibilityErrors> e =
-            compareVisibility(frame.images.visibility.at(0), truth->visibility.at(0), &truth->lit.at(0));
-        ASSERT_TRUE(static_cast<bool>(e));
-        rmse[contact ? 1 : 0] = e->rmse;
+        const std::optional<reference::ReferenceResult> truth =
+            test::truthAt(scene, runner.lastCamera(), frame.images, 64);
+        ASSERT_TRUE(truth.has_value());
+        const VisibilityErrors e = test::light0Errors(frame.images, *truth);
+        rmse[contact ? 1 : 0] = e.rmse;
         std::printf("[ measured ] bunny-spot pcss, contact %s: RMSE %.4f, acne %.4f %%\n", contact ? "on" : "off",
-                    e->rmse, 100.0 * e->acneFraction);
+                    e.rmse, 100.0 * e.acneFraction);
     }
     EXPECT_LE(rmse[1], 1.05 * rmse[0] + 0.002);
 }

@@ -8,6 +8,7 @@
 #include <shadow/metrics.h>
 #include <shadow/reference.h>
 
+#include <optional>
 #include <vector>
 
 #include "render/render_test_support.h"
@@ -20,6 +21,30 @@ struct AgainstTruth {
     std::vector<Warning> warnings;
 };
 
+/// The ray-traced truth at the pixels of `images` (their world positions, seen by `camera`),
+/// `samples` rays per pixel. A failure to trace fails the test and gives nothing.
+inline std::optional<reference::ReferenceResult> truthAt(Scene& scene, const CameraView& camera,
+                                                         const FrameImages& images, int samples) {
+    reference::ReferenceOptions options;
+    options.width = images.position.width;
+    options.height = images.position.height;
+    options.samples = samples;
+    options.wsPositions = &images.position;
+    Result<reference::ReferenceResult> truth = reference::traceVisibility(scene, camera, options);
+    EXPECT_TRUE(static_cast<bool>(truth)) << (truth ? "" : truth.error().message);
+    if (!truth) return std::nullopt;
+    return std::move(*truth);
+}
+
+/// Light 0's errors in `images` against `truth`, over the truth's lit mask of that light. A
+/// failure to compare fails the test and leaves the errors at their defaults.
+inline VisibilityErrors light0Errors(const FrameImages& images, const reference::ReferenceResult& truth) {
+    const Result<VisibilityErrors> e =
+        compareVisibility(images.visibility.at(0), truth.visibility.at(0), &truth.lit.at(0));
+    EXPECT_TRUE(static_cast<bool>(e)) << (e ? "" : e.error().message);
+    return e ? *e : VisibilityErrors{};
+}
+
 /// Renders one frame of `scene` at `width` x `height` and traces the truth at the same pixels'
 /// positions with `samples` rays per pixel; light 0's errors over the reference's lit mask.
 /// A failure to trace or compare fails the test and leaves the errors at their defaults.
@@ -27,20 +52,10 @@ inline AgainstTruth renderAgainstTruth(Scene& scene, int width, int height, int 
     glContext();
     FrameRunner runner;
     const RenderedFrame frame = renderFrame(runner, scene, width, height);
-    reference::ReferenceOptions options;
-    options.width = width;
-    options.height = height;
-    options.samples = samples;
-    options.wsPositions = &frame.images.position;
-    const Result<reference::ReferenceResult> truth = reference::traceVisibility(scene, runner.lastCamera(), options);
-    EXPECT_TRUE(static_cast<bool>(truth)) << (truth ? "" : truth.error().message);
     AgainstTruth out;
     out.warnings = frame.stats.warnings;
-    if (!truth) return out;
-    const Result<VisibilityErrors> e =
-        compareVisibility(frame.images.visibility.at(0), truth->visibility.at(0), &truth->lit.at(0));
-    EXPECT_TRUE(static_cast<bool>(e)) << (e ? "" : e.error().message);
-    if (e) out.errors = *e;
+    const std::optional<reference::ReferenceResult> truth = truthAt(scene, runner.lastCamera(), frame.images, samples);
+    if (truth) out.errors = light0Errors(frame.images, *truth);
     return out;
 }
 

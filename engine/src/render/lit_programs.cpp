@@ -26,6 +26,17 @@ MeshUniforms meshUniforms(GLuint program) {
     return m;
 }
 
+MaterialUniforms materialUniforms(GLuint program) {
+    MaterialUniforms m;
+    m.receiveShadows = gl.GetUniformLocation(program, "uReceiveShadows");
+    m.albedo = gl.GetUniformLocation(program, "uAlbedo");
+    m.specular = gl.GetUniformLocation(program, "uSpecular");
+    m.shininess = gl.GetUniformLocation(program, "uShininess");
+    m.metallic = gl.GetUniformLocation(program, "uMetallic");
+    m.textured = gl.GetUniformLocation(program, "uTextured");
+    return m;
+}
+
 LitProgram buildLit(const LitVariant& variant) {
     LitProgram p;
     // The deferred variant reads its lights' visibility: it compiles no technique.
@@ -33,20 +44,23 @@ LitProgram buildLit(const LitVariant& variant) {
                                    "lit.frag.glsl", variantDefines(variant),
                                    variant.deferred ? 0u : variantTechniques(variant)});
     const GLuint id = p.program.get();
-    auto loc = [id](const char* n) { return gl.GetUniformLocation(id, n); };
     p.mesh = meshUniforms(id);
-    p.receiveShadows = loc("uReceiveShadows");
-    p.albedo = loc("uAlbedo");
-    p.specular = loc("uSpecular");
-    p.shininess = loc("uShininess");
-    p.metallic = loc("uMetallic");
-    p.textured = loc("uTextured");
-    p.ambient = loc("uAmbient");
-    p.cameraForward = loc("uCameraForward");
+    p.material = materialUniforms(id);
+    p.ambient = gl.GetUniformLocation(id, "uAmbient");
+    p.cameraForward = gl.GetUniformLocation(id, "uCameraForward");
     return p;
 }
 
 }  // namespace
+
+void setMaterial(GLuint program, const MaterialUniforms& u, const Mesh& mesh, const Material& material) {
+    gl.ProgramUniform1i(program, u.receiveShadows, mesh.receiveShadows ? 1 : 0);
+    gl.ProgramUniform3fv(program, u.albedo, 1, glm::value_ptr(material.albedo));
+    gl.ProgramUniform3fv(program, u.specular, 1, glm::value_ptr(material.specular));
+    gl.ProgramUniform1f(program, u.shininess, std::clamp(material.shininess, 1.0f, 4096.0f));
+    gl.ProgramUniform1f(program, u.metallic, std::clamp(material.metallic, 0.0f, 1.0f));
+    gl.ProgramUniform1i(program, u.textured, material.baseColorTexture != nullptr ? 1 : 0);
+}
 
 std::string variantLabel(const LitVariant& v) {
     std::string name;
@@ -121,16 +135,10 @@ SurfaceProgram buildSurfaceProgram(bool alphaTested) {
         gpu::buildProgram({alphaTested ? "Main/Surfaces/alpha" : "Main/Surfaces", "lit.vert.glsl", "gbuffer.frag.glsl",
                            alphaTested ? std::vector<std::string>{"SG_ALPHA_TESTED"} : std::vector<std::string>{}});
     const GLuint id = p.program.get();
-    auto loc = [id](const char* n) { return gl.GetUniformLocation(id, n); };
     p.mesh = meshUniforms(id);
-    p.receiveShadows = loc("uReceiveShadows");
-    p.albedo = loc("uAlbedo");
-    p.specular = loc("uSpecular");
-    p.shininess = loc("uShininess");
-    p.metallic = loc("uMetallic");
-    p.textured = loc("uTextured");
-    p.alpha = loc("uAlpha");
-    p.alphaCutoff = loc("uAlphaCutoff");
+    p.material = materialUniforms(id);
+    p.alpha = gl.GetUniformLocation(id, "uAlpha");
+    p.alphaCutoff = gl.GetUniformLocation(id, "uAlphaCutoff");
     return p;
 }
 

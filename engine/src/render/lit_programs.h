@@ -5,6 +5,8 @@
 #include "gl/objects.h"
 #include "render/light_packing.h"
 
+#include <shadow/components.h>
+
 #include <map>
 #include <string>
 
@@ -15,12 +17,21 @@ struct MeshUniforms {
     GLint csFromLocal = -1, normalFromLocal = -1, clipFromCs = -1, skinned = -1;
 };
 
+/// Uniform locations of a mesh's material, shared by the lit programs and the surface pass's.
+struct MaterialUniforms {
+    GLint receiveShadows = -1, albedo = -1, specular = -1, shininess = -1, metallic = -1, textured = -1;
+};
+
+/// Sets `mesh`'s and `material`'s uniforms of `program` (shininess and metallic clamped to their
+/// ranges); the base colour texture is the caller's to bind.
+void setMaterial(GLuint program, const MaterialUniforms& u, const Mesh& mesh, const Material& material);
+
 /// A compiled lit variant and its uniform locations.
 struct LitProgram {
     gpu::Program program;
     MeshUniforms mesh;
-    GLint receiveShadows = -1, albedo = -1, specular = -1, shininess = -1, metallic = -1, textured = -1, ambient = -1,
-          cameraForward = -1;
+    MaterialUniforms material;
+    GLint ambient = -1, cameraForward = -1;
 };
 
 /// A depth pre-pass program: the lit vertex shader and no fragment work, or (alpha-tested, for
@@ -58,8 +69,8 @@ DepthPrepassProgram buildDepthPrepass(bool alphaTested);
 struct SurfaceProgram {
     gpu::Program program;
     MeshUniforms mesh;
-    GLint receiveShadows = -1, albedo = -1, specular = -1, shininess = -1, metallic = -1, textured = -1, alpha = -1,
-          alphaCutoff = -1;
+    MaterialUniforms material;
+    GLint alpha = -1, alphaCutoff = -1;
 };
 
 SurfaceProgram buildSurfaceProgram(bool alphaTested);

@@ -76,6 +76,22 @@ struct MainCamera {
     render::ScreenRays rays;  ///< the screen-space visibility stage's view of it
 };
 
+/// A pass's plain program and, when the scene has cut-outs, its alpha-tested one (`build(alphaTested)`),
+/// built on first use (counted in `stats`), each given the camera.
+template <typename Program, typename Build>
+void preparePair(std::optional<Program>& plain, std::optional<Program>& alphaTested, bool cutouts, Build build,
+                 const MainCamera& mc, FrameStats& stats) {
+    for (auto [program, alpha] : {std::pair{&plain, false}, std::pair{&alphaTested, true}}) {
+        if (alpha && !cutouts) continue;
+        if (!*program) {
+            *program = build(alpha);
+            ++stats.programsCompiled;
+        }
+        gl.ProgramUniformMatrix4fv((*program)->program.get(), (*program)->mesh.clipFromCs, 1, GL_FALSE,
+                                   glm::value_ptr(mc.clipFromCs));
+    }
+}
+
 /// Whether a mesh of `world` has a cut-out material (its holes need an alpha test).
 bool hasCutouts(const World& world) {
     bool cutouts = false;
@@ -229,15 +245,7 @@ void Renderer::Impl::drawMeshes(const World& world, const CameraView& cam, const
 
 void Renderer::Impl::depthPrepass(const World& world, const CameraView& cam, const MainCamera& mc, bool cutouts,
                                   FrameStats& stats) {
-    for (auto [program, alphaTested] : {std::pair{&prepass, false}, std::pair{&prepassCutout, true}}) {
-        if (alphaTested && !cutouts) continue;
-        if (!*program) {
-            *program = render::buildDepthPrepass(alphaTested);
-            ++stats.programsCompiled;
-        }
-        gl.ProgramUniformMatrix4fv((*program)->program.get(), (*program)->mesh.clipFromCs, 1, GL_FALSE,
-                                   glm::value_ptr(mc.clipFromCs));
-    }
+    preparePair(prepass, prepassCutout, cutouts, render::buildDepthPrepass, mc, stats);
     gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl.DepthMask(GL_TRUE);
     gl.DepthFunc(GL_LESS);
@@ -258,15 +266,7 @@ void Renderer::Impl::depthPrepass(const World& world, const CameraView& cam, con
 
 void Renderer::Impl::surfacePass(const World& world, const CameraView& cam, const MainCamera& mc, FrameStats& stats) {
     const bool cutouts = hasCutouts(world);
-    for (auto [program, alphaTested] : {std::pair{&surface, false}, std::pair{&surfaceCutout, true}}) {
-        if (alphaTested && !cutouts) continue;
-        if (!*program) {
-            *program = render::buildSurfaceProgram(alphaTested);
-            ++stats.programsCompiled;
-        }
-        gl.ProgramUniformMatrix4fv((*program)->program.get(), (*program)->mesh.clipFromCs, 1, GL_FALSE,
-                                   glm::value_ptr(mc.clipFromCs));
-    }
+    preparePair(surface, surfaceCutout, cutouts, render::buildSurfaceProgram, mc, stats);
     screen->beginSurfaces();
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LESS);
@@ -275,12 +275,7 @@ void Renderer::Impl::surfacePass(const World& world, const CameraView& cam, cons
         [this](const Mesh& mesh, const Material& m) {
             const render::SurfaceProgram& p = m.cutout() ? *surfaceCutout : *surface;
             const GLuint id = p.program.get();
-            gl.ProgramUniform1i(id, p.receiveShadows, mesh.receiveShadows ? 1 : 0);
-            gl.ProgramUniform3fv(id, p.albedo, 1, glm::value_ptr(m.albedo));
-            gl.ProgramUniform3fv(id, p.specular, 1, glm::value_ptr(m.specular));
-            gl.ProgramUniform1f(id, p.shininess, std::clamp(m.shininess, 1.0f, 4096.0f));
-            gl.ProgramUniform1f(id, p.metallic, std::clamp(m.metallic, 0.0f, 1.0f));
-            gl.ProgramUniform1i(id, p.textured, m.baseColorTexture != nullptr ? 1 : 0);
+            render::setMaterial(id, p.material, mesh, m);
             if (m.cutout()) {
                 gl.ProgramUniform1f(id, p.alpha, m.alpha);
                 gl.ProgramUniform1f(id, p.alphaCutoff, m.alphaCutoff);
@@ -368,12 +363,7 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
     drawMeshes(
         world, cam, scissored && !pass.unbounded ? &pass.wsReach : nullptr,
         [this, &p, id](const Mesh& mesh, const Material& m) {
-            gl.ProgramUniform1i(id, p.receiveShadows, mesh.receiveShadows ? 1 : 0);
-            gl.ProgramUniform3fv(id, p.albedo, 1, glm::value_ptr(m.albedo));
-            gl.ProgramUniform3fv(id, p.specular, 1, glm::value_ptr(m.specular));
-            gl.ProgramUniform1f(id, p.shininess, std::clamp(m.shininess, 1.0f, 4096.0f));
-            gl.ProgramUniform1f(id, p.metallic, std::clamp(m.metallic, 0.0f, 1.0f));
-            gl.ProgramUniform1i(id, p.textured, m.baseColorTexture != nullptr ? 1 : 0);
+            render::setMaterial(id, p.material, mesh, m);
             gpu::MeshCacheAccess::bindTexture(meshes, m.baseColorTexture, SG_UNIT_BASE_COLOR);
             return std::pair<GLuint, const render::MeshUniforms*>{id, &p.mesh};
         },
