@@ -158,6 +158,14 @@ struct Renderer::Impl {
     void depthPrepass(const World& world, const CameraView& cam, const MainCamera& mc, bool cutouts, FrameStats& stats);
     void litPass(const World& world, const CameraView& cam, const MainCamera& mc, std::size_t index,
                  const ShadowMaps& maps, const RenderOptions& options, FrameStats& stats);
+    /// Makes the screen-space stage's targets fit `options` (refused, naming the size, beyond the
+    /// memory cap with the stage's targets counted).
+    void prepareScreenStage(const RenderOptions& options);
+    /// The frame's main passes through the screen-space visibility stage, or forward.
+    void renderScreenSpace(const World& world, const CameraView& camera, const MainCamera& mc, const ShadowMaps& maps,
+                           const RenderOptions& options, FrameStats& stats);
+    void renderForward(const World& world, const CameraView& camera, const MainCamera& mc, const ShadowMaps& maps,
+                       const RenderOptions& options, FrameStats& stats);
     /// The screen-space visibility stage's surface pass.
     void surfacePass(const World& world, const CameraView& cam, const MainCamera& mc, FrameStats& stats);
     /// Lit pass `index` of the stage: its lights' visibility over the screen, then their shading.
@@ -262,6 +270,59 @@ void Renderer::Impl::depthPrepass(const World& world, const CameraView& cam, con
         },
         stats.mainDrawCalls);
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+void Renderer::Impl::prepareScreenStage(const RenderOptions& options) {
+    const std::string why =
+        render::renderSizeProblem(options.width, options.height, options.aovs, static_cast<int>(passes.size()), true);
+    if (!why.empty()) {
+        throw GlError("main pass targets of " + std::to_string(options.width) + "x" + std::to_string(options.height) +
+                      ": " + why);
+    }
+    if (!screen) screen.emplace();
+    screen->ensure(options.width, options.height, targets.depthBuffer());
+}
+
+void Renderer::Impl::renderScreenSpace(const World& world, const CameraView& camera, const MainCamera& mc,
+                                       const ShadowMaps& maps, const RenderOptions& options, FrameStats& stats) {
+    {
+        gpu::ScopedPass timed(timer, "Main/Surfaces");
+        surfacePass(world, camera, mc, stats);
+    }
+    screenVisibilityPass(mc, 0, maps, options, stats, &timer);  // times its passes itself
+    {
+        gpu::ScopedPass timed(timer, "Main/Lit");
+        screenLitPass(mc, 0, options);
+    }
+    if (passes.size() > 1) {
+        gpu::ScopedPass timed(timer, "Main/LitMore");
+        for (std::size_t pass = 1; pass < passes.size(); ++pass) {
+            screenVisibilityPass(mc, pass, maps, options, stats, nullptr);
+            screenLitPass(mc, pass, options);
+        }
+    }
+    prepassRan = false;
+}
+
+void Renderer::Impl::renderForward(const World& world, const CameraView& camera, const MainCamera& mc,
+                                   const ShadowMaps& maps, const RenderOptions& options, FrameStats& stats) {
+    // A cut-out material needs the pre-pass: it leaves the holes out, so that the lit passes,
+    // whose cost a discard would raise for every pixel on a CPU rasteriser, need no alpha test.
+    const bool cutouts = hasCutouts(world);
+    prepassRan = options.depthPrepass || cutouts;
+    if (prepassRan) {
+        gpu::ScopedPass timed(timer, "Main/DepthPrepass");
+        depthPrepass(world, camera, mc, cutouts, stats);
+    }
+    {
+        gpu::ScopedPass timed(timer, "Main/Lit");
+        litPass(world, camera, mc, 0, maps, options, stats);
+    }
+    if (passes.size() > 1) {
+        // Timed as one: a fence per small pass would cost more than many of them.
+        gpu::ScopedPass timed(timer, "Main/LitMore");
+        for (std::size_t pass = 1; pass < passes.size(); ++pass) litPass(world, camera, mc, pass, maps, options, stats);
+    }
 }
 
 void Renderer::Impl::surfacePass(const World& world, const CameraView& cam, const MainCamera& mc, FrameStats& stats) {
@@ -440,19 +501,9 @@ void Renderer::render(const World& world, const CameraView& camera, const Shadow
     r.preparePrograms(options, stats);
     r.uploadPasses();
     r.targets.ensure(options.width, options.height, options.aovs, static_cast<int>(r.passes.size()));
-    if (r.deferred) {
-        const std::string why = render::renderSizeProblem(options.width, options.height, options.aovs,
-                                                          static_cast<int>(r.passes.size()), true);
-        if (!why.empty()) {
-            throw GlError("main pass targets of " + std::to_string(options.width) + "x" +
-                          std::to_string(options.height) + ": " + why);
-        }
-        if (!r.screen) r.screen.emplace();
-        r.screen->ensure(options.width, options.height, r.targets.depthBuffer());
-    }
+    if (r.deferred) r.prepareScreenStage(options);
 
     const MainCamera mc = mainCamera(camera, options.width, options.height);
-    gpu::PassTimer& timer = r.timer;
     gl.BindFramebuffer(GL_FRAMEBUFFER, r.targets.framebuffer());
     gl.Viewport(0, 0, options.width, options.height);
     gpu::setPassDefaults();  // counter-clockwise front faces, GL's default and glTF's
@@ -460,42 +511,9 @@ void Renderer::render(const World& world, const CameraView& camera, const Shadow
     gl.Enable(GL_DEPTH_TEST);
     r.targets.clear();
     if (r.deferred) {
-        {
-            gpu::ScopedPass timed(timer, "Main/Surfaces");
-            r.surfacePass(world, camera, mc, stats);
-        }
-        r.screenVisibilityPass(mc, 0, maps, options, stats, &timer);  // times its passes itself
-        {
-            gpu::ScopedPass timed(timer, "Main/Lit");
-            r.screenLitPass(mc, 0, options);
-        }
-        if (r.passes.size() > 1) {
-            gpu::ScopedPass timed(timer, "Main/LitMore");
-            for (std::size_t pass = 1; pass < r.passes.size(); ++pass) {
-                r.screenVisibilityPass(mc, pass, maps, options, stats, nullptr);
-                r.screenLitPass(mc, pass, options);
-            }
-        }
-        r.prepassRan = false;
+        r.renderScreenSpace(world, camera, mc, maps, options, stats);
     } else {
-        // A cut-out material needs the pre-pass: it leaves the holes out, so that the lit passes,
-        // whose cost a discard would raise for every pixel on a CPU rasteriser, need no alpha test.
-        const bool cutouts = hasCutouts(world);
-        r.prepassRan = options.depthPrepass || cutouts;
-        if (r.prepassRan) {
-            gpu::ScopedPass timed(timer, "Main/DepthPrepass");
-            r.depthPrepass(world, camera, mc, cutouts, stats);
-        }
-        {
-            gpu::ScopedPass timed(timer, "Main/Lit");
-            r.litPass(world, camera, mc, 0, maps, options, stats);
-        }
-        if (r.passes.size() > 1) {
-            // Timed as one: a fence per small pass would cost more than many of them.
-            gpu::ScopedPass timed(timer, "Main/LitMore");
-            for (std::size_t pass = 1; pass < r.passes.size(); ++pass)
-                r.litPass(world, camera, mc, pass, maps, options, stats);
-        }
+        r.renderForward(world, camera, mc, maps, options, stats);
     }
     stats.mainPasses += static_cast<int>(r.passes.size());
     gl.DepthMask(GL_TRUE);
@@ -503,7 +521,7 @@ void Renderer::render(const World& world, const CameraView& camera, const Shadow
     gl.BindVertexArray(0);
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gpu::checkGlError("main pass");
-    timer.collect(stats);
+    r.timer.collect(stats);
 }
 
 const std::vector<Warning>& Renderer::warnings() const { return impl_->pending; }

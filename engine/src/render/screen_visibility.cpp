@@ -40,7 +40,8 @@ LitVariant groupVariant(const LitVariant& pass, int first, int count) {
     LitVariant g;
     g.lights = count;
     for (int i = 0; i < count; ++i) {
-        const auto d = static_cast<std::size_t>(i), s = static_cast<std::size_t>(first + i);
+        const auto d = static_cast<std::size_t>(i);
+        const auto s = static_cast<std::size_t>(first) + static_cast<std::size_t>(i);
         g.type[d] = pass.type[s];
         g.technique[d] = pass.technique[s];
         g.kernel[d] = pass.kernel[s];
@@ -240,8 +241,7 @@ ScreenStage::Program& ScreenStage::program(const LitVariant& group, int firstSlo
 
 void ScreenStage::computeVisibility(const ShadowFrame& frame, const PassLights& pass, ScreenVisibility setting,
                                     const ScreenRays& rays, FrameStats& stats, gpu::PassTimer* timer) {
-    const GLuint fb = visibility_.get();
-    gl.BindFramebuffer(GL_FRAMEBUFFER, fb);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, visibility_.get());
     gl.Disable(GL_DEPTH_TEST);
     gl.Disable(GL_BLEND);
     gl.DepthMask(GL_FALSE);
@@ -252,101 +252,108 @@ void ScreenStage::computeVisibility(const ShadowFrame& frame, const PassLights& 
          {SG_UNIT_GBUFFER_POSITION, SG_UNIT_GBUFFER_NORMALS, SG_UNIT_SCREEN_DEPTH, SG_UNIT_SCREEN_VISIBILITY}) {
         gl.BindSampler(unit, 0);
     }
-    const PixelRect& b = pass.bounds;
     gl.Enable(GL_SCISSOR_TEST);
     for (int first = 0; first < pass.variant.lights; first += 4) {
+        Group g;
         const int count = std::min(4, pass.variant.lights - first);
-        const int layer = first / 4;
-        const LitVariant group = groupVariant(pass.variant, first, count);
-        if (variantTechniques(group) == (1u << SG_TECH_NONE)) continue;  // no shadowed light: read as lit
-        const int d = visibilityDivisor(setting, pass.variant, first, count, height_);
-        glm::vec4 contactLength(0.0f);
+        g.variant = groupVariant(pass.variant, first, count);
+        if (variantTechniques(g.variant) == (1u << SG_TECH_NONE)) continue;  // no shadowed light: read as lit
+        g.first = first;
+        g.layer = first / 4;
+        g.divisor = visibilityDivisor(setting, pass.variant, first, count, height_);
         for (int i = 0; i < count; ++i) {
-            const int light = pass.sceneLight[static_cast<std::size_t>(first + i)];
-            if (light >= 0) contactLength[i] = contactLengthUniform(frame.lights[static_cast<std::size_t>(light)]);
+            const int light = pass.sceneLight[static_cast<std::size_t>(first) + static_cast<std::size_t>(i)];
+            if (light >= 0) g.contactLength[i] = contactLengthUniform(frame.lights[static_cast<std::size_t>(light)]);
         }
-        const bool contact = contactLength != glm::vec4(0.0f);
-        auto draw = [&](Program& p, int divisor) {
-            const GLuint id = p.program.get();
-            gl.ProgramUniform4fv(id, p.contactLength, 1, glm::value_ptr(contactLength));
-            gl.ProgramUniformMatrix4fv(id, p.clipFromCs, 1, GL_FALSE, glm::value_ptr(rays.clipFromCs));
-            gl.ProgramUniform3fv(id, p.cameraForward, 1, glm::value_ptr(rays.forward));
-            gl.ProgramUniform1f(id, p.pixelAngle, rays.pixelAngle);
-            gl.ProgramUniform3fv(id, p.ray00, 1, glm::value_ptr(rays.ray00));
-            gl.ProgramUniform3fv(id, p.rayDx, 1, glm::value_ptr(rays.dx));
-            gl.ProgramUniform3fv(id, p.rayDy, 1, glm::value_ptr(rays.dy));
-            gl.ProgramUniform1i(id, p.stageLayer, layer);
-            // The pass's bounds at this resolution, a sample wider so the resolve finds its four.
-            const int pad = divisor > 1 ? 1 : 0;
-            const int x0 = std::max(b.x0 / divisor - pad, 0), y0 = std::max(b.y0 / divisor - pad, 0);
-            const int x1 = std::min(reduced(b.x1, divisor) + pad, reduced(width_, divisor));
-            const int y1 = std::min(reduced(b.y1, divisor) + pad, reduced(height_, divisor));
-            gl.Viewport(0, 0, reduced(width_, divisor), reduced(height_, divisor));
-            gl.Scissor(x0, y0, x1 - x0, y1 - y0);
-            gl.UseProgram(id);
-            gl.DrawArrays(GL_TRIANGLES, 0, 3);
-        };
-        // Each draw timed on its own when asked (a fence around each on a CPU rasteriser).
-        auto timed = [&](const char* what, auto&& body) {
-            if (timer == nullptr) return body();
-            gpu::ScopedPass scope(*timer, std::string("Main/ScreenVisibility/") + what);
-            body();
-        };
-        if (d > 1) {
-            ensureStageTarget(d);
-            const GLuint stage = stage_[static_cast<std::size_t>(divisorIndex(d))].get();
-            const GLuint depth = stageDepth_[static_cast<std::size_t>(divisorIndex(d))].get();
-            timed("stage", [&] {
-                attachCoverage(d, stats);
-                gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, stage, 0, layer);
-                gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, depth, 0);
-                const std::array<GLenum, 2> both{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-                gl.NamedFramebufferDrawBuffers(fb, 2, both.data());
-                // Samples the depth test skips read as off every surface in the resolve.
-                const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-                gl.ClearNamedFramebufferfv(fb, GL_COLOR, 1, none);
-                gl.Enable(GL_DEPTH_TEST);
-                gl.DepthFunc(GL_GREATER);
-                draw(program(group, first, d, false, contact, stats), d);
-                gl.DepthFunc(GL_LESS);
-                gl.Disable(GL_DEPTH_TEST);
-            });
-            gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, 0, 0);
-            gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, 0, 0);
-            gl.BindTextureUnit(SG_UNIT_SCREEN_VISIBILITY, stage);
-            gl.BindTextureUnit(SG_UNIT_SCREEN_DEPTH, depth);
-        }
-        const GLenum one = GL_COLOR_ATTACHMENT0;
-        gl.NamedFramebufferDrawBuffers(fb, 1, &one);
-        gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, full_.get(), 0, layer);
-        if (d == 1) {
-            // Only where the surface pass drew (GREATER than its depth, at the far plane).
-            gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, depthBuffer_, 0);
-            gl.Enable(GL_DEPTH_TEST);
-            gl.DepthFunc(GL_GREATER);
-            timed("stage", [&] { draw(program(group, first, 1, false, contact, stats), 1); });
-            gl.DepthFunc(GL_LESS);
-            gl.Disable(GL_DEPTH_TEST);
-            gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, 0, 0);
-            continue;
-        }
+        g.contact = g.contactLength != glm::vec4(0.0f);
+        g.bounds = pass.bounds;
+        visibilityOfGroup(g, rays, stats, timer);
+    }
+    gl.Disable(GL_SCISSOR_TEST);
+    gl.NamedFramebufferTextureLayer(visibility_.get(), GL_COLOR_ATTACHMENT0, 0, 0, 0);
+}
+
+void ScreenStage::draw(Program& p, const Group& g, int divisor, const ScreenRays& rays) const {
+    const GLuint id = p.program.get();
+    gl.ProgramUniform4fv(id, p.contactLength, 1, glm::value_ptr(g.contactLength));
+    gl.ProgramUniformMatrix4fv(id, p.clipFromCs, 1, GL_FALSE, glm::value_ptr(rays.clipFromCs));
+    gl.ProgramUniform3fv(id, p.cameraForward, 1, glm::value_ptr(rays.forward));
+    gl.ProgramUniform1f(id, p.pixelAngle, rays.pixelAngle);
+    gl.ProgramUniform3fv(id, p.ray00, 1, glm::value_ptr(rays.ray00));
+    gl.ProgramUniform3fv(id, p.rayDx, 1, glm::value_ptr(rays.dx));
+    gl.ProgramUniform3fv(id, p.rayDy, 1, glm::value_ptr(rays.dy));
+    gl.ProgramUniform1i(id, p.stageLayer, g.layer);
+    // The pass's bounds at this resolution, a sample wider so the resolve finds its four.
+    const PixelRect& b = g.bounds;
+    const int pad = divisor > 1 ? 1 : 0;
+    const int x0 = std::max(b.x0 / divisor - pad, 0), y0 = std::max(b.y0 / divisor - pad, 0);
+    const int x1 = std::min(reduced(b.x1, divisor) + pad, reduced(width_, divisor));
+    const int y1 = std::min(reduced(b.y1, divisor) + pad, reduced(height_, divisor));
+    gl.Viewport(0, 0, reduced(width_, divisor), reduced(height_, divisor));
+    gl.Scissor(x0, y0, x1 - x0, y1 - y0);
+    gl.UseProgram(id);
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void ScreenStage::visibilityOfGroup(const Group& g, const ScreenRays& rays, FrameStats& stats, gpu::PassTimer* timer) {
+    const GLuint fb = visibility_.get();
+    const int d = g.divisor;
+    // Each draw timed on its own when asked (a fence around each on a CPU rasteriser).
+    auto timed = [&](const char* what, auto&& body) {
+        if (timer == nullptr) return body();
+        gpu::ScopedPass scope(*timer, std::string("Main/ScreenVisibility/") + what);
+        body();
+    };
+    if (d > 1) timed("stage", [&] { reducedStage(g, rays, stats); });
+    const GLenum one = GL_COLOR_ATTACHMENT0;
+    gl.NamedFramebufferDrawBuffers(fb, 1, &one);
+    gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, full_.get(), 0, g.layer);
+    gl.Enable(GL_DEPTH_TEST);
+    if (d == 1) {
+        // Only where the surface pass drew (GREATER than its depth, at the far plane).
+        gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, depthBuffer_, 0);
+        gl.DepthFunc(GL_GREATER);
+        timed("stage", [&] { draw(program(g.variant, g.first, 1, false, g.contact, stats), g, 1, rays); });
+    } else {
         // The resolve marks in depth the pixels it cannot upsample (0; 1 elsewhere); the
         // full-resolution stage then runs where the depth test (GREATER than the mark, at the far
         // plane) lets it.
         gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, refine_.get(), 0);
-        gl.Enable(GL_DEPTH_TEST);
         gl.DepthMask(GL_TRUE);
         gl.DepthFunc(GL_ALWAYS);
-        timed("resolve", [&] { draw(program(group, first, d, true, contact, stats), 1); });
+        timed("resolve", [&] { draw(program(g.variant, g.first, d, true, g.contact, stats), g, 1, rays); });
         gl.DepthMask(GL_FALSE);
         gl.DepthFunc(GL_GREATER);
-        timed("refine", [&] { draw(program(group, first, 1, false, contact, stats), 1); });
-        gl.DepthFunc(GL_LESS);
-        gl.Disable(GL_DEPTH_TEST);
-        gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, 0, 0);
+        timed("refine", [&] { draw(program(g.variant, g.first, 1, false, g.contact, stats), g, 1, rays); });
     }
-    gl.Disable(GL_SCISSOR_TEST);
-    gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, 0, 0, 0);
+    gl.DepthFunc(GL_LESS);
+    gl.Disable(GL_DEPTH_TEST);
+    gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, 0, 0);
+}
+
+void ScreenStage::reducedStage(const Group& g, const ScreenRays& rays, FrameStats& stats) {
+    const GLuint fb = visibility_.get();
+    const int d = g.divisor;
+    ensureStageTarget(d);
+    const GLuint stage = stage_[static_cast<std::size_t>(divisorIndex(d))].get();
+    const GLuint depth = stageDepth_[static_cast<std::size_t>(divisorIndex(d))].get();
+    attachCoverage(d, stats);
+    gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, stage, 0, g.layer);
+    gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, depth, 0);
+    const std::array<GLenum, 2> both{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    gl.NamedFramebufferDrawBuffers(fb, 2, both.data());
+    // Samples the depth test skips read as off every surface in the resolve.
+    const std::array<float, 4> none{0.0f, 0.0f, 0.0f, 0.0f};
+    gl.ClearNamedFramebufferfv(fb, GL_COLOR, 1, none.data());
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_GREATER);
+    draw(program(g.variant, g.first, d, false, g.contact, stats), g, d, rays);
+    gl.DepthFunc(GL_LESS);
+    gl.Disable(GL_DEPTH_TEST);
+    gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, 0, 0);
+    gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, 0, 0);
+    gl.BindTextureUnit(SG_UNIT_SCREEN_VISIBILITY, stage);
+    gl.BindTextureUnit(SG_UNIT_SCREEN_DEPTH, depth);
 }
 
 void ScreenStage::bindForLighting() const {

@@ -95,6 +95,23 @@ private:
     using Key = std::tuple<LitVariant, int, int, bool, bool>;
     Program& program(const LitVariant& group, int firstSlot, int divisor, bool resolve, bool contact,
                      FrameStats& stats);
+    /// A group of up to four slots of a pass, as its draws need it.
+    struct Group {
+        LitVariant variant;  ///< the group's slots alone
+        int first = 0;       ///< its first slot in the pass
+        int layer = 0;       ///< its layer of the visibility arrays
+        int divisor = 1;
+        glm::vec4 contactLength{0.0f};  ///< per channel, `contactLengthUniform`
+        bool contact = false;
+        PixelRect bounds;  ///< the pass's, in full-resolution pixels
+    };
+    /// The group's visibility at full resolution: the stage, or at a reduced resolution the
+    /// stage, the resolve and the refine.
+    void visibilityOfGroup(const Group& g, const ScreenRays& rays, FrameStats& stats, gpu::PassTimer* timer);
+    /// The stage at the group's reduced resolution, depth-tested against its coverage.
+    void reducedStage(const Group& g, const ScreenRays& rays, FrameStats& stats);
+    /// One full-screen draw of `p` for group `g` at 1/`divisor` of the resolution.
+    void draw(Program& p, const Group& g, int divisor, const ScreenRays& rays) const;
     void ensureStageTarget(int divisor);
     /// The coverage of the stage at `divisor`, drawn once a frame, attached as the depth buffer.
     void attachCoverage(int divisor, FrameStats& stats);
