@@ -131,11 +131,12 @@ void main() {
     vec4 gNormals = texelFetch(sg_gbufferNormals, pixel, 0);
     vec4 gAlbedo = texelFetch(sg_gbufferAlbedo, pixel, 0);
     vec4 gSpecular = texelFetch(sg_gbufferSpecular, pixel, 0);
-    bool covered = sg_gbufferCovered(gPosition.w);
+    // Only pixels the surface pass drew run (depth-tested at the far plane): the background
+    // keeps the targets' clear values, as forward leaves it.
     bool receiveShadows = sg_gbufferReceives(gPosition.w);
     vec4 screenVisibility[2] = vec4[](texelFetch(sg_screenVisibility, ivec3(pixel, 0), 0),
                                       SG_PASS_LIGHTS > 4 ? texelFetch(sg_screenVisibility, ivec3(pixel, 1), 0) : vec4(1.0));
-    vec3 vCsPosition = covered ? gPosition.xyz : vec3(0.0, 0.0, -1.0);
+    vec3 vCsPosition = gPosition.xyz;
     Surface s;
     s.csPosition = vCsPosition;
     s.toViewer = normalize(-vCsPosition);
@@ -163,7 +164,6 @@ void main() {
     s.albedo = uAlbedo * base;
     s.specular = uSpecular * mix(vec3(1.0), base, uMetallic);
     s.shininess = uShininess;
-    const bool covered = true;
 #endif
 
     float viewDistance = dot(vCsPosition, uCameraForward);
@@ -214,13 +214,12 @@ void main() {
 #ifdef SG_DEBUG_VIEWS
     outColor = vec4(debugColor, 1.0);
 #else
-    outColor = vec4(covered ? color : vec3(0.0), 1.0);
+    outColor = vec4(color, 1.0);
 #endif
 #ifdef SG_WRITE_AOVS
-    // What the forward pass leaves on background: the targets' clear values.
-    outPosition = covered ? vec4(vCsPosition, 1.0) : vec4(0.0);
-    outDepth = covered ? length(vCsPosition) : 0.0;
-    outVisibility0 = covered ? vec4(visibility[0], visibility[1], visibility[2], visibility[3]) : vec4(1.0);
-    outVisibility1 = covered ? vec4(visibility[4], visibility[5], visibility[6], visibility[7]) : vec4(1.0);
+    outPosition = vec4(vCsPosition, 1.0);
+    outDepth = length(vCsPosition);
+    outVisibility0 = vec4(visibility[0], visibility[1], visibility[2], visibility[3]);
+    outVisibility1 = vec4(visibility[4], visibility[5], visibility[6], visibility[7]);
 #endif
 }

@@ -141,7 +141,7 @@ TEST(RenderTargets, ASizeOverTheLimitsOrTheMemoryCapIsRefusedBeforeAllocating) {
     const Status withAovs = checkRenderSize(options);
     ASSERT_FALSE(withAovs.ok());
     EXPECT_NE(withAovs.error().message.find("kMaxRenderTargetBytes"), std::string::npos) << withAovs.error().message;
-    // The screen-space visibility stage's targets count too (72 more bytes a pixel at full
+    // The screen-space visibility stage's targets count too (60 more bytes a pixel at full
     // resolution): 8192^2 fits without them, not with them.
     options.aovs = false;
     options.screenVisibility = ScreenVisibility::Auto;

@@ -134,10 +134,9 @@ struct Renderer::Impl {
     std::vector<render::PackingEntry> packingOrder;       ///< scratch of packLights
     PassBlocks lightBlocks, layerBlocks;
     GLint uniformAlignment = 256;
-    std::size_t lightCount = 0;          ///< scene lights of the last frame
-    bool prepassRan = false;             ///< this frame: asked for, or needed by a cut-out material
-    bool deferred = false;               ///< this frame runs the screen-space visibility stage
-    const ShadowFrame* frame = nullptr;  ///< this frame's, during `render`
+    std::size_t lightCount = 0;  ///< scene lights of the last frame
+    bool prepassRan = false;     ///< this frame: asked for, or needed by a cut-out material
+    bool deferred = false;       ///< this frame runs the screen-space visibility stage
     bool softwareRenderer = false;
     gpu::PassTimer timer;          ///< the main passes'
     std::vector<Warning> pending;  ///< host errors found by calls without a FrameStats
@@ -162,8 +161,8 @@ struct Renderer::Impl {
     /// memory cap with the stage's targets counted).
     void prepareScreenStage(const RenderOptions& options);
     /// The frame's main passes through the screen-space visibility stage, or forward.
-    void renderScreenSpace(const World& world, const CameraView& camera, const MainCamera& mc, const ShadowMaps& maps,
-                           const RenderOptions& options, FrameStats& stats);
+    void renderScreenSpace(const World& world, const CameraView& camera, const ShadowFrame& frame, const MainCamera& mc,
+                           const ShadowMaps& maps, const RenderOptions& options, FrameStats& stats);
     void renderForward(const World& world, const CameraView& camera, const MainCamera& mc, const ShadowMaps& maps,
                        const RenderOptions& options, FrameStats& stats);
     /// The screen-space visibility stage's surface pass.
@@ -171,7 +170,7 @@ struct Renderer::Impl {
     /// Lit pass `index` of the stage: its lights' visibility over the screen, then their shading.
     void screenLitPass(const MainCamera& mc, std::size_t index, const RenderOptions& options);
     /// The stage's visibility of pass `index`'s lights.
-    void screenVisibilityPass(const MainCamera& mc, std::size_t index, const ShadowMaps& maps,
+    void screenVisibilityPass(const ShadowFrame& frame, const MainCamera& mc, std::size_t index, const ShadowMaps& maps,
                               const RenderOptions& options, FrameStats& stats, gpu::PassTimer* timer);
 };
 
@@ -283,13 +282,14 @@ void Renderer::Impl::prepareScreenStage(const RenderOptions& options) {
     screen->ensure(options.width, options.height, targets.depthBuffer());
 }
 
-void Renderer::Impl::renderScreenSpace(const World& world, const CameraView& camera, const MainCamera& mc,
-                                       const ShadowMaps& maps, const RenderOptions& options, FrameStats& stats) {
+void Renderer::Impl::renderScreenSpace(const World& world, const CameraView& camera, const ShadowFrame& frame,
+                                       const MainCamera& mc, const ShadowMaps& maps, const RenderOptions& options,
+                                       FrameStats& stats) {
     {
         gpu::ScopedPass timed(timer, "Main/Surfaces");
         surfacePass(world, camera, mc, stats);
     }
-    screenVisibilityPass(mc, 0, maps, options, stats, &timer);  // times its passes itself
+    screenVisibilityPass(frame, mc, 0, maps, options, stats, &timer);  // times its passes itself
     {
         gpu::ScopedPass timed(timer, "Main/Lit");
         screenLitPass(mc, 0, options);
@@ -297,7 +297,7 @@ void Renderer::Impl::renderScreenSpace(const World& world, const CameraView& cam
     if (passes.size() > 1) {
         gpu::ScopedPass timed(timer, "Main/LitMore");
         for (std::size_t pass = 1; pass < passes.size(); ++pass) {
-            screenVisibilityPass(mc, pass, maps, options, stats, nullptr);
+            screenVisibilityPass(frame, mc, pass, maps, options, stats, nullptr);
             screenLitPass(mc, pass, options);
         }
     }
@@ -347,13 +347,14 @@ void Renderer::Impl::surfacePass(const World& world, const CameraView& cam, cons
         stats.mainDrawCalls);
 }
 
-void Renderer::Impl::screenVisibilityPass(const MainCamera& mc, std::size_t index, const ShadowMaps& maps,
-                                          const RenderOptions& options, FrameStats& stats, gpu::PassTimer* timer) {
+void Renderer::Impl::screenVisibilityPass(const ShadowFrame& frame, const MainCamera& mc, std::size_t index,
+                                          const ShadowMaps& maps, const RenderOptions& options, FrameStats& stats,
+                                          gpu::PassTimer* timer) {
     const PassLights& pass = passes[index];
     lightBlocks.bind(SG_BINDING_LIGHTS, index);
     layerBlocks.bind(SG_BINDING_LAYERS, index);
     gpu::bindShadowResources(resources, maps, pass.sceneLight, ShadowBindingPoints{});
-    screen->computeVisibility(*frame, pass, options.screenVisibility, mc.rays, stats, timer);
+    screen->computeVisibility(frame, pass, options.screenVisibility, mc.rays, stats, timer);
 }
 
 void Renderer::Impl::screenLitPass(const MainCamera& mc, std::size_t index, const RenderOptions& options) {
@@ -497,7 +498,6 @@ void Renderer::render(const World& world, const CameraView& camera, const Shadow
     if ((frame.techniquesInUse & techniqueBit(ShadowTechnique::Sdf)) != 0) (void)maps.fieldInstances(camera.wsPosition);
     r.deferred = options.debugView == DebugView::None &&
                  render::screenStagePays(options.screenVisibility, frame, r.passes, options.height);
-    r.frame = &frame;
     r.preparePrograms(options, stats);
     r.uploadPasses();
     r.targets.ensure(options.width, options.height, options.aovs, static_cast<int>(r.passes.size()));
@@ -511,7 +511,7 @@ void Renderer::render(const World& world, const CameraView& camera, const Shadow
     gl.Enable(GL_DEPTH_TEST);
     r.targets.clear();
     if (r.deferred) {
-        r.renderScreenSpace(world, camera, mc, maps, options, stats);
+        r.renderScreenSpace(world, camera, frame, mc, maps, options, stats);
     } else {
         r.renderForward(world, camera, mc, maps, options, stats);
     }

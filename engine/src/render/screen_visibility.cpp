@@ -99,8 +99,12 @@ ScreenStage::ScreenStage() {
 
 std::int64_t ScreenStage::bytesFor(int width, int height) {
     const std::int64_t pixels = std::int64_t{width} * height;
-    // Position, normals, albedo, specular RGBA32F; two RGBA8 layers at full, half and quarter size.
-    return pixels * (4 * 16 + 2 * 4) + (pixels / 4 + pixels / 16) * 2 * 4;
+    // Full size: position and normals RGBA32F, albedo and specular RGBA16F, two RGBA8 visibility
+    // layers, the refine marks (32F). Half and quarter size (each made on first use): two RGBA8
+    // layers, the samples' depths (R32F) and the coverage (32F).
+    const std::int64_t full = 16 + 16 + 8 + 8 + 2 * 4 + 4;
+    const std::int64_t reduced = 2 * 4 + 4 + 4;
+    return pixels * full + (pixels / 4 + pixels / 16) * reduced;
 }
 
 void ScreenStage::ensure(int width, int height, GLuint depthBuffer) {
