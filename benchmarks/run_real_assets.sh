@@ -19,7 +19,8 @@
 # first /work/.mirror/*raylib* (or its repo/ folder) that is one. Absent: the run is skipped
 # with a message, exit code 0. WORK_DIR (or WORK): default out/real_assets. Overrides: SIZE
 # (320x240), SAMPLES (64 rays per pixel), FRAMES (5: one warm-up, 4 timed, maps redrawn every
-# frame), TECHNIQUES ("hard pcf pcss vsm vssm msm-soft sdf", those the build offers), KEEP_SCENES=1 keeps the wrapped scenes (printed path), WRITE_BENCHMARKS=0
+# frame), TECHNIQUES ("hard pcf pcss vsm vssm msm-soft sdf", those the build offers), SCREEN_VISIBILITY
+# (auto, as the CLIs; off/full/half/quarter: --screen-visibility), KEEP_SCENES=1 keeps the wrapped scenes (printed path), WRITE_BENCHMARKS=0
 # leaves BENCHMARKS.md alone. Builds the three programs only when one is missing.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -48,6 +49,7 @@ size=${SIZE:-320x240}
 samples=${SAMPLES:-64}
 frames=${FRAMES:-5}
 wanted=${TECHNIQUES:-hard pcf pcss vsm vssm msm-soft sdf}
+screen=${SCREEN_VISIBILITY:-auto}
 
 bin=build/bin
 if [ ! -x $bin/shadow_render ] || [ ! -x $bin/shadow_reference ] || [ ! -x $bin/shadow_compare ]; then
@@ -122,7 +124,8 @@ for name in "${assets[@]}"; do
   for technique in "${techniques[@]}"; do
     # Frames at one time (--dt 0), every map redrawn every frame: the timings of a moving scene.
     if ! $bin/shadow_render "$scene" --technique "$technique" --size "$size" --time "$time" --frames "$frames" \
-        --dt 0 --no-cache --aov color,visibility,position --out "$dir/$technique" > "$dir/$technique.log" 2>&1; then
+        --dt 0 --no-cache --aov color,visibility,position --screen-visibility "$screen" --out "$dir/$technique" \
+        > "$dir/$technique.log" 2>&1; then
       echo "run_real_assets: $name / $technique: shadow_render failed: $(tail -n 1 "$dir/$technique.log")"
       continue
     fi
