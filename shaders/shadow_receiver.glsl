@@ -47,11 +47,11 @@ const float sg_kNearSlopeBias = 0.2;
 struct sg_ReceiverPolicy {
     float extraNormalOffset;  // texel footprints added to the light's normalOffset
     float slopeBiasShare;     // fraction of the light's slopeBias applied at the receiver
-    float bendPerCurvature;   // taps follow the surface's bend by this x curvature x reach^2
+    float reachBias;          // m of depth bias per m of a tap's reach (x the ray's secant)
 };
 
 // The receiver policy of the filters that compare each texel with the receiver's own plane:
-// only sg_kNearSlopeBias of the slope bias at the receiver, no extra offset, no bend.
+// only sg_kNearSlopeBias of the slope bias at the receiver, no extra offset, no reach bias.
 sg_ReceiverPolicy sg_planePolicy() {
     return sg_ReceiverPolicy(0.0, sg_kNearSlopeBias, 0.0);
 }
@@ -88,7 +88,7 @@ struct sg_Receiver {
     // sg_planeLinearDepth per texel step in s and t, so that each of the 2x2 texels a tap compares
     // is compared with the plane's depth at that texel's own centre.
     vec2 refPerTexel;
-    float bendPerReach2;  // 1/m: curvature / 2 where a technique's taps follow the surface's bend
+    float reachBias;      // m of bias per m of a tap's reach from the receiver (sg_ReceiverPolicy)
     vec2 texelTan;    // perspective layers: change of a ray's lateral/axial ratio per texel
     vec3 geoStep1;  // two texel-sized steps across that plane (m), for the other cube faces
     vec3 geoStep2;
@@ -198,12 +198,14 @@ void sg_planeSteps(vec3 plane, vec3 toLight, vec3 t1, vec3 t2, float texel, out 
 sg_Receiver sg_makeReceiver(sg_GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 geoNormal, float curvature, float viewDistance, int layer,
                             sg_ReceiverPolicy policy) {
     sg_Receiver r;
-    r.bendPerReach2 = policy.bendPerCurvature * curvature;
     vec3 toLight = L.type == SG_LIGHT_DIRECTIONAL ? -L.wsDirection
                                                   : sg_safeNormalize(L.csPosition - csPosition, -L.wsDirection);
     float cosTheta = clamp(dot(wsNormal, toLight), -1.0, 1.0);
     float sinTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0));
     r.slope = min(sinTheta / max(abs(cosTheta), 1e-4), sg_kMaxSlope);
+    // Along a slanted ray a surface's rise above its tangent plane is that many times deeper;
+    // capped at 4 (76 degrees), beyond which the slope bias and the normal offset do the work.
+    r.reachBias = policy.reachBias * min(sqrt(1.0 + r.slope * r.slope), 4.0);
 
     bool chosen = layer >= 0;
     if (!chosen) layer = sg_selectLayer(L, csPosition, viewDistance);

@@ -1,6 +1,8 @@
 // What the shadow lookup needs of the shaded surface beyond its position, from screen-space
 // derivatives: the triangle's own plane (each shadow-map texel is compared with it), the shading
-// normal facing the viewer, and how fast that normal turns (the PCF bend term).
+// normal facing the viewer, and how fast that normal turns (kept in the shading contract's
+// signatures for techniques to come; since PCF's reach bias replaced its bend term no technique
+// reads it, and the compiler drops it from the forward programs).
 #ifndef SG_SHADOW_SURFACE
 #define SG_SHADOW_SURFACE
 #include "shadow_common.glsl"

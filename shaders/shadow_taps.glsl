@@ -26,14 +26,9 @@ vec2 sg_quadAt(vec2 st, float size, out vec2 f) {
 // texel's own centre, less the bias. `f` is the tap's position inside the quad.
 vec4 sg_quadReferences(sg_GpuLight L, sg_Receiver r, sg_Tap t, out vec2 f, out vec2 quadUv) {
     float depthScale = t.layer == r.layer ? r.depthScale : sg_layers[L.firstLayer + t.layer].depthScale;
-    // A tap away from the receiver lies on its tangent plane, which a curved surface leaves by
-    // curvature * reach^2 / 2 along the normal (more along a slanted ray); capped by the classic
-    // slope bias. PCF's policy only (bendPerCurvature): its fixed radius reaches far beyond the
-    // penumbra; in PCSS the reach is the penumbra's, and there the same term let more light into
-    // umbrae for no lower error (docs/tuning.md).
-    float secant = sqrt(1.0 + r.slope * r.slope);
-    float bend = r.bendPerReach2 * t.reach * t.reach * secant * secant * secant;
-    float bias = r.depthBias + min(bend, (1.0 - sg_kNearSlopeBias) * L.slopeBias * r.texelMetres * r.slope);
+    // A tap away from the receiver lies on its tangent plane, which a bumpy or curved surface
+    // rises above within a tap's reach: the policy's reach bias (PCF's only) lets it.
+    float bias = r.depthBias + r.reachBias * t.reach;
     quadUv = sg_quadAt(t.uv * float(L.mapSize) - 0.5, float(L.mapSize), f);
     vec4 steps = t.refPerTexel.x * vec4(-f.x, 1.0 - f.x, 1.0 - f.x, -f.x) +
                  t.refPerTexel.y * vec4(1.0 - f.y, 1.0 - f.y, -f.y, -f.y);

@@ -36,13 +36,19 @@ inline std::optional<reference::ReferenceResult> truthAt(Scene& scene, const Cam
     return std::move(*truth);
 }
 
-/// Light 0's errors in `images` against `truth`, over the truth's lit mask of that light. A
+/// Light `light`'s errors in `images` against `truth`, over the truth's lit mask of that light. A
 /// failure to compare fails the test and leaves the errors at their defaults.
-inline VisibilityErrors light0Errors(const FrameImages& images, const reference::ReferenceResult& truth) {
+inline VisibilityErrors lightErrors(const FrameImages& images, const reference::ReferenceResult& truth,
+                                    std::size_t light) {
     const Result<VisibilityErrors> e =
-        compareVisibility(images.visibility.at(0), truth.visibility.at(0), &truth.lit.at(0));
+        compareVisibility(images.visibility.at(light), truth.visibility.at(light), &truth.lit.at(light));
     EXPECT_TRUE(static_cast<bool>(e)) << (e ? "" : e.error().message);
     return e ? *e : VisibilityErrors{};
+}
+
+/// `lightErrors` of light 0.
+inline VisibilityErrors light0Errors(const FrameImages& images, const reference::ReferenceResult& truth) {
+    return lightErrors(images, truth, 0);
 }
 
 /// Renders one frame of `scene` at `width` x `height` and traces the truth at the same pixels'

@@ -91,10 +91,16 @@ TEST(Stability, TranslatedSceneMatchesTheOriginScene) {
                 // of the two-texel band, which the float position AOV (8 mm ulp at 10^5 m) moves
                 // while the image does not (spot: 0 pixels flipped, up to 0.04 % more beyond the
                 // band).
+                // PCF's default (one texel, six bilinear taps on a disk turned per pixel) makes
+                // its 50 % contour as noisy as a sixth of a step, and a shifted grid moves the
+                // noise: 0.116 % and 0.210 % of the pixels flipped for the sun at 10^4 and 10^5 m
+                // (hard 0.065 %), none for the spot and point.
                 const bool mipFiltered = test::readsMoments(techniques[k]);
+                const bool gridContour = techniques[k] == ShadowTechnique::Pcf;
                 EXPECT_LE(far.mismatch[k], atOrigin.mismatch[k] + 0.001) << name;
                 EXPECT_LE(far.beyondBand[k], atOrigin.beyondBand[k] + (mipFiltered ? 5e-4 : 1e-4)) << name;
-                EXPECT_LE(flippedFraction, atOrigin.mismatch[k] + (mipFiltered ? 0.004 : 0.001)) << name;
+                EXPECT_LE(flippedFraction, atOrigin.mismatch[k] + (mipFiltered ? 0.004 : gridContour ? 0.003 : 0.001))
+                    << name;
             }
         }
     }

@@ -267,7 +267,7 @@ inline constexpr float kAutomatic = -1.0f;
 /// the receiver (0.5 mm where a texel covers 1 cm).
 inline constexpr float kAutoConstantBiasTexels = 0.05f;
 /// `Shadow::pcfRadius` when automatic: this many shadow texels at the receiver.
-inline constexpr float kAutoPcfRadiusTexels = 1.5f;
+inline constexpr float kAutoPcfRadiusTexels = 1.0f;
 /// `Shadow::sdfStartOffset` when automatic: this fraction of the median field voxel.
 inline constexpr float kAutoSdfStartOffsetVoxels = 0.125f;
 /// `Shadow::sdfMinStep` when automatic: this fraction of the median field voxel.

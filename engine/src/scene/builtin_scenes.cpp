@@ -140,21 +140,14 @@ Scene makeDefault() {
     return scene;
 }
 
-}  // namespace
-
-Scene makePlatesScene() {
+/// The plates' receiver, disk light and camera, without casters (builtin:plates and plates-boxes).
+Scene makePlatesStage(const std::string& name) {
     Scene scene;
-    scene.name = "plates";
+    scene.name = name;
     World& w = scene.world;
     const PlatesGeometry g;
     addMeshInstance(w, "receiver", makePlaneMesh(static_cast<float>(g.receiverHalfSize), 4), at(0, 0, 0),
                     matte(0.8f, 0.8f, 0.8f));
-    for (std::size_t k = 0; k < g.plates.size(); ++k) {
-        const PlatesGeometry::Plate& p = g.plates[k];
-        const Entity e = addMeshInstance(w, "plate" + std::to_string(k), makePlaneMesh(static_cast<float>(p.halfSize)),
-                                         at(p.center.x, p.center.y, p.center.z), matte(0.5f, 0.6f, 0.8f));
-        w.get<Mesh>(e).receiveShadows = false;
-    }
     Light spot;
     spot.type = LightType::Spot;
     spot.intensity = 40.0f;
@@ -176,7 +169,48 @@ Scene makePlatesScene() {
     return scene;
 }
 
+}  // namespace
+
+Scene makePlatesScene() {
+    Scene scene = makePlatesStage("plates");
+    World& w = scene.world;
+    const PlatesGeometry g;
+    for (std::size_t k = 0; k < g.plates.size(); ++k) {
+        const PlatesGeometry::Plate& p = g.plates[k];
+        const Entity e = addMeshInstance(w, "plate" + std::to_string(k), makePlaneMesh(static_cast<float>(p.halfSize)),
+                                         at(p.center.x, p.center.y, p.center.z), matte(0.5f, 0.6f, 0.8f));
+        w.get<Mesh>(e).receiveShadows = false;
+    }
+    return scene;
+}
+
 namespace {
+
+/// builtin:plates-boxes, the plates' check on casters they do not have: closed boxes 1, 3 and
+/// 10 cm thick at 0.6, 1.5 and 2.6 m under the plates' disk light (so their penumbrae span from
+/// narrow to wider than the boxes), one of them turned, none receiving shadows (the figures are
+/// the receiver's). Truth comes from shadow_reference: the closed form holds only open squares.
+Scene makePlateBoxesScene() {
+    Scene scene = makePlatesStage("plates-boxes");
+    World& w = scene.world;
+    struct Box {
+        glm::dvec3 center;
+        glm::vec3 halfExtents;
+        double yaw;
+    };
+    const Box boxes[] = {{{-1.2, 0.6, 0.5}, {0.45f, 0.005f, 0.3f}, 0.0},
+                         {{1.0, 1.5, -0.3}, {0.35f, 0.015f, 0.35f}, 0.5},
+                         {{0.1, 2.6, 0.9}, {0.3f, 0.05f, 0.2f}, 0.0}};
+    int k = 0;
+    for (const Box& b : boxes) {
+        Transform t = at(b.center.x, b.center.y, b.center.z);
+        t.rotation = glm::angleAxis(b.yaw, glm::dvec3(0.0, 1.0, 0.0));
+        const Entity e = addMeshInstance(w, "box" + std::to_string(k++), makeBoxMesh(b.halfExtents), t,
+                                         matte(0.5f, 0.6f, 0.8f));
+        w.get<Mesh>(e).receiveShadows = false;
+    }
+    return scene;
+}
 
 /// Places `bunny` (the Stanford bunny's mesh) on the ground at the origin, 1.2 m tall.
 void addBunny(World& w, std::shared_ptr<const MeshData> bunny) {
@@ -302,6 +336,7 @@ const std::map<std::string, std::function<Result<Scene>()>>& registry() {
     static const std::map<std::string, std::function<Result<Scene>()>> scenes = {
         {"default", [] { return Result<Scene>(makeDefault()); }},
         {"plates", [] { return Result<Scene>(makePlatesScene()); }},
+        {"plates-boxes", [] { return Result<Scene>(makePlateBoxesScene()); }},
         {"bunny", makeBunny},
         {"bunny-spot", [] { return makeBunnySpot("bunny-spot", 0.08f); }},
         {"bunny-spot-wide", [] { return makeBunnySpot("bunny-spot-wide", 0.15f); }},
