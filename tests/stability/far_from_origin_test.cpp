@@ -99,7 +99,9 @@ TEST(Stability, TranslatedSceneMatchesTheOriginScene) {
                 const bool gridContour = techniques[k] == ShadowTechnique::Pcf;
                 EXPECT_LE(far.mismatch[k], atOrigin.mismatch[k] + 0.001) << name;
                 EXPECT_LE(far.beyondBand[k], atOrigin.beyondBand[k] + (mipFiltered ? 5e-4 : 1e-4)) << name;
-                EXPECT_LE(flippedFraction, atOrigin.mismatch[k] + (mipFiltered ? 0.004 : gridContour ? 0.003 : 0.001))
+                EXPECT_LE(flippedFraction, atOrigin.mismatch[k] + (mipFiltered   ? 0.004
+                                                                   : gridContour ? 0.003
+                                                                                 : 0.001))
                     << name;
             }
         }

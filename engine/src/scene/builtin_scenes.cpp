@@ -205,8 +205,8 @@ Scene makePlateBoxesScene() {
     for (const Box& b : boxes) {
         Transform t = at(b.center.x, b.center.y, b.center.z);
         t.rotation = glm::angleAxis(b.yaw, glm::dvec3(0.0, 1.0, 0.0));
-        const Entity e = addMeshInstance(w, "box" + std::to_string(k++), makeBoxMesh(b.halfExtents), t,
-                                         matte(0.5f, 0.6f, 0.8f));
+        const Entity e =
+            addMeshInstance(w, "box" + std::to_string(k++), makeBoxMesh(b.halfExtents), t, matte(0.5f, 0.6f, 0.8f));
         w.get<Mesh>(e).receiveShadows = false;
     }
     return scene;
