@@ -21,12 +21,12 @@
 // joint nodes (posed by `updateTransforms`).
 //
 // The file's animations become `Scene::clips`; the one `GltfLoadOptions::animation` names plays
-// (animation_clips.cpp).
+// (animation_clips.cpp). What the module leaves out (morph targets, textures other than base
+// colour, KHR_texture_transform, ...) is one warning per kind, from the one table of
+// gltf_support.cpp; orthographic cameras are an error when a node uses one.
 //
-// Not supported (ignored): morph targets, textures other than base colour, KHR_texture_transform,
-// orthographic cameras (an error when a node uses one).
-//
-// Each step lives in a file of its topic: gltf_parse (bytes to a tinygltf model), gltf_nodes
+// Each step lives in a file of its topic: gltf_parse (bytes to a tinygltf model, with
+// gltf_schema's member types and gltf_support's extensions checked), gltf_nodes
 // (transforms, references, the node graph), gltf_cameras, gltf_lights, gltf_mesh (with
 // gltf_accessors), gltf_animation, gltf_values (typed JSON reads). This file instantiates.
 #include "scene/gltf_import.h"
@@ -263,8 +263,10 @@ struct Importer {
 };
 
 /// Everything after parsing; errors and warnings carry the element but not yet the file name.
-Result<Scene> buildScene(const tinygltf::Model& model, const std::string& name, const GltfLoadOptions& options) {
+Result<Scene> buildScene(const gltf::ParsedGltf& parsed, const std::string& name, const GltfLoadOptions& options) {
+    const tinygltf::Model& model = parsed.model;
     Importer importer(model, options);
+    importer.scene.warnings = parsed.warnings;
     auto lights = gltf::importLights(model, options.strictShadowSettings, importer.scene.warnings);
     if (!lights) return lights.error();
     importer.lights = std::move(*lights);
@@ -292,9 +294,9 @@ Result<Scene> buildScene(const tinygltf::Model& model, const std::string& name, 
 
 /// The scene of a parsed model; `source` (the file, or the in-memory name) prefixes every
 /// error and warning message (a warning's element stays the glTF element alone).
-Result<Scene> sceneOf(const tinygltf::Model& model, const std::string& source, const std::string& name,
+Result<Scene> sceneOf(const gltf::ParsedGltf& parsed, const std::string& source, const std::string& name,
                       const GltfLoadOptions& options) {
-    auto scene = buildScene(model, name, options);
+    auto scene = buildScene(parsed, name, options);
     if (!scene) return scene.error().within(source + ": ");
     for (Warning& w : scene->warnings) w.message = source + ": " + w.message;
     return scene;
