@@ -111,7 +111,7 @@ std::string referenceJson(const Scene& scene, const Options& o, int cameraIndex,
     j["samplesPerPixel"] = o.samples;
     j["seed"] = o.seed;
     j["threads"] = r.threads;
-    j["epsilon"] = r.epsilon;
+    j["epsilon"] = {{"min", r.epsilonMin}, {"max", r.epsilonMax}};  // shadow-ray offsets (m), per point
     j["standardErrorModel"] = "binomial sqrt(v(1-v)/N); an upper bound for stratified samples";
     j["timeSeconds"] = {{"build", r.buildSeconds}, {"trace", r.traceSeconds}, {"total", totalSeconds}};
     j["pixels"] = {{"covered", r.coveredPixels},
