@@ -129,5 +129,23 @@ TEST(GltfSupport, TableNamesEachFeatureOnce) {
     }
 }
 
+// README.md's table of what the module leaves out is this table, row for row.
+TEST(GltfSupport, ReadmeTableIsTheFeatureTable) {
+    const std::string readme = readBytes(fs::path(SHADOW_SOURCE_DIR) / "README.md");
+    const std::size_t begin = readme.find("<!-- gltf-support:begin -->");
+    const std::size_t end = readme.find("<!-- gltf-support:end -->");
+    ASSERT_NE(begin, std::string::npos);
+    ASSERT_NE(end, std::string::npos);
+    std::string expected = "| extension or feature | the module | what is drawn instead |\n|---|---|---|\n";
+    for (const gltf::FeatureSupport& row : gltf::featureTable()) {
+        const char* what = row.support == gltf::Support::Read      ? "read"
+                           : row.support == gltf::Support::Dropped ? "left out, one warning"
+                                                                   : "left out, one warning; required: the load fails";
+        expected += std::string("| `") + row.name + "` | " + what + " | " + (*row.instead ? row.instead : "—") + " |\n";
+    }
+    const std::size_t tableStart = readme.find('\n', begin) + 1;
+    EXPECT_EQ(readme.substr(tableStart, end - tableStart), expected);
+}
+
 }  // namespace
 }  // namespace shadow
