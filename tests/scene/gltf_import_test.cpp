@@ -52,6 +52,7 @@ TEST(GltfImport, SceneListingAChildNodeLoadsWithAWarningNamingIt) {
     const Entity root = findByName(*scene, "root");
     EXPECT_EQ(w.get<Transform>(findByName(*scene, "child")).parent, root);
     const Entity orphan = findByName(*scene, "orphan");
+    ASSERT_TRUE(w.alive(orphan));
     EXPECT_TRUE(w.get<Transform>(orphan).parent.isNull());
     expectVec3(w.get<Transform>(orphan).translation, {0, 0, 3});
     ASSERT_EQ(scene->warnings.size(), 3u);
