@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -188,6 +189,28 @@ nlohmann::json lightsJson(const Scene& scene, const FrameStats& last) {
 
 }  // namespace
 
+nlohmann::json warningsJson(std::initializer_list<const std::vector<Warning>*> lists) {
+    nlohmann::json warnings = nlohmann::json::array();
+    for (const std::vector<Warning>* list : lists) {
+        for (const Warning& w : *list) {
+            warnings.push_back({{"code", warningCodeName(w.code)}, {"element", w.element}, {"message", w.message}});
+        }
+    }
+    return warnings;
+}
+
+nlohmann::json animationJson(const Scene& scene) {
+    nlohmann::json clips = nlohmann::json::array();
+    for (const AnimationClip& clip : scene.clips) clips.push_back({{"name", clip.name}, {"duration", clip.duration}});
+    nlohmann::json played = nlohmann::json::array();
+    for (const std::size_t c : scene.playing) played.push_back({{"index", c}, {"name", scene.clips[c].name}});
+    return {{"clips", clips}, {"played", played}, {"duration", scene.animationDuration}};
+}
+
+void printSceneWarnings(const char* program, const Scene& scene) {
+    for (const Warning& w : scene.warnings) std::cerr << program << ": warning: " << w.message << "\n";
+}
+
 double unixSecondsNow() {
     return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
@@ -205,6 +228,7 @@ std::string statsJson(const Scene& scene, const std::vector<FrameStats>& frames,
     j["frames"] = frames.size();
     j["techniqueOverride"] = technique;
     j["lights"] = lightsJson(scene, last);
+    j["animation"] = animationJson(scene);
 
     // Timings: every frame after the first (warm-up: shader compilation, first uploads).
     const std::size_t first = frames.size() > 1 ? 1 : 0;
@@ -257,12 +281,9 @@ std::string statsJson(const Scene& scene, const std::vector<FrameStats>& frames,
     // The program binary cache (--shader-cache): programs taken from it, written to it, refused.
     const ProgramCacheStats cache = programCacheStats();
     j["programCache"] = {{"loaded", cache.loaded}, {"stored", cache.stored}, {"rejected", cache.rejected}};
-    // One object per warning; "message" is the line the CLI prints on stderr.
-    nlohmann::json warnings = nlohmann::json::array();
-    for (const Warning& w : last.warnings) {
-        warnings.push_back({{"code", warningCodeName(w.code)}, {"element", w.element}, {"message", w.message}});
-    }
-    j["warnings"] = warnings;
+    // One object per warning, the scene's (loading) then the last frame's; "message" is the line
+    // the CLI prints on stderr.
+    j["warnings"] = warningsJson({&scene.warnings, &last.warnings});
     return j.dump(2) + "\n";
 }
 
@@ -281,13 +302,15 @@ std::vector<std::string> sampleSceneNames() {
     return names;
 }
 
-Result<Scene> loadSampleScene(const std::string& spec) {
+Result<Scene> loadSampleScene(const std::string& spec, const std::string& animation) {
+    GltfLoadOptions options;
+    options.animation = animation;
     const bool bareWord = !spec.empty() && spec.find_first_of("/.:") == std::string::npos;
-    if (!bareWord) return loadScene(spec);
+    if (!bareWord) return loadScene(spec, options);
     const std::filesystem::path file = std::filesystem::path(sampleScenesDir()) / (spec + ".gltf");
     std::error_code ec;
-    if (std::filesystem::is_regular_file(file, ec)) return loadScene(file.string());
-    if (std::filesystem::exists(spec, ec)) return loadScene(spec);
+    if (std::filesystem::is_regular_file(file, ec)) return loadScene(file.string(), options);
+    if (std::filesystem::exists(spec, ec)) return loadScene(spec, options);
     std::string known;
     for (const std::string& name : sampleSceneNames()) known += (known.empty() ? "" : ", ") + name;
     for (const std::string& name : builtinSceneNames()) known += (known.empty() ? "builtin:" : ", builtin:") + name;

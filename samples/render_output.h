@@ -8,6 +8,8 @@
 #include <shadow/shadow_planner.h>
 #include <shadow/stats.h>
 
+#include <initializer_list>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <utility>
@@ -52,7 +54,8 @@ struct Spread {
 /// by which shadow_compare tells a file of that run from one an earlier run left in the folder.
 [[nodiscard]] double unixSecondsNow();
 
-/// stats.json: the light mapping, the last frame's counters and warnings (each
+/// stats.json: the light mapping, the animation clips and which played, the last frame's
+/// counters, the warnings of the scene's loading and of the last frame (each
 /// `{"code", "element", "message"}`, codes as `warningCodeName` spells them), per-pass timing
 /// spreads over `frames` (the first, warm-up frame left out when there are more), and the run's
 /// `startTime` (unixSecondsNow when it began).
@@ -91,8 +94,25 @@ void applyDepthMode(Shadow& s, DepthMode mode);
 [[nodiscard]] std::vector<std::string> sampleSceneNames();
 
 /// `loadScene` of SCENE as the CLIs name it: a sample scene's name (`courtyard`), a `.gltf`/`.glb`
-/// path, or `builtin:NAME`. A bare word that names neither a sample scene nor a file is an
-/// error listing the sample scenes and the built-in ones.
-[[nodiscard]] Result<Scene> loadSampleScene(const std::string& spec);
+/// path, or `builtin:NAME`, playing the clip `animation` names (`--animation`: empty for the
+/// first, `all`, an index or a name; see `playAnimation`). A bare word that names neither a
+/// sample scene nor a file is an error listing the sample scenes and the built-in ones.
+[[nodiscard]] Result<Scene> loadSampleScene(const std::string& spec, const std::string& animation = "");
+
+/// `--animation`'s help text.
+inline constexpr const char* kAnimationHelp =
+    "which of the file's animations plays: its index or name, or all (default: the first)";
+
+/// One `{"code", "element", "message"}` object per warning of `lists`, in order (stats.json's
+/// and reference.json's `warnings`).
+[[nodiscard]] nlohmann::json warningsJson(std::initializer_list<const std::vector<Warning>*> lists);
+
+/// The scene's animation clips (name, duration), the ones that play (index, name) and the
+/// longest of those (s): stats.json's and reference.json's `animation`.
+[[nodiscard]] nlohmann::json animationJson(const Scene& scene);
+
+/// Prints the scene's load warnings on stderr, one line each (`program: warning: ...`): once,
+/// when the scene is loaded; stats.json lists them too.
+void printSceneWarnings(const char* program, const Scene& scene);
 
 }  // namespace shadow::samples

@@ -2,10 +2,10 @@
 // shadow_render draws.
 //
 //   shadow_reference SCENE [--out DIR] [--size WxH] [--camera N] [--time T] [--samples N]
-//                    [--positions FILE] [--threads K] [--seed S]
+//                    [--positions FILE] [--threads K] [--seed S] [--animation NAME|INDEX|all]
 //
-// SCENE, --size, --camera and --time mean what they mean to shadow_render, so both programs
-// shade the same pixels. Each pixel's point is the first surface on its camera ray or, with
+// SCENE, --size, --camera, --time and --animation mean what they mean to shadow_render, so both
+// programs shade the same pixels; the scene's load warnings go to stderr and reference.json. Each pixel's point is the first surface on its camera ray or, with
 // --positions, the world position in an engine position.exr (its size is then the image size;
 // a covered pixel that is not finite is bad input, one beyond 1e9 m in some coordinate is
 // background, counted in reference.json's pixels.positionsBeyondReach).
@@ -50,6 +50,7 @@ struct Options {
     std::string positions;
     int threads = 0;
     std::uint32_t seed = 1;
+    std::string animation;  ///< which clip plays: empty (the first), all, an index or a name
 };
 
 int fail(int code, const std::string& message) { return samples::failAs("shadow_reference", code, message); }
@@ -111,7 +112,7 @@ std::string referenceJson(const Scene& scene, const Options& o, int cameraIndex,
     j["samplesPerPixel"] = o.samples;
     j["seed"] = o.seed;
     j["threads"] = r.threads;
-    j["epsilon"] = r.epsilon;
+    j["epsilon"] = {{"min", r.epsilonMin}, {"max", r.epsilonMax}};  // shadow-ray offsets (m), per point
     j["standardErrorModel"] = "binomial sqrt(v(1-v)/N); an upper bound for stratified samples";
     j["timeSeconds"] = {{"build", r.buildSeconds}, {"trace", r.traceSeconds}, {"total", totalSeconds}};
     j["pixels"] = {{"covered", r.coveredPixels},
@@ -119,6 +120,8 @@ std::string referenceJson(const Scene& scene, const Options& o, int cameraIndex,
                    {"positionsWithoutSurface", r.positionsWithoutSurface},
                    {"positionsBeyondReach", r.positionsBeyondReach}};
     j["lights"] = lightsJson(scene, r);
+    j["animation"] = samples::animationJson(scene);
+    j["warnings"] = samples::warningsJson({&scene.warnings});  // the scene's, printed on stderr too
     return j.dump(2) + "\n";
 }
 
@@ -175,9 +178,10 @@ int run(Options& o) {
         positions = std::move(*read);
     }
 
-    Result<Scene> loaded = samples::loadSampleScene(o.scene);
+    Result<Scene> loaded = samples::loadSampleScene(o.scene, o.animation);
     if (!loaded) return fail(kExitBadInput, loaded.error().message);
     Scene& scene = *loaded;
+    samples::printSceneWarnings("shadow_reference", scene);
     Result<Entity> camera = samples::chooseCamera(scene, o.camera, o.time);
     if (!camera) return fail(kExitBadInput, camera.error().message);
     animate(scene.world, o.time);
@@ -229,6 +233,7 @@ int main(int argc, char** argv) {
         app.add_option("--size", o.size, "image size WxH (default 640x360, or that of --positions)");
     app.add_option("--camera", o.camera, "index of the scene camera to use (default: the first)");
     app.add_option("--time", o.time, "animation time (s)");
+    app.add_option("--animation", o.animation, samples::kAnimationHelp);
     app.add_option("--samples", o.samples, "shadow rays per pixel and light, [1, 1048576]");
     app.add_option("--positions", o.positions, "shade the world positions of an engine position.exr");
     app.add_option("--threads", o.threads, "worker threads (0 = all cores)");

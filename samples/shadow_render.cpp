@@ -4,6 +4,7 @@
 //                 [--technique NAME] [--depth-mode MODE] [--aov color,visibility,position,depth]
 //                 [--debug NAME] [--debug-light I] [--frame-images] [--no-cache] [--exposure E]
 //                 [--shader-cache DIR] [--field-voxels N] [--sdf-start-offset M]
+//                 [--animation NAME|INDEX|all]
 //
 // SCENE is a sample scene's name (samples/scenes, e.g. courtyard), a .gltf/.glb path or
 // builtin:NAME. With --frames N the scene is animated from
@@ -55,6 +56,7 @@ struct Options {
     std::string screenVisibility = "auto";
     bool contactShadows = false;    ///< turn every shadowed light's contact shadows on
     std::optional<float> exposure;  ///< absent: from the first frame read back (autoExposure)
+    std::string animation;          ///< which clip plays: empty (the first), all, an index or a name
 };
 
 int fail(int code, const std::string& message) { return samples::failAs("shadow_render", code, message); }
@@ -143,9 +145,10 @@ int run(const Options& o) {
     if (o.camera && *o.camera < 0)
         return fail(kExitBadInput, "--camera " + std::to_string(*o.camera) + ": must be >= 0");
 
-    Result<Scene> loaded = samples::loadSampleScene(o.scene);
+    Result<Scene> loaded = samples::loadSampleScene(o.scene, o.animation);
     if (!loaded) return fail(kExitBadInput, loaded.error().message);
     Scene& scene = *loaded;
+    samples::printSceneWarnings("shadow_render", scene);
     if (o.debugLight < 0 || (!scene.lights.empty() && o.debugLight >= static_cast<int>(scene.lights.size()))) {
         return fail(kExitBadInput, "--debug-light " + std::to_string(o.debugLight) + ": the scene has " +
                                        std::to_string(scene.lights.size()) + " lights");
@@ -239,6 +242,7 @@ int main(int argc, char** argv) {
     app.add_option("--size", o.size, "image size WxH");
     app.add_option("--camera", o.camera, "index of the scene camera to use (default: the first)");
     app.add_option("--time", o.time, "animation time of the first frame (s)");
+    app.add_option("--animation", o.animation, samples::kAnimationHelp);
     app.add_option("--frames", o.frames, "frames to render");
     app.add_option("--dt", o.dt, "time step between frames (s)");
     app.add_option("--technique", o.technique, "override every shadowed light: " + techniqueNameList());

@@ -3,7 +3,7 @@
 // that needs no input (CI under Xvfb) and writes screenshots.
 //
 //   shadow_viewer [SCENE] [--size WxH] [--camera N] [--time T] [--technique NAME]
-//                 [--debug VIEW] [--debug-light I]
+//                 [--debug VIEW] [--debug-light I] [--animation NAME|INDEX|all]
 //                 [--script FILE | --frames N [--dt S]] [--screenshot DIR]
 //
 // SCENE is a sample scene's name, a .gltf/.glb path or builtin:NAME (default builtin:default); a .gltf/.glb dropped on
@@ -53,6 +53,7 @@ struct Options {
     double dt = 1.0 / 30.0;
     std::string screenshotDir;
     std::string screenVisibility = "auto";
+    std::string animation;  ///< which clip plays: empty (the first), all, an index or a name
 };
 
 int fail(int code, const std::string& message) { return samples::failAs("shadow_viewer", code, message); }
@@ -142,9 +143,11 @@ void handleInput(App& app, double dt) {
     state.rig.update(state.scene.world, in);
 }
 
-/// Loads the files dropped on the window; the last that loads wins, errors are shown.
+/// Loads the files dropped on the window (each playing its first clip); the last that loads
+/// wins, errors are shown.
 void handleDrops(ViewerState& state) {
     for (const std::string& path : state.window->takeDroppedPaths()) {
+        state.animation.clear();
         if (Status s = loadInto(state, path, std::nullopt); !s) {
             state.loadError = s.error().message;
         } else {
@@ -259,11 +262,9 @@ int runScript(App& app, const std::vector<ScriptCommand>& commands) {
 Result<std::optional<std::vector<ScriptCommand>>> scriptOf(const Options& o, const Scene& scene) {
     const ScriptContext context{static_cast<int>(scene.lights.size()), static_cast<int>(scene.cameras.size())};
     if (!o.script.empty()) {
-        std::ifstream in(o.script);
-        if (!in) return Error{ErrorCode::FileUnreadable, "--script " + o.script + ": cannot read the file"};
-        std::ostringstream text;
-        text << in.rdbuf();
-        auto commands = parseScript(text.str(), o.script, context);
+        auto text = readScriptFile(o.script);
+        if (!text) return text.error();
+        auto commands = parseScript(*text, o.script, context);
         if (!commands) return commands.error();
         return std::optional(std::move(*commands));
     }
@@ -317,9 +318,10 @@ int run(const Options& o) {
 
     App app;
     app.state.time = o.time;
+    app.state.animation = o.animation;
     app.state.fixedSize = size;
     // The scene before the window, so that bad input costs no window (and needs no display).
-    Result<Scene> probe = samples::loadSampleScene(o.scene);
+    Result<Scene> probe = samples::loadSampleScene(o.scene, o.animation);
     if (!probe) return fail(kExitBadInput, probe.error().message);
     const int lights = static_cast<int>(probe->lights.size());
     if (o.debugLight < 0 || (lights > 0 && o.debugLight >= lights)) {
@@ -384,6 +386,7 @@ int main(int argc, char** argv) {
     app.add_option("--size", o.size, "render size WxH (default: the window's, 1280x720 at first)");
     app.add_option("--camera", o.camera, "index of the scene camera to start with (default: the first)");
     app.add_option("--time", o.time, "animation time to start at (s)");
+    app.add_option("--animation", o.animation, samples::kAnimationHelp);
     app.add_option("--technique", o.technique, "override every shadowed light: " + techniqueNameList());
     app.add_option("--debug", o.debug, "debug view: none|cascade|blocker|penumbra|visibility|steps|closest");
     app.add_option("--debug-light", o.debugLight, "scene light index the debug view shows");

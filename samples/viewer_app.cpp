@@ -23,9 +23,10 @@ void TimingHistory::push(const FrameStats& stats, double frameMs) {
 }
 
 Status loadInto(ViewerState& state, const std::string& spec, std::optional<int> camera) {
-    Result<Scene> loaded = samples::loadSampleScene(spec);
+    Result<Scene> loaded = samples::loadSampleScene(spec, state.animation);
     if (!loaded) return loaded.error();
     Scene& scene = *loaded;
+    samples::printSceneWarnings("shadow_viewer", scene);
     Result<Entity> chosen = samples::chooseCamera(scene, camera, state.time);
     if (!chosen) return chosen.error();
     // Posed at the current time, so that the rig sees the scene's bounds and camera pose.

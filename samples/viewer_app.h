@@ -43,6 +43,9 @@ struct ShadowMapView {
 struct ViewerState {
     Window* window = nullptr;
     std::string sceneSpec;
+    /// Which clip plays (`--animation`, the clip picker): empty for the first, `all`, an index or
+    /// a name; a dropped file plays its first.
+    std::string animation;
     Scene scene;
     CameraRig rig;
     std::unique_ptr<FrameRunner> runner;  ///< made anew per scene (its caches are per scene)
@@ -70,8 +73,10 @@ struct ViewerState {
     int screenshots = 0;
 };
 
-/// Loads `spec` into `state` (a new frame runner, the camera of `--camera`/the scene's first/the
-/// default one, posed at `state.time`). On an error `state` is untouched and the error returned.
+/// Loads `spec` into `state` (a new frame runner, the clip of `state.animation`, the camera of
+/// `--camera`/the scene's first/the default one, posed at `state.time`) and prints its load
+/// warnings on stderr (the Frame panel lists them). On an error `state` is untouched and the
+/// error returned.
 [[nodiscard]] Status loadInto(ViewerState& state, const std::string& spec, std::optional<int> camera);
 /// Renders one frame of the scene at `state.time`, reads it back and tone-maps it into
 /// `frameRgb` and `frameTexture`; records timings. `frameMs` is the whole last frame's wall time.

@@ -3,6 +3,8 @@
 #include "viewer_settings.h"
 
 #include <charconv>
+#include <filesystem>
+#include <fstream>
 #include <cmath>
 #include <sstream>
 
@@ -12,6 +14,31 @@ namespace {
 using Verb = ScriptCommand::Verb;
 
 const char* const kVerbs = "time, dt, frames, set, debug, shadowmap, camera, exposure, screenshot, screenshot-ui, quit";
+
+/// `text` cut to at most `limit` bytes on a UTF-8 boundary, with "..." when cut.
+std::string clipped(const std::string& text, std::size_t limit) {
+    if (text.size() <= limit) return text;
+    std::size_t cut = limit;
+    while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0U) == 0x80U) --cut;
+    return text.substr(0, cut) + "...";
+}
+
+/// What `path` is when it is not a regular file, for the message; never opened.
+std::optional<std::string> notRegularFile(const std::string& path) {
+    std::error_code ec;
+    const std::filesystem::file_status st = std::filesystem::status(path, ec);
+    switch (st.type()) {
+        case std::filesystem::file_type::regular: return std::nullopt;
+        case std::filesystem::file_type::not_found: return std::string("no such file");
+        case std::filesystem::file_type::directory: return std::string("a folder, not a file");
+        case std::filesystem::file_type::fifo: return std::string("a FIFO, not a regular file");
+        case std::filesystem::file_type::socket: return std::string("a socket, not a regular file");
+        case std::filesystem::file_type::block:
+        case std::filesystem::file_type::character: return std::string("a device, not a regular file");
+        default: break;
+    }
+    return ec ? "cannot be read (" + ec.message() + ")" : std::string("not a regular file");
+}
 
 /// The words of one line.
 std::vector<std::string> words(const std::string& line) {
@@ -143,20 +170,49 @@ Status parseCommand(const std::vector<std::string>& w, const ScriptContext& ctx,
 
 }  // namespace
 
+Result<std::string> readScriptFile(const std::string& path) {
+    const std::string where = "--script " + clipped(path, 256) + ": ";
+    if (std::optional<std::string> what = notRegularFile(path)) return Error{ErrorCode::FileUnreadable, where + *what};
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (ec) return Error{ErrorCode::FileUnreadable, where + "cannot be read (" + ec.message() + ")"};
+    if (size > kMaxScriptBytes) {
+        return Error{ErrorCode::LimitExceeded, where + std::to_string(size) + " bytes; a script holds at most " +
+                                                   std::to_string(kMaxScriptBytes) + " (1 MiB)"};
+    }
+    std::ifstream in(path, std::ios::binary);
+    std::string text(kMaxScriptBytes + 1, '\0');
+    in.read(text.data(), static_cast<std::streamsize>(text.size()));
+    if (in.bad()) return Error{ErrorCode::FileUnreadable, where + "cannot be read"};
+    text.resize(static_cast<std::size_t>(in.gcount()));
+    // It may have grown since it was measured: the limit holds for what was read.
+    if (text.size() > kMaxScriptBytes) return Error{ErrorCode::LimitExceeded, where + "grew beyond 1 MiB while read"};
+    return text;
+}
+
 Result<std::vector<ScriptCommand>> parseScript(const std::string& text, const std::string& fileName,
                                                const ScriptContext& context) {
     std::vector<ScriptCommand> commands;
     std::istringstream in(text);
     int lineNumber = 0;
+    const auto failure = [&](const std::string& message) {
+        return Error{ErrorCode::InvalidValue,
+                     clipped(fileName + ":" + std::to_string(lineNumber) + ": " + message, kMaxScriptMessage)};
+    };
     for (std::string line; std::getline(in, line);) {
         ++lineNumber;
+        if (line.size() > kMaxScriptLine) {
+            return failure("a line of " + std::to_string(line.size()) + " bytes; a line holds at most " +
+                           std::to_string(kMaxScriptLine));
+        }
         const std::vector<std::string> w = words(line);
         if (w.empty() || w[0][0] == '#') continue;
         ScriptCommand cmd;
         cmd.line = lineNumber;
         if (Status s = parseCommand(w, context, cmd); !s) {
-            return Error{ErrorCode::InvalidValue, fileName + ":" + std::to_string(lineNumber) + ": " +
-                                                      s.error().message + " (in '" + line + "')"};
+            // The line last, so that the cut falls on the quote rather than on the cause.
+            const std::string quote = " (in '" + clipped(line, 80) + "')";
+            return failure(clipped(s.error().message, kMaxScriptMessage - quote.size() - 64) + quote);
         }
         commands.push_back(std::move(cmd));
     }

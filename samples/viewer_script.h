@@ -15,12 +15,14 @@
 //   quit                   ends the run (exit 0); so does the end of the script
 //
 // The whole script is parsed and checked against the scene before the first frame: a bad line
-// is one error naming the file and line, and nothing is written.
+// is one error naming the file and line, and nothing is written. A script is a regular file of
+// at most 1 MiB (kMaxScriptBytes) with lines of at most 4096 bytes.
 #pragma once
 
 #include <shadow/renderer.h>
 #include <shadow/result.h>
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,6 +43,18 @@ struct ScriptCommand {
     DebugView view = DebugView::None;
 };
 
+/// Largest script file read (bytes): some fifty thousand commands.
+inline constexpr std::size_t kMaxScriptBytes = std::size_t{1} << 20U;
+/// Longest line of a script (bytes); a longer one is an error that does not quote it.
+inline constexpr std::size_t kMaxScriptLine = 4096;
+/// Longest error message about a script (bytes): the quoted line and words are cut to fit.
+inline constexpr std::size_t kMaxScriptMessage = 1024;
+
+/// The text of the script file `path`: a regular file (a FIFO, device or folder is refused
+/// without being opened, so nothing blocks) of at most `kMaxScriptBytes`. The error names the
+/// file as `--script PATH: ...`.
+[[nodiscard]] Result<std::string> readScriptFile(const std::string& path);
+
 /// What a script is checked against.
 struct ScriptContext {
     int lights = 0;   ///< `Scene::lights.size()`
@@ -48,7 +62,8 @@ struct ScriptContext {
 };
 
 /// Parses and checks the script `text`, read from `fileName` (named in messages as
-/// `FILE:LINE: ...`).
+/// `FILE:LINE: ...`; a message is at most `kMaxScriptMessage` bytes and quotes at most 80 of
+/// the line).
 [[nodiscard]] Result<std::vector<ScriptCommand>> parseScript(const std::string& text, const std::string& fileName,
                                                              const ScriptContext& context);
 

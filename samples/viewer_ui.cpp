@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 namespace shadow::viewer {
@@ -74,7 +75,29 @@ void drawCameraSection(ViewerState& state, UiRequests& requests) {
                         rig.flySpeed());
 }
 
+/// The clip picker: one of the file's clips, or all of them at once.
+void drawClipCombo(ViewerState& state) {
+    const std::vector<AnimationClip>& clips = state.scene.clips;
+    if (clips.empty()) return;
+    const bool all = state.scene.playing.size() > 1;
+    const std::size_t current = state.scene.playing.empty() ? 0 : state.scene.playing[0];
+    const auto label = [&](std::size_t i) { return std::to_string(i) + ": " + clips[i].name; };
+    if (!ImGui::BeginCombo("clip", all ? "all" : label(current).c_str())) return;
+    std::optional<std::string> choice;
+    for (std::size_t i = 0; i < clips.size(); ++i) {
+        if (ImGui::Selectable(label(i).c_str(), !all && i == current)) choice = std::to_string(i);
+    }
+    if (ImGui::Selectable("all", all)) choice = "all";
+    ImGui::EndCombo();
+    if (!choice) return;
+    // Indices and `all` come from the list above, so the choice is always there.
+    if (Status s = playAnimation(state.scene, *choice); !s) state.status = s.error().message;
+    state.animation = *choice;
+    state.dirty = true;
+}
+
 void drawAnimationSection(ViewerState& state) {
+    drawClipCombo(state);
     ImGui::Checkbox("paused (Space)", &state.paused);
     ImGui::SameLine();
     ImGui::SetNextItemWidth(120.0f);

@@ -230,6 +230,67 @@ TEST(Reference, EnginePositionsMatchCameraRayPlaneIntersections) {
     EXPECT_LE(withoutSurface, covered / 100);
 }
 
+// ---- The shadow-ray epsilon ----
+
+// A small scene beside the centre of one that reaches 5e5 m either way (two distant boxes): a
+// unit box 1 m above a ground of 1 m cells, a point light 6 m up and 3 m aside. With one epsilon
+// for the whole scene (1e-5 of its 1e6 m diagonal: 10 m) the shadow rays start above the box
+// and its shadow is lost; with the epsilon of the local geometry it is kept.
+TEST(Reference, SmallCasterInAVastSceneKeepsItsShadow) {
+    constexpr int kSize = 64;
+    Scene scene;
+    addMeshInstance(scene.world, "ground", makePlaneMesh(5.0f, 10), Transform{});
+    Transform box;
+    box.translation = {0.0, 1.5, 0.0};
+    addMeshInstance(scene.world, "box", makeBoxMesh(glm::vec3(0.5f)), box);
+    for (const double x : {-5e5, 5e5}) {
+        Transform far;
+        far.translation = {x, 0.5, 0.0};
+        addMeshInstance(scene.world, "far", makeBoxMesh(glm::vec3(0.5f)), far);
+    }
+    Light bulb;
+    bulb.type = LightType::Point;
+    addLight(scene, "bulb", bulb, Shadow{}, {3.0, 6.0, 0.0}, {0.0, -1.0, 0.0});
+    Camera camera;
+    camera.zfar = 1e6f;
+    addCamera(scene, "eye", camera, {0.0, 9.0, 0.01}, {0.0, 0.0, 0.0});
+    animate(scene.world, 0.0);
+    (void)updateTransforms(scene.world);
+    const CameraView view = makeCameraView(scene.world, scene.cameras[0], 1.0f);
+    ReferenceOptions options;
+    options.width = kSize;
+    options.height = kSize;
+    options.samples = 1;
+    Result<ReferenceResult> r = traceVisibility(scene, view, options);
+    ASSERT_TRUE(r.ok()) << r.error().message;
+    // The shadow on the ground, projected from the bulb: the box's top face (y = 2) covers
+    // x in [-2.25, -0.75], |z| <= 0.75; its bottom face x in [-1.2, 0], |z| <= 0.6. Ground pixels
+    // well inside the top's shadow must be dark, those well clear of both lit.
+    int inside = 0, darkInside = 0, outside = 0, litOutside = 0;
+    for (int y = 0; y < kSize; ++y) {
+        for (int x = 0; x < kSize; ++x) {
+            if (r->wsPosition.at(x, y, 3) != 1.0f || std::abs(r->wsPosition.at(x, y, 1)) > 1e-3f) continue;
+            const double gx = r->wsPosition.at(x, y, 0);
+            const double gz = std::abs(r->wsPosition.at(x, y, 2));
+            const float v = r->visibility[0].at(x, y, 0);
+            if (gx > -2.1 && gx < -0.9 && gz < 0.6) {
+                ++inside;
+                darkInside += v == 0.0f ? 1 : 0;
+            } else if ((gx > 0.8 || gx < -2.4 || gz > 0.9) && std::max(std::abs(gx), gz) < 4.5) {
+                ++outside;
+                litOutside += v == 1.0f ? 1 : 0;
+            }
+        }
+    }
+    std::printf("[ measured ] shadow-ray epsilon %.3g..%.3g m; %d of %d ground pixels under the box dark\n",
+                r->epsilonMin, r->epsilonMax, darkInside, inside);
+    EXPECT_GT(inside, kSize * kSize / 100);
+    EXPECT_GT(outside, kSize * kSize / 4);
+    EXPECT_EQ(darkInside, inside);
+    EXPECT_EQ(litOutside, outside);
+    EXPECT_LT(r->epsilonMax, 1e-3) << "the epsilon follows the geometry near the camera, not the scene's extent";
+}
+
 // ---- Positions mode ----
 
 TEST(Reference, PositionsModeGivesTheVisibilityOfCameraMode) {

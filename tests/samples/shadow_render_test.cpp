@@ -2,6 +2,7 @@
 // and bad input answered by one message and exit code 2 with nothing written.
 #include <gtest/gtest.h>
 
+#include "scene/gltf_test_support.h"
 #include "test_support.h"
 #include <shadow/image_io.h>
 #include <sys/wait.h>
@@ -126,7 +127,7 @@ TEST(ShadowRenderCli, DefaultSceneWritesEveryOutputOfTheContract) {
     ASSERT_EQ(stats["lights"].size(), 3u);
     EXPECT_EQ(stats["warnings"], nlohmann::json::array()) << "the default scene is in range";
     for (int i = 0; i < 3; ++i) {
-        EXPECT_EQ(stats["lights"][i].value("visibility", ""), "visibility_" + std::to_string(i) + ".exr");
+        EXPECT_EQ(stats["lights"][i]["visibility"], "visibility_" + std::to_string(i) + ".exr");
     }
 }
 
@@ -161,6 +162,88 @@ TEST(ShadowRenderCli, ClampedSettingIsReportedInStatsJsonAndOnStderr) {
     EXPECT_EQ(stats["warnings"], expected) << stats["warnings"].dump(2);
 }
 
+/// A lamp over a triangle that two clips move (0: "left", 1: "right"), with what a file may hold
+/// that the loader lets pass: an unknown extras.shadow key, a light of an unknown type, a camera
+/// on a matrix without rotation, a scene listing a child node, an unlit material.
+fs::path warningScene(const fs::path& dir) {
+    using gltf_test::json;
+    gltf_test::Doc doc;
+    doc.light({{"type", "spot"},
+               {"intensity", 20},
+               {"spot", {{"outerConeAngle", 0.7}}},
+               {"extras", {{"shadow", {{"technique", "hard"}, {"mapSize", 128}, {"mapsize", 256}}}}}});
+    doc.light({{"type", "area"}});
+    doc.push("cameras", {{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.05}, {"zfar", 100}}}});
+    doc.node({{"name", "lamp"},
+              {"translation", {0, 4, 0}},
+              {"rotation", {-0.7071068, 0, 0, 0.7071068}},
+              {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    doc.node({{"name", "panel"}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+    doc.node({{"name", "camera"}, {"translation", {0, 2, 6}}, {"camera", 0}});
+    doc.node({{"name", "eye2"}, {"camera", 0}, {"matrix", {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2, 3, 1}}});
+    const int unlit = doc.push("materials", {{"extensions", {{"KHR_materials_unlit", json::object()}}}});
+    doc.node({{"name", "plate"}, {"mesh", doc.triangleMesh(unlit)}, {"children", {5}}});
+    doc.node({{"name", "tip"}, {"translation", {0, 1, 0}}});
+    doc.j["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_unlit"};
+    doc.scene({0, 1, 2, 3, 4, 5});
+    const int times = doc.floats({0, 1}, "SCALAR");
+    for (const char* name : {"left", "right"}) {
+        const float x = std::string(name) == "left" ? -1.0f : 1.0f;
+        const json sampler = {{"input", times}, {"output", doc.floats({0, 0, 0, x, 0, 0}, "VEC3")}};
+        doc.push("animations",
+                 {{"name", name},
+                  {"samplers", json::array({sampler})},
+                  {"channels", json::array({{{"sampler", 0}, {"target", {{"node", 4}, {"path", "translation"}}}}})}});
+    }
+    return doc.write(dir / "warned.gltf");
+}
+
+TEST(ShadowRenderCli, SceneWarningsReachStderrOnceAndStatsJson) {
+    TempDir tmp;
+    const fs::path scene = warningScene(tmp.path());
+    const std::string out = tmp / "out";
+    const CliRun run = runCli(tmp, quoted(scene.string()) + " --size 32x18 --frames 2 --out " + quoted(out));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const nlohmann::json stats = readJson(out + "/stats.json");
+    ASSERT_FALSE(stats.is_discarded()) << "stats.json is not JSON";
+    std::vector<std::string> codes;
+    for (const nlohmann::json& w : stats["warnings"]) {
+        codes.push_back(w["code"].get<std::string>());
+        const std::string line = "shadow_render: warning: " + w["message"].get<std::string>() + "\n";
+        std::size_t count = 0;
+        for (std::size_t at = run.output.find(line); at != std::string::npos; at = run.output.find(line, at + 1))
+            ++count;
+        EXPECT_EQ(count, 1u) << line << run.output;
+    }
+    for (const char* code :
+         {"UnknownSetting", "UnsupportedLight", "DegenerateTransform", "SceneNodeNotRoot", "UnsupportedFeature"}) {
+        EXPECT_EQ(std::count(codes.begin(), codes.end(), code), 1) << code << " in " << stats["warnings"].dump(2);
+    }
+}
+
+TEST(ShadowRenderCli, AnimationFlagPlaysTheChosenClipAndStatsJsonSaysWhich) {
+    TempDir tmp;
+    const fs::path scene = warningScene(tmp.path());
+    const auto played = [&](const std::string& flag) {
+        const std::string out = tmp / ("out" + std::to_string(flag.size()));
+        const CliRun run =
+            runCli(tmp, quoted(scene.string()) + " --size 32x18 --aov color " + flag + " --out " + quoted(out));
+        EXPECT_EQ(run.exitCode, 0) << run.output;
+        return readJson(out + "/stats.json")["animation"]["played"];
+    };
+    using Json = nlohmann::json;
+    EXPECT_EQ(played(""), Json::parse(R"([{"index": 0, "name": "left"}])"));
+    EXPECT_EQ(played("--animation right"), Json::parse(R"([{"index": 1, "name": "right"}])"));
+    EXPECT_EQ(played("--animation 1"), Json::parse(R"([{"index": 1, "name": "right"}])"));
+    EXPECT_EQ(played("--animation all"),
+              Json::parse(R"([{"index": 0, "name": "left"}, {"index": 1, "name": "right"}])"));
+    const CliRun bad = runCli(tmp, quoted(scene.string()) + " --animation up --out " + quoted(tmp / "bad"));
+    EXPECT_EQ(bad.exitCode, kExitBadInput) << bad.output;
+    EXPECT_NE(bad.output.find("animation \"up\": no clip of that name (the scene's: 0 \"left\", 1 \"right\", or all)"),
+              std::string::npos)
+        << bad.output;
+}
+
 TEST(ShadowRenderCli, DepthModeFlagSetsEveryShadowedLightAndReportsTheScratch) {
     TempDir tmp;
     const std::string out = tmp / "out";
@@ -193,6 +276,11 @@ struct BadInput {
 TEST(ShadowRenderCli, BadInputExitsWithCode2AndWritesNothing) {
     TempDir tmp;
     const std::string missing = tmp / "no_such_scene.gltf";
+    const std::string required = tmp / "required.gltf";
+    std::ofstream(required) << R"({"asset": {"version": "2.0"}, "extensionsUsed": ["EXT_made_up"],
+                                   "extensionsRequired": ["EXT_made_up"]})";
+    const std::string halfCutoff = tmp / "half.gltf";
+    std::ofstream(halfCutoff) << R"({"asset": {"version": "2.0"}, "materials": [{"alphaCutoff": "half"}]})";
     const std::vector<BadInput> cases = {
         {"unknown builtin", "", "builtin:nope", "nope"},
         {"missing file", "", missing, "no_such_scene.gltf"},
@@ -257,6 +345,10 @@ TEST(ShadowRenderCli, BadInputExitsWithCode2AndWritesNothing) {
         {"start offset NaN", "--sdf-start-offset nan", "builtin:default", "--sdf-start-offset"},
         {"start offset over 1 m", "--sdf-start-offset 2", "builtin:default", "--sdf-start-offset"},
         {"unknown flag", "--bogus", "builtin:default", "--bogus"},
+        {"a clip the scene lacks", "--animation walk", "builtin:default", "animation \"walk\""},
+        {"--animation without a value", "--animation", "builtin:default", "--animation"},
+        {"required extension unknown", "", required, "extensionsRequired[0]: the file requires EXT_made_up"},
+        {"alphaCutoff of the wrong type", "", halfCutoff, "materials[0].alphaCutoff: must be a number"},
         {"extra argument", "extra", "builtin:default", "extra"},
     };
     for (std::size_t i = 0; i < cases.size(); ++i) {

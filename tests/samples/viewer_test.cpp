@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include <sys/stat.h>
+
 namespace shadow {
 namespace {
 
@@ -154,6 +156,45 @@ TEST(ShadowViewerScript, BadLineIsOneMessageNamingItExitTwoNothingWritten) {
     EXPECT_EQ(badStage.exitCode, kExitBadInput) << badStage.output;
     EXPECT_NE(badStage.output.find("--screen-visibility: unknown setting 'sometimes'"), std::string::npos)
         << badStage.output;
+}
+
+TEST(ShadowViewerScript, ScriptThatIsNoRegularFileOrTooLargeIsOneMessage) {
+#ifndef SHADOW_VIEWER_BUILT
+    GTEST_SKIP() << "the viewer is not built (SHADOW_BUILD_VIEWER=OFF)";
+#endif
+    // Checked before any window opens (no display needed) and before anything is read: a FIFO
+    // would block, /dev/zero would grow without end.
+    test::TempDir tmp("viewer_test");
+    const std::string fifo = tmp / "fifo";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const std::string big = tmp / "big.txt";
+    writeText(big, std::string(1U << 20U, '#') + "\nquit\n");  // a comment line of 1 MiB, over the cap
+    const std::string longLine = tmp / "long.txt";
+    writeText(longLine, "time 1\n" + std::string(100000, 'x') + "\n");  // within the size cap
+    const std::string wordy = tmp / "wordy.txt";
+    writeText(wordy, "frames " + std::string(3000, '7') + "\n");  // a line within the cap, a long word
+    struct Case {
+        std::string script, mention;
+    };
+    const std::vector<Case> cases = {
+        {tmp.path().string(), "a folder, not a file"},
+        {fifo, "a FIFO, not a regular file"},
+        {"/dev/zero", "a device, not a regular file"},
+        {big, "bytes; a script holds at most 1048576 (1 MiB)"},
+        {longLine, "long.txt:2: a line of 100000 bytes; a line holds at most 4096"},
+        {wordy, "wordy.txt:1: frames '777"},
+    };
+    for (const Case& c : cases) {
+        const auto start = std::chrono::steady_clock::now();
+        const test::ProcessRun run = test::runProgram(
+            SHADOW_BIN_DIR "/shadow_viewer", "builtin:default --size 64x36 --script " + test::shellQuoted(c.script),
+            tmp / "viewer.log");
+        EXPECT_EQ(run.exitCode, kExitBadInput) << c.script << ": " << run.output;
+        EXPECT_NE(run.output.find(c.mention), std::string::npos) << c.script << ": " << run.output;
+        EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << "one message: " << run.output;
+        EXPECT_LE(run.output.size(), 1100U) << c.script << ": the message is capped";
+        EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30)) << c.script;
+    }
 }
 
 }  // namespace

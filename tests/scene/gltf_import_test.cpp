@@ -35,6 +35,41 @@ TEST(GltfImport, BuildsNodeHierarchyFromChosenSceneOnly) {
     EXPECT_FALSE(scene->world.alive(findByName(*scene, "elsewhere")));
 }
 
+TEST(GltfImport, SceneListingAChildNodeLoadsWithAWarningNamingIt) {
+    // What some exporters write: every node in the scene's list, children too; and a child
+    // whose parent is in no listed subtree.
+    Doc doc;
+    doc.node({{"name", "root"}, {"translation", {1, 0, 0}}, {"children", {1}}});
+    doc.node({{"name", "child"}, {"translation", {0, 2, 0}}});
+    doc.node({{"name", "unlisted"}, {"translation", {5, 0, 0}}, {"children", {3}}});
+    doc.node({{"name", "orphan"}, {"translation", {0, 0, 3}}});
+    doc.scene({0, 1, 3, 0});
+    const auto path = doc.write(testDir() / "s.gltf");
+    auto scene = loadGltf(path.string());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    World& w = scene->world;
+    EXPECT_EQ(w.size(), 3u) << "root, child once, orphan; not the unlisted parent";
+    const Entity root = findByName(*scene, "root");
+    EXPECT_EQ(w.get<Transform>(findByName(*scene, "child")).parent, root);
+    const Entity orphan = findByName(*scene, "orphan");
+    ASSERT_TRUE(w.alive(orphan));
+    EXPECT_TRUE(w.get<Transform>(orphan).parent.isNull());
+    expectVec3(w.get<Transform>(orphan).translation, {0, 0, 3});
+    ASSERT_EQ(scene->warnings.size(), 3u);
+    const std::string file = path.string() + ": ";
+    expectWarning(scene->warnings[0], WarningCode::SceneNodeNotRoot, "nodes[0]",
+                  file + "scenes[0].nodes lists nodes[0] (\"root\") twice; it is taken once");
+    expectWarning(scene->warnings[1], WarningCode::SceneNodeNotRoot, "nodes[1]",
+                  file +
+                      "scenes[0].nodes lists nodes[1] (\"child\"), which is not a root node (its parent is "
+                      "nodes[0]); it is taken once, below nodes[0], which the scene holds too");
+    expectWarning(scene->warnings[2], WarningCode::SceneNodeNotRoot, "nodes[3]",
+                  file +
+                      "scenes[0].nodes lists nodes[3] (\"orphan\"), which is not a root node (its parent is "
+                      "nodes[2]); it is taken as a root of its own subtree, with its own transform (its ancestors "
+                      "are in no subtree the scene lists)");
+}
+
 TEST(GltfImport, DecomposesNodeMatrixIntoTrs) {
     Doc doc;  // T(1,2,3) * R_y(90 deg) * S(2), column-major
     doc.node({{"name", "m"}, {"matrix", {0, 0, -2, 0, 0, 2, 0, 0, 2, 0, 0, 0, 1, 2, 3, 1}}});

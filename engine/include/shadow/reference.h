@@ -13,9 +13,13 @@
 // - Visibility is geometric: a point outside a spot's cone, beyond a light's range or facing
 //   away from the light (N·L ≤ 0) still gets the occlusion of the emitter by casters. The
 //   shading that multiplies it is zero there anyway; V itself stays comparable.
-// - Shadow rays start at the point offset by `RayScene::epsilon()` along the geometric normal,
-//   to the side of each ray's emitter sample, and stop `epsilon` short of the sample. So the
-//   surface a point lies on never shadows that point; other parts of its mesh do.
+// - Shadow rays start at the point offset by an epsilon along the geometric normal, to the side
+//   of each ray's emitter sample, and stop epsilon short of the sample. So the surface a point
+//   lies on never shadows that point; other parts of its mesh do. The epsilon follows the
+//   geometry at the point, not the scene's size: 2^-17 (64 float ulps) × the sum of the largest
+//   coordinates, relative to the scene's centre, of the camera, the point and the farthest
+//   vertex of its triangle (at least 1e-7 m; engine/src/reference/ray_scene.h says why). So a
+//   scene whose distant parts reach 10^6 m keeps the shadows of its small parts.
 // - A pixel whose surface does not receive shadows (`Mesh::receiveShadows` false) has
 //   visibility 1, as the engine writes it; a background pixel has visibility 1 too. Both have
 //   standard error 0.
@@ -80,7 +84,8 @@ struct ReferenceResult {
     int threads = 0;            ///< threads used
     double buildSeconds = 0.0;  ///< BVH build
     double traceSeconds = 0.0;  ///< tracing, wall clock
-    double epsilon = 0.0;       ///< shadow-ray offset (m)
+    double epsilonMin = 0.0;    ///< smallest shadow-ray offset of a shaded pixel (m)
+    double epsilonMax = 0.0;    ///< largest shadow-ray offset of a shaded pixel (m)
     int coveredPixels = 0;      ///< pixels on geometry
     int nonReceiverPixels = 0;  ///< of those, on meshes that do not receive shadows
     /// Positions mode: covered pixels whose surface the camera ray did not find within

@@ -17,6 +17,20 @@
 
 namespace shadow {
 
+/// One glTF animation of a loaded scene, kept whether it plays or not, so that
+/// `playAnimation` switches clips without loading the file again.
+struct AnimationClip {
+    /// One entity the clip moves.
+    struct Target {
+        Entity entity;
+        std::vector<AnimationChannel> channels;  ///< this clip's channels of the entity
+        Transform rest;                          ///< the entity's transform as loaded
+    };
+    std::string name;       ///< the file's name for it, or `animation<i>` when it has none
+    double duration = 0.0;  ///< its last key time (s)
+    std::vector<Target> targets;
+};
+
 /// A loaded or built scene: the world plus the orderings the outputs rely on.
 struct Scene {
     World world;
@@ -25,10 +39,17 @@ struct Scene {
     std::vector<Entity> lights;
     /// Camera instances in glTF node order; `--camera N` picks one.
     std::vector<Entity> cameras;
-    /// Longest animation clip (s); 0 when nothing is keyframed.
+    /// Longest animation clip that plays (s); 0 when nothing keyframed plays.
     double animationDuration = 0.0;
-    /// Problems the loader let pass under lenient `GltfLoadOptions`
-    /// (`ShadowSettingsIgnored`); each message names the file and the element.
+    /// The file's animations, in file order (none in a built-in scene).
+    std::vector<AnimationClip> clips;
+    /// Indices into `clips` of the clips that play: the first alone by default, every one under
+    /// `all` (see `playAnimation`).
+    std::vector<std::size_t> playing;
+    /// What the loader let pass, each naming the file and the element: content the module
+    /// drops (`UnsupportedFeature`), graph and mesh repairs (`SceneNodeNotRoot`,
+    /// `MissingTexcoord`), lights and transforms (`UnsupportedLight`, `DegenerateTransform`),
+    /// settings (`UnknownSetting`, and `ShadowSettingsIgnored` under lenient `GltfLoadOptions`).
     std::vector<Warning> warnings;
 };
 
@@ -41,7 +62,20 @@ struct GltfLoadOptions {
     /// `ShadowSettingsIgnored` warning goes to `Scene::warnings`. Either way one light's
     /// settings never affect another light. Errors outside `extras.shadow` always fail the load.
     bool strictShadowSettings = true;
+    /// Which of the file's animations plays, as `playAnimation` takes it: empty (the default)
+    /// the first; `all` every one at once; a clip's index in the file (`2`) or its name. A name
+    /// or index the file lacks fails the load with one message naming it and listing the clips.
+    std::string animation;
 };
+
+/// Makes the clips `choice` names play, replacing the `Animation` of every entity a clip of
+/// the scene moves: empty, the first clip; `all`, every clip (an entity several clips move
+/// loops with the longest of them); digits, the clip of that index in `Scene::clips`;
+/// anything else, the clip of that name (a clip named `all` or by digits is chosen by its
+/// index). An entity no playing clip moves gets its transform as loaded back. Sets
+/// `Scene::playing` and `animationDuration`. An index or name the scene lacks is an error
+/// naming it and listing the clips, and leaves the scene as it was. Never throws.
+[[nodiscard]] Status playAnimation(Scene& scene, const std::string& choice);
 
 /// Animation system: writes local `Transform`s from `Animation` and `ProceduralMotion` at
 /// absolute time `t` (s). Keyframed clips loop; time is kept in double so `t = 1e7` s works.

@@ -7,7 +7,8 @@
 // branch on, the element at fault, and the line a person reads (what the CLI prints and
 // stats.json lists). Producing warnings never throws.
 //
-// Where they are collected: `Scene::warnings` (loading), `ShadowFrame::warnings` (the shadow
+// Where they are collected: `Scene::warnings` (loading: the CLIs print them and list them in
+// stats.json with the frame's), `ShadowFrame::warnings` (the shadow
 // planner, every frame), `FrameStats::warnings` (a whole frame: the transform system's and the
 // planner's).
 #pragma once
@@ -67,6 +68,20 @@ enum class WarningCode {
     /// map instead (a hard shadow, multiplied with the march's visibility). Element: the light;
     /// the message counts their draws and names the first.
     CasterWithoutField,
+    /// A glTF scene lists a node that is not a root (or lists one twice). The node is taken
+    /// once: below its nearest ancestor the scene lists too, else as a root of its own subtree
+    /// with its own transform. Element: the node, e.g. `nodes[1]`; the message says which.
+    SceneNodeNotRoot,
+    /// A glTF file uses something the module does not draw (an extension, morph targets, an
+    /// emissive colour, a texture it does not read, ...): it is left out and the rest drawn.
+    /// One warning per kind, element: the first element that uses it, e.g.
+    /// `materials[2].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform`; the
+    /// message counts the uses and says what the module does instead.
+    UnsupportedFeature,
+    /// A material's texture reads a `TEXCOORD_n` set its primitive lacks: the primitive is drawn
+    /// without that texture. Element: the primitive, e.g. `meshes[0].primitives[1]`; the
+    /// message names the material and the texture.
+    MissingTexcoord,
 };
 
 /// One decision the engine reports.
@@ -94,6 +109,9 @@ struct Warning {
         case WarningCode::UnsupportedLight: return "UnsupportedLight";
         case WarningCode::OpenCaster: return "OpenCaster";
         case WarningCode::CasterWithoutField: return "CasterWithoutField";
+        case WarningCode::SceneNodeNotRoot: return "SceneNodeNotRoot";
+        case WarningCode::UnsupportedFeature: return "UnsupportedFeature";
+        case WarningCode::MissingTexcoord: return "MissingTexcoord";
     }
     return "Unknown";
 }

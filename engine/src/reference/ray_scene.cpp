@@ -16,8 +16,11 @@
 namespace shadow::reference {
 namespace {
 
-constexpr double kRelativeEpsilon = 1e-5;
+/// 64 float ulps (2^-17) of the magnitudes a ray's arithmetic rounds; see ray_scene.h.
+constexpr double kRelativeEpsilon = 1.0 / 131072.0;
 constexpr double kMinEpsilon = 1e-7;  // m
+
+double largestCoordinate(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
 /// A cut-out material's alpha test (`Material::cutout`), the rule of shaders/alpha_test.glsl.
 struct AlphaTest {
@@ -196,7 +199,6 @@ struct RayScene::Impl {
     RTCScene casters = nullptr;  ///< casters only: shadow rays
     std::vector<FlatMesh> meshes;
     glm::dvec3 origin{0.0};
-    double epsilon = kMinEpsilon;
     std::size_t triangles = 0;
     std::size_t casterTriangles = 0;
     std::pair<std::mutex, std::string> error;
@@ -211,6 +213,17 @@ struct RayScene::Impl {
     }
 
     [[nodiscard]] glm::vec3 local(const glm::dvec3& ws) const { return glm::vec3(ws - origin); }
+
+    /// The largest coordinate of triangle `primitive` of geometry `geometry` (scene-local).
+    [[nodiscard]] double triangleMagnitude(unsigned geometry, unsigned primitive) const {
+        const FlatMesh& mesh = meshes[geometry];
+        double largest = 0.0;
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::size_t v = mesh.indices[3 * static_cast<std::size_t>(primitive) + k];
+            for (std::size_t c = 0; c < 3; ++c) largest = std::max(largest, std::abs(double{mesh.vertices[3 * v + c]}));
+        }
+        return largest;
+    }
 
     void attach(RTCScene scene, const FlatMesh& mesh, unsigned id) const {
         RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -289,10 +302,7 @@ Result<RayScene> RayScene::build(World& world) {
     if (!wsPositions) return wsPositions.error();
 
     auto impl = std::make_unique<Impl>();
-    if (!bounds.empty()) {
-        impl->origin = bounds.center();
-        impl->epsilon = std::max(kRelativeEpsilon * glm::length(bounds.extent()), kMinEpsilon);
-    }
+    if (!bounds.empty()) impl->origin = bounds.center();
     if (Status s = impl->createDevice(); !s) return s.error();
     impl->meshes.reserve(instances.size());
     for (std::size_t k = 0; k < instances.size(); ++k) {
@@ -334,6 +344,9 @@ std::optional<SurfaceHit> RayScene::intersect(const glm::dvec3& wsOrigin, const 
     hit.wsNormal = length > 0.0 ? ng / length : -glm::normalize(direction);
     if (glm::dot(hit.wsNormal, direction) > 0.0) hit.wsNormal = -hit.wsNormal;
     hit.receivesShadows = m.meshes[rh.hit.geomID].receives;
+    const double magnitude = largestCoordinate(wsOrigin - m.origin) + largestCoordinate(hit.wsPosition - m.origin) +
+                             m.triangleMagnitude(rh.hit.geomID, rh.hit.primID);
+    hit.epsilon = std::max(kRelativeEpsilon * magnitude, kMinEpsilon);
     return hit;
 }
 
@@ -358,7 +371,10 @@ bool RayScene::occluded(const glm::dvec3& wsOrigin, const glm::dvec3& unitDirect
     return ray.tfar < 0.0f;
 }
 
-double RayScene::epsilon() const { return impl_->epsilon; }
+double RayScene::epsilonAt(const glm::dvec3& wsPoint) const {
+    const double magnitude = std::max(largestCoordinate(wsPoint - impl_->origin), largestCoordinate(wsPoint));
+    return std::max(kRelativeEpsilon * magnitude, kMinEpsilon);
+}
 std::size_t RayScene::triangleCount() const { return impl_->triangles; }
 std::size_t RayScene::casterTriangleCount() const { return impl_->casterTriangles; }
 

@@ -5,7 +5,10 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <limits>
 #include <optional>
+#include <tuple>
+#include <utility>
 #include <thread>
 
 #include "emitters.h"
@@ -28,6 +31,7 @@ struct ShadingPoint {
     bool hasNormal = false;  ///< positions mode without a surface found: false
     glm::dvec3 wsPosition{0.0};
     glm::dvec3 wsNormal{0.0};  ///< unit geometric normal when `hasNormal`
+    double epsilon = 0.0;      ///< shadow-ray offset (m): the hit's, see ray_scene.h
 };
 
 struct Estimate {
@@ -38,7 +42,7 @@ struct Estimate {
 /// The fraction of `rays` shadow rays from `point` to the emitter that no caster blocks.
 Estimate estimateVisibility(const RayScene& scene, const Emitter& emitter, const ShadingPoint& point, int rays,
                             std::uint32_t pattern) {
-    const double eps = scene.epsilon();
+    const double eps = point.epsilon;
     int unoccluded = 0;
     for (int k = 0; k < rays; ++k) {
         const glm::dvec2 disk = rays == 1
@@ -126,6 +130,7 @@ public:
            ReferenceResult& out)
         : scene_(scene), camera_(camera), options_(options), emitters_(emitters), lights_(lights), out_(out) {
         shaded_.assign(static_cast<std::size_t>(options.width) * options.height, 0);
+        rowEpsilon_.assign(static_cast<std::size_t>(options.height), {std::numeric_limits<double>::infinity(), 0.0});
     }
 
     /// Rows are handed out one at a time so the threads stay busy until the end.
@@ -141,6 +146,15 @@ public:
     }
 
     [[nodiscard]] const std::vector<std::uint8_t>& shaded() const { return shaded_; }
+    /// The smallest and largest shadow-ray offset of the shaded pixels (0, 0 without any).
+    [[nodiscard]] std::pair<double, double> epsilonRange() const {
+        std::pair<double, double> range{std::numeric_limits<double>::infinity(), 0.0};
+        for (const auto& [low, high] : rowEpsilon_) {
+            range.first = std::min(range.first, low);
+            range.second = std::max(range.second, high);
+        }
+        return range.second > 0.0 ? range : std::pair<double, double>{0.0, 0.0};
+    }
     [[nodiscard]] int positionsWithoutSurface() const { return withoutSurface_.load(); }
     [[nodiscard]] int positionsBeyondReach() const { return beyondReach_.load(); }
 
@@ -155,6 +169,7 @@ private:
         p.hasNormal = true;
         p.wsPosition = hit->wsPosition;
         p.wsNormal = hit->wsNormal;
+        p.epsilon = hit->epsilon;
         return p;
     }
 
@@ -170,6 +185,7 @@ private:
             return p;
         }
         p.covered = true;
+        p.epsilon = scene_.epsilonAt(p.wsPosition);
         // The surface under the position: the camera ray through it, searched only near it so
         // a surface just in front (a silhouette the rasteriser decided otherwise) is skipped.
         const glm::dvec3 toPoint = p.wsPosition - camera_.wsPosition;
@@ -180,6 +196,7 @@ private:
                 p.receives = hit->receivesShadows;
                 p.hasNormal = true;
                 p.wsNormal = hit->wsNormal;
+                p.epsilon = std::max(p.epsilon, hit->epsilon);
                 return p;
             }
         }
@@ -221,6 +238,9 @@ private:
         if (!p.covered || !p.receives) return;  // images are initialised to V = 1, SE = 0
         const std::uint64_t pixel = static_cast<std::uint64_t>(y) * options_.width + x;
         shaded_[pixel] = 1;
+        auto& [low, high] = rowEpsilon_[static_cast<std::size_t>(y)];  // each row has one worker
+        low = std::min(low, p.epsilon);
+        high = std::max(high, p.epsilon);
         for (std::size_t i = 0; i < emitters_.size(); ++i) {
             if (!emitters_[i]) continue;
             const Emitter& e = *emitters_[i];
@@ -240,6 +260,7 @@ private:
     const std::vector<const Light*>& lights_;
     ReferenceResult& out_;
     std::vector<std::uint8_t> shaded_;
+    std::vector<std::pair<double, double>> rowEpsilon_;  ///< per row: smallest, largest offset
     std::atomic<int> nextRow_{0};
     std::atomic<int> rowsDone_{0};
     std::atomic<int> withoutSurface_{0};
@@ -306,7 +327,6 @@ Result<ReferenceResult> traceVisibility(Scene& scene, const CameraView& camera, 
 
     ReferenceResult out;
     out.buildSeconds = secondsSince(buildStart);
-    out.epsilon = rays->epsilon();
     std::vector<std::optional<Emitter>> emitters;
     std::vector<const Light*> lights;
     for (const Entity light : scene.lights) {
@@ -340,6 +360,7 @@ Result<ReferenceResult> traceVisibility(Scene& scene, const CameraView& camera, 
     out.traceSeconds = secondsSince(traceStart);
 
     summarise(tracer.shaded(), out);
+    std::tie(out.epsilonMin, out.epsilonMax) = tracer.epsilonRange();
     for (std::size_t p = 0; p < tracer.shaded().size(); ++p) {
         const bool covered = out.wsPosition.pixels[p * 4 + 3] > 0.5f;
         out.coveredPixels += covered ? 1 : 0;

@@ -366,8 +366,12 @@ Result<Scene> makeBuiltinScene(const std::string& name) {
 
 Result<Scene> loadScene(const std::string& spec, const GltfLoadOptions& options) {
     const std::string prefix = "builtin:";
-    if (spec.rfind(prefix, 0) == 0) return makeBuiltinScene(spec.substr(prefix.size()));
-    return loadGltf(spec, options);
+    if (spec.rfind(prefix, 0) != 0) return loadGltf(spec, options);
+    auto scene = makeBuiltinScene(spec.substr(prefix.size()));
+    if (!scene) return scene;
+    // A built-in scene has no clips: a clip named or numbered is an error, as for a file.
+    if (Status s = playAnimation(*scene, options.animation); !s) return s.error().within(spec + ": ");
+    return scene;
 }
 
 }  // namespace shadow

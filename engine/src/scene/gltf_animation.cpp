@@ -71,17 +71,12 @@ Result<AnimationChannel> importSampler(const tinygltf::Model& model, const tinyg
     return channel;
 }
 
-struct TargetedChannel {
-    std::size_t node = 0;
-    AnimationChannel channel;
-};
-
-/// The usable channels of `animations[index]`; `duration` receives its last key time.
-Result<std::vector<TargetedChannel>> importAnimation(const tinygltf::Model& model, std::size_t index,
-                                                     double& duration) {
+/// The usable channels of `animations[index]`.
+Result<ImportedClip> importAnimation(const tinygltf::Model& model, std::size_t index) {
     const tinygltf::Animation& animation = model.animations[index];
     const std::string where = indexed("animations", index);
-    std::vector<TargetedChannel> out;
+    ImportedClip out;
+    out.name = animation.name.empty() ? "animation" + std::to_string(index) : animation.name;
     for (std::size_t c = 0; c < animation.channels.size(); ++c) {
         const tinygltf::AnimationChannel& channel = animation.channels[c];
         const std::string channelWhere = where + "." + indexed("channels", c);
@@ -99,27 +94,22 @@ Result<std::vector<TargetedChannel>> importAnimation(const tinygltf::Model& mode
         auto sampled = importSampler(model, animation.samplers[samplerIndex], *path,
                                      where + "." + indexed("samplers", samplerIndex));
         if (!sampled) return sampled.error();
-        duration = std::max(duration, static_cast<double>(sampled->times.back()));
-        out.push_back({static_cast<std::size_t>(channel.target_node), std::move(*sampled)});
+        out.duration = std::max(out.duration, static_cast<double>(sampled->times.back()));
+        out.channels.emplace_back(static_cast<std::size_t>(channel.target_node), std::move(*sampled));
     }
     return out;
 }
 
 }  // namespace
 
-Result<std::vector<Animation>> importAnimations(const tinygltf::Model& model) {
-    std::vector<Animation> perNode(model.nodes.size());
+Result<std::vector<ImportedClip>> importAnimations(const tinygltf::Model& model) {
+    std::vector<ImportedClip> clips;
     for (std::size_t a = 0; a < model.animations.size(); ++a) {
-        double duration = 0.0;
-        auto channels = importAnimation(model, a, duration);
-        if (!channels) return channels.error();
-        for (TargetedChannel& targeted : *channels) {
-            Animation& animation = perNode[targeted.node];
-            animation.channels.push_back(std::move(targeted.channel));
-            animation.duration = std::max(animation.duration, duration);
-        }
+        auto clip = importAnimation(model, a);
+        if (!clip) return clip.error();
+        clips.push_back(std::move(*clip));
     }
-    return perNode;
+    return clips;
 }
 
 }  // namespace shadow::gltf

@@ -5,18 +5,25 @@
 #include <shadow/result.h>
 #include <tiny_gltf.h>
 
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace shadow::gltf {
 
-/// The keyframed channels of every glTF animation, gathered per target node (the result has
-/// one entry per node; nodes nobody animates have no channels). Channels targeting
-/// translation, rotation or scale are kept, others (morph `weights`, extension paths) are
-/// ignored. A node's `duration` is the longest last key time of the glTF animations that
-/// target it, so all channels of one glTF animation loop together.
+/// One glTF animation as read: its channels with the node each one moves.
+struct ImportedClip {
+    std::string name;                                                ///< the file's, or `animation<i>`
+    double duration = 0.0;                                           ///< its last key time (s)
+    std::vector<std::pair<std::size_t, AnimationChannel>> channels;  ///< (node, channel)
+};
+
+/// The keyframed channels of every glTF animation, one `ImportedClip` per animation in file
+/// order. Channels targeting translation, rotation or scale are kept, others (morph `weights`,
+/// extension paths) are left out.
 ///
 /// Checked: sampler and node indices, interpolation names, key times finite and strictly
 /// increasing, output counts (three per key for CUBICSPLINE), finite values.
-[[nodiscard]] Result<std::vector<Animation>> importAnimations(const tinygltf::Model& model);
+[[nodiscard]] Result<std::vector<ImportedClip>> importAnimations(const tinygltf::Model& model);
 
 }  // namespace shadow::gltf

@@ -5,7 +5,8 @@
 // references), and every problem is an `Error` of the form `<file>: <element>: <problem>`.
 //
 // Entities: one per node of the chosen scene (the file's `scene`, else scenes[0], else every
-// root node in index order). Nodes are visited depth-first, pre-order: the scene's roots in
+// root node in index order; a listed node that is not a root is taken once, see sceneRoots).
+// Nodes are visited depth-first, pre-order: the scene's roots in
 // the order the scene lists them, each node's children in the order of its `children` array.
 // `Scene::lights` and `Scene::cameras` are in that visiting order (so `visibility_<i>.exr`
 // numbers light instances in it). Nodes outside the chosen scene are validated but not
@@ -19,10 +20,13 @@
 // and alpha mode; skins become a `Skin` on the mesh's entities, its joints the entities of the
 // joint nodes (posed by `updateTransforms`).
 //
-// Not supported (ignored): morph targets, textures other than base colour, KHR_texture_transform,
-// orthographic cameras (an error when a node uses one).
+// The file's animations become `Scene::clips`; the one `GltfLoadOptions::animation` names plays
+// (animation_clips.cpp). What the module leaves out (morph targets, textures other than base
+// colour, KHR_texture_transform, ...) is one warning per kind, from the one table of
+// gltf_support.cpp; orthographic cameras are an error when a node uses one.
 //
-// Each step lives in a file of its topic: gltf_parse (bytes to a tinygltf model), gltf_nodes
+// Each step lives in a file of its topic: gltf_parse (bytes to a tinygltf model, with
+// gltf_schema's member types and gltf_support's extensions checked), gltf_nodes
 // (transforms, references, the node graph), gltf_cameras, gltf_lights, gltf_mesh (with
 // gltf_accessors), gltf_animation, gltf_values (typed JSON reads). This file instantiates.
 #include "scene/gltf_import.h"
@@ -31,6 +35,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string_view>
@@ -56,7 +61,7 @@ struct Importer {
     const GltfLoadOptions& options;
     std::vector<gltf::NodeInfo> nodes;
     std::vector<gltf::LightDefinition> lights;
-    std::vector<Animation> animations;
+    std::vector<gltf::ImportedClip> clips;
     std::vector<std::optional<std::vector<gltf::MeshPart>>> meshes;  // built on first use
     gltf::TextureImporter textures{model};
     std::vector<Entity> entityOfNode;  ///< null for nodes outside the chosen scene
@@ -80,7 +85,7 @@ struct Importer {
 
     Result<const std::vector<gltf::MeshPart>*> meshParts(std::size_t index) {
         if (!meshes[index]) {
-            auto parts = gltf::importMesh(model, index, textures);
+            auto parts = gltf::importMesh(model, index, textures, scene.warnings);
             if (!parts) return parts.error();
             meshes[index] = std::move(*parts);
         }
@@ -157,10 +162,6 @@ struct Importer {
         if (node.mesh >= 0) {
             if (auto st = addMesh(i, *e, name); !st) return st.error();
         }
-        if (!animations[i].channels.empty()) {
-            scene.animationDuration = std::max(scene.animationDuration, animations[i].duration);
-            scene.world.emplace<Animation>(*e, animations[i]);
-        }
         return e;
     }
 
@@ -207,6 +208,26 @@ struct Importer {
         return Ok{};
     }
 
+    /// `Scene::clips` from the file's animations: channels of nodes outside the chosen scene
+    /// are left out, each entity's channels of one clip kept together.
+    void addClips() {
+        for (gltf::ImportedClip& imported : clips) {
+            AnimationClip& clip = scene.clips.emplace_back();
+            clip.name = std::move(imported.name);
+            clip.duration = imported.duration;
+            std::vector<std::size_t> targetOfNode(model.nodes.size(), SIZE_MAX);
+            for (auto& [node, channel] : imported.channels) {
+                const Entity e = entityOfNode[node];
+                if (e.isNull()) continue;
+                if (targetOfNode[node] == SIZE_MAX) {
+                    targetOfNode[node] = clip.targets.size();
+                    clip.targets.push_back({e, {}, scene.world.get<Transform>(e)});
+                }
+                clip.targets[targetOfNode[node]].channels.push_back(std::move(channel));
+            }
+        }
+    }
+
     Status addSkins() {
         for (const auto& [target, node] : skinned) {
             if (auto st = addSkin(target, node); !st) return st;
@@ -242,8 +263,10 @@ struct Importer {
 };
 
 /// Everything after parsing; errors and warnings carry the element but not yet the file name.
-Result<Scene> buildScene(const tinygltf::Model& model, const std::string& name, const GltfLoadOptions& options) {
+Result<Scene> buildScene(const gltf::ParsedGltf& parsed, const std::string& name, const GltfLoadOptions& options) {
+    const tinygltf::Model& model = parsed.model;
     Importer importer(model, options);
+    importer.scene.warnings = parsed.warnings;
     auto lights = gltf::importLights(model, options.strictShadowSettings, importer.scene.warnings);
     if (!lights) return lights.error();
     importer.lights = std::move(*lights);
@@ -254,24 +277,26 @@ Result<Scene> buildScene(const tinygltf::Model& model, const std::string& name, 
     }
     auto parents = gltf::nodeParents(model);
     if (!parents) return parents.error();
-    auto roots = gltf::sceneRoots(model, *parents);
+    auto roots = gltf::sceneRoots(model, *parents, importer.scene.warnings);
     if (!roots) return roots.error();
-    auto animations = gltf::importAnimations(model);
-    if (!animations) return animations.error();
-    importer.animations = std::move(*animations);
+    auto clips = gltf::importAnimations(model);
+    if (!clips) return clips.error();
+    importer.clips = std::move(*clips);
     importer.meshes.resize(model.meshes.size());
     importer.entityOfNode.assign(model.nodes.size(), Entity::null());
     importer.scene.name = name;
     if (auto st = importer.instantiateAll(*roots); !st) return st.error();
     if (auto st = importer.addSkins(); !st) return st.error();
+    importer.addClips();
+    if (auto st = playAnimation(importer.scene, options.animation); !st) return st.error();
     return std::move(importer.scene);
 }
 
 /// The scene of a parsed model; `source` (the file, or the in-memory name) prefixes every
 /// error and warning message (a warning's element stays the glTF element alone).
-Result<Scene> sceneOf(const tinygltf::Model& model, const std::string& source, const std::string& name,
+Result<Scene> sceneOf(const gltf::ParsedGltf& parsed, const std::string& source, const std::string& name,
                       const GltfLoadOptions& options) {
-    auto scene = buildScene(model, name, options);
+    auto scene = buildScene(parsed, name, options);
     if (!scene) return scene.error().within(source + ": ");
     for (Warning& w : scene->warnings) w.message = source + ": " + w.message;
     return scene;

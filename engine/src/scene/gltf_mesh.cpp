@@ -60,7 +60,7 @@ Status readTexcoordSet(const tinygltf::Model& model, const tinygltf::Primitive& 
                        const std::string& where, MeshData& mesh) {
     const std::string semantic = "TEXCOORD_" + std::to_string(set);
     const auto it = primitive.attributes.find(semantic);
-    if (it == primitive.attributes.end()) return Ok{};  // the texture is sampled at (0, 0)
+    if (it == primitive.attributes.end()) return Ok{};  // the caller warns and drops the texture
     const std::string uvWhere = where + ".attributes." + semantic;
     auto uv = readTexcoords(model, it->second, uvWhere);
     if (!uv) return uv.error();
@@ -100,9 +100,21 @@ Status readSkinning(const tinygltf::Model& model, const tinygltf::Primitive& pri
     return Ok{};
 }
 
+/// The warning for a texture that reads `TEXCOORD_<set>`, which the primitive at `where` lacks.
+Warning missingTexcoord(const tinygltf::Model& model, const tinygltf::Primitive& primitive, int set,
+                        const std::string& where) {
+    const auto m = static_cast<std::size_t>(primitive.material);
+    const std::string& name = model.materials[m].name;
+    return {WarningCode::MissingTexcoord, where,
+            where + " has no TEXCOORD_" + std::to_string(set) + ", which " + indexed("materials", m) +
+                (name.empty() ? "" : " (\"" + name + "\")") +
+                ".pbrMetallicRoughness.baseColorTexture reads: the primitive is drawn without that texture"};
+}
+
 /// The mesh of one primitive; nullopt when it draws nothing (another mode, or empty).
 Result<std::optional<MeshPart>> importPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
-                                                const std::string& where, std::string name, TextureImporter& textures) {
+                                                const std::string& where, std::string name, TextureImporter& textures,
+                                                std::vector<Warning>& warnings) {
     // -1 is what tinygltf leaves in a Model built in code; the file default is TRIANGLES.
     if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
         return std::optional<MeshPart>{};
@@ -128,6 +140,10 @@ Result<std::optional<MeshPart>> importPrimitive(const tinygltf::Model& model, co
     if (!material) return material.error();
     if (material->baseColorTexture != nullptr) {
         if (auto st = readTexcoordSet(model, primitive, texCoord, where, *mesh); !st) return st.error();
+        if (mesh->texcoords.empty()) {
+            warnings.push_back(missingTexcoord(model, primitive, texCoord, where));
+            material->baseColorTexture = nullptr;
+        }
     }
     if (auto st = readSkinning(model, primitive, where, *mesh); !st) return st.error();
     if (mesh->normals.empty()) {
@@ -158,8 +174,8 @@ Result<float> readUnitFactor(double value, const std::string& where) {
 
 }  // namespace
 
-Result<std::vector<MeshPart>> importMesh(const tinygltf::Model& model, std::size_t meshIndex,
-                                         TextureImporter& textures) {
+Result<std::vector<MeshPart>> importMesh(const tinygltf::Model& model, std::size_t meshIndex, TextureImporter& textures,
+                                         std::vector<Warning>& warnings) {
     const tinygltf::Mesh& mesh = model.meshes[meshIndex];
     const std::string meshWhere = indexed("meshes", meshIndex);
     const std::string baseName = mesh.name.empty() ? "mesh" + std::to_string(meshIndex) : mesh.name;
@@ -167,7 +183,7 @@ Result<std::vector<MeshPart>> importMesh(const tinygltf::Model& model, std::size
     for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
         std::string name = mesh.primitives.size() == 1 ? baseName : baseName + "/primitive" + std::to_string(p);
         auto part = importPrimitive(model, mesh.primitives[p], meshWhere + "." + indexed("primitives", p),
-                                    std::move(name), textures);
+                                    std::move(name), textures, warnings);
         if (!part) return part.error();
         if (part->has_value()) parts.push_back(std::move(**part));
     }

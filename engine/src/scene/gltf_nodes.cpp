@@ -128,6 +128,38 @@ Status checkReference(int index, std::size_t size, const std::string& where, con
     return Ok{};
 }
 
+/// `nodes[i]` with its name, for messages: `nodes[3] ("arm")`.
+std::string nodeLabel(const tinygltf::Model& model, std::size_t i) {
+    const std::string& name = model.nodes[i].name;
+    return indexed("nodes", i) + (name.empty() ? "" : " (\"" + name + "\")");
+}
+
+/// For every node, its nearest strict ancestor that `listed` marks, or -1. Each parent chain is
+/// walked once (the answers are kept), so a deep graph costs linear time.
+std::vector<int> listedAncestors(const std::vector<int>& parents, const std::vector<bool>& listed) {
+    constexpr int kUnknown = -2;
+    std::vector<int> holder(parents.size(), kUnknown);
+    std::vector<std::size_t> chain;
+    for (std::size_t start = 0; start < parents.size(); ++start) {
+        chain.clear();
+        std::size_t n = start;
+        int answer = -1;
+        while (holder[n] == kUnknown) {
+            chain.push_back(n);
+            const int p = parents[n];
+            if (p == -1) break;
+            if (listed[static_cast<std::size_t>(p)]) {
+                answer = p;
+                break;
+            }
+            n = static_cast<std::size_t>(p);
+        }
+        if (holder[n] != kUnknown) answer = holder[n];
+        for (const std::size_t k : chain) holder[k] = answer;
+    }
+    return holder;
+}
+
 }  // namespace
 
 Result<NodeInfo> checkNode(const tinygltf::Model& model, std::size_t i, std::size_t lightCount) {
@@ -187,7 +219,8 @@ Result<std::vector<int>> nodeParents(const tinygltf::Model& model) {
     return parents;
 }
 
-Result<std::vector<int>> sceneRoots(const tinygltf::Model& model, const std::vector<int>& parents) {
+Result<std::vector<int>> sceneRoots(const tinygltf::Model& model, const std::vector<int>& parents,
+                                    std::vector<Warning>& warnings) {
     std::vector<int> roots;
     if (model.scenes.empty()) {
         for (std::size_t i = 0; i < parents.size(); ++i) {
@@ -201,17 +234,39 @@ Result<std::vector<int>> sceneRoots(const tinygltf::Model& model, const std::vec
     }
     const std::string where = indexed("scenes", static_cast<std::size_t>(chosen)) + ".nodes";
     std::vector<bool> listed(parents.size(), false);
-    for (const int root : model.scenes[static_cast<std::size_t>(chosen)].nodes) {
-        if (root < 0 || static_cast<std::size_t>(root) >= parents.size()) {
-            return elementError(where, "node " + std::to_string(root) + " does not exist");
+    std::vector<int> unique;
+    for (const int node : model.scenes[static_cast<std::size_t>(chosen)].nodes) {
+        if (node < 0 || static_cast<std::size_t>(node) >= parents.size()) {
+            return elementError(where, "node " + std::to_string(node) + " does not exist");
         }
-        const auto r = static_cast<std::size_t>(root);
-        if (parents[r] != -1) {
-            return elementError(where, indexed("nodes", r) + " is not a root node");
+        const auto n = static_cast<std::size_t>(node);
+        if (listed[n]) {
+            warnings.push_back({WarningCode::SceneNodeNotRoot, indexed("nodes", n),
+                                where + " lists " + nodeLabel(model, n) + " twice; it is taken once"});
+            continue;
         }
-        if (listed[r]) return elementError(where, indexed("nodes", r) + " is listed twice");
-        listed[r] = true;
-        roots.push_back(root);
+        listed[n] = true;
+        unique.push_back(node);
+    }
+    const std::vector<int> holder = listedAncestors(parents, listed);
+    for (const int node : unique) {
+        const auto n = static_cast<std::size_t>(node);
+        if (parents[n] == -1) {
+            roots.push_back(node);
+            continue;
+        }
+        std::string message = where + " lists " + nodeLabel(model, n) + ", which is not a root node (its parent is " +
+                              indexed("nodes", static_cast<std::size_t>(parents[n])) + "); ";
+        if (holder[n] >= 0) {
+            message += "it is taken once, below " + indexed("nodes", static_cast<std::size_t>(holder[n])) +
+                       ", which the scene holds too";
+        } else {
+            message +=
+                "it is taken as a root of its own subtree, with its own transform (its ancestors are in no "
+                "subtree the scene lists)";
+            roots.push_back(node);
+        }
+        warnings.push_back({WarningCode::SceneNodeNotRoot, indexed("nodes", n), std::move(message)});
     }
     return roots;
 }

@@ -4,6 +4,7 @@
 
 #include <shadow/components.h>
 #include <shadow/result.h>
+#include <shadow/warnings.h>
 #include <tiny_gltf.h>
 
 #include <optional>
@@ -29,7 +30,12 @@ struct NodeInfo {
 [[nodiscard]] Result<std::vector<int>> nodeParents(const tinygltf::Model& model);
 
 /// The root nodes to instantiate, in order: the file's `scene` (else scenes[0]) as it lists
-/// them, or every root node in index order when the file has no scenes.
-[[nodiscard]] Result<std::vector<int>> sceneRoots(const tinygltf::Model& model, const std::vector<int>& parents);
+/// them, or every root node in index order when the file has no scenes. A listed node that is
+/// not a root (exporters write such files, and other engines load them) is taken once: below
+/// its nearest ancestor the scene lists too, else as a root of its own subtree with its own
+/// transform; a node listed twice is taken once. Each such listing is a `SceneNodeNotRoot`
+/// warning naming the node.
+[[nodiscard]] Result<std::vector<int>> sceneRoots(const tinygltf::Model& model, const std::vector<int>& parents,
+                                                  std::vector<Warning>& warnings);
 
 }  // namespace shadow::gltf

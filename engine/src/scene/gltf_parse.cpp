@@ -13,6 +13,9 @@
 #include <utility>
 #include <vector>
 
+#include "scene/gltf_schema.h"
+#include "scene/gltf_support.h"
+
 namespace shadow::gltf {
 namespace {
 
@@ -246,9 +249,20 @@ Result<tinygltf::Model> parseAscii(const std::string& name, bool filesAllowed, s
     return retried;
 }
 
+/// The checks of the JSON that tinygltf leaves out, after it parsed `json` into `model`:
+/// member types, then the required extensions; errors start with `name`.
+Result<ParsedGltf> checkDocument(Result<tinygltf::Model> model, std::string_view json, const std::string& name) {
+    if (!model) return model.error();
+    const nlohmann::json document = nlohmann::json::parse(json, nullptr, /*allow_exceptions=*/false);
+    if (Status s = checkMemberTypes(document); !s) return s.error().within(name + ": ");
+    auto warnings = checkSupport(document);
+    if (!warnings) return warnings.error().within(name + ": ");
+    return ParsedGltf{std::move(*model), std::move(*warnings)};
+}
+
 }  // namespace
 
-Result<tinygltf::Model> readModel(const std::string& path) {
+Result<ParsedGltf> readModel(const std::string& path) {
     Result<std::string> bytes = readWholeFile(path);
     if (!bytes) return bytes.error();
     const bool binary = hasBinaryMagic(*bytes);
@@ -260,28 +274,32 @@ Result<tinygltf::Model> readModel(const std::string& path) {
         return Error{ErrorCode::LimitExceeded, path + ": too large"};
     // External buffers and images are found beside the file.
     const std::string baseDir = std::filesystem::path(path).parent_path().string();
-    if (!binary) return parseAscii(path, true, *bytes, baseDir);
+    if (!binary) return checkDocument(parseAscii(path, true, *bytes, baseDir), *bytes, path);
     const auto* data = reinterpret_cast<const unsigned char*>(bytes->data());
     const auto size = static_cast<unsigned int>(bytes->size());
-    return parseModel(path, true,
-                      [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& err, std::string& warn) {
-                          return loader.LoadBinaryFromMemory(&model, &err, &warn, data, size, baseDir);
-                      });
+    return checkDocument(
+        parseModel(path, true,
+                   [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& err, std::string& warn) {
+                       return loader.LoadBinaryFromMemory(&model, &err, &warn, data, size, baseDir);
+                   }),
+        jsonText(*bytes, true), path);
 }
 
-Result<tinygltf::Model> readModelFromMemory(std::string_view bytes, const std::string& name) {
+Result<ParsedGltf> readModelFromMemory(std::string_view bytes, const std::string& name) {
     const bool binary = hasBinaryMagic(bytes);
     if (Status s = checkJsonDepth(bytes, binary, name); !s) return s.error();
     // tinygltf takes the length as unsigned int.
     if (bytes.size() > std::numeric_limits<unsigned int>::max())
         return Error{ErrorCode::LimitExceeded, name + ": too large"};
-    if (!binary) return parseAscii(name, false, bytes, "");
+    if (!binary) return checkDocument(parseAscii(name, false, bytes, ""), bytes, name);
     const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
     const auto size = static_cast<unsigned int>(bytes.size());
-    return parseModel(name, false,
-                      [&](tinygltf::TinyGLTF& loader, tinygltf::Model& m, std::string& err, std::string& warn) {
-                          return loader.LoadBinaryFromMemory(&m, &err, &warn, data, size, "");
-                      });
+    return checkDocument(
+        parseModel(name, false,
+                   [&](tinygltf::TinyGLTF& loader, tinygltf::Model& m, std::string& err, std::string& warn) {
+                       return loader.LoadBinaryFromMemory(&m, &err, &warn, data, size, "");
+                   }),
+        jsonText(bytes, true), name);
 }
 
 }  // namespace shadow::gltf

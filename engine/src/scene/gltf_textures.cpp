@@ -57,7 +57,7 @@ Result<Texture> decode(const std::vector<unsigned char>& bytes, const std::strin
         return elementError(name,
                             "is " + std::to_string(width) + "x" + std::to_string(height) +
                                 " pixels; the loader decodes at most " + std::to_string(kMaxTextureEdge) +
-                                " on a side and " + std::to_string(kMaxTexturePixels >> 20U) + "M pixels",
+                                " on a side and " + std::to_string(kMaxTexturePixels) + " in all (8192 x 8192)",
                             ErrorCode::LimitExceeded);
     }
     stbi_uc* pixels = stbi_load_from_memory(bytes.data(), size, &width, &height, &channels, 4);
@@ -80,6 +80,9 @@ Result<std::shared_ptr<const Texture>> TextureImporter::get(int index, const std
     if (textures_[t]) return textures_[t];
     const tinygltf::Texture& texture = model_.textures[t];
     const std::string name = indexed("textures", t);
+    // Only an extension's image (KTX2, WebP) and no PNG/JPEG fallback: drawn without it, as the
+    // extension's UnsupportedFeature warning says.
+    if (texture.source < 0 && !texture.extensions.empty()) return std::shared_ptr<const Texture>{};
     if (texture.source < 0 || static_cast<std::size_t>(texture.source) >= model_.images.size()) {
         return elementError(name + ".source", "image " + std::to_string(texture.source) + " does not exist");
     }

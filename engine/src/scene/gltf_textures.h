@@ -12,9 +12,10 @@
 
 namespace shadow::gltf {
 
-/// Largest image the loader decodes, in pixels (each side at most `kMaxTextureEdge`): 64 MiB
-/// of RGBA.
-inline constexpr long long kMaxTexturePixels = 16LL << 20U;
+/// Largest image the loader decodes, in pixels (8192 x 8192, each side at most
+/// `kMaxTextureEdge`, the largest texture llvmpipe makes): 256 MiB of RGBA decoded, as much
+/// again in the GL texture and a third more in its mipmaps.
+inline constexpr long long kMaxTexturePixels = 64LL << 20U;
 inline constexpr int kMaxTextureEdge = 16384;
 
 /// The textures of one import. The parser keeps images encoded (see gltf_parse.cpp); `get`
@@ -25,7 +26,8 @@ public:
 
     /// `textures[index]`, decoded to RGBA8 with its sampler's wrap modes; `where` names the
     /// referring element. An image that is missing, not PNG/JPEG, or larger than the limits is an
-    /// error naming it.
+    /// error naming it. Null for a texture whose only image is an extension's (KHR_texture_basisu,
+    /// EXT_texture_webp without a `source`): the material is drawn without it.
     [[nodiscard]] Result<std::shared_ptr<const Texture>> get(int index, const std::string& where);
 
 private:
