@@ -80,9 +80,12 @@ vec2 environmentBrdf(float roughness, float nDotV) {
 // shadow keeps its colour. `occlusion` scales both (glTF's occlusion texture).
 vec3 ambientShading(Surface s, vec3 sky, vec3 ground, float occlusion) {
     float nDotV = max(dot(s.normal, s.toViewer), 1e-4);
-    float alpha = sqrt(2.0 / (s.shininess + 2.0));  // GGX alpha (shininess: its Blinn-Phong twin)
+    // GGX alpha = sqrt(2 / (n + 2)) of the Blinn-Phong twin's exponent n.
+    float alpha = 1.41421356 * inversesqrt(s.shininess + 2.0);
     vec3 irradiance = mix(ground, sky, 0.5 + 0.5 * s.normal.y);
-    vec3 dominant = normalize(mix(reflect(-s.toViewer, s.normal), s.normal, alpha));
+    // Not normalised (its length lies in [0.7, 1]): a slightly softer horizon, one square root
+    // less per pixel.
+    vec3 dominant = mix(reflect(-s.toViewer, s.normal), s.normal, alpha);
     vec3 prefiltered = mix(ground, sky, clamp(0.5 + 0.5 * dominant.y / max(alpha, 0.02), 0.0, 1.0));
     vec2 ab = environmentBrdf(sqrt(alpha), nDotV);
     vec3 specular = s.specular * ab.x + ab.y;
