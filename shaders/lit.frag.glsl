@@ -17,6 +17,9 @@
 #include "shadow_surface.glsl"
 #include "lighting.glsl"
 #include "screen_gbuffer.glsl"
+#ifndef SG_DEFERRED
+#include "material.glsl"
+#endif
 
 #if SG_MAX_LIGHTS_PER_PASS != 8
 #error "main() below shades groups 0-7: one SG_SHADE_ONE/SG_SHADE_MANY choice per possible group"
@@ -27,22 +30,27 @@ layout(binding = SG_UNIT_GBUFFER_ALBEDO) uniform sampler2D sg_gbufferAlbedo;
 layout(binding = SG_UNIT_GBUFFER_SPECULAR) uniform sampler2D sg_gbufferSpecular;
 // Slots 0-3 of the pass in layer 0, 4-7 in layer 1 (screen_visibility.frag.glsl).
 layout(binding = SG_UNIT_SCREEN_VISIBILITY) uniform sampler2DArray sg_screenVisibility;
+#ifdef SG_GBUFFER_MATERIAL
+// A frame with normal maps or emission: the lighting normal and the emitted radiance.
+layout(binding = SG_UNIT_GBUFFER_SHADING) uniform sampler2D sg_gbufferShading;
+layout(binding = SG_UNIT_GBUFFER_EMISSION) uniform sampler2D sg_gbufferEmission;
+#endif
 #else
 in vec4 vCsPositionU;  // lit.vert.glsl: position and texture u
 in vec4 vWsNormalV;    // normal and texture v
+#ifdef SG_MATERIAL_MAPS
+in vec4 vWsTangent;
+in vec2 vTexcoord1;
+#endif
 #endif
 
+// The material (material.glsl) comes from its uniforms and textures, or from the surface
+// targets; a cut-out's holes never reach this pass (the depth pre-pass leaves them out,
+// depth_prepass.frag.glsl).
 uniform int uReceiveShadows;
-uniform vec3 uAlbedo;
-uniform vec3 uSpecular;
-uniform float uShininess;
-// The material's base-colour texture (sRGB, so read linear): it tints the
-// diffuse albedo, and the specular by uMetallic. A cut-out's holes never reach this pass (the
-// depth pre-pass leaves them out, depth_prepass.frag.glsl).
-layout(binding = SG_UNIT_BASE_COLOR) uniform sampler2D uBaseColor;
-uniform int uTextured;  // 1 with a texture; an untextured material reads none
-uniform float uMetallic;
-uniform vec3 uAmbient;        // added by the first pass only
+// The first pass adds the hemisphere ambient (lighting.glsl) and the emission; the others none.
+uniform int uFirstPass;
+uniform vec3 uAmbientSky, uAmbientGround;
 uniform vec3 uCameraForward;  // unit, world space
 
 layout(location = SG_OUT_COLOR) out vec4 outColor;
@@ -115,7 +123,7 @@ vec3 debugColor = vec3(0.0);
 #else
 #define SG_LIGHT_VISIBILITY(g, slot)                  \
     if (shadowWanted(SG_GROUP##g##_TECH, shading)) \
-        v = SG_GROUP##g##_VISIBILITY(slot, L, s.csPosition, s.normal, s.geoNormal, s.curvature, viewDistance);
+        v = SG_GROUP##g##_VISIBILITY(slot, L, s.csPosition, shadowNormal, s.geoNormal, s.curvature, viewDistance);
 #endif
 
 #ifdef SG_WRITE_AOVS
@@ -146,6 +154,12 @@ void main() {
     s.albedo = gAlbedo.rgb;
     s.specular = gSpecular.rgb;
     s.shininess = gAlbedo.a;
+    float occlusion = gSpecular.a;
+    vec3 emission = vec3(0.0);
+#ifdef SG_GBUFFER_MATERIAL
+    s.normal = sg_octDecode(texelFetch(sg_gbufferShading, pixel, 0).xy);
+    emission = texelFetch(sg_gbufferEmission, pixel, 0).rgb;
+#endif
 #else
     vec3 vCsPosition = vCsPositionU.xyz;
     vec3 vWsNormal = vWsNormalV.xyz;
@@ -156,18 +170,29 @@ void main() {
     sg_Surface shadowSide = sg_surface(vCsPosition, vWsNormal);
     s.geoNormal = shadowSide.geoNormal;
     s.curvature = shadowSide.curvature;
-    s.normal = shadowSide.normal;  // two-sided: the side facing the camera
-    // A loop, not an if: llvmpipe runs both sides of an if, but no trip of a loop no pixel needs
-    // (shaders/README.md), so an untextured material pays no fetch.
-    vec3 base = vec3(1.0);
-    for (int i = 0; i < uTextured; ++i) base = texture(uBaseColor, vTexcoord).rgb;  // uniform: derivatives hold
-    s.albedo = uAlbedo * base;
-    s.specular = uSpecular * mix(vec3(1.0), base, uMetallic);
-    s.shininess = uShininess;
+    // The lookups take the interpolated normal (two-sided: the side facing the camera), never the
+    // normal map's, as the stage's surface targets keep it.
+    vec3 shadowNormal = shadowSide.normal;
+    MaterialInput mi;
+    mi.uv0 = vTexcoord;
+    mi.normal = shadowSide.normal;
+    mi.interpolated = vWsNormal;
+#ifdef SG_MATERIAL_MAPS
+    mi.uv1 = vTexcoord1;
+    mi.tangent = vWsTangent;
+#endif
+    MaterialSample m = sg_material(mi);
+    s.normal = m.normal;
+    s.albedo = m.albedo;
+    s.specular = m.specular;
+    s.shininess = m.shininess;
+    float occlusion = m.occlusion;
+    vec3 emission = m.emission;
 #endif
 
     float viewDistance = dot(vCsPosition, uCameraForward);
-    vec3 color = uAmbient * s.albedo;
+    vec3 color = vec3(0.0);
+    for (int i = 0; i < uFirstPass; ++i) color = ambientShading(s, uAmbientSky, uAmbientGround, occlusion) + emission;
 #ifdef SG_WRITE_AOVS
     float visibility[SG_MAX_LIGHTS_PER_PASS] = float[](1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0);
 #endif

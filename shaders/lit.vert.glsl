@@ -10,6 +10,11 @@ uniform mat4 uClipFromCs;       // camera-relative world -> clip
 // 70 000 triangles at 1280x720: a third varying cost the main pass about 10 %).
 out vec4 vCsPositionU;  // xyz camera-relative position, w texture u
 out vec4 vWsNormalV;    // xyz world normal, w texture v
+#ifdef SG_MATERIAL_MAPS
+// Only materials with maps pay for these (shaders/material.glsl).
+out vec4 vWsTangent;  // xyz world tangent, w the handedness (a mirroring transform turns it)
+out vec2 vTexcoord1;  // the second texture-coordinate set
+#endif
 // The depth pre-pass and the lit pass must rasterise the same depths (EQUAL test).
 invariant gl_Position;
 
@@ -18,5 +23,11 @@ void main() {
     vec4 cs = uCsFromLocal * (skin * vec4(inPosition, 1.0));
     vCsPositionU = vec4(cs.xyz, inTexcoord.x);
     vWsNormalV = vec4(uNormalFromLocal * (mat3(skin) * inNormal), inTexcoord.y);
+#ifdef SG_MATERIAL_MAPS
+    // Tangents are directions on the surface: the object's matrix, not the normals' one.
+    float mirrored = determinant(uNormalFromLocal) < 0.0 ? -1.0 : 1.0;
+    vWsTangent = vec4(mat3(uCsFromLocal) * (mat3(skin) * inTangent.xyz), inTangent.w * mirrored);
+    vTexcoord1 = inTexcoord1;
+#endif
     gl_Position = uClipFromCs * cs;
 }

@@ -14,6 +14,12 @@ layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inTexcoord;
 layout(location = 3) in uvec4 inJoints;
 layout(location = 4) in vec4 inWeights;
+#ifdef SG_MATERIAL_MAPS
+// A material with maps (shaders/material.glsl): the mesh's second texture-coordinate set and its
+// normal map's tangents (xyz, w the handedness); (0, 0, 0, 1) where the mesh has none.
+layout(location = SG_ATTRIB_TEXCOORD1) in vec2 inTexcoord1;
+layout(location = SG_ATTRIB_TANGENT) in vec4 inTangent;
+#endif
 
 layout(std430, binding = SG_BINDING_JOINTS) readonly buffer sg_JointBlock {
     mat4 sg_jointFromMesh[];

@@ -35,30 +35,31 @@ Doc twoMaterialDoc(const json& first, const json& second) {
     return doc;
 }
 
-TEST(GltfSupport, RequiredTextureTransformLoadsWithOneWarningCountingItsUses) {
-    const json transform = {{"KHR_texture_transform", {{"scale", {2, 2}}}}};
-    const json material = {{"pbrMetallicRoughness", {{"extensions", transform}}}};
+TEST(GltfSupport, RequiredUnlitLoadsWithOneWarningCountingItsUses) {
+    const json material = {{"extensions", {{"KHR_materials_unlit", json::object()}}}};
     Doc doc = twoMaterialDoc(material, material);
-    doc.j["extensionsUsed"] = {"KHR_texture_transform"};
-    doc.j["extensionsRequired"] = {"KHR_texture_transform"};
+    doc.j["extensionsUsed"] = {"KHR_materials_unlit"};
+    doc.j["extensionsRequired"] = {"KHR_materials_unlit"};
     const auto path = doc.write(testDir() / "s.gltf");
     auto scene = loadGltf(path.string());
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const std::vector<Warning> w = warningsOf(*scene, WarningCode::UnsupportedFeature);
     ASSERT_EQ(w.size(), 1u);
-    const std::string first = "materials[0].pbrMetallicRoughness.extensions.KHR_texture_transform";
+    const std::string first = "materials[0].extensions.KHR_materials_unlit";
     expectWarning(w[0], WarningCode::UnsupportedFeature, first,
-                  path.string() + ": KHR_texture_transform (used 2 times, first at " + first +
-                      "): textures are read without their offset, rotation and scale");
+                  path.string() + ": KHR_materials_unlit (used 2 times, first at " + first +
+                      "): unlit materials are shaded by the lights like the others");
 }
 
-TEST(GltfSupport, IdentityTransformsAndExtensionsOnlyListedAreNotWarnedAbout) {
-    // What exporters write when nothing is transformed (raylib's logo has one), and extensions
-    // listed in extensionsUsed that no object uses.
-    const json identity = {
-        {"KHR_texture_transform", {{"offset", {0, 0}}, {"rotation", 0}, {"scale", {1, 1}}, {"texCoord", 0}}}};
-    Doc doc = twoMaterialDoc({{"pbrMetallicRoughness", {{"extensions", identity}}}}, json::object());
-    doc.j["extensionsUsed"] = {"KHR_texture_transform", "KHR_materials_unlit"};
+TEST(GltfSupport, WhatTheMaterialsReadAndExtensionsOnlyListedAreNotWarnedAbout) {
+    // A texture transform, an emission and its strength are read (Materials.* draw them); an
+    // extension listed in extensionsUsed that no object uses is nothing to warn about.
+    const json transform = {{"KHR_texture_transform", {{"offset", {0.5, 0}}, {"scale", {2, 2}}}}};
+    const json emissive = {{"emissiveFactor", {1, 0.5, 0}},
+                           {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 3}}}}}};
+    Doc doc = twoMaterialDoc({{"pbrMetallicRoughness", {{"extensions", transform}}}}, emissive);
+    doc.j["extensionsUsed"] = {"KHR_texture_transform", "KHR_materials_emissive_strength", "KHR_materials_unlit"};
+    doc.j["extensionsRequired"] = {"KHR_texture_transform"};
     auto scene = loadGltf(doc.write(testDir() / "s.gltf").string());
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_TRUE(scene->warnings.empty()) << scene->warnings[0].message;
@@ -76,14 +77,13 @@ TEST(GltfSupport, EachKindLeftOutIsOneWarningNamingItsFirstUse) {
     const std::vector<Warning> w = warningsOf(*scene, WarningCode::UnsupportedFeature);
     std::vector<std::string> elements;
     for (const Warning& warning : w) elements.push_back(warning.element);
-    // In the table's order, then the unknown extension; a zero emissive factor emits nothing.
+    // In the table's order, then the unknown extension; the emission is read, not warned about.
     const std::vector<std::string> expected = {"materials[0].extensions.KHR_materials_unlit",
-                                               "meshes[1].primitives[0].targets", "materials[1].emissiveFactor",
-                                               "meshes[0].extensions.EXT_made_up"};
+                                               "meshes[1].primitives[0].targets", "meshes[0].extensions.EXT_made_up"};
     EXPECT_EQ(elements, expected);
-    ASSERT_EQ(w.size(), 4u);
+    ASSERT_EQ(w.size(), 3u);
     EXPECT_NE(w[0].message.find("KHR_materials_unlit (used once, first at"), std::string::npos) << w[0].message;
-    EXPECT_NE(w[3].message.find("an extension the module does not know"), std::string::npos) << w[3].message;
+    EXPECT_NE(w[2].message.find("an extension the module does not know"), std::string::npos) << w[2].message;
 }
 
 TEST(GltfSupport, BasisuTextureWithoutFallbackDrawsTheMaterialWithoutIt) {

@@ -72,6 +72,14 @@ struct MeshData {
     /// One per position or none: glTF's TEXCOORD_0 ((0,0) the first texel of the image's first
     /// row). Read by a material's `baseColorTexture`; without them it samples texel (0,0).
     std::vector<glm::vec2> texcoords;
+    /// One per position or none: the material's second texture-coordinate set (glTF's
+    /// TEXCOORD_n of a map that reads another set than the base colour's), read by the maps whose
+    /// `MaterialMap::texcoordSet` is 1.
+    std::vector<glm::vec2> texcoords1;
+    /// One per position or none: the tangent frame of a normal map, xyz the unit tangent (along
+    /// +u of the normal map's set) and w = +-1 the handedness, the bitangent being
+    /// w * cross(normal, tangent) (glTF's TANGENT, or `computeTangents`).
+    std::vector<glm::vec4> tangents;
     std::vector<std::uint32_t> indices;  // triangle list
     Aabb bounds;                         // of `positions`
     /// Skinning (a `Skin` on the instance): one per position or none. `joints` index the
@@ -109,8 +117,17 @@ void computeJointBounds(MeshData& mesh);
 /// must belong to exactly two triangles (`solid`: one in each direction, and each connected
 /// part of positive volume).
 void computeClosed(MeshData& mesh);
-/// Replaces a mesh by one with flat normals: every triangle gets its own three vertices.
+/// Replaces a mesh by one with flat normals: every triangle gets its own three vertices (its
+/// texture coordinates follow; its tangents are dropped, as glTF asks of a mesh without normals).
 void makeFlatNormals(MeshData& mesh);
+/// Computes `tangents` from `positions`, `normals` and texture-coordinate set `set` (0:
+/// `texcoords`, 1: `texcoords1`), as MikkTSpace does for vertices that are not split: per
+/// triangle corner the tangent and bitangent of the uv mapping, projected onto the vertex
+/// normal's plane, normalised and weighted by the corner's angle; summed per vertex; the
+/// handedness from the bitangent's side. A vertex whose triangles give no direction (no uv
+/// change) gets any unit vector perpendicular to its normal. Leaves `tangents` empty when the
+/// set or the normals are missing.
+void computeTangents(MeshData& mesh, int set);
 
 /// A drawable mesh instance. `castShadows`/`receiveShadows` come from glTF
 /// `extras.shadow = {"cast": bool, "receive": bool}`.
@@ -144,8 +161,27 @@ enum class AlphaMode : std::uint8_t {
     Blend,   ///< drawn as a cut-out at `alphaCutoff` (0.5 from glTF): the module does not blend
 };
 
+/// The affine map a material map applies to its texture coordinates before sampling: glTF's
+/// KHR_texture_transform, uv' = offset + rotate(rotation) * (scale * uv), as a 3x2 matrix (columns:
+/// the images of u and v, then the offset). Rotation in radians, turning +u towards -v (the
+/// extension's sense).
+[[nodiscard]] glm::mat3x2 textureTransform(const glm::vec2& offset, float rotation, const glm::vec2& scale);
+
+/// A material texture other than the base colour: the image, the mesh's texture-coordinate set
+/// it reads and the transform applied to it.
+struct MaterialMap {
+    std::shared_ptr<const Texture> texture;  ///< none: the map is not read
+    int texcoordSet = 0;                     ///< 0: `MeshData::texcoords`, 1: `MeshData::texcoords1`
+    glm::mat3x2 uvTransform{1.0f};           ///< `textureTransform`; identity by default
+};
+
 /// A material of glTF's metallic-roughness model: Lambert diffuse and a GGX specular lobe
-/// (shaders/lighting.glsl), with the base-colour texture and alpha modes.
+/// (shaders/lighting.glsl), with the base-colour texture and alpha modes. A material with any
+/// map (`usesMaps`) is shaded from glTF's own parameters per pixel: base colour = `baseColor` x
+/// texture, metallic = `metallic` x the metallic-roughness map's B, roughness = `roughness` x
+/// its G, diffuse = base x (1 - metallic), specular = mix(0.04, base, metallic); without maps
+/// from `albedo`, `specular` and `shininess` (which the glTF loader derives from the same
+/// parameters, and a game may set freely).
 struct Material {
     glm::vec3 albedo{0.8f};     ///< diffuse reflectance, linear RGB in [0,1]
     glm::vec3 specular{0.04f};  ///< specular reflectance, linear RGB in [0,1]
@@ -153,15 +189,35 @@ struct Material {
     /// alpha^2 = 2 / (n + 2) (glTF roughness r: n = 2 / r^4 - 2), [1, 4096].
     float shininess = 32.0f;
     /// Multiplies `albedo`, and `specular` by `metallic` (metals reflect their colour), per pixel.
+    /// Read through `MeshData::texcoords` untransformed: the glTF loader bakes the base colour's
+    /// KHR_texture_transform into that set (and the inverse into the other maps reading it).
     std::shared_ptr<const Texture> baseColorTexture;
     float metallic = 0.0f;  ///< [0, 1], how much the texture tints `specular`
     float alpha = 1.0f;     ///< base alpha in [0, 1], times the texture's
     AlphaMode alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f;  ///< Mask and Blend: surfaces with alpha below it are holes
-    /// Seen from both sides (open surfaces). A closed mesh sets false, so that the main pass culls
-    /// its back faces: on a CPU rasteriser that halves the triangles it sets up (BENCHMARKS.md,
-    /// fragment costs). Shadow passes draw both sides either way.
+    /// Seen from both sides: back faces are drawn and shaded with the normal reversed (glTF's
+    /// `doubleSided`). False culls the back faces in the main pass (a closed mesh: on a CPU
+    /// rasteriser that halves the triangles it sets up, BENCHMARKS.md, fragment costs). Shadow
+    /// passes draw both sides either way.
     bool doubleSided = true;
+
+    /// glTF's parameters, read per pixel by a material with maps (see above).
+    glm::vec3 baseColor{0.8f};  ///< linear RGB in [0, 1]
+    float roughness = 1.0f;     ///< perceptual roughness in [0, 1] (GGX alpha = roughness^2)
+    /// B: metallic, G: roughness (linear), multiplying `metallic` and `roughness`.
+    MaterialMap metallicRoughnessMap;
+    /// Tangent-space normals (linear, RGB = XYZ in [-1, 1], +Y along +v), read with the mesh's
+    /// `tangents`; X and Y are scaled by `normalScale`.
+    MaterialMap normalMap;
+    float normalScale = 1.0f;
+    /// R: ambient occlusion (linear), applied to the ambient term as 1 + strength x (R - 1).
+    MaterialMap occlusionMap;
+    float occlusionStrength = 1.0f;  ///< [0, 1]
+    /// Emitted radiance (linear RGB, W/(sr m^2) in the renderer's units; glTF's emissiveFactor
+    /// times KHR_materials_emissive_strength), times `emissiveMap` (sRGB); [0, 1e6].
+    glm::vec3 emissive{0.0f};
+    MaterialMap emissiveMap;
 
     /// Whether some of it may be a hole: alpha is tested (Mask or Blend) against a cutoff that
     /// some alpha can fall below.
@@ -169,6 +225,13 @@ struct Material {
         return alphaMode != AlphaMode::Opaque && alphaCutoff > 0.0f &&
                (baseColorTexture != nullptr || alpha < alphaCutoff);
     }
+    /// Whether it reads a map besides the base colour (its shading is then the maps variant's).
+    [[nodiscard]] bool usesMaps() const {
+        return metallicRoughnessMap.texture != nullptr || normalMap.texture != nullptr ||
+               occlusionMap.texture != nullptr || emissiveMap.texture != nullptr;
+    }
+    /// Whether it emits light.
+    [[nodiscard]] bool emits() const { return emissive != glm::vec3(0.0f); }
 };
 
 /// Skinning of a mesh instance (glTF `skins`): its vertices follow `joints` by the mesh's

@@ -54,9 +54,9 @@ private:
     int bindInPass(const std::shared_ptr<const MeshData>& mesh);
     /// `collect` inside an engine call, which has read the host's errors already.
     std::size_t collectInPass();
-    /// Binds `texture` (uploaded with mipmaps on first use, sRGB) to texture unit `unit`; a 1x1
-    /// white texture for none.
-    void bindTextureInPass(const std::shared_ptr<const Texture>& texture, unsigned unit);
+    /// Binds `texture` (uploaded with mipmaps on first use, as sRGB colour or linear data) to
+    /// texture unit `unit`; a 1x1 white texture for none.
+    void bindTextureInPass(const std::shared_ptr<const Texture>& texture, unsigned unit, bool srgb);
     /// Uploads `skin`'s joint matrices and binds them to SG_BINDING_JOINTS for the next draw.
     void bindSkinInPass(const Skin& skin);
     /// The warnings `warnings` returns, for an engine call to move into its `FrameStats`.

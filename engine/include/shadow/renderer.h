@@ -70,8 +70,13 @@ struct RenderOptions {
     /// Write position, depth and per-light visibility outputs as well as colour.
     bool aovs = false;
     DebugView debugView = DebugView::None;
-    int debugLight = 0;        ///< scene light index the debug view shows
-    glm::vec3 ambient{0.03f};  ///< constant ambient radiance times albedo (unshadowed)
+    int debugLight = 0;  ///< scene light index the debug view shows
+    /// Hemisphere ambient light (unshadowed; W/(sr m^2) in the lights' units, each >= 0): radiance
+    /// from every direction above the horizon (+y) and below it. It lights the diffuse and the
+    /// specular term (a metal in shadow shows the sky in its colour), times the material's
+    /// ambient occlusion; equal halves are a uniform ambient.
+    glm::vec3 ambientSky{0.03f};
+    glm::vec3 ambientGround{0.03f};
     /// Fill the depth buffer first, so that the lit passes shade each visible pixel once. Off by
     /// default: on a CPU rasteriser the second pass over the triangles costs more than the
     /// overdraw it saves (BENCHMARKS.md, fragment costs: overdraw 1.01 on the bunny scene, the

@@ -77,6 +77,14 @@
 // unit, and the shader-storage binding of a skinned mesh's joint matrices.
 #define SG_UNIT_BASE_COLOR 28
 #define SG_BINDING_JOINTS 3
+// A material's other maps (shaders/material.glsl). Only the forward lit pass and the stage's
+// surface pass read them, and neither reads the stage's targets nor the mask's inputs: they
+// take those units (the forward lit pass binds the shadow units 0-23, the distance-field
+// units 26-27 and the base colour 28 beside them).
+#define SG_UNIT_METALLIC_ROUGHNESS 24
+#define SG_UNIT_NORMAL_MAP 25
+#define SG_UNIT_OCCLUSION 29
+#define SG_UNIT_EMISSIVE 30
 
 // Units the shadow mask reads the game's depth and normal textures from (after the three arrays).
 #define SG_UNIT_MASK_DEPTH 24
@@ -93,6 +101,11 @@
 #define SG_UNIT_GBUFFER_ALBEDO 29
 #define SG_UNIT_GBUFFER_SPECULAR 30
 #define SG_UNIT_SCREEN_VISIBILITY 31
+// With materials that have normal maps or emit (RenderOptions' frame holds one), the surface
+// pass also stores the lighting normal and the emitted radiance, which only the deferred lit
+// pass reads: it compiles no technique, so these take the distance-field units.
+#define SG_UNIT_GBUFFER_SHADING 26
+#define SG_UNIT_GBUFFER_EMISSION 27
 // The reduced-resolution stage's sample depths, read by its resolve (no albedo read there).
 #define SG_UNIT_SCREEN_DEPTH 29
 
@@ -103,6 +116,10 @@
 
 // Texels of the shadow map along one edge of a tile of the min/max pyramid's level 0.
 #define SG_MINMAX_TILE 4
+
+// Vertex attributes of the module's meshes (shaders/mesh_vertex.glsl; the mesh cache's streams).
+#define SG_ATTRIB_TEXCOORD1 5
+#define SG_ATTRIB_TANGENT 6
 
 // Fragment outputs of the main pass.
 #define SG_OUT_COLOR 0

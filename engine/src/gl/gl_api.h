@@ -127,6 +127,7 @@ namespace shadow::gpu {
     X(PFNGLPROGRAMUNIFORM4FVPROC, ProgramUniform4fv)                       \
     X(PFNGLPROGRAMUNIFORMMATRIX4FVPROC, ProgramUniformMatrix4fv)           \
     X(PFNGLPROGRAMUNIFORMMATRIX3FVPROC, ProgramUniformMatrix3fv)           \
+    X(PFNGLPROGRAMUNIFORMMATRIX3X2FVPROC, ProgramUniformMatrix3x2fv)       \
     X(PFNGLPUSHDEBUGGROUPPROC, PushDebugGroup)                             \
     X(PFNGLPOPDEBUGGROUPPROC, PopDebugGroup)                               \
     X(PFNGLOBJECTLABELPROC, ObjectLabel)                                   \

@@ -8,6 +8,7 @@
 #include <shadow/shared_constants.h>
 
 #include <algorithm>
+#include <array>
 #include <unordered_map>
 
 namespace shadow {
@@ -26,11 +27,19 @@ struct GpuSkinVertex {
     glm::vec4 weights;
 };
 
+/// The stream of a mesh with a second texture-coordinate set or tangents (attributes 5-6):
+/// apart, so that the meshes without (every built-in one) keep their 32-byte vertices.
+struct GpuMapVertex {
+    glm::vec2 texcoord1;
+    glm::vec4 tangent;
+};
+
 struct GpuMesh {
     std::weak_ptr<const MeshData> source;  // tells a reused address from the mesh uploaded
     gpu::VertexArray vao;
     gpu::Buffer vertices;
     gpu::Buffer skinVertices;
+    gpu::Buffer mapVertices;
     gpu::Buffer indices;
     int indexCount = 0;
 };
@@ -55,10 +64,10 @@ int mipLevels(int width, int height) {
     return levels;
 }
 
-gpu::Texture uploadTexture(const Texture& t) {
-    gpu::Texture texture = gpu::makeTexture("Texture/" + t.name, GL_TEXTURE_2D);
+gpu::Texture uploadTexture(const Texture& t, bool srgb) {
+    gpu::Texture texture = gpu::makeTexture("Texture/" + t.name + (srgb ? "" : "/linear"), GL_TEXTURE_2D);
     const GLuint name = texture.get();
-    gl.TextureStorage2D(name, mipLevels(t.width, t.height), GL_SRGB8_ALPHA8, t.width, t.height);
+    gl.TextureStorage2D(name, mipLevels(t.width, t.height), srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, t.width, t.height);
     {
         const gpu::UnpackDefaults unpack;  // rows of 4-byte texels from client memory, whatever the host set
         gl.TextureSubImage2D(name, 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
@@ -69,6 +78,29 @@ gpu::Texture uploadTexture(const Texture& t) {
     gl.TextureParameteri(name, GL_TEXTURE_WRAP_S, wrapMode(t.wrapS));
     gl.TextureParameteri(name, GL_TEXTURE_WRAP_T, wrapMode(t.wrapT));
     return texture;
+}
+
+/// The mesh's second texture-coordinate set and tangents as a vertex stream of their own
+/// (binding 2, SG_ATTRIB_TEXCOORD1 and SG_ATTRIB_TANGENT); none when it has neither, and the attributes read GL's defaults.
+void uploadMapVertices(const MeshData& mesh, const std::string& label, GpuMesh& g) {
+    const std::size_t n = mesh.positions.size();
+    const bool second = mesh.texcoords1.size() == n, tangents = mesh.tangents.size() == n;
+    if (n == 0 || (!second && !tangents)) return;
+    std::vector<GpuMapVertex> vertices(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        vertices[i].texcoord1 = second ? mesh.texcoords1[i] : glm::vec2(0.0f);
+        vertices[i].tangent = tangents ? mesh.tangents[i] : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    }
+    g.mapVertices =
+        gpu::makeBuffer(label + "/maps", static_cast<GLsizeiptr>(n * sizeof(GpuMapVertex)), vertices.data(), 0);
+    const GLuint vao = g.vao.get();
+    gl.VertexArrayVertexBuffer(vao, 2, g.mapVertices.get(), 0, sizeof(GpuMapVertex));
+    gl.EnableVertexArrayAttrib(vao, SG_ATTRIB_TEXCOORD1);
+    gl.VertexArrayAttribFormat(vao, SG_ATTRIB_TEXCOORD1, 2, GL_FLOAT, GL_FALSE, offsetof(GpuMapVertex, texcoord1));
+    gl.VertexArrayAttribBinding(vao, SG_ATTRIB_TEXCOORD1, 2);
+    gl.EnableVertexArrayAttrib(vao, SG_ATTRIB_TANGENT);
+    gl.VertexArrayAttribFormat(vao, SG_ATTRIB_TANGENT, 4, GL_FLOAT, GL_FALSE, offsetof(GpuMapVertex, tangent));
+    gl.VertexArrayAttribBinding(vao, SG_ATTRIB_TANGENT, 2);
 }
 
 /// A ring of joint matrices: each skinned draw's matrices go after the last draw's, so that no
@@ -103,8 +135,9 @@ struct JointRing {
 struct MeshCache::Impl {
     // Keyed by the MeshData address: MeshData is immutable and shared while instances live.
     std::unordered_map<const MeshData*, GpuMesh> meshes;
-    std::unordered_map<const Texture*, GpuTexture> textures;  ///< likewise, by Texture address
-    gpu::Texture white;                                       ///< 1x1 white: what an untextured material samples
+    /// Likewise, by Texture address: sRGB (colour) and linear (data) uploads apart.
+    std::array<std::unordered_map<const Texture*, GpuTexture>, 2> textures;
+    gpu::Texture white;  ///< 1x1 white: what an untextured material samples
     JointRing joints;
     std::vector<Warning> pending;  ///< host errors found by calls without a FrameStats
 };
@@ -132,28 +165,31 @@ std::size_t MeshCache::collect() {
 }
 
 std::size_t MeshCache::collectInPass() {
-    std::erase_if(impl_->textures, [](const auto& entry) { return entry.second.source.expired(); });
+    for (auto& textures : impl_->textures) {
+        std::erase_if(textures, [](const auto& entry) { return entry.second.source.expired(); });
+    }
     return std::erase_if(impl_->meshes, [](const auto& entry) { return entry.second.source.expired(); });
 }
 
-void MeshCache::bindTextureInPass(const std::shared_ptr<const Texture>& texture, unsigned unit) {
+void MeshCache::bindTextureInPass(const std::shared_ptr<const Texture>& texture, unsigned unit, bool srgb) {
     if (texture == nullptr || texture->width < 1 || texture->height < 1 ||
         texture->rgba.size() <
             static_cast<std::size_t>(texture->width) * static_cast<std::size_t>(texture->height) * 4U) {
         if (!impl_->white) {
             const Texture white{"white", 1, 1, {255, 255, 255, 255}};
-            impl_->white = uploadTexture(white);
+            impl_->white = uploadTexture(white, false);
         }
         gl.BindTextureUnit(unit, impl_->white.get());
         return;
     }
-    auto it = impl_->textures.find(texture.get());
-    if (it != impl_->textures.end() && it->second.source.lock() != texture) {
-        impl_->textures.erase(it);  // the old texture died and its address was reused
-        it = impl_->textures.end();
+    auto& textures = impl_->textures[srgb ? 0 : 1];
+    auto it = textures.find(texture.get());
+    if (it != textures.end() && it->second.source.lock() != texture) {
+        textures.erase(it);  // the old texture died and its address was reused
+        it = textures.end();
     }
-    if (it == impl_->textures.end()) {
-        it = impl_->textures.emplace(texture.get(), GpuTexture{texture, uploadTexture(*texture)}).first;
+    if (it == textures.end()) {
+        it = textures.emplace(texture.get(), GpuTexture{texture, uploadTexture(*texture, srgb)}).first;
     }
     gl.BindTextureUnit(unit, it->second.texture.get());
 }
@@ -215,6 +251,7 @@ int MeshCache::bindInPass(const std::shared_ptr<const MeshData>& meshPtr) {
             gl.VertexArrayAttribFormat(vao, 4, 4, GL_FLOAT, GL_FALSE, offsetof(GpuSkinVertex, weights));
             gl.VertexArrayAttribBinding(vao, 4, 1);
         }
+        uploadMapVertices(mesh, label, g);
         g.indexCount = static_cast<int>(mesh.indices.size());
         it = impl_->meshes.emplace(&mesh, std::move(g)).first;
     }

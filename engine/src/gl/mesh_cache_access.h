@@ -15,9 +15,11 @@ namespace shadow::gpu {
 struct MeshCacheAccess {
     /// `MeshCache::bind` without reading the host's errors.
     static int bind(MeshCache& cache, const std::shared_ptr<const MeshData>& mesh) { return cache.bindInPass(mesh); }
-    /// Binds a material's texture (white for none) to texture unit `unit`.
-    static void bindTexture(MeshCache& cache, const std::shared_ptr<const shadow::Texture>& texture, unsigned unit) {
-        cache.bindTextureInPass(texture, unit);
+    /// Binds a material's texture (white for none) to texture unit `unit`: colour (sRGB, read
+    /// linear) unless `srgb` is false (data: metallic-roughness, normals, occlusion).
+    static void bindTexture(MeshCache& cache, const std::shared_ptr<const shadow::Texture>& texture, unsigned unit,
+                            bool srgb = true) {
+        cache.bindTextureInPass(texture, unit, srgb);
     }
     /// Binds a posed skin's joint matrices for the next draw (SG_BINDING_JOINTS).
     static void bindSkin(MeshCache& cache, const Skin& skin) { cache.bindSkinInPass(skin); }

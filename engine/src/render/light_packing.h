@@ -24,6 +24,9 @@ struct LitVariant {
     bool aovs = false;
     /// The screen-space visibility stage's lit pass: surfaces and visibility read per pixel.
     bool deferred = false;
+    /// Forward: the maps variant of the material (SG_MATERIAL_MAPS); deferred: the surfaces hold
+    /// a lighting normal and emission (SG_GBUFFER_MATERIAL).
+    bool materialMaps = false;
     int debugView = SG_DEBUG_NONE;  ///< SG_DEBUG_*
     int debugSlot = -1;             ///< slot the debug view shows, -1 none
 

@@ -2,6 +2,7 @@
 
 #include <shadow/components.h>
 
+#include "gl/mesh_cache_access.h"
 #include "gl/program.h"
 #include "gl/technique_glsl.h"
 
@@ -34,7 +35,39 @@ MaterialUniforms materialUniforms(GLuint program) {
     m.shininess = gl.GetUniformLocation(program, "uShininess");
     m.metallic = gl.GetUniformLocation(program, "uMetallic");
     m.textured = gl.GetUniformLocation(program, "uTextured");
+    m.emissive = gl.GetUniformLocation(program, "uEmissive");
+    m.baseFactor = gl.GetUniformLocation(program, "uBaseFactor");
+    m.roughness = gl.GetUniformLocation(program, "uRoughness");
+    m.normalScale = gl.GetUniformLocation(program, "uNormalScale");
+    m.occlusionStrength = gl.GetUniformLocation(program, "uOcclusionStrength");
+    m.mapUsed = gl.GetUniformLocation(program, "uMapUsed");
+    m.mapSet = gl.GetUniformLocation(program, "uMapSet");
+    m.mapTransform = gl.GetUniformLocation(program, "uMapTransform");
     return m;
+}
+
+/// The maps variant's maps in SG_MAP_* order (material.glsl).
+std::array<const MaterialMap*, 4> mapsOf(const Material& m) {
+    return {&m.metallicRoughnessMap, &m.normalMap, &m.occlusionMap, &m.emissiveMap};
+}
+
+/// The maps variant's per-map uniforms.
+void setMaps(GLuint program, const MaterialUniforms& u, const Material& material) {
+    std::array<GLint, 4> used{}, set{};
+    std::array<glm::mat3x2, 4> transform{};
+    const auto maps = mapsOf(material);
+    for (std::size_t i = 0; i < maps.size(); ++i) {
+        used[i] = maps[i]->texture != nullptr ? 1 : 0;
+        set[i] = maps[i]->texcoordSet == 1 ? 1 : 0;
+        transform[i] = maps[i]->uvTransform;
+    }
+    gl.ProgramUniform1iv(program, u.mapUsed, 4, used.data());
+    gl.ProgramUniform1iv(program, u.mapSet, 4, set.data());
+    gl.ProgramUniformMatrix3x2fv(program, u.mapTransform, 4, GL_FALSE, glm::value_ptr(transform[0]));
+    gl.ProgramUniform3fv(program, u.baseFactor, 1, glm::value_ptr(glm::clamp(material.baseColor, 0.0f, 1.0f)));
+    gl.ProgramUniform1f(program, u.roughness, std::clamp(material.roughness, 0.0f, 1.0f));
+    gl.ProgramUniform1f(program, u.normalScale, material.normalScale);
+    gl.ProgramUniform1f(program, u.occlusionStrength, std::clamp(material.occlusionStrength, 0.0f, 1.0f));
 }
 
 LitProgram buildLit(const LitVariant& variant) {
@@ -46,7 +79,9 @@ LitProgram buildLit(const LitVariant& variant) {
     const GLuint id = p.program.get();
     p.mesh = meshUniforms(id);
     p.material = materialUniforms(id);
-    p.ambient = gl.GetUniformLocation(id, "uAmbient");
+    p.firstPass = gl.GetUniformLocation(id, "uFirstPass");
+    p.ambientSky = gl.GetUniformLocation(id, "uAmbientSky");
+    p.ambientGround = gl.GetUniformLocation(id, "uAmbientGround");
     p.cameraForward = gl.GetUniformLocation(id, "uCameraForward");
     return p;
 }
@@ -60,6 +95,20 @@ void setMaterial(GLuint program, const MaterialUniforms& u, const Mesh& mesh, co
     gl.ProgramUniform1f(program, u.shininess, std::clamp(material.shininess, 1.0f, 4096.0f));
     gl.ProgramUniform1f(program, u.metallic, std::clamp(material.metallic, 0.0f, 1.0f));
     gl.ProgramUniform1i(program, u.textured, material.baseColorTexture != nullptr ? 1 : 0);
+    gl.ProgramUniform3fv(program, u.emissive, 1, glm::value_ptr(glm::clamp(material.emissive, 0.0f, 1e6f)));
+    if (u.mapUsed >= 0) setMaps(program, u, material);
+}
+
+void bindMaterialTextures(MeshCache& meshes, const Material& material, bool maps) {
+    gpu::MeshCacheAccess::bindTexture(meshes, material.baseColorTexture, SG_UNIT_BASE_COLOR);
+    if (!maps) return;
+    const auto all = mapsOf(material);
+    const std::array<unsigned, 4> units{SG_UNIT_METALLIC_ROUGHNESS, SG_UNIT_NORMAL_MAP, SG_UNIT_OCCLUSION,
+                                        SG_UNIT_EMISSIVE};
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        // Colour in sRGB (emission), data linear (metallic-roughness, normals, occlusion).
+        gpu::MeshCacheAccess::bindTexture(meshes, all[i]->texture, units[i], i == 3);
+    }
 }
 
 std::string variantLabel(const LitVariant& v) {
@@ -72,6 +121,7 @@ std::string variantLabel(const LitVariant& v) {
     }
     if (v.aovs) name += name.empty() ? "AOV" : ",AOV";
     if (v.deferred) name += name.empty() ? "deferred" : ",deferred";
+    if (v.materialMaps) name += name.empty() ? "maps" : ",maps";
     if (v.debugView != SG_DEBUG_NONE) name += ",debug" + std::to_string(v.debugView);
     return "Main/Lit[" + name + "]";
 }
@@ -100,6 +150,7 @@ std::vector<std::string> variantDefines(const LitVariant& v) {
     } else {
         gpu::appendTechniqueDefines(variantTechniques(v), defines);
     }
+    if (v.materialMaps) defines.emplace_back(v.deferred ? "SG_GBUFFER_MATERIAL" : "SG_MATERIAL_MAPS");
     if (v.aovs) defines.emplace_back("SG_WRITE_AOVS");
     if (v.debugView != SG_DEBUG_NONE) {
         defines.emplace_back("SG_DEBUG_VIEWS");
@@ -129,11 +180,23 @@ DepthPrepassProgram buildDepthPrepass(bool alphaTested) {
     return p;
 }
 
-SurfaceProgram buildSurfaceProgram(bool alphaTested) {
+SurfaceProgram buildSurfaceProgram(unsigned bits) {
     SurfaceProgram p;
-    p.program =
-        gpu::buildProgram({alphaTested ? "Main/Surfaces/alpha" : "Main/Surfaces", "lit.vert.glsl", "gbuffer.frag.glsl",
-                           alphaTested ? std::vector<std::string>{"SG_ALPHA_TESTED"} : std::vector<std::string>{}});
+    std::string label = "Main/Surfaces";
+    std::vector<std::string> defines;
+    if ((bits & kSurfaceAlphaTested) != 0) {
+        label += "/alpha";
+        defines.emplace_back("SG_ALPHA_TESTED");
+    }
+    if ((bits & kSurfaceMaps) != 0) {
+        label += "/maps";
+        defines.emplace_back("SG_MATERIAL_MAPS");
+    }
+    if ((bits & kSurfaceMaterialTargets) != 0) {
+        label += "/material";
+        defines.emplace_back("SG_GBUFFER_MATERIAL");
+    }
+    p.program = gpu::buildProgram({label, "lit.vert.glsl", "gbuffer.frag.glsl", defines});
     const GLuint id = p.program.get();
     p.mesh = meshUniforms(id);
     p.material = materialUniforms(id);

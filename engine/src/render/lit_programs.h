@@ -6,6 +6,7 @@
 #include "render/light_packing.h"
 
 #include <shadow/components.h>
+#include <shadow/mesh_cache.h>
 
 #include <map>
 #include <string>
@@ -17,21 +18,29 @@ struct MeshUniforms {
     GLint csFromLocal = -1, normalFromLocal = -1, clipFromCs = -1, skinned = -1;
 };
 
-/// Uniform locations of a mesh's material, shared by the lit programs and the surface pass's.
+/// Uniform locations of a mesh's material (shaders/material.glsl), shared by the lit programs and
+/// the surface pass's; those of the maps variant (SG_MATERIAL_MAPS) are -1 in the others.
 struct MaterialUniforms {
     GLint receiveShadows = -1, albedo = -1, specular = -1, shininess = -1, metallic = -1, textured = -1;
+    GLint emissive = -1;
+    GLint baseFactor = -1, roughness = -1, normalScale = -1, occlusionStrength = -1;
+    GLint mapUsed = -1, mapSet = -1, mapTransform = -1;
 };
 
-/// Sets `mesh`'s and `material`'s uniforms of `program` (shininess and metallic clamped to their
-/// ranges); the base colour texture is the caller's to bind.
+/// Sets `mesh`'s and `material`'s uniforms of `program` (each clamped to its documented range);
+/// the textures are the caller's to bind (`bindMaterialTextures`).
 void setMaterial(GLuint program, const MaterialUniforms& u, const Mesh& mesh, const Material& material);
+
+/// Binds `material`'s textures on their units (SG_UNIT_BASE_COLOR and, with `maps`, the four of
+/// the maps variant): white where it has none.
+void bindMaterialTextures(MeshCache& meshes, const Material& material, bool maps);
 
 /// A compiled lit variant and its uniform locations.
 struct LitProgram {
     gpu::Program program;
     MeshUniforms mesh;
     MaterialUniforms material;
-    GLint ambient = -1, cameraForward = -1;
+    GLint firstPass = -1, ambientSky = -1, ambientGround = -1, cameraForward = -1;
 };
 
 /// A depth pre-pass program: the lit vertex shader and no fragment work, or (alpha-tested, for
@@ -73,6 +82,13 @@ struct SurfaceProgram {
     GLint alpha = -1, alphaCutoff = -1;
 };
 
-SurfaceProgram buildSurfaceProgram(bool alphaTested);
+/// What a surface program is built for (each a bit of `SurfaceProgramKey`).
+enum SurfaceProgramBits : unsigned {
+    kSurfaceAlphaTested = 1u,      ///< SG_ALPHA_TESTED: a cut-out material
+    kSurfaceMaps = 2u,             ///< SG_MATERIAL_MAPS: a material with maps
+    kSurfaceMaterialTargets = 4u,  ///< SG_GBUFFER_MATERIAL: the frame stores lighting normal and emission
+};
+
+SurfaceProgram buildSurfaceProgram(unsigned bits);
 
 }  // namespace shadow::render

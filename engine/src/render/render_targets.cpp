@@ -22,7 +22,7 @@ gpu::Texture makeTarget(const std::string& label, GLenum format, int w, int h) {
 
 }  // namespace
 
-std::string renderSizeProblem(int width, int height, bool aovs, int passes, bool screenStage) {
+std::string renderSizeProblem(int width, int height, bool aovs, int passes, bool screenStage, bool materialTargets) {
     GLint maxTexture = 0, maxWidth = 0, maxHeight = 0, maxRenderbuffer = 0;
     gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
     gl.GetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &maxWidth);
@@ -35,8 +35,8 @@ std::string renderSizeProblem(int width, int height, bool aovs, int passes, bool
         return "beyond this context's limits (" + std::to_string(maxW) + "x" + std::to_string(maxH) +
                ": GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE, GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT)";
     }
-    const std::int64_t bytes =
-        RenderTargets::bytesFor(width, height, aovs, passes) + (screenStage ? ScreenStage::bytesFor(width, height) : 0);
+    const std::int64_t bytes = RenderTargets::bytesFor(width, height, aovs, passes) +
+                               (screenStage ? ScreenStage::bytesFor(width, height, materialTargets) : 0);
     if (bytes > kMaxRenderTargetBytes) {
         const double mib = 1024.0 * 1024.0;
         return "the targets would take " + std::to_string(std::llround(static_cast<double>(bytes) / mib)) + " MiB" +

@@ -13,9 +13,10 @@ namespace shadow::render {
 /// What keeps targets of `width` x `height` (with `aovs`, for `passes` passes) from being made:
 /// a size beyond the context's texture, renderbuffer or framebuffer limits, or targets over
 /// `kMaxRenderTargetBytes` (with `screenStage`, the screen-space visibility stage's targets
-/// counted too), said without the size (the caller names it); empty when they can be. Reads the
-/// limits from the current context.
-[[nodiscard]] std::string renderSizeProblem(int width, int height, bool aovs, int passes, bool screenStage = false);
+/// counted too, with its material targets when `materialTargets`), said without the size (the
+/// caller names it); empty when they can be. Reads the limits from the current context.
+[[nodiscard]] std::string renderSizeProblem(int width, int height, bool aovs, int passes, bool screenStage = false,
+                                            bool materialTargets = false);
 
 class RenderTargets {
 public:

@@ -92,11 +92,23 @@ void preparePair(std::optional<Program>& plain, std::optional<Program>& alphaTes
     }
 }
 
-/// Whether a mesh of `world` has a cut-out material (its holes need an alpha test).
-bool hasCutouts(const World& world) {
-    bool cutouts = false;
-    world.view<Mesh, Material>().each([&](Entity, const Mesh&, const Material& m) { cutouts = cutouts || m.cutout(); });
-    return cutouts;
+/// What the frame's materials need of the programs and targets.
+struct FrameMaterials {
+    bool cutouts = false;  ///< a cut-out material (its holes need an alpha test)
+    bool maps = false;     ///< a material with maps (the maps variant)
+    /// A normal map or emission: the stage's surfaces store the lighting normal and emission.
+    bool materialTargets = false;
+};
+
+FrameMaterials frameMaterials(const World& world) {
+    FrameMaterials f;
+    world.view<Mesh, Material>().each([&](Entity, const Mesh&, const Material& m) {
+        f.cutouts = f.cutouts || m.cutout();
+        f.maps = f.maps || m.usesMaps();
+        f.materialTargets =
+            f.materialTargets || m.normalMap.texture != nullptr || m.emits() || m.emissiveMap.texture != nullptr;
+    });
+    return f;
 }
 
 MainCamera mainCamera(const CameraView& cam, int width, int height) {
@@ -118,20 +130,35 @@ MainCamera mainCamera(const CameraView& cam, int width, int height) {
     return m;
 }
 
+/// The uniforms a lit program takes per pass: the camera's direction, and for the first pass
+/// (which adds them) the ambient and the emission.
+void setPassUniforms(const render::LitProgram& p, const MainCamera& mc, std::size_t index,
+                     const RenderOptions& options) {
+    const GLuint id = p.program.get();
+    gl.ProgramUniform3fv(id, p.cameraForward, 1, glm::value_ptr(mc.forward));
+    gl.ProgramUniform1i(id, p.firstPass, index == 0 ? 1 : 0);
+    gl.ProgramUniform3fv(id, p.ambientSky, 1, glm::value_ptr(glm::max(options.ambientSky, glm::vec3(0.0f))));
+    gl.ProgramUniform3fv(id, p.ambientGround, 1, glm::value_ptr(glm::max(options.ambientGround, glm::vec3(0.0f))));
+}
+
 }  // namespace
 
 struct Renderer::Impl {
     MeshCache meshes;                ///< owned and collected here (Renderer::meshes)
     gpu::ShaderResources resources;  ///< the samplers and kernel the lit passes bind
     render::LitProgramCache programs;
-    std::optional<render::DepthPrepassProgram> prepass;            ///< built on first use
-    std::optional<render::DepthPrepassProgram> prepassCutout;      ///< alpha-tested; built on first use
-    std::optional<render::ScreenStage> screen;                     ///< made on first use
-    std::optional<render::SurfaceProgram> surface, surfaceCutout;  ///< built on first use
+    std::optional<render::DepthPrepassProgram> prepass;        ///< built on first use
+    std::optional<render::DepthPrepassProgram> prepassCutout;  ///< alpha-tested; built on first use
+    std::optional<render::ScreenStage> screen;                 ///< made on first use
+    /// By `render::SurfaceProgramBits`, each built on first use.
+    std::array<std::optional<render::SurfaceProgram>, 8> surfaces;
     render::RenderTargets targets;
     std::vector<PassLights> passes;
     std::vector<const render::LitProgram*> passPrograms;  ///< per pass, into `programs` (stable)
-    std::vector<render::PackingEntry> packingOrder;       ///< scratch of packLights
+    /// Forward, per pass: the maps variant for materials with maps (null in frames without).
+    std::vector<const render::LitProgram*> passMapPrograms;
+    FrameMaterials materials;                        ///< this frame's
+    std::vector<render::PackingEntry> packingOrder;  ///< scratch of packLights
     PassBlocks lightBlocks, layerBlocks;
     GLint uniformAlignment = 256;
     std::size_t lightCount = 0;  ///< scene lights of the last frame
@@ -181,16 +208,24 @@ Renderer::Impl::Impl() : softwareRenderer(queryGlInfo().softwareRenderer), timer
 
 void Renderer::Impl::preparePrograms(const RenderOptions& options, FrameStats& stats) {
     passPrograms.clear();
+    passMapPrograms.clear();
     for (PassLights& pass : passes) {
         render::LitVariant& v = pass.variant;
         v.aovs = options.aovs;
         v.deferred = deferred;
+        // Deferred: one program reads the surfaces whatever their materials; forward: a second
+        // program for the materials with maps.
+        v.materialMaps = deferred && materials.materialTargets;
         v.debugView = debugViewId(options.debugView);
         const auto* const slot = std::find(pass.sceneLight.begin(), pass.sceneLight.end(), options.debugLight);
         v.debugSlot = slot != pass.sceneLight.end() && v.debugView != SG_DEBUG_NONE
                           ? static_cast<int>(slot - pass.sceneLight.begin())
                           : -1;
         passPrograms.push_back(&programs.get(v, stats.programsCompiled));
+        render::LitVariant withMaps = v;
+        withMaps.materialMaps = true;
+        passMapPrograms.push_back(!deferred && materials.maps ? &programs.get(withMaps, stats.programsCompiled)
+                                                              : nullptr);
     }
 }
 
@@ -272,14 +307,14 @@ void Renderer::Impl::depthPrepass(const World& world, const CameraView& cam, con
 }
 
 void Renderer::Impl::prepareScreenStage(const RenderOptions& options) {
-    const std::string why =
-        render::renderSizeProblem(options.width, options.height, options.aovs, static_cast<int>(passes.size()), true);
+    const std::string why = render::renderSizeProblem(options.width, options.height, options.aovs,
+                                                      static_cast<int>(passes.size()), true, materials.materialTargets);
     if (!why.empty()) {
         throw GlError("main pass targets of " + std::to_string(options.width) + "x" + std::to_string(options.height) +
                       ": " + why);
     }
     if (!screen) screen.emplace();
-    screen->ensure(options.width, options.height, targets.depthBuffer());
+    screen->ensure(options.width, options.height, targets.depthBuffer(), materials.materialTargets);
 }
 
 void Renderer::Impl::renderScreenSpace(const World& world, const CameraView& camera, const ShadowFrame& frame,
@@ -308,7 +343,7 @@ void Renderer::Impl::renderForward(const World& world, const CameraView& camera,
                                    const ShadowMaps& maps, const RenderOptions& options, FrameStats& stats) {
     // A cut-out material needs the pre-pass: it leaves the holes out, so that the lit passes,
     // whose cost a discard would raise for every pixel on a CPU rasteriser, need no alpha test.
-    const bool cutouts = hasCutouts(world);
+    const bool cutouts = materials.cutouts;
     prepassRan = options.depthPrepass || cutouts;
     if (prepassRan) {
         gpu::ScopedPass timed(timer, "Main/DepthPrepass");
@@ -326,22 +361,29 @@ void Renderer::Impl::renderForward(const World& world, const CameraView& camera,
 }
 
 void Renderer::Impl::surfacePass(const World& world, const CameraView& cam, const MainCamera& mc, FrameStats& stats) {
-    const bool cutouts = hasCutouts(world);
-    preparePair(surface, surfaceCutout, cutouts, render::buildSurfaceProgram, mc, stats);
-    screen->beginSurfaces();
+    screen->beginSurfaces(materials.materialTargets);
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LESS);
+    const unsigned frameBits = materials.materialTargets ? render::kSurfaceMaterialTargets : 0u;
     drawMeshes(
         world, cam, nullptr,
-        [this](const Mesh& mesh, const Material& m) {
-            const render::SurfaceProgram& p = m.cutout() ? *surfaceCutout : *surface;
+        [this, &mc, &stats, frameBits](const Mesh& mesh, const Material& m) {
+            const unsigned bits = frameBits | (m.cutout() ? render::kSurfaceAlphaTested : 0u) |
+                                  (m.usesMaps() ? render::kSurfaceMaps : 0u);
+            std::optional<render::SurfaceProgram>& slot = surfaces[bits];
+            if (!slot) {
+                slot = render::buildSurfaceProgram(bits);
+                ++stats.programsCompiled;
+            }
+            const render::SurfaceProgram& p = *slot;
             const GLuint id = p.program.get();
+            gl.ProgramUniformMatrix4fv(id, p.mesh.clipFromCs, 1, GL_FALSE, glm::value_ptr(mc.clipFromCs));
             render::setMaterial(id, p.material, mesh, m);
             if (m.cutout()) {
                 gl.ProgramUniform1f(id, p.alpha, m.alpha);
                 gl.ProgramUniform1f(id, p.alphaCutoff, m.alphaCutoff);
             }
-            gpu::MeshCacheAccess::bindTexture(meshes, m.baseColorTexture, SG_UNIT_BASE_COLOR);
+            render::bindMaterialTextures(meshes, m, m.usesMaps());
             return std::pair<GLuint, const render::MeshUniforms*>{id, &p.mesh};
         },
         stats.mainDrawCalls);
@@ -364,7 +406,7 @@ void Renderer::Impl::screenLitPass(const MainCamera& mc, std::size_t index, cons
     gl.BindFramebuffer(GL_FRAMEBUFFER, targets.framebuffer());
     gl.Viewport(0, 0, options.width, options.height);
     if (index == 0 || options.aovs) targets.bindPass(static_cast<int>(index));
-    screen->bindForLighting();
+    screen->bindForLighting(materials.materialTargets);
     // Only the pixels the surface pass drew (GREATER than its depth, at the far plane): the
     // background keeps the targets' clear values, as forward leaves it.
     gl.Enable(GL_DEPTH_TEST);
@@ -381,9 +423,7 @@ void Renderer::Impl::screenLitPass(const MainCamera& mc, std::size_t index, cons
     }
     const GLuint id = p.program.get();
     gl.UseProgram(id);
-    gl.ProgramUniform3fv(id, p.cameraForward, 1, glm::value_ptr(mc.forward));
-    const glm::vec3 ambient = index == 0 ? options.ambient : glm::vec3(0.0f);
-    gl.ProgramUniform3fv(id, p.ambient, 1, glm::value_ptr(ambient));
+    setPassUniforms(p, mc, index, options);
     gl.BindVertexArray(screen->emptyVertexArray());
     gl.DrawArrays(GL_TRIANGLES, 0, 3);
     gl.Disable(GL_BLEND);
@@ -418,16 +458,21 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
         gl.Scissor(pass.bounds.x0, pass.bounds.y0, pass.bounds.x1 - pass.bounds.x0, pass.bounds.y1 - pass.bounds.y0);
     }
     gl.UseProgram(id);
-    gl.ProgramUniformMatrix4fv(id, p.mesh.clipFromCs, 1, GL_FALSE, glm::value_ptr(mc.clipFromCs));
-    gl.ProgramUniform3fv(id, p.cameraForward, 1, glm::value_ptr(mc.forward));
-    const glm::vec3 ambient = index == 0 ? options.ambient : glm::vec3(0.0f);
-    gl.ProgramUniform3fv(id, p.ambient, 1, glm::value_ptr(ambient));
+    const render::LitProgram* withMaps = passMapPrograms[index];
+    for (const render::LitProgram* program : {&p, withMaps}) {
+        if (program == nullptr) continue;
+        gl.ProgramUniformMatrix4fv(program->program.get(), program->mesh.clipFromCs, 1, GL_FALSE,
+                                   glm::value_ptr(mc.clipFromCs));
+        setPassUniforms(*program, mc, index, options);
+    }
     drawMeshes(
         world, cam, scissored && !pass.unbounded ? &pass.wsReach : nullptr,
-        [this, &p, id](const Mesh& mesh, const Material& m) {
-            render::setMaterial(id, p.material, mesh, m);
-            gpu::MeshCacheAccess::bindTexture(meshes, m.baseColorTexture, SG_UNIT_BASE_COLOR);
-            return std::pair<GLuint, const render::MeshUniforms*>{id, &p.mesh};
+        [this, &p, withMaps](const Mesh& mesh, const Material& m) {
+            const render::LitProgram& chosen = m.usesMaps() && withMaps != nullptr ? *withMaps : p;
+            const GLuint program = chosen.program.get();
+            render::setMaterial(program, chosen.material, mesh, m);
+            render::bindMaterialTextures(meshes, m, &chosen == withMaps);
+            return std::pair<GLuint, const render::MeshUniforms*>{program, &chosen.mesh};
         },
         stats.mainDrawCalls);
     gl.Disable(GL_BLEND);
@@ -496,6 +541,7 @@ void Renderer::render(const World& world, const CameraView& camera, const Shadow
     render::packLights(frame, camera.wsPosition, view, r.passes, r.packingOrder);
     // Technique sdf: the field casters' records relative to this camera, which every pass binds.
     if ((frame.techniquesInUse & techniqueBit(ShadowTechnique::Sdf)) != 0) (void)maps.fieldInstances(camera.wsPosition);
+    r.materials = frameMaterials(world);
     r.deferred = options.debugView == DebugView::None &&
                  render::screenStagePays(options.screenVisibility, frame, r.passes, options.height);
     r.preparePrograms(options, stats);

@@ -97,25 +97,32 @@ ScreenStage::ScreenStage() {
     empty_ = gpu::VertexArray(vao);
 }
 
-std::int64_t ScreenStage::bytesFor(int width, int height) {
+std::int64_t ScreenStage::bytesFor(int width, int height, bool materialTargets) {
     const std::int64_t pixels = std::int64_t{width} * height;
     // Full size: position and normals RGBA32F, albedo and specular RGBA16F, two RGBA8 visibility
-    // layers, the refine marks (32F). Half and quarter size (each made on first use): two RGBA8
-    // layers, the samples' depths (R32F) and the coverage (32F).
-    const std::int64_t full = 16 + 16 + 8 + 8 + 2 * 4 + 4;
+    // layers, the refine marks (32F); the material targets RG32F and RGBA16F. Half and quarter
+    // size (each made on first use): two RGBA8 layers, the samples' depths (R32F) and the
+    // coverage (32F).
+    const std::int64_t full = 16 + 16 + 8 + 8 + 2 * 4 + 4 + (materialTargets ? 8 + 8 : 0);
     const std::int64_t reduced = 2 * 4 + 4 + 4;
     return pixels * full + (pixels / 4 + pixels / 16) * reduced;
 }
 
-void ScreenStage::ensure(int width, int height, GLuint depthBuffer) {
-    if (surfaces_ && width_ == width && height_ == height) {
-        depthBuffer_ = depthBuffer;
-        gl.NamedFramebufferTexture(surfaces_.get(), GL_DEPTH_ATTACHMENT, depthBuffer, 0);
-        return;
+void ScreenStage::ensure(int width, int height, GLuint depthBuffer, bool materialTargets) {
+    if (!surfaces_ || width_ != width || height_ != height) makeTargets(width, height);
+    depthBuffer_ = depthBuffer;
+    gl.NamedFramebufferTexture(surfaces_.get(), GL_DEPTH_ATTACHMENT, depthBuffer, 0);
+    if (materialTargets && !shading_) {
+        shading_ = makeTarget("Main/Surfaces/shading", GL_RG32F, width, height);
+        emission_ = makeTarget("Main/Surfaces/emission", GL_RGBA16F, width, height);
+        gl.NamedFramebufferTexture(surfaces_.get(), GL_COLOR_ATTACHMENT4, shading_.get(), 0);
+        gl.NamedFramebufferTexture(surfaces_.get(), GL_COLOR_ATTACHMENT5, emission_.get(), 0);
     }
+}
+
+void ScreenStage::makeTargets(int width, int height) {
     width_ = width;
     height_ = height;
-    depthBuffer_ = depthBuffer;
     stage_ = {};
     stageDepth_ = {};
     coverage_ = {};
@@ -129,18 +136,13 @@ void ScreenStage::ensure(int width, int height, GLuint depthBuffer) {
     specular_ = makeTarget("Main/Surfaces/specular", GL_RGBA16F, width, height);
     full_ = makeTarget("Main/ScreenVisibility/full", GL_RGBA8, width, height, 2);
     refine_ = makeTarget("Main/ScreenVisibility/refine", GL_DEPTH_COMPONENT32F, width, height);
+    shading_ = {};
+    emission_ = {};
     const GLuint fb = surfaces_.get();
     gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, position_.get(), 0);
     gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, normals_.get(), 0);
     gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT2, albedo_.get(), 0);
     gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT3, specular_.get(), 0);
-    gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, depthBuffer, 0);
-    const std::array<GLenum, 4> buffers{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                                        GL_COLOR_ATTACHMENT3};
-    gl.NamedFramebufferDrawBuffers(fb, 4, buffers.data());
-    if (gl.CheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        throw GlError("screen-space visibility: the surface framebuffer is incomplete");
-    }
 }
 
 void ScreenStage::ensureStageTarget(int divisor) {
@@ -186,9 +188,16 @@ void ScreenStage::attachCoverage(int divisor, FrameStats& stats) {
     gl.Enable(GL_SCISSOR_TEST);
 }
 
-void ScreenStage::beginSurfaces() {
+void ScreenStage::beginSurfaces(bool materialTargets) {
     coverageDrawn_ = 0;
     const GLuint fb = surfaces_.get();
+    // A frame without the material targets writes four: their programs have four outputs.
+    const std::array<GLenum, 6> buffers{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                                        GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4, GL_COLOR_ATTACHMENT5};
+    gl.NamedFramebufferDrawBuffers(fb, materialTargets ? 6 : 4, buffers.data());
+    if (gl.CheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        throw GlError("screen-space visibility: the surface framebuffer is incomplete");
+    }
     gl.BindFramebuffer(GL_FRAMEBUFFER, fb);
     gl.Viewport(0, 0, width_, height_);
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -360,7 +369,13 @@ void ScreenStage::reducedStage(const Group& g, const ScreenRays& rays, FrameStat
     gl.BindTextureUnit(SG_UNIT_SCREEN_DEPTH, depth);
 }
 
-void ScreenStage::bindForLighting() const {
+void ScreenStage::bindForLighting(bool materialTargets) const {
+    if (materialTargets) {
+        gl.BindTextureUnit(SG_UNIT_GBUFFER_SHADING, shading_.get());
+        gl.BindTextureUnit(SG_UNIT_GBUFFER_EMISSION, emission_.get());
+        gl.BindSampler(SG_UNIT_GBUFFER_SHADING, 0);
+        gl.BindSampler(SG_UNIT_GBUFFER_EMISSION, 0);
+    }
     gl.BindTextureUnit(SG_UNIT_GBUFFER_POSITION, position_.get());
     gl.BindTextureUnit(SG_UNIT_GBUFFER_NORMALS, normals_.get());
     gl.BindTextureUnit(SG_UNIT_GBUFFER_ALBEDO, albedo_.get());

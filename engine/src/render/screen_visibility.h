@@ -67,12 +67,16 @@ struct ScreenRays {
 class ScreenStage {
 public:
     ScreenStage();
-    /// GPU memory (bytes) of the stage's targets for `width` x `height`.
-    [[nodiscard]] static std::int64_t bytesFor(int width, int height);
-    /// Makes the targets fit `width` x `height`, the surface framebuffer sharing `depthBuffer`.
-    void ensure(int width, int height, GLuint depthBuffer);
-    /// Binds the surface framebuffer and clears it (coverage 0, depth far).
-    void beginSurfaces();
+    /// GPU memory (bytes) of the stage's targets for `width` x `height`, with the material
+    /// targets (`ensure`) when `materialTargets`.
+    [[nodiscard]] static std::int64_t bytesFor(int width, int height, bool materialTargets);
+    /// Makes the targets fit `width` x `height`, the surface framebuffer sharing `depthBuffer`;
+    /// with `materialTargets` (a frame with normal maps or emission) also the lighting normal's
+    /// and the emission's, made on first use.
+    void ensure(int width, int height, GLuint depthBuffer, bool materialTargets);
+    /// Binds the surface framebuffer and clears it (coverage 0, depth far); it draws into the
+    /// material targets too when `materialTargets`.
+    void beginSurfaces(bool materialTargets);
     /// Runs the visibility of pass `pass` (whose records and shadow resources are bound) into the
     /// full-resolution visibility array, group by group; leaves the stage's framebuffer bound.
     /// Contact shadows for the lights of `frame` that ask for them (`Shadow::contactShadows`).
@@ -80,8 +84,9 @@ public:
     /// (the upsample) and /refine.
     void computeVisibility(const ShadowFrame& frame, const PassLights& pass, ScreenVisibility setting,
                            const ScreenRays& rays, FrameStats& stats, gpu::PassTimer* timer);
-    /// Binds the surface targets and the full-resolution visibility for the deferred lit pass.
-    void bindForLighting() const;
+    /// Binds the surface targets (with the material targets when `materialTargets`) and the
+    /// full-resolution visibility for the deferred lit pass.
+    void bindForLighting(bool materialTargets) const;
     /// An empty vertex array for full-screen triangles.
     [[nodiscard]] GLuint emptyVertexArray() const { return empty_.get(); }
 
@@ -113,6 +118,8 @@ private:
     /// One full-screen draw of `p` for group `g` at 1/`divisor` of the resolution.
     void draw(Program& p, const Group& g, int divisor, const ScreenRays& rays) const;
     void ensureStageTarget(int divisor);
+    /// The full-size targets and the surface framebuffer, anew for `width` x `height`.
+    void makeTargets(int width, int height);
     /// The coverage of the stage at `divisor`, drawn once a frame, attached as the depth buffer.
     void attachCoverage(int divisor, FrameStats& stats);
 
@@ -120,6 +127,7 @@ private:
     GLuint depthBuffer_ = 0;  ///< the renderer's, which the surface pass fills
     gpu::Framebuffer surfaces_, visibility_;
     gpu::Texture position_, normals_, albedo_, specular_;
+    gpu::Texture shading_, emission_;         ///< the material targets: lighting normal (RG32F), emission (RGBA16F)
     gpu::Texture full_;                       ///< RGBA8 array: slots 0-3, 4-7 of the pass
     gpu::Texture refine_;                     ///< depth 0 marks the pixels the refine pass recomputes
     std::array<gpu::Texture, 3> stage_;       ///< reduced-resolution arrays by divisor 2, 4 (index 1, 2)

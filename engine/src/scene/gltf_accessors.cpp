@@ -265,6 +265,13 @@ Result<std::vector<glm::vec4>> readRotations(const tinygltf::Model& model, int a
     return decodeFinite<glm::vec4, 4>(*span);
 }
 
+Result<std::vector<glm::vec4>> readTangents(const tinygltf::Model& model, int accessor, const std::string& where) {
+    const Format format{{TINYGLTF_COMPONENT_TYPE_FLOAT}, TINYGLTF_TYPE_VEC4, "FLOAT VEC4"};
+    auto span = checkedSpan(model, accessor, format, where);
+    if (!span) return span.error();
+    return decodeFinite<glm::vec4, 4>(*span);
+}
+
 Result<std::vector<std::uint32_t>> readIndices(const tinygltf::Model& model, int accessor, std::size_t vertexCount,
                                                const std::string& where) {
     const Format format{{TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,

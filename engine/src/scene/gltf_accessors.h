@@ -36,6 +36,10 @@ namespace shadow::gltf {
 [[nodiscard]] Result<std::vector<std::uint32_t>> readIndices(const tinygltf::Model& model, int accessor,
                                                              std::size_t vertexCount, const std::string& where);
 
+/// TANGENT: float VEC4 (xyz the tangent, w the handedness), all finite.
+[[nodiscard]] Result<std::vector<glm::vec4>> readTangents(const tinygltf::Model& model, int accessor,
+                                                          const std::string& where);
+
 /// TEXCOORD_n: float VEC2, or normalized unsigned 8/16-bit integers. All finite.
 [[nodiscard]] Result<std::vector<glm::vec2>> readTexcoords(const tinygltf::Model& model, int accessor,
                                                            const std::string& where);

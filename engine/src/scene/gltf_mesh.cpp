@@ -56,19 +56,48 @@ Status readTriangleIndices(const tinygltf::Model& model, const tinygltf::Primiti
     return Ok{};
 }
 
+/// TEXCOORD_`set` into `out` (left empty without it: the textures are sampled at (0, 0)).
 Status readTexcoordSet(const tinygltf::Model& model, const tinygltf::Primitive& primitive, int set,
-                       const std::string& where, MeshData& mesh) {
+                       const std::string& where, std::size_t vertexCount, std::vector<glm::vec2>& out) {
+    if (set < 0) return Ok{};
     const std::string semantic = "TEXCOORD_" + std::to_string(set);
     const auto it = primitive.attributes.find(semantic);
-    if (it == primitive.attributes.end()) return Ok{};  // the caller warns and drops the texture
+    if (it == primitive.attributes.end()) return Ok{};  // the caller warns and drops the textures
     const std::string uvWhere = where + ".attributes." + semantic;
     auto uv = readTexcoords(model, it->second, uvWhere);
     if (!uv) return uv.error();
-    if (uv->size() != mesh.positions.size()) {
-        return elementError(uvWhere, "has " + std::to_string(uv->size()) + " elements, POSITION has " +
-                                         std::to_string(mesh.positions.size()));
+    if (uv->size() != vertexCount) {
+        return elementError(
+            uvWhere, "has " + std::to_string(uv->size()) + " elements, POSITION has " + std::to_string(vertexCount));
     }
-    mesh.texcoords = std::move(*uv);
+    out = std::move(*uv);
+    return Ok{};
+}
+
+/// The texture-coordinate sets `material` reads and a normal map's tangents: the file's TANGENT
+/// where the primitive has normals of its own, else computed by the caller (`computeTangents`,
+/// after flat normals for a primitive without).
+Status readMaterialInputs(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const std::string& where,
+                          const MaterialImport& material, MeshData& mesh) {
+    const std::size_t n = mesh.positions.size();
+    const auto& sets = material.texcoordSets;
+    if (auto st = readTexcoordSet(model, primitive, sets[0], where, n, mesh.texcoords); !st) return st;
+    if (auto st = readTexcoordSet(model, primitive, sets[1], where, n, mesh.texcoords1); !st) return st;
+    const auto tangent = primitive.attributes.find("TANGENT");
+    if (material.material.normalMap.texture == nullptr || tangent == primitive.attributes.end()) return Ok{};
+    const std::string tangentWhere = where + ".attributes.TANGENT";
+    auto tangents = readTangents(model, tangent->second, tangentWhere);
+    if (!tangents) return tangents.error();
+    if (tangents->size() != n) {
+        return elementError(tangentWhere,
+                            "has " + std::to_string(tangents->size()) + " elements, POSITION has " + std::to_string(n));
+    }
+    for (glm::vec4& t : *tangents) {
+        const glm::vec3 xyz(t);
+        const float length = glm::length(xyz);
+        t = glm::vec4(length > 0.0f ? xyz / length : xyz, t.w < 0.0f ? -1.0f : 1.0f);
+    }
+    mesh.tangents = std::move(*tangents);
     return Ok{};
 }
 
@@ -102,13 +131,37 @@ Status readSkinning(const tinygltf::Model& model, const tinygltf::Primitive& pri
 
 /// The warning for a texture that reads `TEXCOORD_<set>`, which the primitive at `where` lacks.
 Warning missingTexcoord(const tinygltf::Model& model, const tinygltf::Primitive& primitive, int set,
-                        const std::string& where) {
+                        const std::string& where, const char* texture) {
     const auto m = static_cast<std::size_t>(primitive.material);
     const std::string& name = model.materials[m].name;
     return {WarningCode::MissingTexcoord, where,
             where + " has no TEXCOORD_" + std::to_string(set) + ", which " + indexed("materials", m) +
-                (name.empty() ? "" : " (\"" + name + "\")") +
-                ".pbrMetallicRoughness.baseColorTexture reads: the primitive is drawn without that texture"};
+                (name.empty() ? "" : " (\"" + name + "\")") + "." + texture +
+                " reads: the primitive is drawn without that texture"};
+}
+
+/// Every texture of `material` whose TEXCOORD set the primitive lacks is dropped, each with a
+/// `MissingTexcoord` warning (rather than sampling texel (0, 0) everywhere).
+void dropMapsWithoutTexcoords(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
+                              const std::string& where, MaterialImport& material, const MeshData& mesh,
+                              std::vector<Warning>& warnings) {
+    const auto lacks = [&](int set) { return (set == 0 ? mesh.texcoords : mesh.texcoords1).empty(); };
+    const auto fileSet = [&](int set) { return material.texcoordSets[static_cast<std::size_t>(set)]; };
+    Material& m = material.material;
+    if (m.baseColorTexture != nullptr && lacks(0)) {
+        warnings.push_back(missingTexcoord(model, primitive, fileSet(0), where, "pbrMetallicRoughness.baseColorTexture"));
+        m.baseColorTexture = nullptr;
+    }
+    const std::pair<MaterialMap*, const char*> maps[] = {
+        {&m.metallicRoughnessMap, "pbrMetallicRoughness.metallicRoughnessTexture"},
+        {&m.normalMap, "normalTexture"},
+        {&m.occlusionMap, "occlusionTexture"},
+        {&m.emissiveMap, "emissiveTexture"}};
+    for (const auto& [map, texture] : maps) {
+        if (map->texture == nullptr || !lacks(map->texcoordSet)) continue;
+        warnings.push_back(missingTexcoord(model, primitive, fileSet(map->texcoordSet), where, texture));
+        map->texture = nullptr;
+    }
 }
 
 /// The mesh of one primitive; nullopt when it draws nothing (another mode, or empty).
@@ -135,41 +188,26 @@ Result<std::optional<MeshPart>> importPrimitive(const tinygltf::Model& model, co
     if (auto st = readTriangleIndices(model, primitive, where, *mesh); !st) return st.error();
     if (mesh->indices.empty()) return std::optional<MeshPart>{};
 
-    int texCoord = 0;
-    auto material = importMaterial(model, primitive.material, where + ".material", textures, texCoord);
+    auto material = importMaterial(model, primitive.material, where + ".material", textures);
     if (!material) return material.error();
-    if (material->baseColorTexture != nullptr) {
-        if (auto st = readTexcoordSet(model, primitive, texCoord, where, *mesh); !st) return st.error();
-        if (mesh->texcoords.empty()) {
-            warnings.push_back(missingTexcoord(model, primitive, texCoord, where));
-            material->baseColorTexture = nullptr;
-        }
-    }
+    if (auto st = readMaterialInputs(model, primitive, where, *material, *mesh); !st) return st.error();
+    dropMapsWithoutTexcoords(model, primitive, where, *material, *mesh, warnings);
     if (auto st = readSkinning(model, primitive, where, *mesh); !st) return st.error();
     if (mesh->normals.empty()) {
         makeFlatNormals(*mesh);
     } else {
         computeBounds(*mesh);
     }
+    const MaterialMap& normalMap = material->material.normalMap;
+    if (normalMap.texture != nullptr && mesh->tangents.empty()) computeTangents(*mesh, normalMap.texcoordSet);
+    // The base colour's transform baked into set 0 (the other maps of that set carry its
+    // inverse), after the tangents, which follow the file's coordinates.
+    if (material->baseTransform != glm::mat3x2(1.0f)) {
+        for (glm::vec2& uv : mesh->texcoords) uv = material->baseTransform * glm::vec3(uv, 1.0f);
+    }
     computeClosed(*mesh);
     computeJointBounds(*mesh);
-    return std::optional<MeshPart>{MeshPart{std::move(mesh), *material}};
-}
-
-Result<glm::vec3> readBaseColor(const tinygltf::PbrMetallicRoughness& pbr, const std::string& where) {
-    const std::vector<double>& f = pbr.baseColorFactor;
-    if (f.size() != 4) return elementError(where, "must have 4 numbers");
-    glm::vec3 rgb;
-    for (int c = 0; c < 3; ++c) {
-        if (!std::isfinite(f[static_cast<std::size_t>(c)])) return elementError(where, "not finite");
-        rgb[c] = static_cast<float>(std::clamp(f[static_cast<std::size_t>(c)], 0.0, 1.0));
-    }
-    return rgb;
-}
-
-Result<float> readUnitFactor(double value, const std::string& where) {
-    if (!std::isfinite(value)) return elementError(where, "not finite");
-    return static_cast<float>(std::clamp(value, 0.0, 1.0));
+    return std::optional<MeshPart>{MeshPart{std::move(mesh), material->material}};
 }
 
 }  // namespace
@@ -188,60 +226,6 @@ Result<std::vector<MeshPart>> importMesh(const tinygltf::Model& model, std::size
         if (part->has_value()) parts.push_back(std::move(**part));
     }
     return parts;
-}
-
-Result<Material> importMaterial(const tinygltf::Model& model, int index, const std::string& where,
-                                TextureImporter& textures, int& texCoord) {
-    texCoord = 0;
-    if (index < 0) return Material{};
-    if (static_cast<std::size_t>(index) >= model.materials.size()) {
-        return elementError(where, "material " + std::to_string(index) + " does not exist");
-    }
-    const std::string materialWhere = indexed("materials", static_cast<std::size_t>(index));
-    const std::string pbrWhere = materialWhere + ".pbrMetallicRoughness";
-    const tinygltf::Material& material = model.materials[static_cast<std::size_t>(index)];
-    const tinygltf::PbrMetallicRoughness& pbr = material.pbrMetallicRoughness;
-    auto base = readBaseColor(pbr, pbrWhere + ".baseColorFactor");
-    if (!base) return base.error();
-    auto alpha =
-        readUnitFactor(pbr.baseColorFactor.size() == 4 ? pbr.baseColorFactor[3] : 1.0, pbrWhere + ".baseColorFactor");
-    if (!alpha) return alpha.error();
-    auto metallic = readUnitFactor(pbr.metallicFactor, pbrWhere + ".metallicFactor");
-    if (!metallic) return metallic.error();
-    auto roughness = readUnitFactor(pbr.roughnessFactor, pbrWhere + ".roughnessFactor");
-    if (!roughness) return roughness.error();
-    auto cutoff = readUnitFactor(material.alphaCutoff, materialWhere + ".alphaCutoff");
-    if (!cutoff) return cutoff.error();
-
-    Material out;
-    out.albedo = *base * (1.0f - *metallic);
-    out.specular = glm::mix(glm::vec3(0.04f), *base, *metallic);
-    out.metallic = *metallic;
-    out.alpha = *alpha;
-    out.alphaCutoff = material.alphaMode == "BLEND" ? 0.5f : *cutoff;
-    if (material.alphaMode == "MASK") {
-        out.alphaMode = AlphaMode::Mask;
-    } else if (material.alphaMode == "BLEND") {
-        out.alphaMode = AlphaMode::Blend;
-    } else if (!material.alphaMode.empty() && material.alphaMode != "OPAQUE") {
-        return elementError(materialWhere + ".alphaMode",
-                            "must be OPAQUE, MASK or BLEND, not \"" + material.alphaMode + "\"");
-    }
-    if (pbr.baseColorTexture.index >= 0) {
-        const std::string textureWhere = pbrWhere + ".baseColorTexture";
-        if (pbr.baseColorTexture.texCoord < 0 || pbr.baseColorTexture.texCoord > 7) {
-            return elementError(textureWhere + ".texCoord", "must be in [0, 7]");
-        }
-        auto texture = textures.get(pbr.baseColorTexture.index, textureWhere);
-        if (!texture) return texture.error();
-        out.baseColorTexture = *texture;
-        texCoord = pbr.baseColorTexture.texCoord;
-    }
-    // Blinn-Phong exponent whose lobe matches a GGX lobe of roughness r (alpha = r^2):
-    // n = 2 / alpha^2 - 2 (Walter et al. 2007, section 5.2).
-    const float alpha2 = std::max(std::pow(*roughness, 4.0f), 1e-4f);
-    out.shininess = std::clamp(2.0f / alpha2 - 2.0f, 1.0f, 4096.0f);
-    return out;
 }
 
 }  // namespace shadow::gltf

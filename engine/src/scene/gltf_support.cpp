@@ -18,14 +18,14 @@ constexpr FeatureSupport kFeatures[] = {
     {"KHR_lights_punctual", Support::Read, ""},
     {"KHR_xmp_json_ld", Support::Read, ""},  // metadata: nothing to draw
     {"KHR_materials_unlit", Support::Dropped, "unlit materials are shaded by the lights like the others"},
-    {"KHR_texture_transform", Support::Dropped, "textures are read without their offset, rotation and scale"},
+    {"KHR_texture_transform", Support::Read, ""},
     {"KHR_texture_basisu", Support::Dropped,
      "KTX2 images are not decoded: a texture's PNG or JPEG `source` is used, else the material is drawn "
      "without that texture"},
     {"EXT_texture_webp", Support::Dropped,
      "WebP images are not decoded: a texture's PNG or JPEG `source` is used, else the material is drawn "
      "without that texture"},
-    {"KHR_materials_emissive_strength", Support::Dropped, "emission is not drawn"},
+    {"KHR_materials_emissive_strength", Support::Read, ""},
     {"KHR_materials_clearcoat", Support::Dropped, kPlainMaterial},
     {"KHR_materials_sheen", Support::Dropped, kPlainMaterial},
     {"KHR_materials_specular", Support::Dropped, kPlainMaterial},
@@ -51,12 +51,6 @@ constexpr FeatureSupport kFeatures[] = {
      "points, lines, triangle strips and triangle fans are left out"},
     {"COLOR_0", Support::Dropped, "vertex colours are not drawn"},
     {"JOINTS_1", Support::Dropped, "only a vertex's first four joint influences (JOINTS_0/WEIGHTS_0) pose it"},
-    {"emissiveFactor", Support::Dropped, "emission is not drawn"},
-    {"emissiveTexture", Support::Dropped, "emission is not drawn"},
-    {"normalTexture", Support::Dropped, "normal maps are not read: surfaces are shaded with their mesh normals"},
-    {"occlusionTexture", Support::Dropped, "ambient-occlusion maps are not read"},
-    {"metallicRoughnessTexture", Support::Dropped,
-     "metallic-roughness textures are not read: the material's factors hold everywhere"},
     {"magFilter NEAREST", Support::Dropped, "textures are filtered linearly (pixel art is drawn blurred)"},
 };
 
@@ -72,22 +66,6 @@ void record(Uses& uses, const std::string& name, const std::string& where) {
     if (use.count++ == 0) use.first = where;
 }
 
-/// A `KHR_texture_transform` that leaves the coordinates as they are (exporters write them), in
-/// a texture reference that reads `TEXCOORD_<texCoord>`.
-bool isIdentityTransform(const json& t, const json& texCoord) {
-    if (!t.is_object()) return false;
-    if (const auto set = t.find("texCoord"); set != t.end() && *set != texCoord) return false;
-    const auto all = [&](const char* key, double value, std::size_t n) {
-        const auto it = t.find(key);
-        if (it == t.end()) return true;
-        if (!it->is_array() || it->size() != n) return false;
-        return std::all_of(it->begin(), it->end(), [&](const json& v) { return v.is_number() && v == value; });
-    };
-    const auto rotation = t.find("rotation");
-    const bool noRotation = rotation == t.end() || (rotation->is_number() && *rotation == 0.0);
-    return noRotation && all("offset", 0.0, 2) && all("scale", 1.0, 2);
-}
-
 /// Every object of `document` named `extensions` (outside `extras`, a game's own data): each of
 /// its members is a use of that extension. Walked in document order with a stack of its own
 /// (children pushed last first): a file's arrays may be long.
@@ -101,13 +79,11 @@ void collectExtensions(const json& document, Uses& uses) {
         if (value->is_array()) {
             for (std::size_t i = 0; i < value->size(); ++i) children.emplace_back(&(*value)[i], indexed(where, i));
         } else if (value->is_object()) {
-            const json texCoord = value->value("texCoord", json(0));  // of a texture reference
             for (const auto& [key, item] : value->items()) {
                 if (key == "extras") continue;
                 const std::string path = where.empty() ? key : where + "." + key;
                 if (key == "extensions" && item.is_object()) {
                     for (const auto& [name, object] : item.items()) {
-                        if (name == "KHR_texture_transform" && isIdentityTransform(object, texCoord)) continue;
                         record(uses, name, path + "." + name);
                     }
                 }
@@ -163,20 +139,6 @@ void collectPrimitiveFeatures(const json& document, Uses& uses) {
 }
 
 void collectMaterialFeatures(const json& document, Uses& uses) {
-    eachElement(document, "materials", [&](const json& material, const std::string& where) {
-        if (const auto e = material.find("emissiveFactor"); e != material.end() && e->is_array()) {
-            if (std::any_of(e->begin(), e->end(), [](const json& v) { return v.is_number() && v != 0.0; })) {
-                record(uses, "emissiveFactor", where + ".emissiveFactor");
-            }
-        }
-        for (const char* texture : {"emissiveTexture", "normalTexture", "occlusionTexture"}) {
-            if (material.contains(texture)) record(uses, texture, where + "." + texture);
-        }
-        if (const auto pbr = material.find("pbrMetallicRoughness");
-            pbr != material.end() && pbr->is_object() && pbr->contains("metallicRoughnessTexture")) {
-            record(uses, "metallicRoughnessTexture", where + ".pbrMetallicRoughness.metallicRoughnessTexture");
-        }
-    });
     eachElement(document, "samplers", [&](const json& sampler, const std::string& where) {
         constexpr int kNearest = 9728;
         if (const auto mag = sampler.find("magFilter"); mag != sampler.end() && *mag == kNearest) {

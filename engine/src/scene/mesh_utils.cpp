@@ -195,10 +195,11 @@ void makeFlatNormals(MeshData& mesh) {
     const std::size_t triangleCount = mesh.indices.size() / 3;
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
-    std::vector<glm::vec2> texcoords;
+    std::vector<glm::vec2> texcoords, texcoords1;
     std::vector<glm::u16vec4> joints;
     std::vector<glm::vec4> weights;
     const bool textured = mesh.texcoords.size() == vertexCount;
+    const bool textured1 = mesh.texcoords1.size() == vertexCount;
     const bool skinned = mesh.joints.size() == vertexCount && mesh.weights.size() == vertexCount;
     positions.reserve(triangleCount * 3);
     normals.reserve(triangleCount * 3);
@@ -210,6 +211,7 @@ void makeFlatNormals(MeshData& mesh) {
             positions.push_back(mesh.positions[tri[k]]);
             normals.push_back(n);
             if (textured) texcoords.push_back(mesh.texcoords[tri[k]]);
+            if (textured1) texcoords1.push_back(mesh.texcoords1[tri[k]]);
             if (skinned) {
                 joints.push_back(mesh.joints[tri[k]]);
                 weights.push_back(mesh.weights[tri[k]]);
@@ -223,6 +225,8 @@ void makeFlatNormals(MeshData& mesh) {
     mesh.positions = std::move(positions);
     mesh.normals = std::move(normals);
     mesh.texcoords = std::move(texcoords);
+    mesh.texcoords1 = std::move(texcoords1);
+    mesh.tangents.clear();  // glTF: a mesh without normals ignores its tangents
     mesh.joints = std::move(joints);
     mesh.weights = std::move(weights);
     computeBounds(mesh);
