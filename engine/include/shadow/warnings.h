@@ -67,6 +67,11 @@ enum class WarningCode {
     /// map instead (a hard shadow, multiplied with the march's visibility). Element: the light;
     /// the message counts their draws and names the first.
     CasterWithoutField,
+    /// The scene had no lights, so the default rig (`addDefaultRig`, shadow/default_rig.h) lit
+    /// it: a shadowed sun placed from the model's bounds and a shadow-catcher ground. A notice
+    /// rather than a fault, so that a picture of a file's own lighting is not mistaken for the
+    /// rig's. Element: the scene's name (the file); the message says what was added and where.
+    DefaultRigAdded,
 };
 
 /// One decision the engine reports.
@@ -94,6 +99,7 @@ struct Warning {
         case WarningCode::UnsupportedLight: return "UnsupportedLight";
         case WarningCode::OpenCaster: return "OpenCaster";
         case WarningCode::CasterWithoutField: return "CasterWithoutField";
+        case WarningCode::DefaultRigAdded: return "DefaultRigAdded";
     }
     return "Unknown";
 }
