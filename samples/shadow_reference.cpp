@@ -2,10 +2,11 @@
 // shadow_render draws.
 //
 //   shadow_reference SCENE [--out DIR] [--size WxH] [--camera N] [--time T] [--samples N]
-//                    [--positions FILE] [--threads K] [--seed S]
+//                    [--positions FILE] [--threads K] [--seed S] [--no-default-lights] [--no-ground]
 //
-// SCENE, --size, --camera and --time mean what they mean to shadow_render, so both programs
-// shade the same pixels. Each pixel's point is the first surface on its camera ray or, with
+// SCENE, --size, --camera, --time, --no-default-lights and --no-ground mean what they mean to
+// shadow_render (a file without lights gets the same default rig), so both programs shade the
+// same pixels. Each pixel's point is the first surface on its camera ray or, with
 // --positions, the world position in an engine position.exr (its size is then the image size;
 // a covered pixel that is not finite is bad input, one beyond 1e9 m in some coordinate is
 // background, counted in reference.json's pixels.positionsBeyondReach).
@@ -50,6 +51,7 @@ struct Options {
     std::string positions;
     int threads = 0;
     std::uint32_t seed = 1;
+    samples::DefaultRigChoice rig;  ///< for a file without lights, as shadow_render's
 };
 
 int fail(int code, const std::string& message) { return samples::failAs("shadow_reference", code, message); }
@@ -119,6 +121,12 @@ std::string referenceJson(const Scene& scene, const Options& o, int cameraIndex,
                    {"positionsWithoutSurface", r.positionsWithoutSurface},
                    {"positionsBeyondReach", r.positionsBeyondReach}};
     j["lights"] = lightsJson(scene, r);
+    // The scene's own (the default rig's notice among them), as stats.json lists them.
+    nlohmann::json warnings = nlohmann::json::array();
+    for (const Warning& w : scene.warnings) {
+        warnings.push_back({{"code", warningCodeName(w.code)}, {"element", w.element}, {"message", w.message}});
+    }
+    j["warnings"] = warnings;
     return j.dump(2) + "\n";
 }
 
@@ -178,7 +186,8 @@ int run(Options& o) {
     Result<Scene> loaded = samples::loadSampleScene(o.scene);
     if (!loaded) return fail(kExitBadInput, loaded.error().message);
     Scene& scene = *loaded;
-    Result<Entity> camera = samples::chooseCamera(scene, o.camera, o.time);
+    Result<Entity> camera =
+        samples::chooseCameraAndRig(scene, o.camera, o.time, o.rig, static_cast<double>(size->first) / size->second);
     if (!camera) return fail(kExitBadInput, camera.error().message);
     animate(scene.world, o.time);
     (void)updateTransforms(scene.world);
@@ -211,6 +220,7 @@ int run(Options& o) {
     if (Status s = writeOutputs(o.out, *traced); !s) return fail(kExitFailure, s.error().message);
     if (Status s = writeTextFileAtomic(o.out + "/reference.json", json); !s)
         return fail(kExitFailure, s.error().message);
+    for (const Warning& w : scene.warnings) std::cerr << "shadow_reference: warning: " << w.message << "\n";
     if (traced->positionsBeyondReach > 0) {
         std::cerr << "shadow_reference: warning: " << traced->positionsBeyondReach
                   << " positions beyond 1e9 m (kMaxWorldCoordinate) treated as background\n";
@@ -233,6 +243,10 @@ int main(int argc, char** argv) {
     app.add_option("--positions", o.positions, "shade the world positions of an engine position.exr");
     app.add_option("--threads", o.threads, "worker threads (0 = all cores)");
     app.add_option("--seed", o.seed, "seed of the sample patterns");
+    app.add_flag_callback(
+        "--no-default-lights", [&o] { o.rig.lights = false; }, samples::kNoDefaultLightsHelp);
+    app.add_flag_callback(
+        "--no-ground", [&o] { o.rig.ground = false; }, samples::kNoGroundHelp);
     if (const std::optional<int> exit = samples::parseCommandLine(app, argc, argv, "shadow_reference")) return *exit;
     o.sizeGiven = sizeOption->count() > 0;
     try {

@@ -4,12 +4,15 @@
 //                 [--technique NAME] [--depth-mode MODE] [--aov color,visibility,position,depth]
 //                 [--debug NAME] [--debug-light I] [--frame-images] [--no-cache] [--exposure E]
 //                 [--shader-cache DIR] [--field-voxels N] [--sdf-start-offset M]
+//                 [--no-default-lights] [--no-ground]
 //
 // SCENE is a sample scene's name (samples/scenes, e.g. courtyard), a .gltf/.glb path or
 // builtin:NAME. With --frames N the scene is animated from
 // --time T in steps of --dt S; the images are those of the last frame and the timings in
 // stats.json are medians over the frames after the first. --frame-images also writes every
-// frame's colour as frames/color_<k>.png. Bad input: one message, exit code 2.
+// frame's colour as frames/color_<k>.png. A file without lights is lit by the default rig (a
+// shadowed sun and a ground placed from the model's bounds) unless --no-default-lights. Bad
+// input: one message, exit code 2.
 #include <shadow/context_osmesa.h>
 #include <shadow/frame_runner.h>
 #include <shadow/program_cache.h>
@@ -55,6 +58,7 @@ struct Options {
     std::string screenVisibility = "auto";
     bool contactShadows = false;    ///< turn every shadowed light's contact shadows on
     std::optional<float> exposure;  ///< absent: from the first frame read back (autoExposure)
+    samples::DefaultRigChoice rig;  ///< for a file without lights
 };
 
 int fail(int code, const std::string& message) { return samples::failAs("shadow_render", code, message); }
@@ -162,7 +166,8 @@ int run(const Options& o) {
     if (o.sdfStartOffset) {
         scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.sdfStartOffset = *o.sdfStartOffset; });
     }
-    Result<Entity> chosen = samples::chooseCamera(scene, o.camera, o.time);
+    Result<Entity> chosen =
+        samples::chooseCameraAndRig(scene, o.camera, o.time, o.rig, static_cast<double>(size->first) / size->second);
     if (!chosen) return fail(kExitBadInput, chosen.error().message);
     const Entity camera = *chosen;
 
@@ -224,7 +229,9 @@ int run(const Options& o) {
     const std::string json =
         samples::statsJson(scene, frames, options.width, options.height, o.technique.value_or(""), startTime);
     if (Status s = writeTextFileAtomic(o.out + "/stats.json", json); !s) return fail(kExitFailure, s.error().message);
-    for (const Warning& w : frames.back().warnings) std::cerr << "shadow_render: warning: " << w.message << "\n";
+    for (const std::vector<Warning>* list : {&scene.warnings, &frames.back().warnings}) {
+        for (const Warning& w : *list) std::cerr << "shadow_render: warning: " << w.message << "\n";
+    }
     return 0;
 }
 
@@ -260,6 +267,10 @@ int main(int argc, char** argv) {
     app.add_flag("--contact-shadows", o.contactShadows,
                  "turn on every shadowed light's screen-space contact shadows (drawn by the screen-space "
                  "visibility stage: with --screen-visibility off they are left out)");
+    app.add_flag_callback(
+        "--no-default-lights", [&o] { o.rig.lights = false; }, samples::kNoDefaultLightsHelp);
+    app.add_flag_callback(
+        "--no-ground", [&o] { o.rig.ground = false; }, samples::kNoGroundHelp);
     app.add_option("--shader-cache", o.shaderCache,
                    "folder of linked program binaries, read and written (the driver's own cache aside)");
     if (const std::optional<int> exit = samples::parseCommandLine(app, argc, argv, "shadow_render")) return *exit;
