@@ -7,7 +7,7 @@
 #include <shadow/default_rig.h>
 #include <shadow/image_io.h>
 
-#include "samples/cube_scene.h"
+#include "scene/cube_scene.h"
 #include "test_support.h"
 
 #include <algorithm>

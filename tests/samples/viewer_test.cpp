@@ -3,7 +3,7 @@
 // and a bad script line is one message naming the line, exit code 2 and nothing written.
 #include <gtest/gtest.h>
 
-#include "samples/cube_scene.h"
+#include "scene/cube_scene.h"
 #include "test_support.h"
 #include <stb/stb_image.h>  // decoder only; its implementation comes from libstb
 
