@@ -47,7 +47,8 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/shaders/ DESTINATION ${SHADOW_INSTALL_SH
         FILES_MATCHING PATTERN "*.glsl" PATTERN "README.md")
 # Beside the GLSL too, so that the folder compiles by `#include` on its own.
 install(FILES ${PROJECT_SOURCE_DIR}/engine/include/shadow/shared_constants.h
-              ${PROJECT_SOURCE_DIR}/engine/include/shadow/gpu_structs.h DESTINATION ${SHADOW_INSTALL_SHADERDIR})
+              ${PROJECT_SOURCE_DIR}/engine/include/shadow/gpu_structs.h
+              ${PROJECT_SOURCE_DIR}/engine/include/shadow/tone_map.h DESTINATION ${SHADOW_INSTALL_SHADERDIR})
 
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/shadow_engineConfig.cmake.in
   ${PROJECT_BINARY_DIR}/shadow_engineConfig.cmake

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
+#include <shadow/default_rig.h>
 #include <shadow/distance_field.h>
 #include <shadow/program_cache.h>
 
@@ -42,6 +43,21 @@ Result<Entity> chooseCamera(Scene& scene, std::optional<int> index, double time)
     animate(scene.world, time);
     (void)updateTransforms(scene.world);
     return addDefaultCamera(scene);
+}
+
+Result<Entity> chooseCameraAndRig(Scene& scene, std::optional<int> index, double time, const DefaultRigChoice& rig,
+                                  double imageAspect) {
+    if (!rig.lights || !scene.lights.empty()) return chooseCamera(scene, index, time);
+    std::optional<Entity> camera;
+    if (index || !scene.cameras.empty()) {
+        Result<Entity> chosen = chooseCamera(scene, index, time);
+        if (!chosen) return chosen;
+        camera = *chosen;
+    }
+    DefaultRigOptions options;
+    options.ground = rig.ground;
+    options.imageAspect = imageAspect;
+    return addDefaultRig(scene, camera, options).camera;
 }
 
 Result<OutputSelection> parseAovList(const std::string& list) {

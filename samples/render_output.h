@@ -34,6 +34,26 @@ struct OutputSelection {
 /// it, so both see the same pixels.
 [[nodiscard]] Result<Entity> chooseCamera(Scene& scene, std::optional<int> index, double time);
 
+/// What the CLIs and the viewer do with a scene that has no lights (`--no-default-lights`,
+/// `--no-ground`): add the default rig (shadow/default_rig.h), with or without its ground.
+struct DefaultRigChoice {
+    bool lights = true;  ///< add the rig to a scene without lights
+    bool ground = true;  ///< with its shadow-catcher ground
+};
+/// The help of `--no-default-lights` and `--no-ground`, the flags that clear `DefaultRigChoice`.
+inline constexpr const char* kNoDefaultLightsHelp =
+    "show a file without lights as it is (ambient light only) instead of under the default rig (a shadowed sun "
+    "placed from the model's bounds, a ground under the model, a camera framing both when the file has none)";
+inline constexpr const char* kNoGroundHelp = "the default rig without its shadow-catcher ground";
+
+/// `chooseCamera`, except for a scene without lights under `rig.lights`: the default rig
+/// (`addDefaultRig`) is added, seen through the camera of `--camera N` (an error when out of
+/// range) or the scene's first; with none, through the camera the rig adds, which frames the
+/// model and its shadow in images of width / height `imageAspect`. shadow_render,
+/// shadow_reference and the viewer all call it, so they light and see the same scene.
+[[nodiscard]] Result<Entity> chooseCameraAndRig(Scene& scene, std::optional<int> index, double time,
+                                                const DefaultRigChoice& rig, double imageAspect);
+
 /// Parses "color,visibility,position,depth" (any subset, any order).
 [[nodiscard]] Result<OutputSelection> parseAovList(const std::string& list);
 

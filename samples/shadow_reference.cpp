@@ -3,9 +3,12 @@
 //
 //   shadow_reference SCENE [--out DIR] [--size WxH] [--camera N] [--time T] [--samples N]
 //                    [--positions FILE] [--threads K] [--seed S] [--animation NAME|INDEX|all]
+//                    [--no-default-lights] [--no-ground]
 //
-// SCENE, --size, --camera, --time and --animation mean what they mean to shadow_render, so both
-// programs shade the same pixels; the scene's load warnings go to stderr and reference.json. Each pixel's point is the first surface on its camera ray or, with
+// SCENE, --size, --camera, --time, --animation, --no-default-lights and --no-ground mean what
+// they mean to shadow_render (a file without lights gets the same default rig), so both programs
+// shade the same pixels; the scene's load warnings go to stderr and reference.json. Each pixel's
+// point is the first surface on its camera ray or, with
 // --positions, the world position in an engine position.exr (its size is then the image size;
 // a covered pixel that is not finite is bad input, one beyond 1e9 m in some coordinate is
 // background, counted in reference.json's pixels.positionsBeyondReach).
@@ -50,7 +53,8 @@ struct Options {
     std::string positions;
     int threads = 0;
     std::uint32_t seed = 1;
-    std::string animation;  ///< which clip plays: empty (the first), all, an index or a name
+    std::string animation;          ///< which clip plays: empty (the first), all, an index or a name
+    samples::DefaultRigChoice rig;  ///< for a file without lights, as shadow_render's
 };
 
 int fail(int code, const std::string& message) { return samples::failAs("shadow_reference", code, message); }
@@ -121,7 +125,8 @@ std::string referenceJson(const Scene& scene, const Options& o, int cameraIndex,
                    {"positionsBeyondReach", r.positionsBeyondReach}};
     j["lights"] = lightsJson(scene, r);
     j["animation"] = samples::animationJson(scene);
-    j["warnings"] = samples::warningsJson({&scene.warnings});  // the scene's, printed on stderr too
+    // The scene's own (the default rig's notice among them), printed on stderr too.
+    j["warnings"] = samples::warningsJson({&scene.warnings});
     return j.dump(2) + "\n";
 }
 
@@ -181,8 +186,9 @@ int run(Options& o) {
     Result<Scene> loaded = samples::loadSampleScene(o.scene, o.animation);
     if (!loaded) return fail(kExitBadInput, loaded.error().message);
     Scene& scene = *loaded;
+    Result<Entity> camera =
+        samples::chooseCameraAndRig(scene, o.camera, o.time, o.rig, static_cast<double>(size->first) / size->second);
     samples::printSceneWarnings("shadow_reference", scene);
-    Result<Entity> camera = samples::chooseCamera(scene, o.camera, o.time);
     if (!camera) return fail(kExitBadInput, camera.error().message);
     animate(scene.world, o.time);
     (void)updateTransforms(scene.world);
@@ -238,6 +244,10 @@ int main(int argc, char** argv) {
     app.add_option("--positions", o.positions, "shade the world positions of an engine position.exr");
     app.add_option("--threads", o.threads, "worker threads (0 = all cores)");
     app.add_option("--seed", o.seed, "seed of the sample patterns");
+    app.add_flag_callback(
+        "--no-default-lights", [&o] { o.rig.lights = false; }, samples::kNoDefaultLightsHelp);
+    app.add_flag_callback(
+        "--no-ground", [&o] { o.rig.ground = false; }, samples::kNoGroundHelp);
     if (const std::optional<int> exit = samples::parseCommandLine(app, argc, argv, "shadow_reference")) return *exit;
     o.sizeGiven = sizeOption->count() > 0;
     try {

@@ -4,13 +4,15 @@
 //                 [--technique NAME] [--depth-mode MODE] [--aov color,visibility,position,depth]
 //                 [--debug NAME] [--debug-light I] [--frame-images] [--no-cache] [--exposure E]
 //                 [--shader-cache DIR] [--field-voxels N] [--sdf-start-offset M]
-//                 [--animation NAME|INDEX|all]
+//                 [--animation NAME|INDEX|all] [--no-default-lights] [--no-ground]
 //
 // SCENE is a sample scene's name (samples/scenes, e.g. courtyard), a .gltf/.glb path or
 // builtin:NAME. With --frames N the scene is animated from
 // --time T in steps of --dt S; the images are those of the last frame and the timings in
 // stats.json are medians over the frames after the first. --frame-images also writes every
-// frame's colour as frames/color_<k>.png. Bad input: one message, exit code 2.
+// frame's colour as frames/color_<k>.png. A file without lights is lit by the default rig (a
+// shadowed sun and a ground placed from the model's bounds) unless --no-default-lights. Bad
+// input: one message, exit code 2.
 #include <shadow/context_osmesa.h>
 #include <shadow/frame_runner.h>
 #include <shadow/program_cache.h>
@@ -57,6 +59,7 @@ struct Options {
     bool contactShadows = false;    ///< turn every shadowed light's contact shadows on
     std::optional<float> exposure;  ///< absent: from the first frame read back (autoExposure)
     std::string animation;          ///< which clip plays: empty (the first), all, an index or a name
+    samples::DefaultRigChoice rig;  ///< for a file without lights
 };
 
 int fail(int code, const std::string& message) { return samples::failAs("shadow_render", code, message); }
@@ -148,7 +151,6 @@ int run(const Options& o) {
     Result<Scene> loaded = samples::loadSampleScene(o.scene, o.animation);
     if (!loaded) return fail(kExitBadInput, loaded.error().message);
     Scene& scene = *loaded;
-    samples::printSceneWarnings("shadow_render", scene);
     if (o.debugLight < 0 || (!scene.lights.empty() && o.debugLight >= static_cast<int>(scene.lights.size()))) {
         return fail(kExitBadInput, "--debug-light " + std::to_string(o.debugLight) + ": the scene has " +
                                        std::to_string(scene.lights.size()) + " lights");
@@ -165,9 +167,11 @@ int run(const Options& o) {
     if (o.sdfStartOffset) {
         scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.sdfStartOffset = *o.sdfStartOffset; });
     }
-    Result<Entity> chosen = samples::chooseCamera(scene, o.camera, o.time);
+    Result<Entity> chosen =
+        samples::chooseCameraAndRig(scene, o.camera, o.time, o.rig, static_cast<double>(size->first) / size->second);
     if (!chosen) return fail(kExitBadInput, chosen.error().message);
     const Entity camera = *chosen;
+    samples::printSceneWarnings("shadow_render", scene);  // the default rig's notice among them
 
     auto context = createOsMesaContext();
     if (!context) return fail(kExitFailure, context.error().message);
@@ -264,6 +268,10 @@ int main(int argc, char** argv) {
     app.add_flag("--contact-shadows", o.contactShadows,
                  "turn on every shadowed light's screen-space contact shadows (drawn by the screen-space "
                  "visibility stage: with --screen-visibility off they are left out)");
+    app.add_flag_callback(
+        "--no-default-lights", [&o] { o.rig.lights = false; }, samples::kNoDefaultLightsHelp);
+    app.add_flag_callback(
+        "--no-ground", [&o] { o.rig.ground = false; }, samples::kNoGroundHelp);
     app.add_option("--shader-cache", o.shaderCache,
                    "folder of linked program binaries, read and written (the driver's own cache aside)");
     if (const std::optional<int> exit = samples::parseCommandLine(app, argc, argv, "shadow_render")) return *exit;

@@ -4,10 +4,12 @@
 //
 //   shadow_viewer [SCENE] [--size WxH] [--camera N] [--time T] [--technique NAME]
 //                 [--debug VIEW] [--debug-light I] [--animation NAME|INDEX|all]
+//                 [--no-default-lights] [--no-ground]
 //                 [--script FILE | --frames N [--dt S]] [--screenshot DIR]
 //
 // SCENE is a sample scene's name, a .gltf/.glb path or builtin:NAME (default builtin:default); a .gltf/.glb dropped on
-// the window replaces it (a scene that does not load is reported and the old one kept).
+// the window replaces it (a scene that does not load is reported and the old one kept). A file
+// without lights is lit by the default rig (shadow/default_rig.h), said in the Scene panel.
 // Interactive controls: README.md, "The viewer". With --script FILE the viewer runs the script
 // (viewer_script.h, docs/viewer.md) and exits; with --frames N it renders N frames from --time T
 // in steps of --dt S and, with --screenshot DIR, writes DIR/color.png (the scene, tone-mapped as
@@ -53,7 +55,8 @@ struct Options {
     double dt = 1.0 / 30.0;
     std::string screenshotDir;
     std::string screenVisibility = "auto";
-    std::string animation;  ///< which clip plays: empty (the first), all, an index or a name
+    std::string animation;          ///< which clip plays: empty (the first), all, an index or a name
+    samples::DefaultRigChoice rig;  ///< for a file without lights
 };
 
 int fail(int code, const std::string& message) { return samples::failAs("shadow_viewer", code, message); }
@@ -182,6 +185,10 @@ void frameStep(App& app, bool interactive, const std::function<void()>& beforeSw
     if (beforeSwap) beforeSwap();
     state.window->swapBuffers();
     if (requests.screenshot) takeScreenshot(app);
+    if (requests.reload) {
+        const std::string spec = state.sceneSpec;  // loadInto replaces it
+        if (Status s = loadInto(state, spec, std::nullopt); !s) state.loadError = s.error().message;
+    }
     if (requests.sceneCamera && *requests.sceneCamera < static_cast<int>(state.scene.cameras.size())) {
         state.rig.reset(state.scene, state.scene.cameras[static_cast<std::size_t>(*requests.sceneCamera)]);
     }
@@ -323,14 +330,17 @@ int run(const Options& o) {
     // The scene before the window, so that bad input costs no window (and needs no display).
     Result<Scene> probe = samples::loadSampleScene(o.scene, o.animation);
     if (!probe) return fail(kExitBadInput, probe.error().message);
+    if (o.camera && (*o.camera < 0 || *o.camera >= static_cast<int>(probe->cameras.size()))) {
+        return fail(kExitBadInput, "--camera " + std::to_string(*o.camera) + ": the scene has " +
+                                       std::to_string(probe->cameras.size()) + " cameras");
+    }
+    // The lights the viewer will show, the default rig's among them, for --debug-light and scripts.
+    if (Result<Entity> c = samples::chooseCameraAndRig(*probe, o.camera, o.time, o.rig, 16.0 / 9.0); !c)
+        return fail(kExitBadInput, c.error().message);
     const int lights = static_cast<int>(probe->lights.size());
     if (o.debugLight < 0 || (lights > 0 && o.debugLight >= lights)) {
         return fail(kExitBadInput, "--debug-light " + std::to_string(o.debugLight) + ": the scene has " +
                                        std::to_string(lights) + " lights");
-    }
-    if (o.camera && (*o.camera < 0 || *o.camera >= static_cast<int>(probe->cameras.size()))) {
-        return fail(kExitBadInput, "--camera " + std::to_string(*o.camera) + ": the scene has " +
-                                       std::to_string(probe->cameras.size()) + " cameras");
     }
     auto script = scriptOf(o, *probe);
     if (!script) return fail(kExitBadInput, script.error().message);
@@ -352,6 +362,7 @@ int run(const Options& o) {
         if (Status s = checkRenderSize(sized, lights); !s)
             return fail(kExitBadInput, "--size " + *o.size + ": " + s.error().message);
     }
+    app.state.rigChoice = o.rig;
     if (Status s = loadInto(app.state, o.scene, o.camera); !s) return fail(kExitBadInput, s.error().message);
     if (technique) app.state.scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.technique = *technique; });
     app.state.options.debugView = *debug;
@@ -391,6 +402,10 @@ int main(int argc, char** argv) {
     app.add_option("--debug", o.debug, "debug view: none|cascade|blocker|penumbra|visibility|steps|closest");
     app.add_option("--debug-light", o.debugLight, "scene light index the debug view shows");
     app.add_option("--screen-visibility", o.screenVisibility, samples::kScreenVisibilityHelp);
+    app.add_flag_callback(
+        "--no-default-lights", [&o] { o.rig.lights = false; }, samples::kNoDefaultLightsHelp);
+    app.add_flag_callback(
+        "--no-ground", [&o] { o.rig.ground = false; }, samples::kNoGroundHelp);
     auto* script = app.add_option("--script", o.script, "run this script (docs/viewer.md) and exit");
     auto* frames = app.add_option("--frames", o.frames, "render N frames from --time, then exit");
     app.add_option("--dt", o.dt, "time step between the frames of --frames (s)");

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace shadow::viewer {
 namespace {
@@ -11,12 +12,23 @@ namespace {
 /// Largest edge of the shadow-map view's texture (texels): larger maps are shown subsampled.
 constexpr int kMaxMapViewTexels = 1024;
 
+/// Width / height of the frames the viewer renders: --size's, else the window's.
+double imageAspect(const ViewerState& state) {
+    int width = 16, height = 9;
+    if (state.fixedSize) {
+        std::tie(width, height) = *state.fixedSize;
+    } else if (state.window != nullptr) {
+        state.window->framebufferSize(width, height);
+    }
+    return width > 0 && height > 0 ? static_cast<double>(width) / height : 16.0 / 9.0;
+}
+
 }  // namespace
 
 void TimingHistory::push(const FrameStats& stats, double frameMs) {
     const double cpu = stats.cpuAnimateMs + stats.cpuTransformsMs + stats.cpuShadowPrepareMs + stats.cpuRenderSubmitMs;
     const std::array<double, kSeries> values = {stats.passMs("Shadow/"), stats.passMs("Main/"),
-                                                stats.passMs("Readback"), cpu, frameMs};
+                                                stats.passMs("Present/"), cpu, frameMs};
     for (int s = 0; s < kSeries; ++s) ms[s][next] = static_cast<float>(values[s]);
     next = (next + 1) % kFrames;
     filled = std::min(filled + 1, kFrames);
@@ -26,15 +38,18 @@ Status loadInto(ViewerState& state, const std::string& spec, std::optional<int> 
     Result<Scene> loaded = samples::loadSampleScene(spec, state.animation);
     if (!loaded) return loaded.error();
     Scene& scene = *loaded;
-    samples::printSceneWarnings("shadow_viewer", scene);
-    Result<Entity> chosen = samples::chooseCamera(scene, camera, state.time);
+    Result<Entity> chosen = samples::chooseCameraAndRig(scene, camera, state.time, state.rigChoice, imageAspect(state));
+    if (chosen) samples::printSceneWarnings("shadow_viewer", scene);  // the default rig's notice among them
     if (!chosen) return chosen.error();
     // Posed at the current time, so that the rig sees the scene's bounds and camera pose.
     animate(scene.world, state.time);
     (void)updateTransforms(scene.world);
     // The old runner's GL objects belong to the old scene's meshes and lights: free them first.
+    state.frameTexture = {};  // the old runner's renderer owns it
     state.runner.reset();
     state.runner = std::make_unique<FrameRunner>();
+    state.defaultRigShown = std::any_of(scene.warnings.begin(), scene.warnings.end(),
+                                        [](const Warning& w) { return w.code == WarningCode::DefaultRigAdded; });
     state.scene = std::move(scene);
     state.sceneSpec = spec;
     state.rig.reset(state.scene, *chosen);
@@ -59,12 +74,13 @@ void renderFrame(ViewerState& state, double frameMs) {
     // The visibility view reads the per-light visibility outputs (as shadow_render's does).
     options.aovs = options.debugView == DebugView::Visibility;
     state.runner->runFrame(state.scene, state.time, state.rig.camera(), options, state.stats);
-    const FrameImages images = state.runner->renderer().readback(state.runner->lastCamera(), state.stats);
-    if (state.autoExposure) state.exposure = autoExposure(images.color);
-    state.frameRgb = toneMapToSrgb8(images.color, state.exposure);
-    state.frameWidth = images.color.width;
-    state.frameHeight = images.color.height;
-    state.frameTexture.upload(state.frameWidth, state.frameHeight, state.frameRgb);
+    // Metered and tone-mapped where the frame is (shadow/tone_map.h, as shadow_render's
+    // color.png on the CPU): reading the frame's floats back and mapping them here took 18-50 ms.
+    Renderer& renderer = state.runner->renderer();
+    if (state.autoExposure) state.exposure = exposureFromHistogram(renderer.meterExposure(state.stats));
+    state.frameTexture = renderer.presentToTexture(state.exposure, state.stats);
+    state.frameWidth = options.width;
+    state.frameHeight = options.height;
     state.history.push(state.stats, frameMs);
     updateShadowMapTexture(state);
     state.dirty = false;
@@ -106,8 +122,10 @@ void updateShadowMapTexture(ViewerState& state) {
 }
 
 Status writeFrameScreenshot(const ViewerState& state, const std::string& path) {
-    if (state.frameRgb.empty()) return Error{ErrorCode::Internal, "no frame rendered yet"};
-    return writePng(path, state.frameWidth, state.frameHeight, 3, state.frameRgb);
+    if (!state.runner) return Error{ErrorCode::Internal, "no frame rendered yet"};
+    const std::vector<std::uint8_t> rgb = state.runner->renderer().readPresented();
+    if (rgb.empty()) return Error{ErrorCode::Internal, "no frame rendered yet"};
+    return writePng(path, state.frameWidth, state.frameHeight, 3, rgb);
 }
 
 Status writeWindowScreenshot(const ViewerState& state, const std::string& path) {

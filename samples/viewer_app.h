@@ -2,6 +2,7 @@
 // input (shadow_viewer.cpp): loading a scene, rendering a frame, taking screenshots.
 #pragma once
 
+#include "render_output.h"
 #include "viewer_camera.h"
 #include "viewer_gl.h"
 
@@ -21,8 +22,8 @@ namespace shadow::viewer {
 /// The last frames' timings (ms), for the UI's graphs: a ring of `kFrames`.
 struct TimingHistory {
     static constexpr int kFrames = 240;
-    enum Series { Shadow, Main, Readback, Cpu, Frame, kSeries };
-    static constexpr std::array<const char*, kSeries> kNames = {"shadow passes", "main passes", "readback",
+    enum Series { Shadow, Main, Present, Cpu, Frame, kSeries };
+    static constexpr std::array<const char*, kSeries> kNames = {"shadow passes", "main passes", "present",
                                                                 "CPU (animate..submit)", "whole frame"};
     std::array<std::array<float, kFrames>, kSeries> ms{};
     int next = 0;    ///< where the next frame goes (the oldest entry)
@@ -47,6 +48,10 @@ struct ViewerState {
     /// a name; a dropped file plays its first.
     std::string animation;
     Scene scene;
+    /// Whether a scene without lights gets the default rig (--no-default-lights, --no-ground,
+    /// the Scene panel's checkboxes), and whether the one shown got it.
+    samples::DefaultRigChoice rigChoice;
+    bool defaultRigShown = false;
     CameraRig rig;
     std::unique_ptr<FrameRunner> runner;  ///< made anew per scene (its caches are per scene)
     FrameStats stats;                     ///< reused every frame
@@ -60,9 +65,9 @@ struct ViewerState {
     float exposure = 1.0f;     ///< the last frame's, or the fixed one
     bool showUi = true;
     ShadowMapView mapView;
-    UiTexture frameTexture;
+    /// The last frame, tone-mapped on the GPU (the renderer's display texture, which it owns).
+    GlTexture frameTexture;
     UiTexture mapTexture;
-    std::vector<std::uint8_t> frameRgb;  ///< the last frame, tone-mapped: what screenshots write
     int frameWidth = 0, frameHeight = 0;
     TimingHistory history;
     std::string status;     ///< the last message for the user (a screenshot written, ...)
@@ -78,8 +83,9 @@ struct ViewerState {
 /// warnings on stderr (the Frame panel lists them). On an error `state` is untouched and the
 /// error returned.
 [[nodiscard]] Status loadInto(ViewerState& state, const std::string& spec, std::optional<int> camera);
-/// Renders one frame of the scene at `state.time`, reads it back and tone-maps it into
-/// `frameRgb` and `frameTexture`; records timings. `frameMs` is the whole last frame's wall time.
+/// Renders one frame of the scene at `state.time`, meters its exposure (when automatic) and
+/// tone-maps it into `frameTexture`, both on the GPU (Renderer::meterExposure,
+/// presentToTexture); records timings. `frameMs` is the whole last frame's wall time.
 void renderFrame(ViewerState& state, double frameMs);
 /// Refreshes `mapTexture` from the shown shadow-map layer when it changed.
 void updateShadowMapTexture(ViewerState& state);

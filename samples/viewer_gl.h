@@ -5,6 +5,7 @@
 #pragma once
 
 #include <shadow/context.h>
+#include <shadow/gl_handles.h>
 
 #include <cstdint>
 #include <vector>
@@ -34,6 +35,11 @@ private:
     int width_ = 0;
     int height_ = 0;
 };
+
+/// `texture` as ImGui names a texture (ImTextureID).
+[[nodiscard]] inline void* textureId(GlTexture texture) {
+    return reinterpret_cast<void*>(static_cast<std::uintptr_t>(texture.name));
+}
 
 /// Clears the window's back buffer to dark grey (the margins around a frame of another aspect).
 void clearWindow();

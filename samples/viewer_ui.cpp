@@ -18,14 +18,14 @@ const ImVec4 kErrorColour(1.0f, 0.4f, 0.4f, 1.0f);
 
 /// The last frame, scaled to fit the window with its aspect kept, behind every panel.
 void drawFrameBackground(const ViewerState& state) {
-    if (state.frameTexture.id() == nullptr) return;
+    if (!state.frameTexture || state.frameWidth < 1 || state.frameHeight < 1) return;
     const ImVec2 display = ImGui::GetIO().DisplaySize;
-    const float scale = std::min(display.x / static_cast<float>(state.frameTexture.width()),
-                                 display.y / static_cast<float>(state.frameTexture.height()));
-    const ImVec2 size(scale * static_cast<float>(state.frameTexture.width()),
-                      scale * static_cast<float>(state.frameTexture.height()));
+    const float scale =
+        std::min(display.x / static_cast<float>(state.frameWidth), display.y / static_cast<float>(state.frameHeight));
+    const ImVec2 size(scale * static_cast<float>(state.frameWidth), scale * static_cast<float>(state.frameHeight));
     const ImVec2 min(0.5f * (display.x - size.x), 0.5f * (display.y - size.y));
-    ImGui::GetBackgroundDrawList()->AddImage(state.frameTexture.id(), min, ImVec2(min.x + size.x, min.y + size.y));
+    ImGui::GetBackgroundDrawList()->AddImage(textureId(state.frameTexture), min,
+                                             ImVec2(min.x + size.x, min.y + size.y));
 }
 
 std::string lightLabel(const ViewerState& state, int i) {
@@ -96,6 +96,24 @@ void drawClipCombo(ViewerState& state) {
     state.dirty = true;
 }
 
+/// For a file without lights: what lights it, and the switches of the default rig.
+void drawDefaultRigSection(ViewerState& state, UiRequests& requests) {
+    if (!state.defaultRigShown && !state.scene.lights.empty()) return;
+    if (state.defaultRigShown) {
+        ImGui::TextColored(kWarningColour, "This file has no lights: it is lit by the default rig,");
+        ImGui::TextColored(kWarningColour, "a shadowed sun placed from the model's bounds%s.",
+                           state.rigChoice.ground ? " and a ground" : "");
+    } else {
+        ImGui::TextColored(kWarningColour, "This file has no lights: ambient light only.");
+    }
+    requests.reload |= ImGui::Checkbox("default rig", &state.rigChoice.lights);
+    if (state.rigChoice.lights) {
+        ImGui::SameLine();
+        requests.reload |= ImGui::Checkbox("ground", &state.rigChoice.ground);
+    }
+    ImGui::Separator();
+}
+
 void drawAnimationSection(ViewerState& state) {
     drawClipCombo(state);
     ImGui::Checkbox("paused (Space)", &state.paused);
@@ -160,6 +178,7 @@ void drawScenePanel(ViewerState& state, UiRequests& requests) {
     ImGui::TextWrapped("%s", state.sceneSpec.c_str());
     ImGui::TextDisabled("drop a .gltf/.glb on the window to load it");
     if (!state.loadError.empty()) ImGui::TextColored(kErrorColour, "%s", state.loadError.c_str());
+    drawDefaultRigSection(state, requests);
     drawCameraSection(state, requests);
     ImGui::Separator();
     drawAnimationSection(state);

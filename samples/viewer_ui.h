@@ -13,6 +13,7 @@ namespace shadow::viewer {
 struct UiRequests {
     bool screenshot = false;
     std::optional<int> sceneCamera;  ///< look through the scene's camera N again
+    bool reload = false;             ///< load the scene again (the default rig was turned on or off)
 };
 
 /// Draws the last frame behind everything, and with `state.showUi` the panels, between

@@ -35,7 +35,8 @@ if(MODE STREQUAL "package")
   # Every free function an installed header declares links from the installed package: it is
   # defined in one of the installed libraries (a header whose library is not installed, such as
   # the EGL backend's, is not installed either). Declarations are read as the headers write
-  # them: at the start of a line, `name(` before any comment, not inline, constexpr or a template.
+  # them: at the start of a line, `name(` before any comment, not inline, constexpr or a template
+  # (nor a function of a header GLSL shares, defined in place behind an SG_ macro: inline in C++).
   if(NOT NM)
     message(FATAL_ERROR "run_embed_test.cmake: NM is not set")
   endif()
@@ -50,7 +51,7 @@ if(MODE STREQUAL "package")
     file(STRINGS ${header} lines REGEX "^[A-Za-z[][^/]*[ *&][a-z][A-Za-z0-9_]*\\(")
     foreach(line IN LISTS lines)
       if(line MATCHES "^(inline|constexpr|template|static|static_assert|struct|class|enum|using|namespace)[ <(]"
-         OR line MATCHES "^\\[\\[nodiscard\\]\\] (constexpr|inline) " OR line MATCHES "{$")
+         OR line MATCHES "^\\[\\[nodiscard\\]\\] (constexpr|inline) " OR line MATCHES "{$" OR line MATCHES "^SG_[A-Z_]+ ")
         continue()
       endif()
       string(REGEX MATCH "([a-z][A-Za-z0-9_]*)\\(" name "${line}")

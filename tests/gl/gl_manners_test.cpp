@@ -382,6 +382,29 @@ TEST_F(HostStateTest, EveryPublicCallLeavesTheHostStateAsItFoundIt) {
         },
         frameWarnings);
     EXPECT_EQ(images.visibility.size(), scene.lights.size());
+    // The present passes (a viewer's): the exposure meter's compute pass and storage binding, the
+    // tone map's full-screen pass, the display texture read back.
+    checkCall(
+        host, "Renderer::meterExposure",
+        [&] {
+            stats.reset();
+            EXPECT_GT(exposureFromHistogram(renderer.meterExposure(stats)), 0.0f);
+        },
+        frameWarnings);
+    checkCall(
+        host, "Renderer::presentToTexture",
+        [&] {
+            stats.reset();
+            EXPECT_TRUE(renderer.presentToTexture(1.0f, stats));
+        },
+        frameWarnings);
+    checkCall(
+        host, "Renderer::readPresented",
+        [&] {
+            renderer.clearWarnings();
+            EXPECT_FALSE(renderer.readPresented().empty());
+        },
+        [&]() -> const std::vector<Warning>& { return renderer.warnings(); });
 
     const std::array<int, 3> lights{0, 1, 2};
     const ShadowShaderInputs* inputs = nullptr;

@@ -491,5 +491,62 @@ TEST(ToneMap, ExposureMultipliesTheInput) {
     for (float v : {0.01f, 0.2f, 1.0f, 7.0f}) EXPECT_EQ(toneMapOne(v, 4.0f), toneMapOne(4.0f * v, 1.0f));
 }
 
+// ---- Exposure -------------------------------------------------------------------------------
+
+/// A grey image: `fraction` of its pixels (the first ones) at luminance `bright`, the rest at
+/// `dark`, and `black` more pixels at 0 (the background).
+ImageF twoLevels(int pixels, double fraction, float dark, float bright, int black = 0) {
+    ImageF image = makeImage(pixels + black, 1, 3);
+    for (int x = 0; x < pixels; ++x) {
+        const float v = x < static_cast<int>(fraction * pixels) ? bright : dark;
+        for (int c = 0; c < 3; ++c) image.at(x, 0, c) = v;
+    }
+    return image;
+}
+
+// The floor of the metered luminance (4 stops below the 99th percentile) keeps a frame that is
+// 95 % shadow (ambient-lit at 0.002) around a 5 % sunlit patch (0.5) dark: its shadow stays
+// below a quarter of full brightness (sRGB 64) and the patch is exposed for, bright but not
+// clipped. The log-average alone (the rule before the floor) lifted that shadow to sRGB 96, a
+// grey. Fails without the floor.
+TEST(AutoExposure, KeepsAMostlyDarkFrameDark) {
+    const ImageF image = twoLevels(10000, 0.05, 0.002f, 0.5f, 2000);
+    const float exposure = autoExposure(image);
+    const std::vector<std::uint8_t> out = toneMapToSrgb8(image, exposure);
+    const int shadow = out[3 * 9999], patch = out[0];
+    std::cout << "exposure " << exposure << ": shadow " << shadow << ", patch " << patch << " (sRGB 0-255)\n";
+    EXPECT_LT(shadow, 64);
+    EXPECT_GT(patch, 200);
+    EXPECT_LT(patch, 255);
+    // The rule without the floor, for the record: the log-average brought to 0.18.
+    const double logAverage = std::exp(0.95 * std::log(0.002) + 0.05 * std::log(0.5));
+    EXPECT_GT(toneMapOne(0.002f, static_cast<float>(0.18 / logAverage)), 90);
+}
+
+// A frame whose highlights lie within 4 stops of its average is metered by its log-average
+// alone, as before: 0.18 over it, within the bins' 1/16 stop (4.4 %). The black background is
+// not counted. Fails when the floor or the background reaches such a frame.
+TEST(AutoExposure, MetersAnEvenFrameByItsLogAverage) {
+    const ImageF image = twoLevels(1000, 0.3, 0.05f, 0.4f, 5000);
+    const double logAverage = std::exp(0.7 * std::log(0.05) + 0.3 * std::log(0.4));
+    EXPECT_NEAR(autoExposure(image), 0.18 / logAverage, 0.044 * 0.18 / logAverage);
+    EXPECT_EQ(autoExposure(makeImage(8, 8, 3)), 1.0f) << "nothing to meter";
+}
+
+// Fails when a non-finite pixel is counted (its bin would be the last) or black is.
+TEST(AutoExposure, CountsOnlyFiniteLitPixels) {
+    ImageF image = twoLevels(100, 0.0, 0.1f, 0.1f, 10);
+    image.at(0, 0, 1) = std::numeric_limits<float>::quiet_NaN();
+    image.at(1, 0, 0) = std::numeric_limits<float>::infinity();
+    const LuminanceHistogram counts = luminanceHistogram(image);
+    long total = 0;
+    for (const std::uint32_t c : counts) total += c;
+    EXPECT_EQ(total, 98);
+    EXPECT_EQ(counts.back(), 0u);
+    ExposureSettings settings;
+    settings.key = 0.25f;
+    EXPECT_NEAR(exposureFromHistogram(counts, settings), 2.5, 2.5 * 0.044);
+}
+
 }  // namespace
 }  // namespace shadow

@@ -3,6 +3,7 @@
 // and a bad script line is one message naming the line, exit code 2 and nothing written.
 #include <gtest/gtest.h>
 
+#include "scene/cube_scene.h"
 #include "test_support.h"
 #include <stb/stb_image.h>  // decoder only; its implementation comes from libstb
 
@@ -27,9 +28,10 @@ constexpr int kWidth = 320;
 constexpr int kHeight = 180;
 
 /// Both programs render through Mesa's llvmpipe (shadow_render in an OSMesa context, the viewer
-/// in a GLX one on Xvfb) with the same code, shaders, camera, time and tone mapping, into
-/// framebuffers of the engine's own formats; so the images should agree to the byte. Measured on
-/// builtin:default at 320x180: 0 of 57 600 pixels differ. The tolerance leaves room for one
+/// in a GLX one on Xvfb) with the same code, shaders, camera, time and tone map (shadow/tone_map.h:
+/// run on the CPU by shadow_render, on the GPU by the viewer), into framebuffers of the engine's
+/// own formats; so the images should agree to the byte. Measured on builtin:default at 320x180:
+/// 0 of 57 600 pixels differ. The tolerance leaves room for one
 /// 8-bit step of rounding in a few pixels (a driver build that orders a sum differently between
 /// the two context types), and no more: a camera, time or exposure off by a little moves whole
 /// edges and fails it.
@@ -61,6 +63,28 @@ Rgb readPng(const std::string& path) {
     image.pixels.assign(decoded, decoded + static_cast<std::size_t>(image.width) * image.height * 3);
     stbi_image_free(decoded);
     return image;
+}
+
+/// `actual` (the viewer's) is `expected` (shadow_render's) within the tolerance above.
+void expectSameFrame(const Rgb& expected, const Rgb& actual) {
+    ASSERT_EQ(actual.width, kWidth);
+    ASSERT_EQ(actual.height, kHeight);
+    ASSERT_EQ(expected.width, kWidth);
+    ASSERT_EQ(expected.height, kHeight);
+    int largest = 0;
+    std::size_t differing = 0;
+    for (std::size_t p = 0; p < actual.pixels.size(); p += 3) {
+        int step = 0;
+        for (std::size_t c = 0; c < 3; ++c)
+            step = std::max(step, std::abs(actual.pixels[p + c] - expected.pixels[p + c]));
+        largest = std::max(largest, step);
+        differing += step > 0 ? 1 : 0;
+    }
+    const double fraction = static_cast<double>(differing) / (kWidth * kHeight);
+    std::cout << "viewer vs shadow_render: " << differing << " pixels differ (" << fraction * 100.0
+              << " %), by at most " << largest << " steps\n";
+    EXPECT_LE(largest, kMaxChannelStep);
+    EXPECT_LE(fraction, kMaxDifferingPixels);
 }
 
 /// Runs the viewer under a virtual X server of its own.
@@ -99,32 +123,38 @@ TEST(ShadowViewerScript, ScreenshotMatchesShadowRenderOfTheSameFrame) {
     ASSERT_EQ(view.exitCode, 0) << view.output;
     std::cout << "viewer run under Xvfb: " << seconds << " s\n";
 
-    const Rgb expected = readPng(rendered + "/color.png");
     const Rgb actual = readPng(viewed + "/color.png");
-    ASSERT_EQ(actual.width, kWidth);
-    ASSERT_EQ(actual.height, kHeight);
-    ASSERT_EQ(expected.width, kWidth);
-    ASSERT_EQ(expected.height, kHeight);
-    int largest = 0;
-    std::size_t differing = 0;
-    for (std::size_t p = 0; p < actual.pixels.size(); p += 3) {
-        int step = 0;
-        for (std::size_t c = 0; c < 3; ++c)
-            step = std::max(step, std::abs(actual.pixels[p + c] - expected.pixels[p + c]));
-        largest = std::max(largest, step);
-        differing += step > 0 ? 1 : 0;
-    }
-    const double fraction = static_cast<double>(differing) / (kWidth * kHeight);
-    std::cout << "viewer vs shadow_render: " << differing << " pixels differ (" << fraction * 100.0
-              << " %), by at most " << largest << " steps\n";
-    EXPECT_LE(largest, kMaxChannelStep);
-    EXPECT_LE(fraction, kMaxDifferingPixels);
+    expectSameFrame(readPng(rendered + "/color.png"), actual);
 
     // The window with the UI over the frame: the window's size, and not the bare frame.
     const Rgb withUi = readPng(viewed + "/color_ui.png");
     EXPECT_EQ(withUi.width, kWidth);
     EXPECT_EQ(withUi.height, kHeight);
     EXPECT_NE(withUi.pixels, actual.pixels) << "the UI screenshot shows no UI";
+}
+
+// A file without lights: the viewer lights it with the default rig as shadow_render does (the
+// same sun, ground and framing camera), so its frame is shadow_render's color.png. Fails when the
+// viewer leaves the rig out or places it otherwise (another sun, or a camera framed for another
+// image shape).
+TEST(ShadowViewerScript, FileWithoutLightsShowsTheDefaultRigAsShadowRenderDoes) {
+#ifndef SHADOW_VIEWER_BUILT
+    GTEST_SKIP() << "the viewer is not built (SHADOW_BUILD_VIEWER=OFF)";
+#endif
+    if (!installed("xvfb-run") || !installed("Xvfb") || !installed("xauth")) {
+        GTEST_SKIP() << "Xvfb is not installed (Debian packages xvfb and xauth)";
+    }
+    test::TempDir tmp("viewer_test");
+    const std::string cube = test::shellQuoted(test::writeCube(tmp.path() / "cube.gltf", false).string());
+    const std::string rendered = tmp / "render", viewed = tmp / "viewer";
+    const test::ProcessRun render =
+        test::runProgram(SHADOW_BIN_DIR "/shadow_render",
+                         cube + " --size 320x180 --aov color --out " + test::shellQuoted(rendered), tmp / "render.log");
+    ASSERT_EQ(render.exitCode, 0) << render.output;
+    const test::ProcessRun view =
+        runViewerUnderXvfb(tmp, cube + " --size 320x180 --frames 1 --screenshot " + test::shellQuoted(viewed));
+    ASSERT_EQ(view.exitCode, 0) << view.output;
+    expectSameFrame(readPng(rendered + "/color.png"), readPng(viewed + "/color.png"));
 }
 
 TEST(ShadowViewerScript, BadLineIsOneMessageNamingItExitTwoNothingWritten) {

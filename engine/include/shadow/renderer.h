@@ -8,6 +8,7 @@
 // PCF compiles no PCSS code, and no pixel runs code for a light type it does not have.
 #pragma once
 
+#include <shadow/gl_handles.h>
 #include <shadow/image_io.h>
 #include <shadow/mesh_cache.h>
 #include <shadow/scene.h>
@@ -110,10 +111,10 @@ struct FrameImages {
 };
 
 /// The forward renderer. Requires a current OpenGL 4.5 context with `loadGl` done.
-/// `render` and `readback` put back the GL state they change (as `ShadowSystem::render` does;
+/// `render`, `readback` and the present calls put back the GL state they change (as `ShadowSystem::render` does;
 /// here also every texture target of units 0-31 it binds (0-28, and the screen-space stage's 29-31) with their samplers, uniform-buffer
 /// bindings 0-2 and the joint matrices' storage binding 3) and report an error the host left pending as a `HostGlError` warning instead of throwing
-/// it; the constructor and `present`, which have no `FrameStats`, keep theirs in `warnings()`.
+/// it; the constructor, `present` and `readPresented`, which have no `FrameStats`, keep theirs in `warnings()`.
 class Renderer {
 public:
     /// Throws `GlError` when `loadGl` has not run.
@@ -136,15 +137,30 @@ public:
     /// Reads back the last frame. `camera` turns camera-relative positions back into world ones.
     [[nodiscard]] FrameImages readback(const CameraView& camera, FrameStats& stats) const;
 
-    /// Copies the last frame's linear colour to the default framebuffer of size `width` x
-    /// `height` (windowed viewers), scaled to fit.
-    void present(int width, int height) const;
+    /// The exposure meter's histogram of the last frame's linear colour, counted on the GPU (a
+    /// compute pass over the colour target): what `luminanceHistogram(readback(...).color)`
+    /// counts on the CPU, without reading the frame back (1.5 KB of counters). Give it to
+    /// `exposureFromHistogram`. Times the pass as `Present/Meter` in `stats` when timing is on.
+    [[nodiscard]] LuminanceHistogram meterExposure(FrameStats& stats);
+    /// Tone-maps the last frame's linear colour with `exposure` on the GPU, by the functions of
+    /// shadow/tone_map.h that `toneMapToSrgb8` runs on the CPU (they agree within 1/255), into
+    /// the renderer's display texture: RGBA8 holding sRGB-encoded values, the frame's size, row 0
+    /// the image's top row (a UI draws it with texture coordinate (0, 0) at its top-left). The
+    /// texture stays the renderer's and is rewritten by the next call. Times the pass as
+    /// `Present/ToneMap` in `stats` when timing is on.
+    GlTexture presentToTexture(float exposure, FrameStats& stats);
+    /// The display texture of the last `presentToTexture` as 8-bit RGB, rows top first (a
+    /// screenshot); empty before the first.
+    [[nodiscard]] std::vector<std::uint8_t> readPresented() const;
+    /// `presentToTexture`, then the display texture copied to the default framebuffer of size
+    /// `width` x `height` (a window without a UI), stretched to it.
+    void present(int width, int height, float exposure);
 
     /// The GPU copies of the scene's meshes: owned by the renderer, which collects them in
     /// `render`; the shadow maps draw from the same cache (`ShadowSystem::render(world, meshes,
     /// stats)`) without collecting it.
     [[nodiscard]] MeshCache& meshes();
-    /// `HostGlError` warnings of the calls without a `FrameStats` (the constructor, `present`),
+    /// `HostGlError` warnings of the calls without a `FrameStats` (the constructor, `present`, `readPresented`),
     /// at most 16 until cleared; the next `render` or `readback` moves them into its stats.
     [[nodiscard]] const std::vector<Warning>& warnings() const;
     /// Forgets the warnings read.

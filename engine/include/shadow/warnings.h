@@ -82,6 +82,11 @@ enum class WarningCode {
     /// without that texture. Element: the primitive, e.g. `meshes[0].primitives[1]`; the
     /// message names the material and the texture.
     MissingTexcoord,
+    /// The scene had no lights, so the default rig (`addDefaultRig`, shadow/default_rig.h) lit
+    /// it: a shadowed sun placed from the model's bounds and a shadow-catcher ground. A notice
+    /// rather than a fault, so that a picture of a file's own lighting is not mistaken for the
+    /// rig's. Element: the scene's name (the file); the message says what was added and where.
+    DefaultRigAdded,
 };
 
 /// One decision the engine reports.
@@ -112,6 +117,7 @@ struct Warning {
         case WarningCode::SceneNodeNotRoot: return "SceneNodeNotRoot";
         case WarningCode::UnsupportedFeature: return "UnsupportedFeature";
         case WarningCode::MissingTexcoord: return "MissingTexcoord";
+        case WarningCode::DefaultRigAdded: return "DefaultRigAdded";
     }
     return "Unknown";
 }

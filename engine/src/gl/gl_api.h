@@ -60,6 +60,7 @@ namespace shadow::gpu {
     X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                               \
     X(PFNGLNAMEDBUFFERSTORAGEPROC, NamedBufferStorage)                     \
     X(PFNGLNAMEDBUFFERSUBDATAPROC, NamedBufferSubData)                     \
+    X(PFNGLGETNAMEDBUFFERSUBDATAPROC, GetNamedBufferSubData)               \
     X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                             \
     X(PFNGLBINDBUFFERRANGEPROC, BindBufferRange)                           \
     X(PFNGLCREATEVERTEXARRAYSPROC, CreateVertexArrays)                     \

@@ -265,40 +265,30 @@ Result<ImageF> readExrFile(const std::string& path, const std::vector<std::strin
 
 // ---- Tone mapping ---------------------------------------------------------------------------
 
-/// Reinhard, x / (1 + x): maps [0, inf) onto [0, 1) strictly monotonically and never clips,
-/// as the header promises; its inverse y / (1 - y) lets tests check it in closed form. Chosen
-/// over the ACES fit (Narkowicz 2015), which reaches 1 at a finite value and so clips.
-float filmicCurve(float x) { return std::isinf(x) ? 1.0f : x / (1.0f + x); }
-
-/// The exact sRGB opto-electronic transfer function (IEC 61966-2-1), linear [0,1] to encoded.
-float srgbOetf(float v) { return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f; }
-
 /// [0,1] to 0..255, rounding to nearest; out-of-range values clamp.
 std::uint8_t toUnorm8(float v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
 
-/// Rec. 709 luminance of linear RGB.
-float luminance(const float* rgb) { return 0.2126f * rgb[0] + 0.7152f * rgb[1] + 0.0722f * rgb[2]; }
+float luminance(const float* rgb) { return tone::sg_luminance(rgb[0], rgb[1], rgb[2]); }
 
-/// Tone maps one linear RGB pixel into `out`: the curve acts on luminance and the colour is
-/// scaled with it, so the ratios between channels (the hue) survive; a colour whose brightest
-/// channel would pass 1 is scaled down as a whole rather than clipped channel by channel.
+/// Tone maps one linear RGB pixel into `out` (shadow/tone_map.h), after making its channels what
+/// the shared functions take: finite and >= 0 (negative, NaN and -inf black; +inf, or a colour
+/// "very bright": its infinite channels 1, the others 0; a colour whose luminance overflows, its
+/// brightest channel 1).
 void toneMapPixel(const float* rgb, float exposure, std::uint8_t* out) {
     float c[3];
     for (int k = 0; k < 3; ++k) {
         const float v = std::isfinite(rgb[k]) ? rgb[k] * exposure : 0.0f;
         c[k] = v > 0.0f ? v : 0.0f;  // negative, NaN (from a NaN exposure) and -inf are black
     }
-    const float lum = luminance(c);
-    float scale = 0.0f;
-    if (std::isinf(lum) || std::isinf(c[0]) || std::isinf(c[1]) || std::isinf(c[2])) {
-        for (float& channel : c) channel = std::isinf(channel) ? 1.0f : 0.0f;  // "very bright"
-        scale = 1.0f;
-    } else if (lum > 0.0f) {
-        scale = filmicCurve(lum) / lum;
+    float scale = 1.0f;
+    if (std::isinf(c[0]) || std::isinf(c[1]) || std::isinf(c[2])) {
+        for (float& channel : c) channel = std::isinf(channel) ? 1.0f : 0.0f;
+    } else {
+        const float lum = luminance(c);
+        const float brightest = std::max({c[0], c[1], c[2]});
+        scale = std::isinf(lum) ? 1.0f / brightest : tone::sg_toneScale(lum, brightest);
     }
-    const float brightest = std::max({c[0] * scale, c[1] * scale, c[2] * scale});
-    if (brightest > 1.0f) scale /= brightest;
-    for (int k = 0; k < 3; ++k) out[k] = toUnorm8(srgbOetf(c[k] * scale));
+    for (int k = 0; k < 3; ++k) out[k] = toUnorm8(tone::sg_srgbEncode(c[k] * scale));
 }
 
 /// Alpha is coverage, not light: stored linearly, clamped, no exposure or curve.
@@ -356,19 +346,58 @@ std::vector<std::uint8_t> toneMapToSrgb8(const ImageF& rgb, float exposure) {
     return out;
 }
 
-float autoExposure(const ImageF& rgb, float key) {
-    if (rgb.channels < 3) return 1.0f;
-    double logSum = 0.0;
-    std::size_t count = 0;
+LuminanceHistogram luminanceHistogram(const ImageF& rgb) {
+    LuminanceHistogram counts{};
+    if (rgb.channels < 3) return counts;
     for (std::size_t i = 0; i + 2 < rgb.pixels.size(); i += static_cast<std::size_t>(rgb.channels)) {
-        const float lum = luminance(&rgb.pixels[i]);
-        if (!(std::isfinite(lum) && lum > 1e-6f)) continue;  // background and broken pixels
-        logSum += std::log(static_cast<double>(lum));
-        ++count;
+        const float* p = &rgb.pixels[i];
+        if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) continue;
+        const float lum = luminance(p);
+        if (tone::sg_exposureCounted(lum)) ++counts[static_cast<std::size_t>(tone::sg_exposureBin(lum))];
     }
-    if (count == 0) return 1.0f;
-    const double exposure = key / std::exp(logSum / static_cast<double>(count));
+    return counts;
+}
+
+namespace {
+
+/// log2 of the luminance at the centre of exposure-meter bin `bin`.
+double binLog2(std::size_t bin) {
+    constexpr double kStep = (SG_EXPOSURE_LOG2_MAX - SG_EXPOSURE_LOG2_MIN) / SG_EXPOSURE_BINS;
+    return SG_EXPOSURE_LOG2_MIN + (static_cast<double>(bin) + 0.5) * kStep;
+}
+
+}  // namespace
+
+float exposureFromHistogram(const LuminanceHistogram& histogram, const ExposureSettings& settings) {
+    const auto clampOr = [](float v, float lo, float hi, float fallback) {
+        return std::isfinite(v) ? std::clamp(v, lo, hi) : fallback;
+    };
+    const ExposureSettings d;
+    const double key = clampOr(settings.key, 1e-6f, 1e3f, d.key);
+    const double percentile = clampOr(settings.highlightPercentile, 1e-6f, 1.0f, d.highlightPercentile);
+    const double stops = clampOr(settings.highlightStops, 0.0f, 30.0f, d.highlightStops);
+    double total = 0.0, logSum = 0.0;
+    for (std::size_t b = 0; b < histogram.size(); ++b) {
+        total += histogram[b];
+        logSum += histogram[b] * binLog2(b);
+    }
+    if (total == 0.0) return 1.0f;
+    // The highlight: the first bin at which the pixels counted reach the percentile.
+    double below = 0.0, highlight = binLog2(histogram.size() - 1);
+    for (std::size_t b = 0; b < histogram.size(); ++b) {
+        below += histogram[b];
+        if (below >= percentile * total) {
+            highlight = binLog2(b);
+            break;
+        }
+    }
+    const double metered = std::max(logSum / total, highlight - stops);
+    const double exposure = key / std::exp2(metered);
     return std::isfinite(exposure) ? static_cast<float>(std::clamp(exposure, 1e-8, 1e8)) : 1.0f;
+}
+
+float autoExposure(const ImageF& rgb, float key) {
+    return exposureFromHistogram(luminanceHistogram(rgb), {.key = key});
 }
 
 Status writeTextFileAtomic(const std::string& path, const std::string& text) {

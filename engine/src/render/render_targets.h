@@ -36,6 +36,8 @@ public:
 
     [[nodiscard]] GLuint framebuffer() const { return framebuffer_.get(); }
     [[nodiscard]] GLuint depthBuffer() const { return depthBuffer_.get(); }
+    /// The linear colour (RGBA32F) the lit passes write.
+    [[nodiscard]] GLuint color() const { return color_.get(); }
     [[nodiscard]] int width() const { return width_; }
     [[nodiscard]] int height() const { return height_; }
     [[nodiscard]] bool aovs() const { return aovs_; }

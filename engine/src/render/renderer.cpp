@@ -13,6 +13,7 @@
 #include "gl/pass_timer.h"
 #include "render/light_packing.h"
 #include "render/lit_programs.h"
+#include "render/present.h"
 #include "render/render_targets.h"
 #include "render/screen_visibility.h"
 
@@ -150,6 +151,7 @@ struct Renderer::Impl {
     std::optional<render::DepthPrepassProgram> prepass;        ///< built on first use
     std::optional<render::DepthPrepassProgram> prepassCutout;  ///< alpha-tested; built on first use
     std::optional<render::ScreenStage> screen;                 ///< made on first use
+    std::optional<render::Presenter> presenter;                ///< made on first use
     /// By `render::SurfaceProgramBits`, each built on first use.
     std::array<std::optional<render::SurfaceProgram>, 8> surfaces;
     render::RenderTargets targets;
@@ -187,6 +189,8 @@ struct Renderer::Impl {
     /// Makes the screen-space stage's targets fit `options` (refused, naming the size, beyond the
     /// memory cap with the stage's targets counted).
     void prepareScreenStage(const RenderOptions& options);
+    /// The present passes, made on first use.
+    render::Presenter& presenterOf();
     /// The frame's main passes through the screen-space visibility stage, or forward.
     void renderScreenSpace(const World& world, const CameraView& camera, const ShadowFrame& frame, const MainCamera& mc,
                            const ShadowMaps& maps, const RenderOptions& options, FrameStats& stats);
@@ -574,12 +578,66 @@ const std::vector<Warning>& Renderer::warnings() const { return impl_->pending; 
 
 void Renderer::clearWarnings() { impl_->pending.clear(); }
 
-void Renderer::present(int width, int height) const {
+namespace {
+
+/// The one texture unit the present passes bind (the frame's colour).
+constexpr std::array<GLint, 1> kPresentUnits{0};
+
+}  // namespace
+
+render::Presenter& Renderer::Impl::presenterOf() {
+    if (!presenter) presenter.emplace();
+    return *presenter;
+}
+
+LuminanceHistogram Renderer::meterExposure(FrameStats& stats) {
+    gpu::reportHostGlErrors("Renderer::meterExposure", stats);
+    Impl& r = *impl_;
+    if (r.targets.width() == 0) return {};
+    const gpu::GlStateGuard hostState(kPresentUnits, {});
+    gpu::PassTimer timer(true);  // wall clock: the counters are read back at once
+    timer.setEnabled(r.timer.enabled());
+    timer.begin("Present/Meter");
+    const LuminanceHistogram counts = r.presenterOf().meter(r.targets.color(), r.targets.width(), r.targets.height());
+    timer.end();
+    timer.collect(stats);
+    gpu::checkGlError("meterExposure");
+    return counts;
+}
+
+GlTexture Renderer::presentToTexture(float exposure, FrameStats& stats) {
+    gpu::reportHostGlErrors("Renderer::presentToTexture", stats);
+    Impl& r = *impl_;
+    if (r.targets.width() == 0) return {};
+    const gpu::GlStateGuard hostState(kPresentUnits, {});
+    gpu::PassTimer timer(true);
+    timer.setEnabled(r.timer.enabled());
+    timer.begin("Present/ToneMap");
+    const GLuint display = r.presenterOf().toneMap(r.targets.color(), r.targets.width(), r.targets.height(), exposure);
+    timer.end();
+    timer.collect(stats);
+    gpu::checkGlError("presentToTexture");
+    return GlTexture{display};
+}
+
+std::vector<std::uint8_t> Renderer::readPresented() const {
+    gpu::reportHostGlErrors("Renderer::readPresented", impl_->pending, gpu::kMaxPendingWarnings);
+    if (!impl_->presenter) return {};
+    const gpu::GlStateGuard hostState({}, {});
+    std::vector<std::uint8_t> rgb = impl_->presenter->readDisplay();
+    gpu::checkGlError("readPresented");
+    return rgb;
+}
+
+void Renderer::present(int width, int height, float exposure) {
     gpu::reportHostGlErrors("Renderer::present", impl_->pending, gpu::kMaxPendingWarnings);
-    const render::RenderTargets& t = impl_->targets;
-    gl.NamedFramebufferReadBuffer(t.framebuffer(), GL_COLOR_ATTACHMENT0 + SG_OUT_COLOR);
-    gl.BlitNamedFramebuffer(t.framebuffer(), 0, 0, 0, t.width(), t.height(), 0, 0, width, height, GL_COLOR_BUFFER_BIT,
-                            GL_LINEAR);
+    FrameStats untimed;  // the host's errors are taken above: none reaches it
+    if (!presentToTexture(exposure, untimed)) return;
+    const gpu::GlStateGuard hostState({}, {});
+    const render::Presenter& p = *impl_->presenter;
+    // The display texture's row 0 is the top; the window's is the bottom: flipped.
+    gl.BlitNamedFramebuffer(p.displayFramebuffer(), 0, 0, 0, p.width(), p.height(), 0, height, width, 0,
+                            GL_COLOR_BUFFER_BIT, GL_LINEAR);
     gpu::checkGlError("present");
 }
 

@@ -1,6 +1,8 @@
 // Building scenes in code: primitive meshes, instances, lights, cameras, camera views.
 #include <shadow/scene.h>
 
+#include "scene/default_camera.h"
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -172,7 +174,7 @@ Entity addDefaultCamera(Scene& scene) {
     const glm::dvec3 center = bounds.center();
     const double radius = std::max(0.5 * glm::length(bounds.extent()), 1e-3);
     const double distance = 1.1 * radius / std::tan(0.5 * camera.yfov);
-    const glm::dvec3 eye = center + glm::normalize(glm::dvec3(1.0, 0.8, 1.4)) * distance;
+    const glm::dvec3 eye = center + glm::normalize(defaultCameraOffset()) * distance;
     camera.znear = static_cast<float>(std::max(distance - radius, distance * 1e-3) * 0.5);
     camera.zfar = static_cast<float>((distance + radius) * 1.5);
     return addCamera(scene, "default camera", camera, eye, center);
