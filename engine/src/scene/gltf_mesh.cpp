@@ -149,7 +149,8 @@ void dropMapsWithoutTexcoords(const tinygltf::Model& model, const tinygltf::Prim
     const auto fileSet = [&](int set) { return material.texcoordSets[static_cast<std::size_t>(set)]; };
     Material& m = material.material;
     if (m.baseColorTexture != nullptr && lacks(0)) {
-        warnings.push_back(missingTexcoord(model, primitive, fileSet(0), where, "pbrMetallicRoughness.baseColorTexture"));
+        warnings.push_back(
+            missingTexcoord(model, primitive, fileSet(0), where, "pbrMetallicRoughness.baseColorTexture"));
         m.baseColorTexture = nullptr;
     }
     const std::pair<MaterialMap*, const char*> maps[] = {
