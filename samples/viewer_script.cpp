@@ -2,6 +2,8 @@
 
 #include "viewer_settings.h"
 
+#include <shadow/image_io.h>
+
 #include <charconv>
 #include <filesystem>
 #include <fstream>
@@ -21,23 +23,6 @@ std::string clipped(const std::string& text, std::size_t limit) {
     std::size_t cut = limit;
     while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0U) == 0x80U) --cut;
     return text.substr(0, cut) + "...";
-}
-
-/// What `path` is when it is not a regular file, for the message; never opened.
-std::optional<std::string> notRegularFile(const std::string& path) {
-    std::error_code ec;
-    const std::filesystem::file_status st = std::filesystem::status(path, ec);
-    switch (st.type()) {
-        case std::filesystem::file_type::regular: return std::nullopt;
-        case std::filesystem::file_type::not_found: return std::string("no such file");
-        case std::filesystem::file_type::directory: return std::string("a folder, not a file");
-        case std::filesystem::file_type::fifo: return std::string("a FIFO, not a regular file");
-        case std::filesystem::file_type::socket: return std::string("a socket, not a regular file");
-        case std::filesystem::file_type::block:
-        case std::filesystem::file_type::character: return std::string("a device, not a regular file");
-        default: break;
-    }
-    return ec ? "cannot be read (" + ec.message() + ")" : std::string("not a regular file");
 }
 
 /// The words of one line.

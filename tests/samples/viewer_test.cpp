@@ -207,9 +207,9 @@ TEST(ShadowViewerScript, ScriptThatIsNoRegularFileOrTooLargeIsOneMessage) {
         std::string script, mention;
     };
     const std::vector<Case> cases = {
-        {tmp.path().string(), "a folder, not a file"},
-        {fifo, "a FIFO, not a regular file"},
-        {"/dev/zero", "a device, not a regular file"},
+        {tmp.path().string(), "not a regular file (a directory)"},
+        {fifo, "not a regular file (a FIFO)"},
+        {"/dev/zero", "not a regular file (a device)"},
         {big, "bytes; a script holds at most 1048576 (1 MiB)"},
         {longLine, "long.txt:2: a line of 100000 bytes; a line holds at most 4096"},
         {wordy, "wordy.txt:1: frames '777"},

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -93,5 +94,10 @@ struct ExposureSettings {
 
 /// Writes `text` to `path` through a temporary file and a rename.
 [[nodiscard]] Status writeTextFileAtomic(const std::string& path, const std::string& text);
+
+/// What `path` is when it is not a regular file, for a message ("no such file", "not a regular
+/// file (a FIFO)", ...); nullopt for a regular file. By `std::filesystem::status`: the file is
+/// never opened, so a FIFO or a device cannot block the caller.
+[[nodiscard]] std::optional<std::string> notRegularFile(const std::string& path);
 
 }  // namespace shadow

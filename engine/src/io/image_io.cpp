@@ -404,4 +404,20 @@ Status writeTextFileAtomic(const std::string& path, const std::string& text) {
     return writeViaTemp(path, [&text](const std::string& temp) { return writeBytes(temp, text.data(), text.size()); });
 }
 
+std::optional<std::string> notRegularFile(const std::string& path) {
+    std::error_code ec;
+    const std::filesystem::file_status st = std::filesystem::status(path, ec);
+    switch (st.type()) {
+        case std::filesystem::file_type::regular: return std::nullopt;
+        case std::filesystem::file_type::not_found: return std::string("no such file");
+        case std::filesystem::file_type::directory: return std::string("not a regular file (a directory)");
+        case std::filesystem::file_type::fifo: return std::string("not a regular file (a FIFO)");
+        case std::filesystem::file_type::socket: return std::string("not a regular file (a socket)");
+        case std::filesystem::file_type::block:
+        case std::filesystem::file_type::character: return std::string("not a regular file (a device)");
+        default: break;
+    }
+    return ec ? "cannot be read (" + ec.message() + ")" : std::string("not a regular file");
+}
+
 }  // namespace shadow

@@ -1,5 +1,7 @@
 #include "scene/gltf_parse.h"
 
+#include <shadow/image_io.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
@@ -65,24 +67,6 @@ std::string oneLine(const std::string& raw) {
         text += "\u2026";
     }
     return text.empty() ? "could not be parsed" : text;
-}
-
-/// What `path` is when it is not a regular file, for the message ("a FIFO", ...), by
-/// std::filesystem::status: never opened, so a FIFO or device cannot block the load.
-std::optional<std::string> notRegularFile(const std::string& path) {
-    std::error_code ec;
-    const std::filesystem::file_status st = std::filesystem::status(path, ec);
-    switch (st.type()) {
-        case std::filesystem::file_type::regular: return std::nullopt;
-        case std::filesystem::file_type::not_found: return std::string("no such file");
-        case std::filesystem::file_type::directory: return std::string("not a regular file (a directory)");
-        case std::filesystem::file_type::fifo: return std::string("not a regular file (a FIFO)");
-        case std::filesystem::file_type::socket: return std::string("not a regular file (a socket)");
-        case std::filesystem::file_type::block:
-        case std::filesystem::file_type::character: return std::string("not a regular file (a device)");
-        default: break;
-    }
-    return ec ? "cannot be read (" + ec.message() + ")" : std::string("not a regular file");
 }
 
 /// The file's bytes; errors name it. Checked to be a regular file first.
