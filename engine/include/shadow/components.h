@@ -386,9 +386,9 @@ struct Shadow {
     /// Sample pattern of PCF and the blocker search. Default Vogel.
     FilterKernel kernel = FilterKernel::Vogel;
     /// Most taps of the PCF filter, [1, 64]. Default 16. A pixel takes about one tap per texel of
-    /// its filter disk's area, up to this many, and none where the layer's min/max pyramid
-    /// shows the whole disk lit or in umbra; the PCF technique reads 4 taps as 3 gathers of 2x2
-    /// comparisons.
+    /// its filter disk's area, PCF at least 6 where its radius is half a texel or more (each a
+    /// bilinear 2x2 comparison), up to this many, and none where the layer's min/max pyramid
+    /// shows the whole disk lit or in umbra.
     int pcfSamples = 16;
     /// Points of the PCSS blocker search disk, [1, 64]; it reads them in pairs, each pair as one
     /// gather of 2x2 depth texels (half the fetches, twice the depths). Default 16.
