@@ -4,6 +4,8 @@
 #   MODE=subdirectory  builds the host with add_subdirectory(SOURCE_DIR) in WORK_DIR/host, which
 #                      compiles the module's libraries with its subproject defaults; the build
 #                      directory is kept, so a second run rebuilds only what changed.
+#                      With CONFIGURE_ONLY=ON it stops after configuring: the checks the host's
+#                      CMakeLists.txt makes of the module as a subproject, without compiling it.
 # Also: GENERATOR, CXX_COMPILER, C_COMPILER, NM (package mode: the declarations check),
 # BUILD_TYPE (the main build's, package mode only:
 # subdirectory mode leaves it empty, and the host checks the module does not set it).
@@ -74,6 +76,9 @@ elseif(MODE STREQUAL "subdirectory")
   run("configuring the host" ${configure} -DCMAKE_C_COMPILER=${C_COMPILER} -DSHADOW_ENGINE_SOURCE_DIR=${SOURCE_DIR})
 else()
   message(FATAL_ERROR "run_embed_test.cmake: MODE must be package or subdirectory")
+endif()
+if(CONFIGURE_ONLY)
+  return()
 endif()
 run("building the host" ${CMAKE_COMMAND} --build ${host_dir} --parallel ${jobs})
 run("running the host" ${host_dir}/embed_host)

@@ -13,6 +13,13 @@
 // project's reference machine) are a benchmark's to check: benchmarks/run_compile_times.sh runs
 // this binary and tables each case against its target.
 //
+// The fast tier (tests/CMakeLists.txt) keeps one light of each type, the README's snippet with
+// the technique its C++ asks for, the linear cost of straight-line calls and one random
+// configuration; the eight-light passes, every form of the game shader with every technique and
+// the other random configurations are the slow tier's (names starting with Slow): each costs
+// seconds to tens of seconds with the cache off, and the fast tier's other tests compile
+// eight-light programs of every technique anyway.
+//
 // On llvmpipe the fragment program is compiled to machine code at its first draw, so each case
 // times the whole first frame (or the host program's first draw) by the CPU time of the calling
 // thread, where the compilation runs; rasterisation runs on llvmpipe's own threads.
@@ -22,11 +29,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <ctime>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -152,7 +161,7 @@ TEST_F(CompileBudget, OneLightOfEachTypeWithItsHeaviestTechnique) {
     expectCompiles({{LightType::Spot, ShadowTechnique::Vssm}}, kOneLightTarget);
 }
 
-TEST_F(CompileBudget, CascadedSunsWithPcss) {
+TEST_F(CompileBudget, SlowCascadedSunsWithPcss) {
     for (int suns : {3, 8}) {
         expectCompiles(repeated(suns, {LightType::Directional, ShadowTechnique::Pcss, FilterKernel::Vogel, 4}),
                        kPassTarget);
@@ -161,7 +170,7 @@ TEST_F(CompileBudget, CascadedSunsWithPcss) {
 }
 
 // Eight lights of one technique, the three types in turn.
-TEST_F(CompileBudget, EightSlotsOfEachTechnique) {
+TEST_F(CompileBudget, SlowEightSlotsOfEachTechnique) {
     for (ShadowTechnique t : {ShadowTechnique::Hard, ShadowTechnique::Pcf, ShadowTechnique::Pcss, ShadowTechnique::Vsm,
                               ShadowTechnique::Vssm, ShadowTechnique::Msm, ShadowTechnique::MsmSoft}) {
         std::vector<LightSpec> lights;
@@ -173,7 +182,7 @@ TEST_F(CompileBudget, EightSlotsOfEachTechnique) {
 }
 
 // Eight lights, no two alike, the heaviest configurations: every slot compiles its own code.
-TEST_F(CompileBudget, EightUnlikeHeavySlots) {
+TEST_F(CompileBudget, SlowEightUnlikeHeavySlots) {
     expectCompiles({{LightType::Point, ShadowTechnique::Pcss, FilterKernel::Vogel},
                     {LightType::Point, ShadowTechnique::Pcss, FilterKernel::Poisson},
                     {LightType::Point, ShadowTechnique::Vssm},
@@ -185,16 +194,15 @@ TEST_F(CompileBudget, EightUnlikeHeavySlots) {
                    kPassTarget);
 }
 
-// The space of shader variants, sampled: random light configurations (1 to 8 lights of any
-// type, technique, kernel and cascade count, with and without emitters), each compiled and
-// rendered within the hang guard with finite visibility in [0, 1] everywhere. The seed is fixed so a
-// failure reproduces; SHADOW_VARIANT_SEED and SHADOW_VARIANT_CASES sample other parts of the space.
-TEST_F(CompileBudget, RandomLightConfigurationsRenderFinite) {
-    const char* seedText = std::getenv("SHADOW_VARIANT_SEED");
-    const char* casesText = std::getenv("SHADOW_VARIANT_CASES");
-    std::uint32_t state =
-        seedText != nullptr ? static_cast<std::uint32_t>(std::strtoul(seedText, nullptr, 10)) : 20261202u;
-    const int cases = casesText != nullptr ? std::atoi(casesText) : 4;
+/// A random light configuration: its lights, and which of them are point-sized (hard-edged).
+struct RandomCase {
+    std::vector<LightSpec> lights;
+    std::vector<bool> pointSized;
+};
+
+/// The first `cases` configurations of the sequence `seed` starts: 1 to 8 lights of any type,
+/// technique, kernel and cascade count, about one in three point-sized.
+std::vector<RandomCase> randomCases(std::uint32_t state, int cases) {
     auto next = [&state](int n) {  // xorshift32, uniform in [0, n)
         state ^= state << 13;
         state ^= state >> 17;
@@ -205,34 +213,62 @@ TEST_F(CompileBudget, RandomLightConfigurationsRenderFinite) {
     for (int t = 0; t < kShadowTechniqueCount; ++t) {
         if (techniqueAvailable(static_cast<ShadowTechnique>(t))) techniques.push_back(static_cast<ShadowTechnique>(t));
     }
-    for (int c = 0; c < cases; ++c) {
-        std::printf("[ variant  ] case %d, seed state %u\n", c, state);
-        std::vector<LightSpec> lights(static_cast<std::size_t>(1 + next(SG_MAX_LIGHTS_PER_PASS)));
-        for (LightSpec& l : lights) {
+    std::vector<RandomCase> out(static_cast<std::size_t>(std::max(cases, 0)));
+    for (RandomCase& c : out) {
+        c.lights.resize(static_cast<std::size_t>(1 + next(SG_MAX_LIGHTS_PER_PASS)));
+        for (LightSpec& l : c.lights) {
             l.type = static_cast<LightType>(next(3));
             l.technique = techniques[static_cast<std::size_t>(next(static_cast<int>(techniques.size())))];
             l.kernel = static_cast<FilterKernel>(next(3));
             l.cascades = 1 + next(SG_MAX_CASCADES);
         }
-        Scene scene = sceneWith(lights);
+        for (std::size_t i = 0; i < c.lights.size(); ++i) c.pointSized.push_back(next(3) == 0);
+    }
+    return out;
+}
+
+/// Cases [first, end) of the sequence of SHADOW_VARIANT_SEED (default 20261202), at most
+/// SHADOW_VARIANT_CASES of them in all (default 4): each compiled and rendered within the hang
+/// guard with finite visibility in [0, 1] everywhere.
+void expectRandomCasesRenderFinite(int first, int end) {
+    const char* seedText = std::getenv("SHADOW_VARIANT_SEED");
+    const char* casesText = std::getenv("SHADOW_VARIANT_CASES");
+    const auto seed = seedText != nullptr ? static_cast<std::uint32_t>(std::strtoul(seedText, nullptr, 10)) : 20261202u;
+    const int total = casesText != nullptr ? std::atoi(casesText) : 4;
+    const std::vector<RandomCase> cases = randomCases(seed, std::min(end, total));
+    for (int c = first; c < static_cast<int>(cases.size()); ++c) {
+        const RandomCase& rc = cases[static_cast<std::size_t>(c)];
+        std::printf("[ variant  ] case %d of seed %u\n", c, seed);
+        Scene scene = sceneWith(rc.lights);
+        std::size_t i = 0;
         scene.world.view<Light>().each([&](Entity, Light& light) {
-            if (next(3) == 0) light.radius = light.angularRadius = 0.0f;  // a hard-edged emitter
+            if (rc.pointSized.at(i++)) light.radius = light.angularRadius = 0.0f;
         });
         FrameRunner runner;
         const double start = threadSeconds();
         const test::RenderedFrame frame = test::renderFrame(runner, scene, 48, 27);
         const double seconds = threadSeconds() - start;
-        report(describe(lights), seconds, kPassTarget);
-        EXPECT_LT(seconds, kHangGuard) << describe(lights);
-        ASSERT_EQ(frame.images.visibility.size(), lights.size()) << describe(lights);
-        for (std::size_t l = 0; l < lights.size(); ++l) {
+        report(describe(rc.lights), seconds, kPassTarget);
+        EXPECT_LT(seconds, kHangGuard) << describe(rc.lights);
+        ASSERT_EQ(frame.images.visibility.size(), rc.lights.size()) << describe(rc.lights);
+        for (std::size_t l = 0; l < rc.lights.size(); ++l) {
             for (float v : frame.images.visibility[l].pixels) {
                 ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f)
-                    << describe(lights) << " light " << l << ": " << v;
+                    << describe(rc.lights) << " light " << l << ": " << v;
             }
         }
         EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));
     }
+}
+
+// The space of shader variants, sampled: random light configurations, each compiled and
+// rendered. The seed is fixed so a failure reproduces; SHADOW_VARIANT_SEED and
+// SHADOW_VARIANT_CASES sample other parts of the space. The fast tier renders the first case,
+// the slow tier the others.
+TEST_F(CompileBudget, RandomLightConfigurationRendersFinite) { expectRandomCasesRenderFinite(0, 1); }
+
+TEST_F(CompileBudget, SlowRandomLightConfigurationsRenderFinite) {
+    expectRandomCasesRenderFinite(1, std::numeric_limits<int>::max());
 }
 
 /// CPU seconds to compile, link and first draw a game's program: its own vertex shader, and a
@@ -300,10 +336,56 @@ in vec3 vNormal;
 layout(location = 0) out vec4 outColor;
 )";
 
+/// The README's game shader, as written there (between its game-shader markers); empty when
+/// the markers are missing.
+std::string readmesGameShader() {
+    std::ifstream readme(std::string(SHADOW_SOURCE_DIR) + "/README.md");
+    std::stringstream text;
+    text << readme.rdbuf();
+    const std::string all = text.str();
+    const std::size_t marker = all.find("<!-- game-shader:begin -->");
+    if (marker == std::string::npos) return {};
+    const std::size_t begin = all.find("```glsl\n", marker);
+    const std::size_t end = begin == std::string::npos ? std::string::npos : all.find("```\n", begin + 8);
+    if (end == std::string::npos) return {};
+    return all.substr(begin + 8, end - begin - 8);
+}
+
+// The README's snippet as a game following the README builds it: with the technique its C++
+// asks for (PCSS).
+TEST_F(CompileBudget, TheReadmesGameShaderCompilesWithTheTechniqueItAsksFor) {
+    const std::string snippet = readmesGameShader();
+    ASSERT_FALSE(snippet.empty()) << "README.md has no game-shader snippet";
+    const double seconds = hostProgramSeconds(techniqueBit(ShadowTechnique::Pcss), snippet);
+    report("game shader, the README's snippet, pcss only", seconds, kPassTarget);
+    EXPECT_LT(seconds, kHangGuard);
+}
+
+// Straight-line calls compile one after another: four cost about four times one, where the
+// driver's analysis of loops in sequence used to grow exponentially with their number.
+TEST_F(CompileBudget, StraightLineCallsCostAboutLinearlyInTheirNumber) {
+    const unsigned pcf = techniqueBit(ShadowTechnique::Pcf);
+    auto calls = [](int count) {
+        std::string body = std::string(kHostInputs) +
+                           "void main() {\n    sg_Surface s = sg_surface(vCsPosition, vNormal);\n"
+                           "    float sum = 0.0;\n";
+        for (int slot = 0; slot < count; ++slot) {
+            body += "    sum += sg_lightVisibility(" + std::to_string(slot) + ", vCsPosition, s, -vCsPosition.z);\n";
+        }
+        return body + "    outColor = vec4(sum);\n}\n";
+    };
+    const double one = hostProgramSeconds(pcf, calls(1));
+    const double four = hostProgramSeconds(pcf, calls(4));
+    report("game shader, pcf only, one call", one, kOneLightTarget);
+    report("game shader, pcf only, four straight-line calls", four, kPassTarget);
+    EXPECT_LT(four, kHangGuard);
+    EXPECT_LT(four, kFourCallsOverOne * one);
+}
+
 // The README's forms of a game's shader, with every technique compiled in (the default): one
-// call, two calls in straight-line code, and a loop over the slots.
-TEST_F(CompileBudget, EveryFormOfTheReadmesGameShader) {
-    std::vector<std::pair<const char*, std::string>> forms{
+// call, two calls in straight-line code, a loop over the slots, and the README's snippet.
+TEST_F(CompileBudget, SlowEveryFormOfTheReadmesGameShader) {
+    const std::vector<std::pair<const char*, std::string>> forms{
         {"one call", std::string(kHostInputs) + R"(
 void main() {
     sg_Surface s = sg_surface(vCsPosition, vNormal);
@@ -323,40 +405,14 @@ void main() {
     for (int slot = 0; slot < 8; ++slot) sum += sg_lightVisibility(slot, vCsPosition, s, -vCsPosition.z);
     outColor = vec4(sum / 8.0);
 })"},
+        {"the README's snippet", readmesGameShader()},
     };
-    // The README's own snippet, as written there.
-    std::ifstream readme(std::string(SHADOW_SOURCE_DIR) + "/README.md");
-    std::stringstream text;
-    text << readme.rdbuf();
-    const std::string all = text.str();
-    const std::size_t begin = all.find("```glsl\n", all.find("<!-- game-shader:begin -->"));
-    const std::size_t end = all.find("```\n", begin + 8);
-    ASSERT_NE(begin, std::string::npos);
-    ASSERT_NE(end, std::string::npos);
-    forms.emplace_back("the README's snippet", all.substr(begin + 8, end - begin - 8));
+    ASSERT_FALSE(forms.back().second.empty()) << "README.md has no game-shader snippet";
     for (const auto& [name, main] : forms) {
         const double seconds = hostProgramSeconds(kAllShadowTechniques, main);
         report(std::string("game shader, ") + name, seconds, kPassTarget);
         EXPECT_LT(seconds, kHangGuard) << name;
     }
-    // Straight-line calls compile one after another: four cost about four times one, where
-    // the driver's analysis of loops in sequence used to grow exponentially with their number.
-    const unsigned pcf = techniqueBit(ShadowTechnique::Pcf);
-    auto calls = [](int count) {
-        std::string body = std::string(kHostInputs) +
-                           "void main() {\n    sg_Surface s = sg_surface(vCsPosition, vNormal);\n"
-                           "    float sum = 0.0;\n";
-        for (int slot = 0; slot < count; ++slot) {
-            body += "    sum += sg_lightVisibility(" + std::to_string(slot) + ", vCsPosition, s, -vCsPosition.z);\n";
-        }
-        return body + "    outColor = vec4(sum);\n}\n";
-    };
-    const double one = hostProgramSeconds(pcf, calls(1));
-    const double four = hostProgramSeconds(pcf, calls(4));
-    report("game shader, pcf only, one call", one, kOneLightTarget);
-    report("game shader, pcf only, four straight-line calls", four, kPassTarget);
-    EXPECT_LT(four, kHangGuard);
-    EXPECT_LT(four, kFourCallsOverOne * one);
 }
 
 }  // namespace

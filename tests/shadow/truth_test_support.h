@@ -1,5 +1,6 @@
-// Rendering a scene once and comparing light 0's visibility with the ray-traced truth over the
-// pixels that light shades (the terminator and distance-field fallback tests).
+// Rendering a scene with several techniques and comparing light 0's visibility with the
+// ray-traced truth over the pixels that light shades (the terminator and distance-field fallback
+// tests).
 //
 // Header-only on purpose: tests/CMakeLists.txt globs only *_test.cpp files.
 #pragma once
@@ -51,17 +52,25 @@ inline VisibilityErrors light0Errors(const FrameImages& images, const reference:
     return lightErrors(images, truth, 0);
 }
 
-/// Renders one frame of `scene` at `width` x `height` and traces the truth at the same pixels'
-/// positions with `samples` rays per pixel; light 0's errors over the reference's lit mask.
-/// A failure to trace or compare fails the test and leaves the errors at their defaults.
-inline AgainstTruth renderAgainstTruth(Scene& scene, int width, int height, int samples) {
+/// Renders one frame of `scene` at `width` x `height` for each technique of `techniques` (every
+/// shadowed light set to it) and traces the truth once, with `samples` rays per pixel, at the
+/// first frame's pixel positions: a technique moves no surface, so one truth serves every frame.
+/// Light 0's errors over the reference's lit mask, one per technique in order. A failure to
+/// trace or compare fails the test and leaves the errors at their defaults.
+inline std::vector<AgainstTruth> renderAgainstTruth(Scene& scene, int width, int height, int samples,
+                                                    const std::vector<ShadowTechnique>& techniques) {
     glContext();
-    FrameRunner runner;
-    const RenderedFrame frame = renderFrame(runner, scene, width, height);
-    AgainstTruth out;
-    out.warnings = frame.stats.warnings;
-    const std::optional<reference::ReferenceResult> truth = truthAt(scene, runner.lastCamera(), frame.images, samples);
-    if (truth) out.errors = light0Errors(frame.images, *truth);
+    std::vector<AgainstTruth> out;
+    std::optional<reference::ReferenceResult> truth;
+    for (const ShadowTechnique technique : techniques) {
+        scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.technique = technique; });
+        FrameRunner runner;
+        const RenderedFrame frame = renderFrame(runner, scene, width, height);
+        if (out.empty()) truth = truthAt(scene, runner.lastCamera(), frame.images, samples);
+        AgainstTruth& a = out.emplace_back();
+        a.warnings = frame.stats.warnings;
+        if (truth) a.errors = light0Errors(frame.images, *truth);
+    }
     return out;
 }
 

@@ -1,13 +1,16 @@
 // Shadow-map sizes at the extremes: 1 and 3 texels, the GL limit (16384 on llvmpipe: 1 GiB of
 // float depth for one layer), and sizes beyond the limit (clamped with a warning), plus the
 // planner's memory budget, which keeps the maps of all lights together (depth and filter chains)
-// by a documented, deterministic policy (ShadowLimits::maxShadowBytes).
+// by a documented, deterministic policy (ShadowLimits::maxShadowBytes). The cases at the limit
+// run in the fast tier at a limit lowered to 2048 with the budget in proportion, and in the slow
+// tier at the real one.
 #include <gtest/gtest.h>
 #include <shadow/context.h>
 
 #include <algorithm>
 #include <chrono>
 #include <climits>
+#include <cstdint>
 #include <fstream>
 #include <string>
 
@@ -64,7 +67,7 @@ TEST(Stability, TinyMapsOfOneAndThreeTexelsStayFinite) {
 }
 
 /// Beyond GL_MAX_TEXTURE_SIZE: clamped to the limit with a warning, never a GL error. The
-/// limit is lowered to 2048 here to keep the test fast; the next test renders the real one.
+/// limit is lowered to 2048 here to keep the test fast; the slow tier renders the real one.
 TEST(Stability, MapSizeBeyondTheGlLimitIsClampedWithAWarning) {
     for (LightType type : {LightType::Directional, LightType::Spot, LightType::Point}) {
         Scene scene = boxScene(type, INT_MAX);
@@ -81,28 +84,37 @@ TEST(Stability, MapSizeBeyondTheGlLimitIsClampedWithAWarning) {
     }
 }
 
-/// The real limit: a spot with mapSize INT_MAX gets GL_MAX_TEXTURE_SIZE (16384 on llvmpipe), one
-/// 1 GiB layer that the default budget just allows. A point light asking for the same gets six
-/// faces halved by the budget until they fit (4096: 0.375 GiB).
-TEST(Stability, MapAtTheGlLimitRendersWhenMemoryAllows) {
+/// The limits of the test context (GL_MAX_TEXTURE_SIZE: 16384 on llvmpipe) with the default
+/// budget, 2^30 bytes: one hard layer at the limit.
+ShadowLimits glLimits() {
     test::glContext();
     const GlInfo info = queryGlInfo();
-    const double layerGiB = static_cast<double>(info.maxTextureSize) * info.maxTextureSize * 4.0 / (1u << 30);
-    // The layer, its readback, and llvmpipe's staging copy.
-    if (availableGiB() < 4.0 * layerGiB + 1.0) {
-        GTEST_SKIP() << "needs " << 4.0 * layerGiB + 1.0 << " GiB free for a " << info.maxTextureSize << "^2 layer";
-    }
+    return {info.maxTextureSize, info.maxArrayLayers, ShadowLimits{}.maxShadowBytes};
+}
+
+/// The same proportions at a tenth of the cost: a limit of 2048 and a budget of one hard layer
+/// of that size (16 MiB).
+ShadowLimits loweredLimits() { return {2048, 2048, std::int64_t{4} * 2048 * 2048}; }
+
+std::string atTheLimit(const ShadowLimits& limits) { return std::to_string(limits.maxTextureSize) + "^2"; }
+
+/// A spot with mapSize INT_MAX gets the limit, one layer that the budget just allows, with a
+/// warning; its depths finite and inside the layer's range. A point light asking for the same
+/// gets six faces halved by the budget until they fit (at the real limit: 4096, 0.375 GiB).
+void expectMapsAtTheLimit(const ShadowLimits& limits) {
+    test::glContext();
     {
         Scene scene = boxScene(LightType::Spot, INT_MAX);
         FrameRunner runner;
+        runner.shadows().planner().setLimits(limits);
         const auto t0 = std::chrono::steady_clock::now();
         const test::RenderedFrame frame = test::renderFrame(runner, scene, 96, 72);
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        test::reportFigure("spot at " + std::to_string(info.maxTextureSize) + "^2 (" + info.renderer + "): first frame",
-                           ms, " ms");
+        test::reportFigure("spot at " + atTheLimit(limits) + " (" + queryGlInfo().renderer + "): first frame", ms,
+                           " ms");
         test::expectSaneAovs(frame.images);
         const ShadowLightPlan& plan = runner.shadows().frame().lights.at(0);
-        EXPECT_EQ(plan.mapSize, info.maxTextureSize);
+        EXPECT_EQ(plan.mapSize, limits.maxTextureSize);
         EXPECT_TRUE(test::hasWarning(frame.stats.warnings, WarningCode::SettingClamped, "light"))
             << test::describe(frame.stats.warnings);
         EXPECT_GT(test::countGround(frame.images, 0).dark, 100);
@@ -114,51 +126,74 @@ TEST(Stability, MapAtTheGlLimitRendersWhenMemoryAllows) {
     {
         Scene scene = boxScene(LightType::Point, INT_MAX);
         FrameRunner runner;
+        runner.shadows().planner().setLimits(limits);
         const test::RenderedFrame frame = test::renderFrame(runner, scene, 96, 72);
         test::expectSaneAovs(frame.images);
         const ShadowLightPlan& plan = runner.shadows().frame().lights.at(0);
-        test::reportFigure("point asking for INT_MAX: map edge after the budget", plan.mapSize);
-        EXPECT_LE(std::int64_t{4} * plan.mapSize * plan.mapSize * 6, ShadowLimits{}.maxShadowBytes);
+        test::reportFigure(
+            "point asking for INT_MAX under a limit of " + atTheLimit(limits) + ": map edge after the budget",
+            plan.mapSize);
+        EXPECT_LT(plan.mapSize, limits.maxTextureSize);
+        EXPECT_LE(std::int64_t{4} * plan.mapSize * plan.mapSize * 6, limits.maxShadowBytes);
         EXPECT_TRUE(test::hasWarning(frame.stats.warnings, WarningCode::MapSizeReduced, "light"))
             << test::describe(frame.stats.warnings);
     }
 }
 
-/// Every moment technique asking for the GL limit (16384^2): those that add a filter chain
-/// reduced by the memory budget until depth and chain fit, warned, and drawn, where counting
-/// depth texels alone let them run out of memory (GL_OUT_OF_MEMORY); chainless msm as asked.
-TEST(Stability, EveryTechniqueAtTheGlLimitRendersReducedToTheMemoryBudget) {
+TEST(Stability, MapAtALoweredLimitRendersWithinItsBudget) { expectMapsAtTheLimit(loweredLimits()); }
+
+// The real limit: 1 GiB of depth for the spot's one layer.
+TEST(Stability, SlowMapAtTheGlLimitRendersWhenMemoryAllows) {
+    const ShadowLimits limits = glLimits();
+    const double layerGiB = static_cast<double>(limits.maxTextureSize) * limits.maxTextureSize * 4.0 / (1u << 30);
+    // The layer, its readback, and llvmpipe's staging copy.
+    if (availableGiB() < 4.0 * layerGiB + 1.0) {
+        GTEST_SKIP() << "needs " << 4.0 * layerGiB + 1.0 << " GiB free for a " << atTheLimit(limits) << " layer";
+    }
+    expectMapsAtTheLimit(limits);
+}
+
+/// Every moment technique asking for the limit: those that add a filter chain reduced by the
+/// memory budget until depth and chain fit, warned, and drawn, where counting depth texels alone
+/// let them run out of memory (GL_OUT_OF_MEMORY at the real limit); chainless msm as asked.
+void expectEveryTechniqueReducedToTheBudget(const ShadowLimits& limits) {
     test::glContext();
-    const GlInfo info = queryGlInfo();
-    // The maps (at most the 1 GiB budget), llvmpipe's staging copies and the readbacks.
-    if (availableGiB() < 4.0) GTEST_SKIP() << "needs 4 GiB free";
     for (const ShadowTechnique technique :
          {ShadowTechnique::Vsm, ShadowTechnique::Vssm, ShadowTechnique::Msm, ShadowTechnique::MsmSoft}) {
         const std::string name = techniqueName(technique);
-        Scene scene = boxScene(LightType::Spot, info.maxTextureSize);
+        Scene scene = boxScene(LightType::Spot, limits.maxTextureSize);
         scene.world.get<Shadow>(scene.lights[0]).technique = technique;
         FrameRunner runner;
+        runner.shadows().planner().setLimits(limits);
         const auto t0 = std::chrono::steady_clock::now();
         test::RenderedFrame frame;
         ASSERT_NO_THROW(frame = test::renderFrame(runner, scene, 96, 72)) << name;
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         const ShadowLightPlan& plan = runner.shadows().frame().lights.at(0);
         const LightShadowStats& ls = frame.stats.lights.at(0);
-        test::reportFigure(
-            name + " asking for " + std::to_string(info.maxTextureSize) + "^2: map edge after the budget",
-            plan.mapSize);
+        test::reportFigure(name + " asking for " + atTheLimit(limits) + ": map edge after the budget", plan.mapSize);
         test::reportFigure(name + ": map and chain (MiB)",
                            static_cast<double>(ls.mapBytes + ls.filterChainBytes) / (1 << 20));
         test::reportFigure(name + ": first frame", ms, " ms");
         // A technique with a chain is halved to fit; hard-edged msm, chainless, fits as asked.
         const bool chain = filterChainOf(technique).has_value();
-        EXPECT_EQ(plan.mapSize < info.maxTextureSize, chain) << name;
-        EXPECT_LE(ls.mapBytes + ls.filterChainBytes, ShadowLimits{}.maxShadowBytes) << name;
+        EXPECT_EQ(plan.mapSize < limits.maxTextureSize, chain) << name;
+        EXPECT_LE(ls.mapBytes + ls.filterChainBytes, limits.maxShadowBytes) << name;
         EXPECT_EQ(test::hasWarning(frame.stats.warnings, WarningCode::MapSizeReduced, "light"), chain)
             << name << ":\n"
             << test::describe(frame.stats.warnings);
         EXPECT_GT(test::countGround(frame.images, 0).dark, 100) << name << ": the box casts its shadow";
     }
+}
+
+TEST(Stability, EveryTechniqueAtALoweredLimitRendersReducedToTheBudget) {
+    expectEveryTechniqueReducedToTheBudget(loweredLimits());
+}
+
+TEST(Stability, SlowEveryTechniqueAtTheGlLimitRendersReducedToTheMemoryBudget) {
+    // The maps (at most the 1 GiB budget), llvmpipe's staging copies and the readbacks.
+    if (availableGiB() < 4.0) GTEST_SKIP() << "needs 4 GiB free";
+    expectEveryTechniqueReducedToTheBudget(glLimits());
 }
 
 // ---- The memory budget's policy, on the planner alone ----
