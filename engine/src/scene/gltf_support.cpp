@@ -77,7 +77,7 @@ void collectExtensions(const json& document, Uses& uses) {
         stack.pop_back();
         children.clear();
         if (value->is_array()) {
-            for (std::size_t i = 0; i < value->size(); ++i) children.emplace_back(&(*value)[i], indexed(where, i));
+            for (std::size_t i = 0; i < value->size(); ++i) children.emplace_back(&value->at(i), indexed(where, i));
         } else if (value->is_object()) {
             for (const auto& [key, item] : value->items()) {
                 if (key == "extras") continue;
@@ -94,43 +94,55 @@ void collectExtensions(const json& document, Uses& uses) {
     }
 }
 
+/// `object[key]` when `object` is an object holding `key`, else null. Looked up by value, not
+/// through nlohmann's iterators, whose null checks GCC cannot see through at -O3
+/// (-Wnull-dereference).
+const json* member(const json& object, const char* key) {
+    if (!object.is_object() || !object.contains(key)) return nullptr;
+    return &object.at(key);
+}
+
+/// `member(object, key)` when it is an array, else null.
+const json* arrayMember(const json& object, const char* key) {
+    const json* found = member(object, key);
+    return found != nullptr && found->is_array() ? found : nullptr;
+}
+
 /// `document[array][i]` for every i, with its path.
 template <typename F>
 void eachElement(const json& document, const char* array, F&& f) {
-    const auto it = document.find(array);
-    if (it == document.end() || !it->is_array()) return;
-    for (std::size_t i = 0; i < it->size(); ++i) {
-        if ((*it)[i].is_object()) f((*it)[i], indexed(array, i));
+    const json* items = arrayMember(document, array);
+    if (items == nullptr) return;
+    for (std::size_t i = 0; i < items->size(); ++i) {
+        if (items->at(i).is_object()) f(items->at(i), indexed(array, i));
     }
 }
 
 void collectPrimitiveFeatures(const json& document, Uses& uses) {
     eachElement(document, "meshes", [&](const json& mesh, const std::string& meshWhere) {
-        const auto primitives = mesh.find("primitives");
-        if (primitives == mesh.end() || !primitives->is_array()) return;
+        const json* primitives = arrayMember(mesh, "primitives");
+        if (primitives == nullptr) return;
         for (std::size_t p = 0; p < primitives->size(); ++p) {
-            const json& primitive = (*primitives)[p];
+            const json& primitive = primitives->at(p);
             const std::string where = meshWhere + "." + indexed("primitives", p);
-            if (const auto t = primitive.find("targets"); t != primitive.end() && !t->empty()) {
+            if (const json* t = member(primitive, "targets"); t != nullptr && !t->empty()) {
                 record(uses, "morph targets", where + ".targets");
             }
-            if (const auto mode = primitive.find("mode"); mode != primitive.end() && *mode != 4) {
+            if (const json* mode = member(primitive, "mode"); mode != nullptr && *mode != 4) {
                 record(uses, "primitive modes other than TRIANGLES", where + ".mode");
             }
-            const auto attributes = primitive.find("attributes");
-            if (attributes == primitive.end() || !attributes->is_object()) continue;
+            const json* attributes = member(primitive, "attributes");
+            if (attributes == nullptr || !attributes->is_object()) continue;
             if (attributes->contains("COLOR_0")) record(uses, "COLOR_0", where + ".attributes.COLOR_0");
             if (attributes->contains("JOINTS_1")) record(uses, "JOINTS_1", where + ".attributes.JOINTS_1");
         }
     });
     eachElement(document, "animations", [&](const json& animation, const std::string& where) {
-        const auto channels = animation.find("channels");
-        if (channels == animation.end() || !channels->is_array()) return;
+        const json* channels = arrayMember(animation, "channels");
+        if (channels == nullptr) return;
         for (std::size_t c = 0; c < channels->size(); ++c) {
-            const json* path = nullptr;
-            if (const auto target = (*channels)[c].find("target"); target != (*channels)[c].end()) {
-                if (const auto found = target->find("path"); found != target->end()) path = &*found;
-            }
+            const json* target = member(channels->at(c), "target");
+            const json* path = target != nullptr ? member(*target, "path") : nullptr;
             if (path != nullptr && *path == "weights") {
                 record(uses, "morph targets", where + "." + indexed("channels", c) + ".target.path");
             }
@@ -141,7 +153,7 @@ void collectPrimitiveFeatures(const json& document, Uses& uses) {
 void collectMaterialFeatures(const json& document, Uses& uses) {
     eachElement(document, "samplers", [&](const json& sampler, const std::string& where) {
         constexpr int kNearest = 9728;
-        if (const auto mag = sampler.find("magFilter"); mag != sampler.end() && *mag == kNearest) {
+        if (const json* mag = member(sampler, "magFilter"); mag != nullptr && *mag == kNearest) {
             record(uses, "magFilter NEAREST", where + ".magFilter");
         }
     });
@@ -151,8 +163,8 @@ void collectMaterialFeatures(const json& document, Uses& uses) {
 /// made sure it is an array of strings when present.
 std::vector<std::string> extensionList(const json& document, const char* list) {
     std::vector<std::string> names;
-    if (const auto it = document.find(list); it != document.end() && it->is_array()) {
-        for (const json& name : *it) {
+    if (const json* items = arrayMember(document, list); items != nullptr) {
+        for (const json& name : *items) {
             if (name.is_string()) names.push_back(name.get<std::string>());
         }
     }
