@@ -12,7 +12,8 @@
 #include "shadow_debug.glsl"
 #include "shadow_penumbra.glsl"
 
-float sg_pcssFilter(int slot, sg_GpuLight L, sg_Receiver r) {
+float sg_pcssFilter(int slot, sg_GpuLight L, sg_Receiver receiver) {
+    sg_Receiver r = sg_emitterShaped(L, receiver);
     float maxRadius = L.maxFilterTexels * r.texelMetres;
     sg_Tap center = sg_lateralTap(L, r, vec2(0.0));
     float dReceiver = center.depth;
@@ -37,9 +38,14 @@ float sg_pcssFilter(int slot, sg_GpuLight L, sg_Receiver r) {
         vec4 references = sg_quadReferences(L, r, t, f, quadUv) * scale;
         vec4 stored = textureGather(sg_shadowDepth[slot], vec3(quadUv, float(t.layer))) * scale;
         vec4 blocks = vec4(lessThan(stored, references));
-        // Blocker depth expressed at the center's lateral position: the tap's own shift along
-        // the tangent plane is removed so a sloped receiver does not bias it.
-        blockerSum += dot(blocks, stored + (dReceiver - t.depth));
+        // Blocker depth carried to the receiver's own ray, so that neither a sloped receiver nor
+        // a perspective light's rays bias it. An orthographic light's depth is axial: the tap's
+        // shift along the tangent plane is removed. A perspective light's depth is a distance,
+        // which grows off the axis as 1/cos for the receiver and the blocker alike: the ratio
+        // of the two along the tap's ray is what similar triangles keep, so the depth is scaled
+        // (a shift would move blockers off axis by the receiver's growth, not their own).
+        vec4 carried = r.orthographic ? stored + (dReceiver - t.depth) : stored * (dReceiver / max(t.depth, 1e-30));
+        blockerSum += dot(blocks, carried);
         blockers += dot(blocks, vec4(1.0));
     }
     float dBlocker = clamp(blockerSum / max(blockers, 1.0), 0.0, dReceiver);

@@ -22,4 +22,30 @@ float sg_penumbraRadius(sg_GpuLight L, float dReceiver, float dBlocker, float si
                                           : (dReceiver - dBlocker) * size / max(dBlocker, 1e-6);
 }
 
+// A spot's emitter is a disk facing along the spot's axis: seen from a receiver off the axis it
+// is an ellipse, narrower by cos(angle off the axis) towards the axis. So is everything the
+// PCSS search and filter cover (the emitter seen through the receiver): `r` with its lateral
+// axes squeezed that way, so that every lateral offset lands where the emitter's shape says.
+// A sphere (point light) and the sun's disk look round from everywhere: `r` as it is.
+sg_Receiver sg_emitterShaped(sg_GpuLight L, sg_Receiver r) {
+    vec3 ray = normalize(r.lsPosition);  // from the light, whose axis is -z in its space
+    vec3 towardAxis = vec3(0.0, 0.0, -1.0) + ray.z * ray;  // the axis, less its part along the ray
+    vec2 e = vec2(dot(r.lsTangent1, towardAxis), dot(r.lsTangent2, towardAxis));
+    float len = length(e);
+    if (L.type != SG_LIGHT_SPOT || len < 1e-6) return r;
+    e /= len;
+    // o -> o - (1 - cos) (o.e) e, applied to the axes: axis i gains -(1 - cos) e_i (e.x t1 + e.y t2).
+    vec2 k = (1.0 - clamp(-ray.z, 0.0, 1.0)) * e;
+    vec3 cs = e.x * r.csTangent1 + e.y * r.csTangent2;
+    vec3 ls = e.x * r.lsTangent1 + e.y * r.lsTangent2;
+    vec4 clip = e.x * r.clipTangent1 + e.y * r.clipTangent2;
+    r.csTangent1 -= k.x * cs;
+    r.csTangent2 -= k.y * cs;
+    r.lsTangent1 -= k.x * ls;
+    r.lsTangent2 -= k.y * ls;
+    r.clipTangent1 -= k.x * clip;
+    r.clipTangent2 -= k.y * clip;
+    return r;
+}
+
 #endif
