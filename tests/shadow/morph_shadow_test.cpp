@@ -63,7 +63,8 @@ Footprint footprint(const FrameImages& images, double weight) {
 }
 
 // Weight 0 casts the square's shadow, weight 1 the sheet stretched to twice its width: each
-// matches the projection of its shape (at most 1 % of the judged pixels differ; measured 0).
+// matches the projection of its shape (mismatches at most a tenth of the pixels under the moved
+// part, which the base shape would get wrong; measured 0).
 TEST(MorphShadow, FollowsTheWeightsAndMatchesTheGeometry) {
     glContext();
     Scene scene = sheetScene(gltf_test::morphSheetDoc(0.0f));
@@ -77,8 +78,8 @@ TEST(MorphShadow, FollowsTheWeightsAndMatchesTheGeometry) {
         rest.predicted, rest.judged, rest.mismatches, stretched.predicted, stretched.band, stretched.mismatches);
     ASSERT_GT(rest.predicted, 300);
     ASSERT_GT(stretched.band, 300);
-    EXPECT_LE(rest.mismatches, 0.01 * rest.judged);
-    EXPECT_LE(stretched.mismatches, 0.01 * stretched.judged);
+    EXPECT_LE(rest.mismatches, 0.1 * stretched.band);
+    EXPECT_LE(stretched.mismatches, 0.1 * stretched.band);
 }
 
 // Animated by a `weights` channel (0 at t = 0 to 1 at t = 2 s, LINEAR), the shadow at t = 1 s is
@@ -92,7 +93,7 @@ TEST(MorphShadow, AnimatedWeightsDeformTheShadow) {
     std::printf("t = 1: %d predicted (%d under the moved part), %d mismatches of %d judged\n", half.predicted,
                 half.band, half.mismatches, half.judged);
     ASSERT_GT(half.band, 100);
-    EXPECT_LE(half.mismatches, 0.01 * half.judged);
+    EXPECT_LE(half.mismatches, 0.1 * half.band);
 }
 
 // The ray-traced reference morphs the sheet as the vertex shader does: the shadowed ground pixels
