@@ -1,5 +1,6 @@
 // What the module's mesh programs (the main pass's lit.vert.glsl and the shadow pass's
-// shadow_depth.vert.glsl) share: the vertex attributes of a `MeshCache` mesh and skinning.
+// shadow_depth.vert.glsl) share: the vertex attributes of a `MeshCache` mesh, morph targets
+// and skinning.
 //
 // A skinned draw (a `Skin` on the instance) sets uSkinned = 1 and binds the pose's joint matrices
 // (frame-from-mesh, `Skin::frameFromMesh`) at SG_BINDING_JOINTS; its object transform is then the
@@ -40,4 +41,30 @@ mat4 sg_skinMatrix() {
     }
     return m;
 }
+
+// Morph targets (a `Morph` with targets drawn): uMorphCount (<= SG_MAX_MORPH_INFLUENCES)
+// influences, each (target, weight), displace the vertex before it is skinned (glTF). The mesh's
+// displacements are at SG_BINDING_MORPH_DELTAS, vertex-major: vertex v's of target t at
+// (v * uMorphTargets + t) * 3, position, normal and tangent in turn. uMorphCount = 0 (a rigid
+// draw, or every weight 0) reads none, in the same loop-not-if shape as skinning.
+layout(std430, binding = SG_BINDING_MORPH_DELTAS) readonly buffer sg_MorphBlock {
+    vec4 sg_morphDeltas[];
+};
+uniform int uMorphCount;
+uniform int uMorphTargets;
+uniform vec2 uMorphInfluences[SG_MAX_MORPH_INFLUENCES];
+
+// The weighted displacement of attribute `a` (0 position, 1 normal, 2 tangent).
+vec3 sg_morphDelta(int a) {
+    vec3 d = vec3(0.0);
+    for (int i = 0; i < uMorphCount; ++i) {
+        int at = (gl_VertexID * uMorphTargets + int(uMorphInfluences[i].x)) * 3 + a;
+        d += uMorphInfluences[i].y * sg_morphDeltas[at].xyz;
+    }
+    return d;
+}
+// The vertex's position and normal in the mesh's space, morphed (the normal not renormalised:
+// the fragment stage normalises its interpolated normal).
+vec3 sg_position() { return inPosition + sg_morphDelta(0); }
+vec3 sg_normal() { return inNormal + sg_morphDelta(1); }
 #endif

@@ -69,8 +69,8 @@ TEST(GltfSupport, EachKindLeftOutIsOneWarningNamingItsFirstUse) {
     Doc doc = twoMaterialDoc({{"emissiveFactor", {0, 0, 0}}, {"extensions", {{"KHR_materials_unlit", json::object()}}}},
                              {{"emissiveFactor", {1, 0.5, 0}}});
     doc.j["extensionsUsed"] = {"KHR_materials_unlit", "EXT_made_up"};
-    // Morph targets on the second mesh: a target of positions.
-    doc.j["meshes"][1]["primitives"][0]["targets"] = json::array({{{"POSITION", 0}}});
+    // Vertex colours on the second mesh.
+    doc.j["meshes"][1]["primitives"][0]["attributes"]["COLOR_0"] = 0;
     doc.j["meshes"][0]["extensions"] = {{"EXT_made_up", json::object()}};
     auto scene = loadGltf(doc.write(testDir() / "s.gltf").string());
     ASSERT_TRUE(scene.ok()) << scene.error().message;
@@ -79,7 +79,8 @@ TEST(GltfSupport, EachKindLeftOutIsOneWarningNamingItsFirstUse) {
     for (const Warning& warning : w) elements.push_back(warning.element);
     // In the table's order, then the unknown extension; the emission is read, not warned about.
     const std::vector<std::string> expected = {"materials[0].extensions.KHR_materials_unlit",
-                                               "meshes[1].primitives[0].targets", "meshes[0].extensions.EXT_made_up"};
+                                               "meshes[1].primitives[0].attributes.COLOR_0",
+                                               "meshes[0].extensions.EXT_made_up"};
     EXPECT_EQ(elements, expected);
     ASSERT_EQ(w.size(), 3u);
     EXPECT_NE(w[0].message.find("KHR_materials_unlit (used once, first at"), std::string::npos) << w[0].message;

@@ -184,6 +184,36 @@ inline void expectSameRotation(const glm::dquat& a, const glm::dquat& b) {
 
 #define EXPECT_MESSAGE(message, part) EXPECT_NE((message).find(part), std::string::npos) << "message: " << (message)
 
+/// A 1 m square sheet in the XZ plane (x, z in [-0.5, 0.5], facing +Y) on node 0 ("sheet", at
+/// y = 1), with one morph target that moves its +x edge by +1 m in x (at weight w the sheet spans
+/// x in [-0.5, 0.5 + w]) and turns its normals nowhere; mesh weights {`weight`}. With `animated`,
+/// animations[0] drives the weight from 0 at t = 0 to 1 at t = 2 s by `interpolation`.
+inline Doc morphSheetDoc(float weight, bool animated = false, const std::string& interpolation = "LINEAR") {
+    Doc doc;
+    const int position = doc.floats({-0.5f, 0, -0.5f, 0.5f, 0, -0.5f, 0.5f, 0, 0.5f, -0.5f, 0, 0.5f}, "VEC3");
+    const int normal = doc.floats({0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0}, "VEC3");
+    const int delta = doc.floats({0, 0, 0, 1, 0, 0, 1, 0, 0, 0, 0, 0}, "VEC3");
+    json primitive = {{"attributes", {{"POSITION", position}, {"NORMAL", normal}}},
+                      {"indices", doc.indices({0, 2, 1, 0, 3, 2})},
+                      {"targets", json::array({{{"POSITION", delta}}})}};
+    doc.push("meshes", {{"primitives", json::array({primitive})}, {"weights", {weight}}});
+    doc.node({{"name", "sheet"}, {"mesh", 0}, {"translation", {0, 1, 0}}});
+    doc.scene({0});
+    if (animated) {
+        const bool cubic = interpolation == "CUBICSPLINE";
+        // CUBICSPLINE: zero tangents, so the weight eases (smoothstep) from 0 to 1.
+        const int output =
+            doc.floats(cubic ? std::vector<float>{0, 0, 0, 0, 1, 0} : std::vector<float>{0, 1}, "SCALAR");
+        doc.push(
+            "animations",
+            {{"samplers",
+              json::array(
+                  {{{"input", doc.floats({0, 2}, "SCALAR")}, {"output", output}, {"interpolation", interpolation}}})},
+             {"channels", json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}}})}});
+    }
+    return doc;
+}
+
 /// Directional PCSS, spot PCF, point with technique none, point without extras.
 inline Doc lightsDoc() {
     Doc doc;

@@ -333,7 +333,8 @@ TEST(SkinnedShadow, LayersRedrawnOnlyWhenAJointMoved) {
     const DAabb& box = s.scene.world.get<WorldBounds>(s.bar).box;
     const MeshData& data = *s.scene.world.get<Mesh>(s.bar).data;
     for (std::size_t i = 0; i < data.positions.size(); ++i) {
-        const glm::dvec3 p(skin.worldFromFrame * glm::dvec4(glm::dvec3(skinnedPosition(data, skin, i)), 1.0));
+        const glm::dvec3 p(skin.worldFromFrame *
+                           glm::dvec4(glm::dvec3(skinnedPosition(data, skin, i, data.positions[i])), 1.0));
         EXPECT_TRUE(glm::all(glm::greaterThanEqual(p, box.min - 1e-5)) &&
                     glm::all(glm::lessThanEqual(p, box.max + 1e-5)))
             << "vertex " << i << " outside the posed bounds";

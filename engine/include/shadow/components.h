@@ -6,6 +6,7 @@
 
 #include <shadow/ecs.h>
 #include <shadow/math.h>
+#include <shadow/shared_constants.h>
 #include <shadow/techniques.h>
 
 #include <glm/gtc/type_precision.hpp>
@@ -90,6 +91,17 @@ struct MeshData {
     /// Per joint index, the bounds of the positions it moves (weight > 0), in the mesh's own
     /// space (`computeJointBounds`): what a pose's bounds are computed from.
     std::vector<Aabb> jointBounds;
+    /// Morph targets (glTF `primitives[i].targets`), which an instance's `Morph` weights: per
+    /// target, a displacement of every position, target-major (target k's at [k * n, (k + 1) * n)
+    /// for n positions). `morphNormals` and `morphTangents` (xyz of TANGENT) hold the same layout,
+    /// or are empty when no target moves them.
+    std::size_t morphTargets = 0;
+    std::vector<glm::vec3> morphPositions;
+    std::vector<glm::vec3> morphNormals;
+    std::vector<glm::vec3> morphTangents;
+    /// Per target, the bounds of its position displacements (`computeMorphBounds`): what a
+    /// weighted shape's bounds are computed from.
+    std::vector<Aabb> morphBounds;
     /// Every edge, matched by position, is shared by exactly two triangles: a watertight surface
     /// (see `computeClosed`). The second-depth modes (`DepthMode`) need closed casters.
     bool closed = false;
@@ -112,6 +124,8 @@ struct MeshData {
 void computeBounds(MeshData& mesh);
 /// Computes `jointBounds` from `positions`, `joints` and `weights` (empty without them).
 void computeJointBounds(MeshData& mesh);
+/// Computes `morphBounds` from `morphPositions`.
+void computeMorphBounds(MeshData& mesh);
 /// Computes `closed`, `solid`, `thickness` and `planar`: vertices at the same position count as one (a mesh with flat
 /// normals repeats them per face), degenerate triangles are ignored, and every remaining edge
 /// must belong to exactly two triangles (`solid`: one in each direction, and each connected
@@ -249,8 +263,37 @@ struct Skin {
     bool posed = false;  ///< false while a joint is missing or not finite: the mesh is not drawn
 };
 
-/// The skinned position of vertex `i` of `mesh` in `skin`'s frame (`Skin::worldFromFrame`).
-[[nodiscard]] glm::vec3 skinnedPosition(const MeshData& mesh, const Skin& skin, std::size_t i);
+/// The skinned position of vertex `i` of `mesh`, at `p` in the mesh's space (its position, or
+/// its morphed one), in `skin`'s frame (`Skin::worldFromFrame`).
+[[nodiscard]] glm::vec3 skinnedPosition(const MeshData& mesh, const Skin& skin, std::size_t i, const glm::vec3& p);
+
+/// Most morph targets one draw blends (`Morph::drawn`): with more non-zero weights, the ones of
+/// largest magnitude are drawn, alike in every pass and in the reference tracer.
+inline constexpr std::size_t kMaxMorphInfluences = SG_MAX_MORPH_INFLUENCES;
+
+/// One morph target a draw blends and its weight.
+struct MorphInfluence {
+    std::uint32_t target = 0;
+    float weight = 0.0f;
+    bool operator==(const MorphInfluence&) const = default;
+};
+
+/// The morph-target weights of a mesh instance whose mesh has targets (glTF's `weights`: the
+/// node's, else the mesh's, else 0), written by a game or by `weights` animation channels. A
+/// vertex is drawn at position + sum_k weights[k] * displacement_k (normals and tangents alike,
+/// then renormalised), before skinning (glTF). `updateTransforms` picks the targets drawn, the
+/// instance's `WorldBounds`, and marks it moved when the drawn weights changed.
+struct Morph {
+    std::vector<float> weights;  ///< one per target; missing ones count 0, extra ones are ignored
+    /// Written by `updateTransforms`: the finite non-zero weights, at most `kMaxMorphInfluences`
+    /// of largest magnitude, in target order; empty (a rigid draw) when every weight is 0.
+    std::vector<MorphInfluence> drawn;
+    /// Written by `updateTransforms`: more weights were non-zero than `kMaxMorphInfluences`.
+    bool truncated = false;
+};
+
+/// The position of vertex `i` of `mesh` with `morph`'s drawn targets applied.
+[[nodiscard]] glm::vec3 morphedPosition(const MeshData& mesh, const Morph& morph, std::size_t i);
 
 enum class LightType : std::uint8_t { Directional, Spot, Point };
 
@@ -454,14 +497,17 @@ struct Camera {
 
 /// One keyframed channel of a glTF animation, targeting the entity that owns it.
 struct AnimationChannel {
-    enum class Path : std::uint8_t { Translation, Rotation, Scale };
+    /// `Weights` writes the entity's `Morph::weights` (glTF's `weights` path).
+    enum class Path : std::uint8_t { Translation, Rotation, Scale, Weights };
     enum class Interpolation : std::uint8_t { Linear, Step, CubicSpline };
     Path path = Path::Translation;
     Interpolation interpolation = Interpolation::Linear;
     std::vector<float> times;  ///< strictly increasing key times (s)
-    /// Key values: xyz (w unused) or quaternion xyzw. CUBICSPLINE stores three per key:
-    /// in-tangent, value, out-tangent.
+    /// Key values: xyz (w unused) or quaternion xyzw; `Weights`: `width` vec4s per value, the
+    /// morph weights four by four (the last padded with 0). CUBICSPLINE stores three values per
+    /// key: in-tangent, value, out-tangent.
     std::vector<glm::vec4> values;
+    std::uint32_t width = 1;  ///< vec4s per value: 1, or ceil(targets / 4) for `Weights`
 };
 
 /// Keyframed animation of one entity's `Transform`. The clip loops with period `duration`.

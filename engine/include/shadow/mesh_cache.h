@@ -59,6 +59,9 @@ private:
     void bindTextureInPass(const std::shared_ptr<const Texture>& texture, unsigned unit, bool srgb);
     /// Uploads `skin`'s joint matrices and binds them to SG_BINDING_JOINTS for the next draw.
     void bindSkinInPass(const Skin& skin);
+    /// Binds `mesh`'s morph-target displacements (uploaded on first use) to
+    /// SG_BINDING_MORPH_DELTAS; `mesh` was bound by `bindInPass` before.
+    void bindMorphInPass(const MeshData& mesh);
     /// The warnings `warnings` returns, for an engine call to move into its `FrameStats`.
     std::vector<Warning>& pending();
 

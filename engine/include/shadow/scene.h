@@ -25,6 +25,7 @@ struct AnimationClip {
         Entity entity;
         std::vector<AnimationChannel> channels;  ///< this clip's channels of the entity
         Transform rest;                          ///< the entity's transform as loaded
+        std::vector<float> restWeights;          ///< its `Morph::weights` as loaded (none without)
     };
     std::string name;       ///< the file's name for it, or `animation<i>` when it has none
     double duration = 0.0;  ///< its last key time (s)

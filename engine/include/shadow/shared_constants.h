@@ -74,9 +74,13 @@
 #define SG_SDF_CLUSTER 16
 
 // The module's own mesh programs (main pass, shadow pass): a material's base-colour texture's
-// unit, and the shader-storage binding of a skinned mesh's joint matrices.
+// unit, the shader-storage binding of a skinned mesh's joint matrices.
 #define SG_UNIT_BASE_COLOR 28
 #define SG_BINDING_JOINTS 3
+// A morphed mesh's target displacements (shaders/mesh_vertex.glsl), and the most targets one draw
+// blends (kMaxMorphInfluences).
+#define SG_BINDING_MORPH_DELTAS 4
+#define SG_MAX_MORPH_INFLUENCES 16
 // A material's other maps (shaders/material.glsl). Only the forward lit pass and the stage's
 // surface pass read them, and neither reads the stage's targets nor the mask's inputs: they
 // take those units (the forward lit pass binds the shadow units 0-23, the distance-field

@@ -166,10 +166,14 @@ GlState captureGlState(std::span<const GLint> units, std::span<const GLint> unif
     gl.GetIntegerv(GL_UNIFORM_BUFFER_BINDING, &s.uniformBuffer);
     captureBindings(s, units, uniformBindings, imageUnits);
     gl.GetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &s.storageBuffer);
-    s.jointStorage.index = SG_BINDING_JOINTS;
-    gl.GetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, SG_BINDING_JOINTS, &s.jointStorage.buffer);
-    gl.GetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, SG_BINDING_JOINTS, &s.jointStorage.start);
-    gl.GetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, SG_BINDING_JOINTS, &s.jointStorage.size);
+    s.meshStorage[0].index = SG_BINDING_JOINTS;
+    s.meshStorage[1].index = SG_BINDING_MORPH_DELTAS;
+    for (GlState::UniformBinding& b : s.meshStorage) {
+        const auto index = static_cast<GLuint>(b.index);
+        gl.GetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, index, &b.buffer);
+        gl.GetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, index, &b.start);
+        gl.GetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, index, &b.size);
+    }
     return s;
 }
 
@@ -290,12 +294,15 @@ void restoreBindings(const GlState& s, std::uint64_t mark) {
                             texture != 0 ? b.layered : GL_FALSE, texture != 0 ? b.layer : 0,
                             static_cast<GLenum>(b.access), static_cast<GLenum>(b.format));
     }
-    const GLuint joints = stillNamed(GL_BUFFER, s.jointStorage.buffer, mark);
-    if (joints != 0 && s.jointStorage.size > 0) {
-        gl.BindBufferRange(GL_SHADER_STORAGE_BUFFER, SG_BINDING_JOINTS, joints,
-                           static_cast<GLintptr>(s.jointStorage.start), static_cast<GLsizeiptr>(s.jointStorage.size));
-    } else {
-        gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SG_BINDING_JOINTS, joints);
+    for (const GlState::UniformBinding& b : s.meshStorage) {
+        const GLuint buffer = stillNamed(GL_BUFFER, b.buffer, mark);
+        const auto index = static_cast<GLuint>(b.index);
+        if (buffer != 0 && b.size > 0) {
+            gl.BindBufferRange(GL_SHADER_STORAGE_BUFFER, index, buffer, static_cast<GLintptr>(b.start),
+                               static_cast<GLsizeiptr>(b.size));
+        } else {
+            gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, index, buffer);
+        }
     }
     // Indexed binds also set the generic binding: it goes back last.
     gl.BindBuffer(GL_UNIFORM_BUFFER, stillNamed(GL_BUFFER, s.uniformBuffer, mark));

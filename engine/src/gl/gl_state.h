@@ -176,9 +176,10 @@ struct GlState {
     };
     std::array<UniformBinding, 4> uniformBindings{};
     std::size_t uniformBindingCount = 0;
-    /// The shader-storage binding the mesh programs read joint matrices from (SG_BINDING_JOINTS),
-    /// always captured, and the generic GL_SHADER_STORAGE_BUFFER binding.
-    UniformBinding jointStorage{};
+    /// The shader-storage bindings the mesh programs read (SG_BINDING_JOINTS, the joint matrices;
+    /// SG_BINDING_MORPH_DELTAS, morph displacements), always captured, and the generic
+    /// GL_SHADER_STORAGE_BUFFER binding.
+    std::array<UniformBinding, 2> meshStorage{};
     GLint storageBuffer = 0;
     struct ImageBinding {
         GLint unit = 0;

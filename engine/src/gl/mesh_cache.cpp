@@ -40,6 +40,7 @@ struct GpuMesh {
     gpu::Buffer vertices;
     gpu::Buffer skinVertices;
     gpu::Buffer mapVertices;
+    gpu::Buffer morphDeltas;  ///< made on the first draw with a target drawn (every weight 0: never)
     gpu::Buffer indices;
     int indexCount = 0;
 };
@@ -130,6 +131,25 @@ struct JointRing {
         cursor += (bytes + alignment - 1) / alignment * alignment;
     }
 };
+/// The mesh's morph-target displacements in the layout shaders/mesh_vertex.glsl reads: per
+/// vertex, per target, position, normal and tangent (zero where the mesh has none).
+gpu::Buffer uploadMorphDeltas(const MeshData& mesh, const std::string& label) {
+    const std::size_t n = mesh.positions.size();
+    const std::size_t targets = mesh.morphTargets;
+    std::vector<glm::vec4> deltas(n * targets * 3, glm::vec4(0.0f));
+    const std::array<const std::vector<glm::vec3>*, 3> sources{&mesh.morphPositions, &mesh.morphNormals,
+                                                               &mesh.morphTangents};
+    for (std::size_t a = 0; a < 3; ++a) {
+        if (sources[a]->size() != n * targets) continue;
+        for (std::size_t k = 0; k < targets; ++k) {
+            for (std::size_t v = 0; v < n; ++v)
+                deltas[(v * targets + k) * 3 + a] = glm::vec4((*sources[a])[k * n + v], 0.0f);
+        }
+    }
+    return gpu::makeBuffer(label + "/morph", static_cast<GLsizeiptr>(deltas.size() * sizeof(glm::vec4)), deltas.data(),
+                           0);
+}
+
 }  // namespace
 
 struct MeshCache::Impl {
@@ -195,6 +215,44 @@ void MeshCache::bindTextureInPass(const std::shared_ptr<const Texture>& texture,
 }
 
 void MeshCache::bindSkinInPass(const Skin& skin) { impl_->joints.bind(skin.frameFromMesh); }
+
+namespace gpu {
+
+DeformUniforms DeformUniforms::of(GLuint program) {
+    DeformUniforms u;
+    u.skinned = gl.GetUniformLocation(program, "uSkinned");
+    u.morphCount = gl.GetUniformLocation(program, "uMorphCount");
+    u.morphTargets = gl.GetUniformLocation(program, "uMorphTargets");
+    u.morphInfluences = gl.GetUniformLocation(program, "uMorphInfluences");
+    return u;
+}
+
+int MeshCacheAccess::bindDeformed(MeshCache& cache, const std::shared_ptr<const MeshData>& mesh, GLuint program,
+                                  const DeformUniforms& uniforms, const Skin* skin, const Morph* morph) {
+    const int indices = cache.bindInPass(mesh);
+    gl.ProgramUniform1i(program, uniforms.skinned, skin != nullptr ? 1 : 0);
+    if (skin != nullptr) cache.bindSkinInPass(*skin);
+    const std::size_t count = morph != nullptr ? std::min(morph->drawn.size(), kMaxMorphInfluences) : 0;
+    gl.ProgramUniform1i(program, uniforms.morphCount, static_cast<GLint>(count));
+    if (count == 0) return indices;
+    std::array<glm::vec2, kMaxMorphInfluences> influences{};
+    for (std::size_t i = 0; i < count; ++i) {
+        influences[i] = glm::vec2(static_cast<float>(morph->drawn[i].target), morph->drawn[i].weight);
+    }
+    gl.ProgramUniform1i(program, uniforms.morphTargets, static_cast<GLint>(mesh->morphTargets));
+    gl.ProgramUniform2fv(program, uniforms.morphInfluences, static_cast<GLsizei>(count), &influences[0].x);
+    cache.bindMorphInPass(*mesh);
+    return indices;
+}
+
+}  // namespace gpu
+
+void MeshCache::bindMorphInPass(const MeshData& mesh) {
+    const auto it = impl_->meshes.find(&mesh);
+    if (it == impl_->meshes.end() || mesh.morphTargets == 0) return;  // bound by bindInPass first
+    if (!it->second.morphDeltas) it->second.morphDeltas = uploadMorphDeltas(mesh, "Mesh/" + mesh.name);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SG_BINDING_MORPH_DELTAS, it->second.morphDeltas.get());
+}
 
 int MeshCache::bind(const std::shared_ptr<const MeshData>& mesh) {
     gpu::reportHostGlErrors("MeshCache::bind", impl_->pending, gpu::kMaxPendingWarnings);

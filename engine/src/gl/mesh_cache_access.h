@@ -5,11 +5,24 @@
 
 #include <shadow/mesh_cache.h>
 
+#include "gl/gl_api.h"
+
 #include <cstddef>
 #include <memory>
 #include <vector>
 
 namespace shadow::gpu {
+
+/// A mesh program's uniforms of deformation (shaders/mesh_vertex.glsl): skinning and morph
+/// targets; -1 where the program has none.
+struct DeformUniforms {
+    GLint skinned = -1;
+    GLint morphCount = -1;
+    GLint morphTargets = -1;
+    GLint morphInfluences = -1;
+    /// The locations in `program`.
+    [[nodiscard]] static DeformUniforms of(GLuint program);
+};
 
 /// What the engine's passes call on a `MeshCache`.
 struct MeshCacheAccess {
@@ -21,8 +34,12 @@ struct MeshCacheAccess {
                             bool srgb = true) {
         cache.bindTextureInPass(texture, unit, srgb);
     }
-    /// Binds a posed skin's joint matrices for the next draw (SG_BINDING_JOINTS).
-    static void bindSkin(MeshCache& cache, const Skin& skin) { cache.bindSkinInPass(skin); }
+    /// Draws `mesh` with `program` next: binds it and returns its index count, with its
+    /// deformation (each may be null) set in `program` and bound: a posed skin's joint matrices
+    /// (SG_BINDING_JOINTS), a morph's drawn targets (their displacements at
+    /// SG_BINDING_MORPH_DELTAS). A rigid draw, or a morph with no target drawn, binds nothing.
+    static int bindDeformed(MeshCache& cache, const std::shared_ptr<const MeshData>& mesh, GLuint program,
+                            const DeformUniforms& uniforms, const Skin* skin, const Morph* morph);
     /// `MeshCache::collect` without reading the host's errors.
     static std::size_t collect(MeshCache& cache) { return cache.collectInPass(); }
     /// The cache's pending warnings (`MeshCache::warnings`), to move into a frame's stats.

@@ -46,7 +46,8 @@ struct Instance {
     std::shared_ptr<const MeshData> data;
     bool casts = true;
     bool receives = true;
-    const Skin* skin = nullptr;  ///< a posed skin: its vertices go through it (the world outlives the build)
+    const Skin* skin = nullptr;    ///< a posed skin: its vertices go through it (the world outlives the build)
+    const Morph* morph = nullptr;  ///< morph targets drawn: applied before the skin (the world outlives the build)
     std::optional<AlphaTest> alphaTest;
 };
 
@@ -162,8 +163,10 @@ std::vector<Instance> gatherInstances(World& world) {
         if (const Material* m = world.tryGet<Material>(e); m != nullptr && m->cutout()) {
             alphaTest = AlphaTest{m->baseColorTexture, m->alpha, m->alphaCutoff};
         }
+        const Morph* morph = world.tryGet<Morph>(e);
         instances.push_back({meshName(world, e, *mesh.data), skin != nullptr ? skin->worldFromFrame : wt.worldFromLocal,
-                             mesh.data, mesh.castShadows, mesh.receiveShadows, skin, std::move(alphaTest)});
+                             mesh.data, mesh.castShadows, mesh.receiveShadows, skin,
+                             morph != nullptr && !morph->drawn.empty() ? morph : nullptr, std::move(alphaTest)});
     });
     // The view walks its pool back to front; keep a stable, readable order (creation order).
     std::reverse(instances.begin(), instances.end());
@@ -182,8 +185,10 @@ Result<std::vector<std::vector<glm::dvec3>>> worldPositions(const std::vector<In
         const bool skinned =
             instance.skin != nullptr && d.joints.size() == d.positions.size() && d.weights.size() == d.positions.size();
         for (std::size_t i = 0; i < d.positions.size(); ++i) {
-            // A skinned vertex is posed as the vertex shader poses it (shaders/mesh_vertex.glsl).
-            const glm::vec3 p = skinned ? skinnedPosition(d, *instance.skin, i) : d.positions[i];
+            // Morphed, then skinned, as the vertex shader does it (shaders/mesh_vertex.glsl).
+            const glm::vec3 morphed =
+                instance.morph != nullptr ? morphedPosition(d, *instance.morph, i) : d.positions[i];
+            const glm::vec3 p = skinned ? skinnedPosition(d, *instance.skin, i, morphed) : morphed;
             ws.emplace_back(instance.worldFromLocal * glm::dvec4(glm::dvec3(p), 1.0));
             bounds.extend(ws.back());
         }

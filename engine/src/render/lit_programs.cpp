@@ -23,7 +23,7 @@ MeshUniforms meshUniforms(GLuint program) {
     m.csFromLocal = gl.GetUniformLocation(program, "uCsFromLocal");
     m.normalFromLocal = gl.GetUniformLocation(program, "uNormalFromLocal");
     m.clipFromCs = gl.GetUniformLocation(program, "uClipFromCs");
-    m.skinned = gl.GetUniformLocation(program, "uSkinned");
+    m.deform = gpu::DeformUniforms::of(program);
     return m;
 }
 

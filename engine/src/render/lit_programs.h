@@ -2,6 +2,7 @@
 // configuration (`LitVariant`), compiled on first use and cached.
 #pragma once
 
+#include "gl/mesh_cache_access.h"
 #include "gl/objects.h"
 #include "render/light_packing.h"
 
@@ -15,7 +16,8 @@ namespace shadow::render {
 
 /// Uniform locations shared by the pre-pass and the lit programs (lit.vert.glsl).
 struct MeshUniforms {
-    GLint csFromLocal = -1, normalFromLocal = -1, clipFromCs = -1, skinned = -1;
+    GLint csFromLocal = -1, normalFromLocal = -1, clipFromCs = -1;
+    gpu::DeformUniforms deform;
 };
 
 /// Uniform locations of a mesh's material (shaders/material.glsl), shared by the lit programs and

@@ -280,9 +280,8 @@ void Renderer::Impl::drawMeshes(const World& world, const CameraView& cam, const
         gl.ProgramUniformMatrix4fv(program, uniforms->csFromLocal, 1, GL_FALSE, glm::value_ptr(glm::mat4(csFromLocal)));
         const glm::mat3 normalFromLocal(glm::transpose(glm::inverse(linear)));
         gl.ProgramUniformMatrix3fv(program, uniforms->normalFromLocal, 1, GL_FALSE, glm::value_ptr(normalFromLocal));
-        gl.ProgramUniform1i(program, uniforms->skinned, skin != nullptr ? 1 : 0);
-        if (skin != nullptr) gpu::MeshCacheAccess::bindSkin(meshes, *skin);
-        const int indices = gpu::MeshCacheAccess::bind(meshes, mesh.data);
+        const int indices = gpu::MeshCacheAccess::bindDeformed(meshes, mesh.data, program, uniforms->deform, skin,
+                                                               world.tryGet<Morph>(e));
         gl.DrawElements(GL_TRIANGLES, indices, GL_UNSIGNED_INT, nullptr);
         ++draws;
     });

@@ -1,5 +1,5 @@
 // The animation system: keyframed glTF channels, then procedural motion, written into local
-// `Transform`s.
+// `Transform`s (and `weights` channels into `Morph::weights`).
 //
 // Sampling follows the glTF 2.0 spec, appendix C: LINEAR (spherical linear for rotations,
 // along the shorter arc), STEP, and CUBICSPLINE (cubic Hermite with tangents scaled by the
@@ -76,13 +76,18 @@ KeySpan locate(const std::vector<float>& times, double t) {
     return {k, std::clamp((t - t0) / dt, 0.0, 1.0), dt};
 }
 
+/// Vec4 `part` of the channel's value `i` (`AnimationChannel::width` vec4s each).
+glm::dvec4 value(const AnimationChannel& c, std::size_t i, std::size_t part) {
+    return glm::dvec4(c.values[i * c.width + part]);
+}
+
 /// Cubic Hermite per glTF: values are stored as (in-tangent, value, out-tangent) per key.
-glm::dvec4 hermite(const std::vector<glm::vec4>& v, const KeySpan& s) {
-    const glm::dvec4 p0(v[3 * s.k + 1]);
+glm::dvec4 hermite(const AnimationChannel& c, const KeySpan& s, std::size_t part) {
+    const glm::dvec4 p0 = value(c, 3 * s.k + 1, part);
     if (s.dt == 0.0) return p0;
-    const glm::dvec4 m0 = glm::dvec4(v[3 * s.k + 2]) * s.dt;
-    const glm::dvec4 p1(v[3 * (s.k + 1) + 1]);
-    const glm::dvec4 m1 = glm::dvec4(v[3 * (s.k + 1)]) * s.dt;
+    const glm::dvec4 m0 = value(c, 3 * s.k + 2, part) * s.dt;
+    const glm::dvec4 p1 = value(c, 3 * (s.k + 1) + 1, part);
+    const glm::dvec4 m1 = value(c, 3 * (s.k + 1), part) * s.dt;
     const double u = s.u, u2 = u * u, u3 = u2 * u;
     return (2.0 * u3 - 3.0 * u2 + 1.0) * p0 + (u3 - 2.0 * u2 + u) * m0 + (-2.0 * u3 + 3.0 * u2) * p1 + (u3 - u2) * m1;
 }
@@ -91,33 +96,50 @@ glm::dvec4 hermite(const std::vector<glm::vec4>& v, const KeySpan& s) {
 bool wellFormed(const AnimationChannel& c) {
     if (c.times.empty()) return false;
     const std::size_t perKey = c.interpolation == Interpolation::CubicSpline ? 3 : 1;
-    return c.values.size() >= perKey * c.times.size();
+    return c.width > 0 && c.values.size() >= perKey * c.times.size() * c.width;
 }
 
-/// The channel's value at clip time `t`, rotations as xyzw (not yet normalised).
-glm::dvec4 sample(const AnimationChannel& c, double t) {
-    const KeySpan s = locate(c.times, t);
+/// Vec4 `part` of the channel's value at the time `s` locates, rotations as xyzw (not yet
+/// normalised).
+glm::dvec4 sample(const AnimationChannel& c, const KeySpan& s, std::size_t part = 0) {
     switch (c.interpolation) {
-        case Interpolation::Step: return glm::dvec4(c.values[s.k]);
-        case Interpolation::CubicSpline: return hermite(c.values, s);
+        case Interpolation::Step: return value(c, s.k, part);
+        case Interpolation::CubicSpline: return hermite(c, s, part);
         case Interpolation::Linear: break;
     }
-    const glm::dvec4 a(c.values[s.k]);
+    const glm::dvec4 a = value(c, s.k, part);
     if (s.dt == 0.0) return a;
-    const glm::dvec4 b(c.values[s.k + 1]);
+    const glm::dvec4 b = value(c, s.k + 1, part);
     if (c.path != Path::Rotation) return glm::mix(a, b, s.u);
     const glm::dquat q = slerpShortest(toUnitQuat(a), toUnitQuat(b), s.u);
     return glm::dvec4(q.x, q.y, q.z, q.w);
 }
 
-void applyChannel(const AnimationChannel& c, double t, Transform& transform) {
+/// Writes a `Weights` channel's value into `morph`'s weights (those it has), four at a time.
+void applyWeights(const AnimationChannel& c, const KeySpan& s, Morph& morph) {
+    for (std::size_t part = 0; part < c.width; ++part) {
+        const glm::dvec4 v = sample(c, s, part);
+        for (std::size_t k = 0; k < 4 && 4 * part + k < morph.weights.size(); ++k) {
+            const double w = v[static_cast<int>(k)];
+            if (std::isfinite(w)) morph.weights[4 * part + k] = static_cast<float>(w);
+        }
+    }
+}
+
+void applyChannel(const AnimationChannel& c, double t, Transform& transform, Morph* morph) {
     if (!wellFormed(c)) return;
-    const glm::dvec4 v = sample(c, t);
+    const KeySpan s = locate(c.times, t);
+    if (c.path == Path::Weights) {
+        if (morph != nullptr) applyWeights(c, s, *morph);
+        return;
+    }
+    const glm::dvec4 v = sample(c, s);
     if (!isFinite(v)) return;
     switch (c.path) {
         case Path::Translation: transform.translation = glm::dvec3(v); break;
         case Path::Rotation: transform.rotation = toUnitQuat(v); break;
         case Path::Scale: transform.scale = glm::dvec3(v); break;
+        case Path::Weights: break;
     }
 }
 
@@ -160,9 +182,10 @@ void applyMotion(const ProceduralMotion& m, double t, Transform& transform) {
 // for whatever the motion writes (Orbit/Bob: translation; Spin: rotation).
 void animate(World& world, double t) {
     if (!std::isfinite(t) || t < 0.0) t = 0.0;
-    world.view<Transform, Animation>().each([t](Entity, Transform& transform, Animation& anim) {
+    world.view<Transform, Animation>().each([&world, t](Entity e, Transform& transform, Animation& anim) {
         const double local = clipTime(t, anim.duration);
-        for (const AnimationChannel& channel : anim.channels) applyChannel(channel, local, transform);
+        Morph* morph = world.tryGet<Morph>(e);
+        for (const AnimationChannel& channel : anim.channels) applyChannel(channel, local, transform, morph);
     });
     world.view<Transform, ProceduralMotion>().each(
         [t](Entity, Transform& transform, ProceduralMotion& motion) { applyMotion(motion, t, transform); });

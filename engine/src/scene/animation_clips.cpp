@@ -53,6 +53,9 @@ Status playAnimation(Scene& scene, const std::string& choice) {
             transform->translation = target.rest.translation;
             transform->rotation = target.rest.rotation;
             transform->scale = target.rest.scale;
+            if (Morph* morph = world.tryGet<Morph>(target.entity); morph != nullptr && !target.restWeights.empty()) {
+                morph->weights = target.restWeights;
+            }
             world.remove<Animation>(target.entity);
         }
     }

@@ -16,6 +16,7 @@ std::optional<Path> parsePath(const std::string& path) {
     if (path == "translation") return Path::Translation;
     if (path == "rotation") return Path::Rotation;
     if (path == "scale") return Path::Scale;
+    if (path == "weights") return Path::Weights;
     return std::nullopt;
 }
 
@@ -38,10 +39,29 @@ Result<std::vector<float>> readKeyTimes(const tinygltf::Model& model, int access
     return times;
 }
 
-/// Output values as vec4 (xyz keys get w = 0).
-Result<std::vector<glm::vec4>> readKeyValues(const tinygltf::Model& model, int accessor, Path path,
+/// Morph weights, `targets` per value, packed four to a vec4 (`AnimationChannel::width` each).
+Result<std::vector<glm::vec4>> readWeightValues(const tinygltf::Model& model, int accessor, std::size_t targets,
+                                                const std::string& where) {
+    auto scalars = readScalars(model, accessor, where);
+    if (!scalars) return scalars.error();
+    if (scalars->size() % targets != 0) {
+        return elementError(where, "has " + std::to_string(scalars->size()) + " weights, not a multiple of the " +
+                                       std::to_string(targets) + " morph targets");
+    }
+    const std::size_t width = (targets + 3) / 4;
+    std::vector<glm::vec4> out(scalars->size() / targets * width, glm::vec4(0.0f));
+    for (std::size_t i = 0; i < scalars->size(); ++i) {
+        const std::size_t value = i / targets, k = i % targets;
+        out[value * width + k / 4][static_cast<int>(k % 4)] = (*scalars)[i];
+    }
+    return out;
+}
+
+/// Output values as vec4 (xyz keys get w = 0; weights packed, see readWeightValues).
+Result<std::vector<glm::vec4>> readKeyValues(const tinygltf::Model& model, int accessor, Path path, std::size_t targets,
                                              const std::string& where) {
     if (path == Path::Rotation) return readRotations(model, accessor, where);
+    if (path == Path::Weights) return readWeightValues(model, accessor, targets, where);
     auto xyz = readVec3(model, accessor, where);
     if (!xyz) return xyz.error();
     std::vector<glm::vec4> out(xyz->size());
@@ -49,26 +69,37 @@ Result<std::vector<glm::vec4>> readKeyValues(const tinygltf::Model& model, int a
     return out;
 }
 
+/// `targets`: the morph targets a `weights` channel's node has (0 for other paths).
 Result<AnimationChannel> importSampler(const tinygltf::Model& model, const tinygltf::AnimationSampler& sampler,
-                                       Path path, const std::string& where) {
+                                       Path path, std::size_t targets, const std::string& where) {
     AnimationChannel channel;
     channel.path = path;
+    channel.width = path == Path::Weights ? static_cast<std::uint32_t>((targets + 3) / 4) : 1;
     auto interpolation = parseInterpolation(sampler.interpolation, where);
     if (!interpolation) return interpolation.error();
     channel.interpolation = *interpolation;
     auto times = readKeyTimes(model, sampler.input, where + ".input");
     if (!times) return times.error();
     channel.times = std::move(*times);
-    auto values = readKeyValues(model, sampler.output, path, where + ".output");
+    auto values = readKeyValues(model, sampler.output, path, targets, where + ".output");
     if (!values) return values.error();
     channel.values = std::move(*values);
     const std::size_t perKey = channel.interpolation == Interpolation::CubicSpline ? 3 : 1;
-    if (channel.values.size() != perKey * channel.times.size()) {
-        return elementError(where + ".output", "has " + std::to_string(channel.values.size()) + " values for " +
+    const std::size_t count = channel.values.size() / channel.width;
+    if (count != perKey * channel.times.size()) {
+        return elementError(where + ".output", "has " + std::to_string(count) + " values for " +
                                                    std::to_string(channel.times.size()) + " keys (expected " +
                                                    std::to_string(perKey * channel.times.size()) + ")");
     }
     return channel;
+}
+
+/// The morph targets of `nodes[node]`'s mesh (glTF: every primitive has as many); 0 without.
+std::size_t morphTargetsOf(const tinygltf::Model& model, int node) {
+    const int mesh = model.nodes[static_cast<std::size_t>(node)].mesh;
+    if (mesh < 0 || static_cast<std::size_t>(mesh) >= model.meshes.size()) return 0;
+    const auto& primitives = model.meshes[static_cast<std::size_t>(mesh)].primitives;
+    return primitives.empty() ? 0 : primitives.front().targets.size();
 }
 
 /// The usable channels of `animations[index]`.
@@ -90,8 +121,13 @@ Result<ImportedClip> importAnimation(const tinygltf::Model& model, std::size_t i
             return elementError(channelWhere + ".target.node",
                                 "node " + std::to_string(channel.target_node) + " does not exist");
         }
+        const std::size_t targets = *path == Path::Weights ? morphTargetsOf(model, channel.target_node) : 0;
+        if (*path == Path::Weights && targets == 0) {
+            return elementError(channelWhere + ".target.node", "node " + std::to_string(channel.target_node) +
+                                                                   " has no mesh with morph targets for its weights");
+        }
         const auto samplerIndex = static_cast<std::size_t>(channel.sampler);
-        auto sampled = importSampler(model, animation.samplers[samplerIndex], *path,
+        auto sampled = importSampler(model, animation.samplers[samplerIndex], *path, targets,
                                      where + "." + indexed("samplers", samplerIndex));
         if (!sampled) return sampled.error();
         out.duration = std::max(out.duration, static_cast<double>(sampled->times.back()));

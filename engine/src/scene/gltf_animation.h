@@ -19,8 +19,8 @@ struct ImportedClip {
 };
 
 /// The keyframed channels of every glTF animation, one `ImportedClip` per animation in file
-/// order. Channels targeting translation, rotation or scale are kept, others (morph `weights`,
-/// extension paths) are left out.
+/// order. Channels targeting translation, rotation, scale or morph `weights` (of a node whose
+/// mesh has morph targets) are kept, others (extension paths) are left out.
 ///
 /// Checked: sampler and node indices, interpolation names, key times finite and strictly
 /// increasing, output counts (three per key for CUBICSPLINE), finite values.

@@ -21,8 +21,9 @@
 // joint nodes (posed by `updateTransforms`).
 //
 // The file's animations become `Scene::clips`; the one `GltfLoadOptions::animation` names plays
-// (animation_clips.cpp). What the module leaves out (morph targets, textures other than base
-// colour, KHR_texture_transform, ...) is one warning per kind, from the one table of
+// (animation_clips.cpp). Morph targets become a `Morph` on the mesh's entities (weights: the node's, else
+// the mesh's), which `weights` channels animate. What the module leaves out (vertex colours,
+// material extensions, ...) is one warning per kind, from the one table of
 // gltf_support.cpp; orthographic cameras are an error when a node uses one.
 //
 // Each step lives in a file of its topic: gltf_parse (bytes to a tinygltf model, with
@@ -35,8 +36,10 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string_view>
 
@@ -67,6 +70,9 @@ struct Importer {
     std::vector<Entity> entityOfNode;  ///< null for nodes outside the chosen scene
     /// Entities carrying a mesh of a skinned node, with that node: skinned once every node is.
     std::vector<std::pair<Entity, std::size_t>> skinned;
+    /// Per node, the entities carrying its mesh's primitives when they have morph targets: what
+    /// the node's `weights` channels animate.
+    std::vector<std::vector<Entity>> morphedOfNode;
     Scene scene;
 
     Importer(const tinygltf::Model& m, const GltfLoadOptions& o) : model(m), options(o) {}
@@ -92,6 +98,28 @@ struct Importer {
         return &*meshes[index];
     }
 
+    /// The morph weights of `nodes[nodeIndex]`'s mesh, whose primitives have `targets` each: the
+    /// node's `weights`, else the mesh's, else zeros; each list one finite number per target.
+    Result<std::vector<float>> morphWeights(std::size_t nodeIndex, std::size_t targets) const {
+        const tinygltf::Node& node = model.nodes[nodeIndex];
+        const auto meshIndex = static_cast<std::size_t>(node.mesh);
+        const bool own = !node.weights.empty();
+        const std::vector<double>& weights = own ? node.weights : model.meshes[meshIndex].weights;
+        if (weights.empty()) return std::vector<float>(targets, 0.0f);
+        const std::string where = (own ? indexed("nodes", nodeIndex) : indexed("meshes", meshIndex)) + ".weights";
+        if (weights.size() != targets) {
+            return gltf::elementError(where, "has " + std::to_string(weights.size()) + " weights for " +
+                                                 std::to_string(targets) + " morph targets");
+        }
+        std::vector<float> out;
+        for (const double w : weights) {
+            if (!std::isfinite(static_cast<float>(w)))
+                return gltf::elementError(where, "has a weight that is not finite");
+            out.push_back(static_cast<float>(w));
+        }
+        return out;
+    }
+
     Status addMesh(std::size_t nodeIndex, Entity e, const std::string& name) {
         const tinygltf::Node& node = model.nodes[nodeIndex];
         auto parts = meshParts(static_cast<std::size_t>(node.mesh));
@@ -101,10 +129,21 @@ struct Importer {
                                       where, scene.warnings);
         if (!flags) return flags.error();
         gltf::warnUnknownShadowKeys(node.extras, where, /*light=*/false, scene.warnings);
+        const std::size_t targets = (*parts)->empty() ? 0 : (*parts)->front().data->morphTargets;
+        std::vector<float> weights;
+        if (targets > 0) {
+            auto w = morphWeights(nodeIndex, targets);
+            if (!w) return w.error();
+            weights = std::move(*w);
+        }
         const auto attach = [&](Entity target, const gltf::MeshPart& part) {
             scene.world.emplace<Mesh>(target, Mesh{part.data, flags->cast, flags->receive});
             scene.world.emplace<Material>(target, part.material);
             if (node.skin >= 0) skinned.emplace_back(target, nodeIndex);
+            if (targets > 0) {
+                scene.world.emplace<Morph>(target, Morph{weights, {}, false});
+                morphedOfNode[nodeIndex].push_back(target);
+            }
         };
         if ((*parts)->size() == 1) {
             attach(e, (**parts)[0]);
@@ -215,15 +254,26 @@ struct Importer {
             AnimationClip& clip = scene.clips.emplace_back();
             clip.name = std::move(imported.name);
             clip.duration = imported.duration;
-            std::vector<std::size_t> targetOfNode(model.nodes.size(), SIZE_MAX);
-            for (auto& [node, channel] : imported.channels) {
-                const Entity e = entityOfNode[node];
-                if (e.isNull()) continue;
-                if (targetOfNode[node] == SIZE_MAX) {
-                    targetOfNode[node] = clip.targets.size();
-                    clip.targets.push_back({e, {}, scene.world.get<Transform>(e)});
+            std::map<std::uint32_t, std::size_t> targetOf;  // by entity bits
+            const auto add = [&](Entity e, const AnimationChannel& channel) {
+                const auto [it, added] = targetOf.emplace(e.bits(), clip.targets.size());
+                if (added) {
+                    const Morph* morph = scene.world.tryGet<Morph>(e);
+                    clip.targets.push_back({e,
+                                            {},
+                                            scene.world.get<Transform>(e),
+                                            morph != nullptr ? morph->weights : std::vector<float>{}});
                 }
-                clip.targets[targetOfNode[node]].channels.push_back(std::move(channel));
+                clip.targets[it->second].channels.push_back(channel);
+            };
+            for (auto& [node, channel] : imported.channels) {
+                if (entityOfNode[node].isNull()) continue;
+                if (channel.path != AnimationChannel::Path::Weights) {
+                    add(entityOfNode[node], channel);
+                    continue;
+                }
+                // A node's weights morph each primitive of its mesh (one entity, or one per primitive).
+                for (const Entity e : morphedOfNode[node]) add(e, channel);
             }
         }
     }
@@ -284,6 +334,7 @@ Result<Scene> buildScene(const gltf::ParsedGltf& parsed, const std::string& name
     importer.clips = std::move(*clips);
     importer.meshes.resize(model.meshes.size());
     importer.entityOfNode.assign(model.nodes.size(), Entity::null());
+    importer.morphedOfNode.resize(model.nodes.size());
     importer.scene.name = name;
     if (auto st = importer.instantiateAll(*roots); !st) return st.error();
     if (auto st = importer.addSkins(); !st) return st.error();

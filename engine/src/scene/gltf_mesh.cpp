@@ -129,6 +129,46 @@ Status readSkinning(const tinygltf::Model& model, const tinygltf::Primitive& pri
     return Ok{};
 }
 
+/// Target `k`'s displacements of `attribute` into block k of `out` (n per target; zeros without
+/// them, `out` stays empty when no target has them). Each must be a float VEC3 of one element
+/// per POSITION.
+Status readMorphAttribute(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const char* attribute,
+                          const std::string& where, std::size_t n, std::vector<glm::vec3>& out) {
+    const std::size_t targets = primitive.targets.size();
+    for (std::size_t k = 0; k < targets; ++k) {
+        const auto it = primitive.targets[k].find(attribute);
+        if (it == primitive.targets[k].end()) continue;
+        const std::string targetWhere = where + "." + indexed("targets", k) + "." + attribute;
+        auto deltas = readVec3(model, it->second, targetWhere);
+        if (!deltas) return deltas.error();
+        if (deltas->size() != n) {
+            return elementError(
+                targetWhere, "has " + std::to_string(deltas->size()) + " elements, POSITION has " + std::to_string(n));
+        }
+        out.resize(targets * n, glm::vec3(0.0f));
+        std::copy(deltas->begin(), deltas->end(), out.begin() + static_cast<std::ptrdiff_t>(k * n));
+    }
+    return Ok{};
+}
+
+/// The primitive's morph targets: POSITION, NORMAL (where the primitive has normals) and TANGENT
+/// (where it has the file's tangents) displacements; other attributes of a target are not read.
+Status readMorphTargets(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const std::string& where,
+                        MeshData& mesh) {
+    if (primitive.targets.empty()) return Ok{};
+    const std::size_t n = mesh.positions.size();
+    mesh.morphTargets = primitive.targets.size();
+    if (auto st = readMorphAttribute(model, primitive, "POSITION", where, n, mesh.morphPositions); !st) return st;
+    if (!mesh.normals.empty()) {
+        if (auto st = readMorphAttribute(model, primitive, "NORMAL", where, n, mesh.morphNormals); !st) return st;
+    }
+    if (!mesh.tangents.empty()) {
+        if (auto st = readMorphAttribute(model, primitive, "TANGENT", where, n, mesh.morphTangents); !st) return st;
+    }
+    if (mesh.morphPositions.empty()) mesh.morphPositions.assign(mesh.morphTargets * n, glm::vec3(0.0f));
+    return Ok{};
+}
+
 /// The warning for a texture that reads `TEXCOORD_<set>`, which the primitive at `where` lacks.
 Warning missingTexcoord(const tinygltf::Model& model, const tinygltf::Primitive& primitive, int set,
                         const std::string& where, const char* texture) {
@@ -194,6 +234,7 @@ Result<std::optional<MeshPart>> importPrimitive(const tinygltf::Model& model, co
     if (auto st = readMaterialInputs(model, primitive, where, *material, *mesh); !st) return st.error();
     dropMapsWithoutTexcoords(model, primitive, where, *material, *mesh, warnings);
     if (auto st = readSkinning(model, primitive, where, *mesh); !st) return st.error();
+    if (auto st = readMorphTargets(model, primitive, where, *mesh); !st) return st.error();
     if (mesh->normals.empty()) {
         makeFlatNormals(*mesh);
     } else {
@@ -208,6 +249,7 @@ Result<std::optional<MeshPart>> importPrimitive(const tinygltf::Model& model, co
     }
     computeClosed(*mesh);
     computeJointBounds(*mesh);
+    computeMorphBounds(*mesh);
     return std::optional<MeshPart>{MeshPart{std::move(mesh), material->material}};
 }
 
@@ -220,6 +262,12 @@ Result<std::vector<MeshPart>> importMesh(const tinygltf::Model& model, std::size
     const std::string baseName = mesh.name.empty() ? "mesh" + std::to_string(meshIndex) : mesh.name;
     std::vector<MeshPart> parts;
     for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+        if (mesh.primitives[p].targets.size() != mesh.primitives[0].targets.size()) {
+            return elementError(meshWhere + "." + indexed("primitives", p) + ".targets",
+                                "has " + std::to_string(mesh.primitives[p].targets.size()) + " morph targets, " +
+                                    indexed("primitives", 0) + " has " +
+                                    std::to_string(mesh.primitives[0].targets.size()) + " (glTF asks for as many)");
+        }
         std::string name = mesh.primitives.size() == 1 ? baseName : baseName + "/primitive" + std::to_string(p);
         auto part = importPrimitive(model, mesh.primitives[p], meshWhere + "." + indexed("primitives", p),
                                     std::move(name), textures, warnings);

@@ -46,7 +46,6 @@ constexpr FeatureSupport kFeatures[] = {
     {"EXT_meshopt_compression", Support::Refused,
      "compressed buffer views are not decoded: their fallback buffers are read"},
     {"KHR_mesh_quantization", Support::Refused, "quantized vertex attributes are not read"},
-    {"morph targets", Support::Dropped, "meshes are drawn in their base shape; weight animations do not play"},
     {"primitive modes other than TRIANGLES", Support::Dropped,
      "points, lines, triangle strips and triangle fans are left out"},
     {"COLOR_0", Support::Dropped, "vertex colours are not drawn"},
@@ -125,9 +124,6 @@ void collectPrimitiveFeatures(const json& document, Uses& uses) {
         for (std::size_t p = 0; p < primitives->size(); ++p) {
             const json& primitive = primitives->at(p);
             const std::string where = meshWhere + "." + indexed("primitives", p);
-            if (const json* t = member(primitive, "targets"); t != nullptr && !t->empty()) {
-                record(uses, "morph targets", where + ".targets");
-            }
             if (const json* mode = member(primitive, "mode"); mode != nullptr && *mode != 4) {
                 record(uses, "primitive modes other than TRIANGLES", where + ".mode");
             }
@@ -135,17 +131,6 @@ void collectPrimitiveFeatures(const json& document, Uses& uses) {
             if (attributes == nullptr || !attributes->is_object()) continue;
             if (attributes->contains("COLOR_0")) record(uses, "COLOR_0", where + ".attributes.COLOR_0");
             if (attributes->contains("JOINTS_1")) record(uses, "JOINTS_1", where + ".attributes.JOINTS_1");
-        }
-    });
-    eachElement(document, "animations", [&](const json& animation, const std::string& where) {
-        const json* channels = arrayMember(animation, "channels");
-        if (channels == nullptr) return;
-        for (std::size_t c = 0; c < channels->size(); ++c) {
-            const json* target = member(channels->at(c), "target");
-            const json* path = target != nullptr ? member(*target, "path") : nullptr;
-            if (path != nullptr && *path == "weights") {
-                record(uses, "morph targets", where + "." + indexed("channels", c) + ".target.path");
-            }
         }
     });
 }

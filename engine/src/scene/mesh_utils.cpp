@@ -186,6 +186,23 @@ glm::vec3 faceNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c)
     return glm::vec3(n / length);
 }
 
+/// `values` (one per vertex, or per vertex and target when `per` > 1: `per` blocks of `vertices`)
+/// taken at each of `corners`' source vertices; emptied when it does not fit that count.
+template <typename T>
+void gather(std::vector<T>& values, const std::vector<std::uint32_t>& corners, std::size_t vertices,
+            std::size_t per = 1) {
+    if (values.size() != vertices * per) {
+        values.clear();
+        return;
+    }
+    std::vector<T> out;
+    out.reserve(corners.size() * per);
+    for (std::size_t block = 0; block < per; ++block) {
+        for (const std::uint32_t c : corners) out.push_back(values[block * vertices + c]);
+    }
+    values = std::move(out);
+}
+
 }  // namespace
 
 // Triangles with an index out of range are dropped, as are trailing indices that do not make
@@ -193,43 +210,56 @@ glm::vec3 faceNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c)
 void makeFlatNormals(MeshData& mesh) {
     const std::size_t vertexCount = mesh.positions.size();
     const std::size_t triangleCount = mesh.indices.size() / 3;
-    std::vector<glm::vec3> positions;
+    std::vector<std::uint32_t> corners;  // per new vertex, the vertex it copies
     std::vector<glm::vec3> normals;
-    std::vector<glm::vec2> texcoords, texcoords1;
-    std::vector<glm::u16vec4> joints;
-    std::vector<glm::vec4> weights;
-    const bool textured = mesh.texcoords.size() == vertexCount;
-    const bool textured1 = mesh.texcoords1.size() == vertexCount;
-    const bool skinned = mesh.joints.size() == vertexCount && mesh.weights.size() == vertexCount;
-    positions.reserve(triangleCount * 3);
+    corners.reserve(triangleCount * 3);
     normals.reserve(triangleCount * 3);
     for (std::size_t t = 0; t < triangleCount; ++t) {
         const std::uint32_t* tri = &mesh.indices[3 * t];
         if (tri[0] >= vertexCount || tri[1] >= vertexCount || tri[2] >= vertexCount) continue;
         const glm::vec3 n = faceNormal(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
-        for (int k = 0; k < 3; ++k) {
-            positions.push_back(mesh.positions[tri[k]]);
-            normals.push_back(n);
-            if (textured) texcoords.push_back(mesh.texcoords[tri[k]]);
-            if (textured1) texcoords1.push_back(mesh.texcoords1[tri[k]]);
-            if (skinned) {
-                joints.push_back(mesh.joints[tri[k]]);
-                weights.push_back(mesh.weights[tri[k]]);
-            }
-        }
+        corners.insert(corners.end(), tri, tri + 3);
+        normals.insert(normals.end(), 3, n);
     }
-    mesh.indices.resize(positions.size());
-    for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
-        mesh.indices[i] = static_cast<std::uint32_t>(i);
+    const bool skinned = mesh.joints.size() == vertexCount && mesh.weights.size() == vertexCount;
+    gather(mesh.positions, corners, vertexCount);
+    gather(mesh.texcoords, corners, vertexCount);
+    gather(mesh.texcoords1, corners, vertexCount);
+    if (!skinned) {
+        mesh.joints.clear();
+        mesh.weights.clear();
     }
-    mesh.positions = std::move(positions);
+    gather(mesh.joints, corners, vertexCount);
+    gather(mesh.weights, corners, vertexCount);
+    // A target's displaced corners keep the base shape's face normals: flat normals are not morphed.
+    gather(mesh.morphPositions, corners, vertexCount, mesh.morphTargets);
+    mesh.morphNormals.clear();
+    mesh.morphTangents.clear();
+    mesh.positions.resize(corners.size());  // a mesh of no whole triangle keeps nothing
     mesh.normals = std::move(normals);
-    mesh.texcoords = std::move(texcoords);
-    mesh.texcoords1 = std::move(texcoords1);
+    mesh.indices.resize(corners.size());
+    for (std::size_t i = 0; i < mesh.indices.size(); ++i) mesh.indices[i] = static_cast<std::uint32_t>(i);
     mesh.tangents.clear();  // glTF: a mesh without normals ignores its tangents
-    mesh.joints = std::move(joints);
-    mesh.weights = std::move(weights);
     computeBounds(mesh);
+}
+
+void computeMorphBounds(MeshData& mesh) {
+    const std::size_t n = mesh.positions.size();
+    mesh.morphBounds.assign(mesh.morphTargets, Aabb{});
+    if (mesh.morphPositions.size() != n * mesh.morphTargets) return;
+    for (std::size_t k = 0; k < mesh.morphTargets; ++k) {
+        for (std::size_t i = 0; i < n; ++i) mesh.morphBounds[k].extend(mesh.morphPositions[k * n + i]);
+    }
+}
+
+glm::vec3 morphedPosition(const MeshData& mesh, const Morph& morph, std::size_t i) {
+    glm::vec3 p = mesh.positions[i];
+    const std::size_t n = mesh.positions.size();
+    for (const MorphInfluence& m : morph.drawn) {
+        const std::size_t at = m.target * n + i;
+        if (at < mesh.morphPositions.size()) p += m.weight * mesh.morphPositions[at];
+    }
+    return p;
 }
 
 void computeJointBounds(MeshData& mesh) {
@@ -248,8 +278,8 @@ void computeJointBounds(MeshData& mesh) {
     }
 }
 
-glm::vec3 skinnedPosition(const MeshData& mesh, const Skin& skin, std::size_t i) {
-    const glm::vec4 p(mesh.positions[i], 1.0f);
+glm::vec3 skinnedPosition(const MeshData& mesh, const Skin& skin, std::size_t i, const glm::vec3& position) {
+    const glm::vec4 p(position, 1.0f);
     glm::vec4 out(0.0f);
     for (int k = 0; k < 4; ++k) {
         const float w = mesh.weights[i][k];

@@ -3,6 +3,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -91,6 +92,56 @@ struct Resolver {
     }
 };
 
+/// `box` grown by `drawn`'s weighted target displacements (`MeshData::morphBounds`): it holds
+/// every morphed position of a vertex inside it.
+Aabb morphedBounds(Aabb box, const MeshData& mesh, const Morph* morph) {
+    if (morph == nullptr || box.empty()) return box;
+    for (const MorphInfluence& m : morph->drawn) {
+        if (m.target >= mesh.morphBounds.size() || mesh.morphBounds[m.target].empty()) continue;
+        const glm::vec3 a = m.weight * mesh.morphBounds[m.target].min;
+        const glm::vec3 b = m.weight * mesh.morphBounds[m.target].max;
+        box.min += glm::min(a, b);
+        box.max += glm::max(a, b);
+    }
+    return box;
+}
+
+/// The finite non-zero weights of `weights` among a mesh's `targets`, at most
+/// `kMaxMorphInfluences` of the largest magnitude, in target order, into `out`; whether some were
+/// left out.
+bool chooseInfluences(const std::vector<float>& weights, std::size_t targets, std::vector<MorphInfluence>& out) {
+    out.clear();
+    for (std::size_t k = 0; k < std::min(weights.size(), targets); ++k) {
+        if (weights[k] != 0.0f && std::isfinite(weights[k])) out.push_back({static_cast<std::uint32_t>(k), weights[k]});
+    }
+    if (out.size() <= kMaxMorphInfluences) return false;
+    const auto larger = [](const MorphInfluence& a, const MorphInfluence& b) {
+        return std::abs(a.weight) > std::abs(b.weight) ||
+               (std::abs(a.weight) == std::abs(b.weight) && a.target < b.target);
+    };
+    std::nth_element(out.begin(), out.begin() + kMaxMorphInfluences, out.end(), larger);
+    out.resize(kMaxMorphInfluences);
+    std::sort(out.begin(), out.end(),
+              [](const MorphInfluence& a, const MorphInfluence& b) { return a.target < b.target; });
+    return true;
+}
+
+/// Picks every morphed mesh's drawn targets (`Morph::drawn`) and marks it moved when they
+/// changed: its shadow layers are then redrawn like a moved mesh's, and only then.
+void chooseMorphs(World& world, TransformStats& stats) {
+    static thread_local std::vector<MorphInfluence> next;
+    world.view<Morph, Mesh, WorldTransform>().each([&](Entity, Morph& morph, Mesh& mesh, WorldTransform& wt) {
+        const std::size_t targets = mesh.data != nullptr ? mesh.data->morphTargets : 0;
+        morph.truncated = chooseInfluences(morph.weights, targets, next);
+        if (next == morph.drawn) return;
+        morph.drawn.assign(next.begin(), next.end());
+        if (!wt.movedThisFrame) {
+            wt.movedThisFrame = true;
+            ++stats.moved;
+        }
+    });
+}
+
 /// Poses every skinned mesh from its joints (see `Skin`): its matrices, its world bounds (the
 /// union of each joint's posed share of the mesh, which holds every blend of them), and its moved
 /// flag (set when a joint moved). A mesh with a joint missing or not finite is skipped like a
@@ -101,6 +152,7 @@ void poseSkins(World& world, TransformStats& stats) {
             skin.posed = false;
             if (!wt.finite || mesh.data == nullptr) return;
             const MeshData& data = *mesh.data;
+            const Morph* morph = world.tryGet<Morph>(e);
             skin.frameFromMesh.resize(skin.joints.size());
             DAabb box;
             bool finite = !skin.joints.empty();
@@ -116,7 +168,9 @@ void poseSkins(World& world, TransformStats& stats) {
                 glm::dmat4 frameFromMesh = worldFromMesh;
                 frameFromMesh[3] -= glm::dvec4(glm::dvec3(skin.worldFromFrame[3]), 0.0);
                 skin.frameFromMesh[j] = glm::mat4(frameFromMesh);
-                if (j < data.jointBounds.size()) box.extend(transformBounds(worldFromMesh, data.jointBounds[j]));
+                if (j < data.jointBounds.size()) {
+                    box.extend(transformBounds(worldFromMesh, morphedBounds(data.jointBounds[j], data, morph)));
+                }
                 finite = isFinite(worldFromMesh);
             }
             if (finite && !box.empty()) finite = insideWorld(box.min) && insideWorld(box.max);
@@ -163,17 +217,21 @@ TransformStats updateTransforms(World& world) {
     world.view<Transform, WorldTransform>().each([&](Entity e, Transform&, WorldTransform&) { resolver.resolve(e); });
 
     TransformStats& stats = resolver.stats;
-    world.view<Mesh, WorldTransform, WorldBounds>().each([&](Entity e, Mesh& mesh, WorldTransform& wt,
-                                                             WorldBounds& wb) {
-        wb.box = (wt.finite && mesh.data != nullptr) ? transformBounds(wt.worldFromLocal, mesh.data->bounds) : DAabb{};
-        // A mesh whose vertices reach beyond the world is skipped like a non-finite one.
-        if (wt.finite && !wb.box.empty() && !(insideWorld(wb.box.min) && insideWorld(wb.box.max))) {
-            wt.finite = false;
-            wb.box = DAabb{};
-            ++stats.nonFinite;
-            stats.skipped.push_back(e);
-        }
-    });
+    chooseMorphs(world, stats);
+    world.view<Mesh, WorldTransform, WorldBounds>().each(
+        [&](Entity e, Mesh& mesh, WorldTransform& wt, WorldBounds& wb) {
+            const bool drawn = wt.finite && mesh.data != nullptr;
+            wb.box = drawn ? transformBounds(wt.worldFromLocal,
+                                             morphedBounds(mesh.data->bounds, *mesh.data, world.tryGet<Morph>(e)))
+                           : DAabb{};
+            // A mesh whose vertices reach beyond the world is skipped like a non-finite one.
+            if (wt.finite && !wb.box.empty() && !(insideWorld(wb.box.min) && insideWorld(wb.box.max))) {
+                wt.finite = false;
+                wb.box = DAabb{};
+                ++stats.nonFinite;
+                stats.skipped.push_back(e);
+            }
+        });
     poseSkins(world, stats);
     // Last, once skinned meshes have their moved flag from their joints: a version step for each
     // update that moved the entity.

@@ -195,7 +195,7 @@ constexpr float kMinFieldThicknessVoxels = 2.0f;
 /// Why a caster of an sdf light is or is not marched through a distance field.
 enum class FieldVerdict : std::uint8_t {
     Field,      ///< marched through its field
-    Unfielded,  ///< a game's own draw, a skinned or cut-out mesh, or a sheared transform
+    Unfielded,  ///< a game's own draw, a skinned, morphed or cut-out mesh, or a sheared transform
     Open,       ///< not closed nor planar: its field has no inside, and rays pass between its sheets
     Thin,       ///< closed, but thinner than kMinFieldThicknessVoxels of its field
 };
@@ -204,8 +204,8 @@ enum class FieldVerdict : std::uint8_t {
 /// plate) or a closed one at least kMinFieldThicknessVoxels of its field thick (its field is
 /// baked from its data), placed by a rotation and
 /// a scale along its own axes (a non-uniform scale gets a field of its own, baked with the scale
-/// applied); a shear would break the distance bound the march steps by. A skinned mesh (its
-/// field would be its bind pose) and a cut-out (its field would have no holes) are not, nor an
+/// applied); a shear would break the distance bound the march steps by. A skinned or morphed
+/// mesh (its field would be its base shape) and a cut-out (its field would have no holes) are not, nor an
 /// open or thin one: they cast through the light's map, which poses and cuts them and holds any
 /// surface, filtered as PCSS filters it.
 FieldVerdict fieldVerdict(const World& world, Entity caster, int voxelBudget) {
@@ -215,7 +215,11 @@ FieldVerdict fieldVerdict(const World& world, Entity caster, int voxelBudget) {
         return FieldVerdict::Unfielded;
     }
     const Material* material = world.tryGet<Material>(caster);
-    if (world.has<Skin>(caster) || (material != nullptr && material->cutout())) return FieldVerdict::Unfielded;
+    const Morph* morph = world.tryGet<Morph>(caster);
+    if (world.has<Skin>(caster) || (morph != nullptr && !morph->drawn.empty()) ||
+        (material != nullptr && material->cutout())) {
+        return FieldVerdict::Unfielded;
+    }
     std::array<glm::dvec3, 3> axes{};
     for (int c = 0; c < 3; ++c) {
         axes[static_cast<std::size_t>(c)] = glm::dvec3(wt->worldFromLocal[c]);
@@ -271,7 +275,8 @@ void takeFieldCasters(const World& world, int voxelBudget, ShadowLightPlan& plan
     };
     part(count(FieldVerdict::Open), "open and not flat: a field holds no inside");
     part(count(FieldVerdict::Thin), "thinner than two voxels of their field");
-    part(count(FieldVerdict::Unfielded), "a game's own draw, a skinned or cut-out mesh, or a sheared transform");
+    part(count(FieldVerdict::Unfielded),
+         "a game's own draw, a skinned, morphed or cut-out mesh, or a sheared transform");
     msg << "; \"" << (name != nullptr ? name->value : std::string("entity ") + std::to_string(first.index()))
         << "\" first) cast through the light's shadow map, filtered as PCSS";
     warnings.push_back({WarningCode::CasterWithoutField, plan.name, msg.str()});

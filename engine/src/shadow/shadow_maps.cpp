@@ -60,7 +60,7 @@ struct DepthProgram {
     GLint depthScale = -1;
     GLint orthographic = -1;
     GLint firstPass = -1;  ///< the second-depth programs only
-    GLint skinned = -1;
+    gpu::DeformUniforms deform;
     GLint alpha = -1;        ///< the alpha-tested programs only
     GLint alphaCutoff = -1;  ///< likewise
 
@@ -72,7 +72,7 @@ struct DepthProgram {
         depthScale = gl.GetUniformLocation(program.get(), "uDepthScale");
         orthographic = gl.GetUniformLocation(program.get(), "uOrthographic");
         firstPass = gl.GetUniformLocation(program.get(), "uFirstPass");
-        skinned = gl.GetUniformLocation(program.get(), "uSkinned");
+        deform = gpu::DeformUniforms::of(program.get());
         alpha = gl.GetUniformLocation(program.get(), "uAlpha");
         alphaCutoff = gl.GetUniformLocation(program.get(), "uAlphaCutoff");
     }
@@ -428,10 +428,13 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
         if (const Mesh* mesh = world.tryGet<Mesh>(caster); mesh != nullptr && mesh->data != nullptr) {
             const Skin* skin = world.tryGet<Skin>(caster);
             if (skin != nullptr && !skin->posed) continue;
+            const Morph* morph = world.tryGet<Morph>(caster);
+            const bool morphed = morph != nullptr && !morph->drawn.empty();
             const Material* m = world.tryGet<Material>(caster);
             const bool alphaTested = cutout != nullptr && m != nullptr && m->cutout();
-            // A posed skin may fold a part inside out, and a cut-out's holes show its inside.
-            const bool rigidOpaqueSolid = pass.cullSolids && mesh->data->solid && skin == nullptr && !alphaTested;
+            // A posed skin or a morph may fold a part inside out, and a cut-out's holes show its inside.
+            const bool rigidOpaqueSolid =
+                pass.cullSolids && mesh->data->solid && skin == nullptr && !morphed && !alphaTested;
             pass.prepare(layer, rigidOpaqueSolid, wt->worldFromLocal, mesh->data->bounds, [&] {
                 const WorldBounds* bounds = world.tryGet<WorldBounds>(caster);
                 return bounds != nullptr ? std::optional<DAabb>(bounds->box) : std::nullopt;
@@ -443,19 +446,19 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
                 gl.ProgramUniform1f(name, current->alphaCutoff, m->alphaCutoff);
                 gpu::MeshCacheAccess::bindTexture(meshes, m->baseColorTexture, SG_UNIT_BASE_COLOR);
             }
-            gl.ProgramUniform1i(name, current->skinned, skin != nullptr ? 1 : 0);
-            if (skin != nullptr) gpu::MeshCacheAccess::bindSkin(meshes, *skin);
             // Composed in double: light-relative float values stay precise far from the origin.
             const glm::mat4 lightFromLocal(layer.lightFromWorld *
                                            (skin != nullptr ? skin->worldFromFrame : wt->worldFromLocal));
             gl.ProgramUniformMatrix4fv(name, current->lightFromLocal, 1, GL_FALSE, glm::value_ptr(lightFromLocal));
-            const int count = gpu::MeshCacheAccess::bind(meshes, mesh->data);
+            const int count =
+                gpu::MeshCacheAccess::bindDeformed(meshes, mesh->data, name, current->deform, skin, morph);
             gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
         } else if (const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(caster); own != nullptr) {
             pass.prepare(layer, pass.cullSolids && own->solid && !own->draw, wt->worldFromLocal, own->localBounds,
                          [&] { return std::optional<DAabb>(transformBounds(wt->worldFromLocal, own->localBounds)); });
             choose(opaque);
-            gl.ProgramUniform1i(opaque.program.get(), opaque.skinned, 0);
+            gl.ProgramUniform1i(opaque.program.get(), opaque.deform.skinned, 0);
+            gl.ProgramUniform1i(opaque.program.get(), opaque.deform.morphCount, 0);
             drawOwnCaster(*own, *wt, context);
         } else {
             continue;
