@@ -43,8 +43,9 @@ TEST(EmitterShape, PcssPenumbraOfASpotsDiskMatchesTheTruthOffTheAxis) {
     Scene scene = offAxisPlate();
     const std::vector<AgainstTruth> errors = renderAgainstTruth(scene, 240, 180, 256, {ShadowTechnique::Pcss});
     const VisibilityErrors& e = errors.at(0).errors;
-    std::printf("[ measured ] off-axis plate under a disk spot, pcss: penumbra RMSE %.4f, RMSE %.4f (%lld penumbra px)\n",
-                e.penumbraRmse, e.rmse, static_cast<long long>(e.penumbraPixels));
+    std::printf(
+        "[ measured ] off-axis plate under a disk spot, pcss: penumbra RMSE %.4f, RMSE %.4f (%lld penumbra px)\n",
+        e.penumbraRmse, e.rmse, static_cast<long long>(e.penumbraPixels));
     ASSERT_GT(e.penumbraPixels, 5000) << "the camera does not see the penumbra";
     EXPECT_LE(e.penumbraRmse, 0.033);
 }
