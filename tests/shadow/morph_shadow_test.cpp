@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <shadow/reference.h>
 
+#include <algorithm>
 #include <string>
 
 #include "render/render_test_support.h"
@@ -137,6 +138,23 @@ TEST(MorphShadow, LayersRedrawnOnlyWhenTheWeightsChanged) {
     scene.world.get<Morph>(gltf_test::findByName(scene, "sheet")).weights[0] = 0.75f;
     const RenderedFrame changed = renderFrame(runner, scene, kWidth, kHeight);
     EXPECT_GT(changed.stats.shadowLayersDrawn, 0) << "the weight changed";
+}
+
+// More non-zero weights than a draw blends: the frames add one `MorphTargetsDropped` warning to
+// the scene's list, the first frame, and none after.
+TEST(MorphShadow, DroppedTargetsReportedOnceByTheFrames) {
+    glContext();
+    Scene scene = sheetScene(gltf_test::manyTargetsSheetDoc(kMaxMorphInfluences + 1));
+    FrameRunner runner;
+    const auto dropped = [&] {
+        return std::count_if(scene.warnings.begin(), scene.warnings.end(),
+                             [](const Warning& w) { return w.code == WarningCode::MorphTargetsDropped; });
+    };
+    ASSERT_EQ(dropped(), 0);
+    (void)renderFrame(runner, scene, kWidth / 4, kHeight / 4);
+    EXPECT_EQ(dropped(), 1);
+    (void)renderFrame(runner, scene, kWidth / 4, kHeight / 4, 0.5);
+    EXPECT_EQ(dropped(), 1) << "once per entity, not once per frame";
 }
 
 }  // namespace
