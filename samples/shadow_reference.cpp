@@ -188,10 +188,14 @@ int run(Options& o) {
     Scene& scene = *loaded;
     Result<Entity> camera =
         samples::chooseCameraAndRig(scene, o.camera, o.time, o.rig, static_cast<double>(size->first) / size->second);
-    samples::printSceneWarnings("shadow_reference", scene);
-    if (!camera) return fail(kExitBadInput, camera.error().message);
+    if (!camera) {
+        samples::printSceneWarnings("shadow_reference", scene);
+        return fail(kExitBadInput, camera.error().message);
+    }
     animate(scene.world, o.time);
     (void)updateTransforms(scene.world);
+    reportTruncatedMorphs(scene.world, scene.warnings);  // the tracer draws the same targets
+    samples::printSceneWarnings("shadow_reference", scene);
     const float aspect = static_cast<float>(size->first) / static_cast<float>(size->second);
     const CameraView view = makeCameraView(scene.world, *camera, aspect);
     int cameraIndex = 0;

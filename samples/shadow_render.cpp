@@ -172,6 +172,7 @@ int run(const Options& o) {
     if (!chosen) return fail(kExitBadInput, chosen.error().message);
     const Entity camera = *chosen;
     samples::printSceneWarnings("shadow_render", scene);  // the default rig's notice among them
+    const std::size_t loadWarnings = scene.warnings.size();
 
     auto context = createOsMesaContext();
     if (!context) return fail(kExitFailure, context.error().message);
@@ -231,6 +232,10 @@ int run(const Options& o) {
     const std::string json =
         samples::statsJson(scene, frames, options.width, options.height, o.technique.value_or(""), startTime);
     if (Status s = writeTextFileAtomic(o.out + "/stats.json", json); !s) return fail(kExitFailure, s.error().message);
+    // The scene's warnings the frames added (once per entity), then the last frame's.
+    for (std::size_t k = loadWarnings; k < scene.warnings.size(); ++k) {
+        std::cerr << "shadow_render: warning: " << scene.warnings[k].message << "\n";
+    }
     for (const Warning& w : frames.back().warnings) std::cerr << "shadow_render: warning: " << w.message << "\n";
     return 0;
 }

@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 #include <shadow/scene.h>
 
+#include <algorithm>
+#include <iterator>
+
 #include "scene/gltf_test_support.h"
 
 namespace shadow::gltf_test {
@@ -81,6 +84,37 @@ TEST(GltfMorph, WeightsChannelWithoutTargetsIsAnError) {
     doc.j["meshes"][0].erase("weights");
     EXPECT_MESSAGE(loadError(doc.write(testDir() / "s.gltf")),
                    "animations[0].channels[0].target.node: node 0 has no mesh with morph targets");
+}
+
+/// The `MorphTargetsDropped` warnings in `warnings`.
+std::vector<Warning> droppedTargets(const std::vector<Warning>& warnings) {
+    std::vector<Warning> out;
+    std::copy_if(warnings.begin(), warnings.end(), std::back_inserter(out),
+                 [](const Warning& w) { return w.code == WarningCode::MorphTargetsDropped; });
+    return out;
+}
+
+// 17 non-zero weights are one more than a draw blends: one warning naming the node and the mesh,
+// however many frames follow; 16 fit, and none is given.
+TEST(GltfMorph, MoreWeightsThanADrawBlendsWarnOncePerEntity) {
+    for (const std::size_t targets : {kMaxMorphInfluences + 1, kMaxMorphInfluences}) {
+        Scene scene = load(manyTargetsSheetDoc(targets));
+        ASSERT_TRUE(droppedTargets(scene.warnings).empty()) << "a frame reports it, not the load";
+        for (int frame = 0; frame < 3; ++frame) {
+            (void)updateTransforms(scene.world);
+            reportTruncatedMorphs(scene.world, scene.warnings);
+        }
+        const std::vector<Warning> dropped = droppedTargets(scene.warnings);
+        if (targets == kMaxMorphInfluences) {
+            EXPECT_TRUE(dropped.empty()) << dropped.front().message;
+            continue;
+        }
+        ASSERT_EQ(dropped.size(), 1U) << "once per entity, not once per frame";
+        expectWarning(dropped[0], WarningCode::MorphTargetsDropped, "sheet",
+                      "sheet: mesh 'fan' has 17 morph weights non-zero at once, more than the 16 a draw blends; "
+                      "the 16 of largest magnitude are drawn and the rest left out");
+        EXPECT_EQ(scene.world.get<Morph>(findByName(scene, "sheet")).drawn.size(), kMaxMorphInfluences);
+    }
 }
 
 }  // namespace

@@ -214,6 +214,19 @@ inline Doc morphSheetDoc(float weight, bool animated = false, const std::string&
     return doc;
 }
 
+/// `morphSheetDoc`'s sheet with `targets` targets, each moving the +x edge by 0.1 m, all of
+/// weight 0.5 (every one non-zero), its mesh named "fan".
+inline Doc manyTargetsSheetDoc(std::size_t targets) {
+    Doc doc = morphSheetDoc(0.5f);
+    json& mesh = doc.j["meshes"][0];
+    mesh["name"] = "fan";
+    const int delta = doc.floats({0, 0, 0, 0.1f, 0, 0, 0.1f, 0, 0, 0, 0, 0}, "VEC3");
+    mesh["primitives"][0]["targets"] = json::array();
+    for (std::size_t k = 0; k < targets; ++k) mesh["primitives"][0]["targets"].push_back({{"POSITION", delta}});
+    mesh["weights"] = std::vector<float>(targets, 0.5f);
+    return doc;
+}
+
 /// Directional PCSS, spot PCF, point with technique none, point without extras.
 inline Doc lightsDoc() {
     Doc doc;

@@ -290,6 +290,9 @@ struct Morph {
     std::vector<MorphInfluence> drawn;
     /// Written by `updateTransforms`: more weights were non-zero than `kMaxMorphInfluences`.
     bool truncated = false;
+    /// Set by `reportTruncatedMorphs` once it warned about this instance: one warning per
+    /// entity, not one per frame.
+    bool truncationReported = false;
 };
 
 /// The position of vertex `i` of `mesh` with `morph`'s drawn targets applied.

@@ -24,9 +24,10 @@ public:
     /// `stats`. `stats` is reset first and its storage reused: given the same `stats` every
     /// frame, a frame in steady state allocates nothing (one that reports warnings allocates
     /// their text). Bad input (settings out of range, non-finite transforms) never throws: it is
-    /// clamped or skipped and reported in `FrameStats::warnings`. Throws `GlError` only when the
-    /// GL side fails (a shader that does not compile, an incomplete framebuffer: a broken build
-    /// or driver).
+    /// clamped or skipped and reported in `FrameStats::warnings`; what the content does once per
+    /// entity (`MorphTargetsDropped`) goes to `Scene::warnings`, the first frame it happens.
+    /// Throws `GlError` only when the GL side fails (a shader that does not compile, an
+    /// incomplete framebuffer: a broken build or driver).
     void runFrame(Scene& scene, double t, Entity camera, const RenderOptions& options, FrameStats& stats);
     /// `runFrame` into a new `FrameStats`: a convenience that allocates its lists every frame.
     FrameStats runFrame(Scene& scene, double t, Entity camera, const RenderOptions& options);

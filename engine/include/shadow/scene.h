@@ -51,6 +51,8 @@ struct Scene {
     /// drops (`UnsupportedFeature`), graph and mesh repairs (`SceneNodeNotRoot`,
     /// `MissingTexcoord`), lights and transforms (`UnsupportedLight`, `DegenerateTransform`),
     /// settings (`UnknownSetting`, and `ShadowSettingsIgnored` under lenient `GltfLoadOptions`).
+    /// Playing appends what the content does once per entity (`MorphTargetsDropped`, by
+    /// `FrameRunner::runFrame`).
     std::vector<Warning> warnings;
 };
 
@@ -103,6 +105,12 @@ TransformStats updateTransforms(World& world);
 /// Appends one `NonFiniteTransform` warning per entity of `stats.skipped`, in that order; the
 /// element is the entity's `Name`, or `entity <index>` without one.
 void reportSkippedTransforms(const World& world, const TransformStats& stats, std::vector<Warning>& warnings);
+
+/// Appends one `MorphTargetsDropped` warning for each entity whose `Morph::truncated` is set
+/// (by the last `updateTransforms`) and that was not reported before, and marks it reported:
+/// once per entity, whatever the frames after. The element is the entity's `Name`, or
+/// `entity <index>` without one. `FrameRunner::runFrame` calls it into `Scene::warnings`.
+void reportTruncatedMorphs(World& world, std::vector<Warning>& warnings);
 
 /// The entity's world orientation as orthonormal, right-handed axes (columns x, y, z; lights
 /// and cameras look along -z with +y up): the normalised rotation of `worldFromLocal` where that

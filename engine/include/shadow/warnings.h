@@ -7,10 +7,10 @@
 // branch on, the element at fault, and the line a person reads (what the CLI prints and
 // stats.json lists). Producing warnings never throws.
 //
-// Where they are collected: `Scene::warnings` (loading: the CLIs print them and list them in
-// stats.json with the frame's), `ShadowFrame::warnings` (the shadow
-// planner, every frame), `FrameStats::warnings` (a whole frame: the transform system's and the
-// planner's).
+// Where they are collected: `Scene::warnings` (loading, and what the content does once per
+// entity while playing: the CLIs print them and list them in stats.json with the frame's),
+// `ShadowFrame::warnings` (the shadow planner, every frame), `FrameStats::warnings` (a whole
+// frame: the transform system's and the planner's).
 #pragma once
 
 #include <string>
@@ -87,6 +87,12 @@ enum class WarningCode {
     /// rather than a fault, so that a picture of a file's own lighting is not mistaken for the
     /// rig's. Element: the scene's name (the file); the message says what was added and where.
     DefaultRigAdded,
+    /// More morph weights of a mesh instance were non-zero at once than a draw blends
+    /// (`kMaxMorphInfluences`): the ones of largest magnitude are drawn, alike in every pass and
+    /// in the reference tracer, and the rest left out. Reported once per entity, the first frame
+    /// it happens (into `Scene::warnings`, by `reportTruncatedMorphs`). Element: the entity's
+    /// name (its glTF node's); the message names the mesh and counts the weights.
+    MorphTargetsDropped,
 };
 
 /// One decision the engine reports.
@@ -118,6 +124,7 @@ struct Warning {
         case WarningCode::UnsupportedFeature: return "UnsupportedFeature";
         case WarningCode::MissingTexcoord: return "MissingTexcoord";
         case WarningCode::DefaultRigAdded: return "DefaultRigAdded";
+        case WarningCode::MorphTargetsDropped: return "MorphTargetsDropped";
     }
     return "Unknown";
 }

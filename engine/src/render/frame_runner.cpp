@@ -47,6 +47,8 @@ void FrameRunner::runFrame(Scene& scene, double t, Entity camera, const RenderOp
     stats.cpuTransformsMs = msSince(t0);
     stats.entitiesSkippedNonFinite = ts.nonFinite;
     reportSkippedTransforms(scene.world, ts, stats.warnings);
+    // Once per entity, so into the scene's standing list rather than this frame's.
+    reportTruncatedMorphs(scene.world, scene.warnings);
 
     const float aspect = static_cast<float>(options.width) / static_cast<float>(std::max(options.height, 1));
     impl_->camera = makeCameraView(scene.world, camera, aspect);

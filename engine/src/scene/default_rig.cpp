@@ -24,6 +24,8 @@ constexpr double kGroundHalfMin = 2.0;
 constexpr double kGroundBorder = 0.25;
 /// The camera added frames the model and its shadow with this margin.
 constexpr double kFramingMargin = 1.05;
+/// The most poses `DefaultRigOptions::boundsSamples` may ask for.
+constexpr int kMaxBoundsSamples = 256;
 
 /// Options clamped to their documented ranges (NaN to the default).
 DefaultRigOptions clamped(DefaultRigOptions o) {
@@ -39,6 +41,7 @@ DefaultRigOptions clamped(DefaultRigOptions o) {
     o.boundsMargin = clamp(o.boundsMargin, 0.0, 1.0, d.boundsMargin);
     o.imageAspect = clamp(o.imageAspect, 0.1, 10.0, d.imageAspect);
     if (!std::isfinite(o.boundsTime)) o.boundsTime = 0.0;
+    o.boundsSamples = std::clamp(o.boundsSamples, 1, kMaxBoundsSamples);
     return o;
 }
 
@@ -128,18 +131,39 @@ Entity addSun(Scene& scene, const glm::dvec3& center, double size, const glm::dv
 }
 
 std::string describe(const Scene& scene, const DefaultRig& rig, const DefaultRigOptions& o) {
-    char text[512];
+    char poses[96] = "";
+    if (rig.posesSampled > 1) {
+        std::snprintf(poses, sizeof(poses), " over %d poses of its %.3g s animation", rig.posesSampled,
+                      scene.animationDuration);
+    }
+    char text[640];
     const DAabb& b = rig.modelBounds;
     std::snprintf(text, sizeof(text),
                   "%s: no lights; added the default rig: a %s sun %.0f degrees up, %.0f degrees right of the "
-                  "view, emitter %.3g rad%s, placed from the model's bounds (%.3g, %.3g, %.3g) - (%.3g, %.3g, %.3g)",
+                  "view, emitter %.3g rad%s, placed from the model's bounds%s (%.3g, %.3g, %.3g) - (%.3g, %.3g, %.3g)",
                   scene.name.empty() ? "scene" : scene.name.c_str(), techniqueName(o.technique),
                   o.sunElevation / kDegree, o.sunAzimuth / kDegree, static_cast<double>(o.angularRadius),
-                  rig.ground.isNull() ? "" : ", a ground under them", b.min.x, b.min.y, b.min.z, b.max.x, b.max.y,
-                  b.max.z);
+                  rig.ground.isNull() ? "" : ", a ground under them", poses, b.min.x, b.min.y, b.min.z, b.max.x,
+                  b.max.y, b.max.z);
     std::string message = text;
     if (rig.cameraAdded) message += ", and a camera framing the model and its shadow";
     return message;
+}
+
+/// The union of the model's bounds at `o.boundsSamples` times evenly over one period of the
+/// animation that plays (`duration` s, looping) from `o.boundsTime`, the last period's end just
+/// before it wraps to its start; one pose when nothing plays. Sampled backwards, so that the
+/// world is left posed at `o.boundsTime`. `poses` gets how many were taken.
+DAabb boundsOverAnimation(World& world, double duration, const DefaultRigOptions& o, int& poses) {
+    const bool plays = std::isfinite(duration) && duration > 0.0;
+    poses = plays ? o.boundsSamples : 1;
+    const double lastOffset = plays ? std::nextafter(duration, 0.0) : 0.0;
+    DAabb bounds;
+    for (int k = poses - 1; k >= 0; --k) {
+        const double offset = poses > 1 ? std::min(duration * k / (poses - 1), lastOffset) : 0.0;
+        bounds.extend(modelBounds(world, o.boundsTime + offset));
+    }
+    return bounds;
 }
 
 }  // namespace
@@ -157,10 +181,10 @@ DAabb modelBounds(World& world, double t) {
 
 DefaultRig addDefaultRig(Scene& scene, std::optional<Entity> camera, const DefaultRigOptions& options) {
     const DefaultRigOptions o = clamped(options);
-    DAabb raw = modelBounds(scene.world, o.boundsTime);
+    DefaultRig rig;
+    DAabb raw = boundsOverAnimation(scene.world, scene.animationDuration, o, rig.posesSampled);
     if (raw.empty()) raw = DAabb{glm::dvec3(-1.0), glm::dvec3(1.0)};
     const double size = std::max({raw.extent().x, raw.extent().y, raw.extent().z, 1e-6});
-    DefaultRig rig;
     const double margin = o.boundsMargin * glm::length(raw.extent());
     rig.modelBounds = DAabb{raw.min - glm::dvec3(margin), raw.max + glm::dvec3(margin)};
     rig.groundHeight = raw.min.y - kGroundGap * size;

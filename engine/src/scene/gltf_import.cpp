@@ -141,7 +141,7 @@ struct Importer {
             scene.world.emplace<Material>(target, part.material);
             if (node.skin >= 0) skinned.emplace_back(target, nodeIndex);
             if (targets > 0) {
-                scene.world.emplace<Morph>(target, Morph{weights, {}, false});
+                scene.world.emplace<Morph>(target, Morph{weights, {}, false, false});
                 morphedOfNode[nodeIndex].push_back(target);
             }
         };

@@ -255,15 +255,39 @@ glm::dmat3 worldOrientation(const WorldTransform& wt) {
     return glm::mat3_cast(wt.rotation);
 }
 
+namespace {
+/// The entity's `Name`, or `entity <index>` without one: how warnings name an entity.
+std::string entityName(const World& world, Entity e) {
+    const Name* name = world.tryGet<Name>(e);
+    return name != nullptr ? name->value : "entity " + std::to_string(e.index());
+}
+}  // namespace
+
 void reportSkippedTransforms(const World& world, const TransformStats& stats, std::vector<Warning>& warnings) {
     for (Entity e : stats.skipped) {
-        const Name* name = world.tryGet<Name>(e);
-        std::string element = name != nullptr ? name->value : "entity " + std::to_string(e.index());
+        std::string element = entityName(world, e);
         std::ostringstream msg;
         msg << element << ": world transform is not finite (NaN, Inf, or beyond " << kMaxWorldCoordinate
             << " m); skipped by every pass";
         warnings.push_back({WarningCode::NonFiniteTransform, std::move(element), msg.str()});
     }
+}
+
+void reportTruncatedMorphs(World& world, std::vector<Warning>& warnings) {
+    world.view<Morph, Mesh>().each([&](Entity e, Morph& morph, Mesh& mesh) {
+        if (!morph.truncated || morph.truncationReported || mesh.data == nullptr) return;
+        morph.truncationReported = true;
+        const std::size_t targets = std::min(morph.weights.size(), mesh.data->morphTargets);
+        const auto nonZero =
+            std::count_if(morph.weights.begin(), morph.weights.begin() + static_cast<std::ptrdiff_t>(targets),
+                          [](float w) { return w != 0.0f && std::isfinite(w); });
+        std::string element = entityName(world, e);
+        std::ostringstream msg;
+        msg << element << ": mesh '" << mesh.data->name << "' has " << nonZero
+            << " morph weights non-zero at once, more than the " << kMaxMorphInfluences << " a draw blends; the "
+            << kMaxMorphInfluences << " of largest magnitude are drawn and the rest left out";
+        warnings.push_back({WarningCode::MorphTargetsDropped, std::move(element), msg.str()});
+    });
 }
 
 }  // namespace shadow
