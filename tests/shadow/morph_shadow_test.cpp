@@ -10,10 +10,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "render/render_test_support.h"
+#include "shadow/truth_test_support.h"
 #include "scene/gltf_test_support.h"
 
 namespace shadow::test {
@@ -85,15 +87,9 @@ struct ReferenceAgreement {
 };
 
 ReferenceAgreement compareWithReference(Scene& scene, const FrameRunner& runner, const RenderedFrame& frame) {
-    reference::ReferenceOptions options;
-    options.width = kWidth;
-    options.height = kHeight;
-    options.samples = 1;
-    options.wsPositions = &frame.images.position;
-    auto ref = reference::traceVisibility(scene, runner.lastCamera(), options);
-    EXPECT_TRUE(ref.ok()) << ref.error().message;
+    const std::optional<reference::ReferenceResult> ref = truthAt(scene, runner.lastCamera(), frame.images, 1);
     ReferenceAgreement a;
-    for (int y = 0; y < kHeight && ref.ok(); ++y) {
+    for (int y = 0; y < kHeight && ref; ++y) {
         for (int x = 0; x < kWidth; ++x) {
             if (!isGroundPixel(frame.images, x, y)) continue;
             const bool truth = ref->visibility.at(0).at(x, y, 0) < 0.5f;
