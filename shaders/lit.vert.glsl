@@ -20,13 +20,14 @@ invariant gl_Position;
 
 void main() {
     mat4 skin = sg_skinMatrix();
-    vec4 cs = uCsFromLocal * (skin * vec4(sg_position(), 1.0));
+    sg_MorphedVertex v = sg_morphedVertex();
+    vec4 cs = uCsFromLocal * (skin * vec4(v.position, 1.0));
     vCsPositionU = vec4(cs.xyz, inTexcoord.x);
-    vWsNormalV = vec4(uNormalFromLocal * (mat3(skin) * sg_normal()), inTexcoord.y);
+    vWsNormalV = vec4(uNormalFromLocal * (mat3(skin) * v.normal), inTexcoord.y);
 #ifdef SG_MATERIAL_MAPS
     // Tangents are directions on the surface: the object's matrix, not the normals' one.
     float mirrored = determinant(uNormalFromLocal) < 0.0 ? -1.0 : 1.0;
-    vWsTangent = vec4(mat3(uCsFromLocal) * (mat3(skin) * (inTangent.xyz + sg_morphDelta(2))), inTangent.w * mirrored);
+    vWsTangent = vec4(mat3(uCsFromLocal) * (mat3(skin) * (inTangent.xyz + v.tangent)), inTangent.w * mirrored);
     vTexcoord1 = inTexcoord1;
 #endif
     gl_Position = uClipFromCs * cs;

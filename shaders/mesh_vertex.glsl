@@ -2,10 +2,13 @@
 // shadow_depth.vert.glsl) share: the vertex attributes of a `MeshCache` mesh, morph targets
 // and skinning.
 //
-// A skinned draw (a `Skin` on the instance) sets uSkinned = 1 and binds the pose's joint matrices
-// (frame-from-mesh, `Skin::frameFromMesh`) at SG_BINDING_JOINTS; its object transform is then the
-// skin's frame (`Skin::worldFromFrame`); uSkinned is 0 or 1. One path on the GPU for every pass, so a shadow follows
-// its skin exactly. A rigid draw sets uSkinned = 0 and reads no joint.
+// Deformation is compiled in, not branched on: a program is built for each kind of draw it
+// meets (gpu::meshDeform: rigid, SG_SKINNED, SG_MORPHED or both), so a rigid draw runs none of
+// it. (As loops on a uniform, skinning's and morphing's code cost a rigid bunny's shadow pass a
+// third of its time on llvmpipe, which runs the vertex shader of each vertex in full.)
+// A skinned draw binds the pose's joint matrices (frame-from-mesh, `Skin::frameFromMesh`) at
+// SG_BINDING_JOINTS; its object transform is then the skin's frame (`Skin::worldFromFrame`). One
+// path on the GPU for every pass, so a shadow follows its skin exactly.
 #ifndef SG_MESH_VERTEX
 #define SG_MESH_VERTEX
 #include "shared_constants.h"
@@ -22,49 +25,62 @@ layout(location = SG_ATTRIB_TEXCOORD1) in vec2 inTexcoord1;
 layout(location = SG_ATTRIB_TANGENT) in vec4 inTangent;
 #endif
 
+#ifdef SG_SKINNED
 layout(std430, binding = SG_BINDING_JOINTS) readonly buffer sg_JointBlock {
     mat4 sg_jointFromMesh[];
 };
-uniform int uSkinned;
+#endif
 
 // The vertex's blend of its joints' matrices (weights sum to 1); the identity for a rigid draw.
 // Normals take its upper 3x3: exact for joints without non-uniform scale.
 mat4 sg_skinMatrix() {
-    // Loops, not ifs (a CPU rasteriser runs both sides of an if): a rigid draw takes no trip.
-    mat4 m = mat4(1.0);
-    for (int rigid = 0; rigid < uSkinned; ++rigid) {
-        uint joints = uint(sg_jointFromMesh.length());
-        m = mat4(0.0);
-        for (int k = 0; k < 4; ++k) {
-            if (inWeights[k] > 0.0 && inJoints[k] < joints) m += inWeights[k] * sg_jointFromMesh[inJoints[k]];
-        }
+#ifdef SG_SKINNED
+    uint joints = uint(sg_jointFromMesh.length());
+    mat4 m = mat4(0.0);
+    for (int k = 0; k < 4; ++k) {
+        if (inWeights[k] > 0.0 && inJoints[k] < joints) m += inWeights[k] * sg_jointFromMesh[inJoints[k]];
     }
     return m;
+#else
+    return mat4(1.0);
+#endif
 }
 
-// Morph targets (a `Morph` with targets drawn): uMorphCount (<= SG_MAX_MORPH_INFLUENCES)
-// influences, each (target, weight), displace the vertex before it is skinned (glTF). The mesh's
-// displacements are at SG_BINDING_MORPH_DELTAS, vertex-major: vertex v's of target t at
-// (v * uMorphTargets + t) * 3, position, normal and tangent in turn. uMorphCount = 0 (a rigid
-// draw, or every weight 0) reads none, in the same loop-not-if shape as skinning.
+// Morph targets (SG_MORPHED: a `Morph` with targets drawn): uMorphCount (<=
+// SG_MAX_MORPH_INFLUENCES) influences, each (target, weight), displace the vertex before it is
+// skinned (glTF). The mesh's displacements are at SG_BINDING_MORPH_DELTAS, vertex-major: vertex
+// v's of target t at (v * uMorphTargets + t) * 3, position, normal and tangent in turn.
+#ifdef SG_MORPHED
 layout(std430, binding = SG_BINDING_MORPH_DELTAS) readonly buffer sg_MorphBlock {
     vec4 sg_morphDeltas[];
 };
 uniform int uMorphCount;
 uniform int uMorphTargets;
 uniform vec2 uMorphInfluences[SG_MAX_MORPH_INFLUENCES];
+#endif
 
-// The weighted displacement of attribute `a` (0 position, 1 normal, 2 tangent).
-vec3 sg_morphDelta(int a) {
-    vec3 d = vec3(0.0);
+// The vertex in the mesh's space, its drawn targets' weighted displacements added: one loop for
+// every attribute (a program that reads no normal or tangent, the shadow pass's, compiles their
+// sums away). The normal is not renormalised: the fragment stage normalises its interpolated
+// normal.
+struct sg_MorphedVertex {
+    vec3 position;
+    vec3 normal;
+    vec3 tangent;  // the displacement of the tangent's xyz (the tangent itself is an attribute of
+                   // the material programs only)
+};
+
+sg_MorphedVertex sg_morphedVertex() {
+    sg_MorphedVertex v = sg_MorphedVertex(inPosition, inNormal, vec3(0.0));
+#ifdef SG_MORPHED
     for (int i = 0; i < uMorphCount; ++i) {
-        int at = (gl_VertexID * uMorphTargets + int(uMorphInfluences[i].x)) * 3 + a;
-        d += uMorphInfluences[i].y * sg_morphDeltas[at].xyz;
+        int at = (gl_VertexID * uMorphTargets + int(uMorphInfluences[i].x)) * 3;
+        float w = uMorphInfluences[i].y;
+        v.position += w * sg_morphDeltas[at].xyz;
+        v.normal += w * sg_morphDeltas[at + 1].xyz;
+        v.tangent += w * sg_morphDeltas[at + 2].xyz;
     }
-    return d;
+#endif
+    return v;
 }
-// The vertex's position and normal in the mesh's space, morphed (the normal not renormalised:
-// the fragment stage normalises its interpolated normal).
-vec3 sg_position() { return inPosition + sg_morphDelta(0); }
-vec3 sg_normal() { return inNormal + sg_morphDelta(1); }
 #endif

@@ -8,7 +8,7 @@ out vec3 vLsPosition;
 out vec2 vTexcoord;
 
 void main() {
-    vec4 ls = uLightFromLocal * (sg_skinMatrix() * vec4(sg_position(), 1.0));
+    vec4 ls = uLightFromLocal * (sg_skinMatrix() * vec4(sg_morphedVertex().position, 1.0));
     vLsPosition = ls.xyz;
     vTexcoord = inTexcoord;
     gl_Position = uClipFromLight * ls;

@@ -220,7 +220,6 @@ namespace gpu {
 
 DeformUniforms DeformUniforms::of(GLuint program) {
     DeformUniforms u;
-    u.skinned = gl.GetUniformLocation(program, "uSkinned");
     u.morphCount = gl.GetUniformLocation(program, "uMorphCount");
     u.morphTargets = gl.GetUniformLocation(program, "uMorphTargets");
     u.morphInfluences = gl.GetUniformLocation(program, "uMorphInfluences");
@@ -230,11 +229,10 @@ DeformUniforms DeformUniforms::of(GLuint program) {
 int MeshCacheAccess::bindDeformed(MeshCache& cache, const std::shared_ptr<const MeshData>& mesh, GLuint program,
                                   const DeformUniforms& uniforms, const Skin* skin, const Morph* morph) {
     const int indices = cache.bindInPass(mesh);
-    gl.ProgramUniform1i(program, uniforms.skinned, skin != nullptr ? 1 : 0);
     if (skin != nullptr) cache.bindSkinInPass(*skin);
     const std::size_t count = morph != nullptr ? std::min(morph->drawn.size(), kMaxMorphInfluences) : 0;
-    gl.ProgramUniform1i(program, uniforms.morphCount, static_cast<GLint>(count));
     if (count == 0) return indices;
+    gl.ProgramUniform1i(program, uniforms.morphCount, static_cast<GLint>(count));
     std::array<glm::vec2, kMaxMorphInfluences> influences{};
     for (std::size_t i = 0; i < count; ++i) {
         influences[i] = glm::vec2(static_cast<float>(morph->drawn[i].target), morph->drawn[i].weight);

@@ -9,14 +9,42 @@
 
 #include <cstddef>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace shadow::gpu {
 
-/// A mesh program's uniforms of deformation (shaders/mesh_vertex.glsl): skinning and morph
-/// targets; -1 where the program has none.
+/// How a draw deforms its mesh, as bits: which of shaders/mesh_vertex.glsl's deformations its
+/// program compiles in (a rigid draw's program has neither).
+enum MeshDeformBits : unsigned {
+    kDeformSkinned = 1u,  ///< SG_SKINNED: a posed `Skin`
+    kDeformMorphed = 2u,  ///< SG_MORPHED: a `Morph` with targets drawn
+};
+/// The kinds of deformation, 0 (rigid) to kDeformSkinned | kDeformMorphed: the size of a
+/// program table indexed by them.
+inline constexpr std::size_t kMeshDeforms = 4;
+
+/// The deformation of a draw with `skin` and `morph` (each may be null); a morph with no target
+/// drawn (every weight 0) is rigid.
+[[nodiscard]] inline unsigned meshDeform(const Skin* skin, const Morph* morph) {
+    return (skin != nullptr ? kDeformSkinned : 0u) | (morph != nullptr && !morph->drawn.empty() ? kDeformMorphed : 0u);
+}
+
+/// The `#define`s of a program compiled for `deform`, appended to `defines`.
+inline void appendDeformDefines(unsigned deform, std::vector<std::string>& defines) {
+    if ((deform & kDeformSkinned) != 0) defines.emplace_back("SG_SKINNED");
+    if ((deform & kDeformMorphed) != 0) defines.emplace_back("SG_MORPHED");
+}
+
+/// The GL label suffix of a program compiled for `deform`: "", "/skinned", "/morphed", ...
+inline std::string deformLabel(unsigned deform) {
+    return std::string((deform & kDeformSkinned) != 0 ? "/skinned" : "") +
+           ((deform & kDeformMorphed) != 0 ? "/morphed" : "");
+}
+
+/// A mesh program's uniforms of morph targets (shaders/mesh_vertex.glsl); -1 where the program
+/// has none (one not built for kDeformMorphed).
 struct DeformUniforms {
-    GLint skinned = -1;
     GLint morphCount = -1;
     GLint morphTargets = -1;
     GLint morphInfluences = -1;
@@ -34,10 +62,11 @@ struct MeshCacheAccess {
                             bool srgb = true) {
         cache.bindTextureInPass(texture, unit, srgb);
     }
-    /// Draws `mesh` with `program` next: binds it and returns its index count, with its
-    /// deformation (each may be null) set in `program` and bound: a posed skin's joint matrices
-    /// (SG_BINDING_JOINTS), a morph's drawn targets (their displacements at
-    /// SG_BINDING_MORPH_DELTAS). A rigid draw, or a morph with no target drawn, binds nothing.
+    /// Draws `mesh` with `program` (built for `meshDeform(skin, morph)`) next: binds it and
+    /// returns its index count, with its deformation (each may be null) set in `program` and
+    /// bound: a posed skin's joint matrices (SG_BINDING_JOINTS), a morph's drawn targets (their
+    /// displacements at SG_BINDING_MORPH_DELTAS). A rigid draw, or a morph with no target drawn,
+    /// binds nothing.
     static int bindDeformed(MeshCache& cache, const std::shared_ptr<const MeshData>& mesh, GLuint program,
                             const DeformUniforms& uniforms, const Skin* skin, const Morph* morph);
     /// `MeshCache::collect` without reading the host's errors.

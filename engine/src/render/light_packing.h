@@ -29,6 +29,8 @@ struct LitVariant {
     bool materialMaps = false;
     int debugView = SG_DEBUG_NONE;  ///< SG_DEBUG_*
     int debugSlot = -1;             ///< slot the debug view shows, -1 none
+    /// Forward: the deformation of the meshes it draws (gpu::MeshDeformBits); 0 deferred.
+    unsigned deform = 0;
 
     auto operator<=>(const LitVariant&) const = default;
 };

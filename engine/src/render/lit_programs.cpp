@@ -123,7 +123,7 @@ std::string variantLabel(const LitVariant& v) {
     if (v.deferred) name += name.empty() ? "deferred" : ",deferred";
     if (v.materialMaps) name += name.empty() ? "maps" : ",maps";
     if (v.debugView != SG_DEBUG_NONE) name += ",debug" + std::to_string(v.debugView);
-    return "Main/Lit[" + name + "]";
+    return "Main/Lit[" + name + "]" + gpu::deformLabel(v.deform);
 }
 
 unsigned variantTechniques(const LitVariant& v) {
@@ -152,6 +152,7 @@ std::vector<std::string> variantDefines(const LitVariant& v) {
     }
     if (v.materialMaps) defines.emplace_back(v.deferred ? "SG_GBUFFER_MATERIAL" : "SG_MATERIAL_MAPS");
     if (v.aovs) defines.emplace_back("SG_WRITE_AOVS");
+    gpu::appendDeformDefines(v.deform, defines);
     if (v.debugView != SG_DEBUG_NONE) {
         defines.emplace_back("SG_DEBUG_VIEWS");
         defines.push_back("SG_DEBUG_VIEW " + std::to_string(v.debugView));
@@ -169,11 +170,14 @@ LitProgram& LitProgramCache::get(const LitVariant& variant, int& compiled) {
     return it->second;
 }
 
-DepthPrepassProgram buildDepthPrepass(bool alphaTested) {
+DepthPrepassProgram buildDepthPrepass(bool alphaTested, unsigned deform) {
     DepthPrepassProgram p;
-    p.program = gpu::buildProgram(
-        {alphaTested ? "Main/DepthPrepass/alpha" : "Main/DepthPrepass", "lit.vert.glsl", "depth_prepass.frag.glsl",
-         alphaTested ? std::vector<std::string>{"SG_ALPHA_TESTED"} : std::vector<std::string>{}});
+    std::vector<std::string> defines;
+    std::string label = alphaTested ? "Main/DepthPrepass/alpha" : "Main/DepthPrepass";
+    if (alphaTested) defines.emplace_back("SG_ALPHA_TESTED");
+    label += gpu::deformLabel(deform);
+    gpu::appendDeformDefines(deform, defines);
+    p.program = gpu::buildProgram({label, "lit.vert.glsl", "depth_prepass.frag.glsl", defines});
     p.mesh = meshUniforms(p.program.get());
     p.alpha = gl.GetUniformLocation(p.program.get(), "uAlpha");
     p.alphaCutoff = gl.GetUniformLocation(p.program.get(), "uAlphaCutoff");
@@ -196,6 +200,8 @@ SurfaceProgram buildSurfaceProgram(unsigned bits) {
         label += "/material";
         defines.emplace_back("SG_GBUFFER_MATERIAL");
     }
+    label += gpu::deformLabel(bits / kSurfaceDeformUnit);
+    gpu::appendDeformDefines(bits / kSurfaceDeformUnit, defines);
     p.program = gpu::buildProgram({label, "lit.vert.glsl", "gbuffer.frag.glsl", defines});
     const GLuint id = p.program.get();
     p.mesh = meshUniforms(id);

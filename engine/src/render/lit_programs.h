@@ -73,7 +73,9 @@ private:
     std::map<LitVariant, LitProgram> programs_;
 };
 
-DepthPrepassProgram buildDepthPrepass(bool alphaTested);
+/// The depth pre-pass's program, alpha-tested or not, for meshes deformed as `deform`
+/// (gpu::MeshDeformBits) says.
+DepthPrepassProgram buildDepthPrepass(bool alphaTested, unsigned deform = 0);
 
 /// The screen-space visibility stage's surface pass (gbuffer.frag.glsl): the lit vertex shader,
 /// the material's uniforms, and (alpha-tested, for cut-out materials) the alpha test.
@@ -89,7 +91,11 @@ enum SurfaceProgramBits : unsigned {
     kSurfaceAlphaTested = 1u,      ///< SG_ALPHA_TESTED: a cut-out material
     kSurfaceMaps = 2u,             ///< SG_MATERIAL_MAPS: a material with maps
     kSurfaceMaterialTargets = 4u,  ///< SG_GBUFFER_MATERIAL: the frame stores lighting normal and emission
+    /// The bits above: the meshes' deformation (gpu::MeshDeformBits) times this.
+    kSurfaceDeformUnit = 8u,
 };
+/// Surface programs by their bits: the size of a table of them.
+inline constexpr std::size_t kSurfacePrograms = 8 * gpu::kMeshDeforms;
 
 SurfaceProgram buildSurfaceProgram(unsigned bits);
 

@@ -77,18 +77,21 @@ struct MainCamera {
     render::ScreenRays rays;  ///< the screen-space visibility stage's view of it
 };
 
-/// A pass's plain program and, when the scene has cut-outs, its alpha-tested one (`build(alphaTested)`),
-/// built on first use (counted in `stats`), each given the camera.
-template <typename Program, typename Build>
-void preparePair(std::optional<Program>& plain, std::optional<Program>& alphaTested, bool cutouts, Build build,
-                 const MainCamera& mc, FrameStats& stats) {
-    for (auto [program, alpha] : {std::pair{&plain, false}, std::pair{&alphaTested, true}}) {
-        if (alpha && !cutouts) continue;
-        if (!*program) {
-            *program = build(alpha);
+/// The depth pre-pass's programs the frame draws with (by alpha test, then deformation:
+/// `[alpha * gpu::kMeshDeforms + deform]`), built on first use (counted in `stats`), each given
+/// the camera: the alpha-tested ones when the scene has cut-outs, those of each deformation
+/// `deforms` (bit 1 << deform) holds.
+template <typename Programs>
+void preparePrepasses(Programs& programs, bool cutouts, unsigned deforms, const MainCamera& mc, FrameStats& stats) {
+    for (std::size_t i = 0; i < programs.size(); ++i) {
+        const bool alpha = i >= gpu::kMeshDeforms;
+        const auto deform = static_cast<unsigned>(i % gpu::kMeshDeforms);
+        if ((alpha && !cutouts) || (deforms & (1u << deform)) == 0) continue;
+        if (!programs[i]) {
+            programs[i] = render::buildDepthPrepass(alpha, deform);
             ++stats.programsCompiled;
         }
-        gl.ProgramUniformMatrix4fv((*program)->program.get(), (*program)->mesh.clipFromCs, 1, GL_FALSE,
+        gl.ProgramUniformMatrix4fv(programs[i]->program.get(), programs[i]->mesh.clipFromCs, 1, GL_FALSE,
                                    glm::value_ptr(mc.clipFromCs));
     }
 }
@@ -99,11 +102,14 @@ struct FrameMaterials {
     bool maps = false;     ///< a material with maps (the maps variant)
     /// A normal map or emission: the stage's surfaces store the lighting normal and emission.
     bool materialTargets = false;
+    /// The meshes' deformations (gpu::meshDeform), bit 1 << deform each: the programs' variants.
+    unsigned deforms = 0;
 };
 
 FrameMaterials frameMaterials(const World& world) {
     FrameMaterials f;
-    world.view<Mesh, Material>().each([&](Entity, const Mesh&, const Material& m) {
+    world.view<Mesh, Material>().each([&](Entity e, const Mesh&, const Material& m) {
+        f.deforms |= 1u << gpu::meshDeform(world.tryGet<Skin>(e), world.tryGet<Morph>(e));
         f.cutouts = f.cutouts || m.cutout();
         f.maps = f.maps || m.usesMaps();
         f.materialTargets =
@@ -148,17 +154,18 @@ struct Renderer::Impl {
     MeshCache meshes;                ///< owned and collected here (Renderer::meshes)
     gpu::ShaderResources resources;  ///< the samplers and kernel the lit passes bind
     render::LitProgramCache programs;
-    std::optional<render::DepthPrepassProgram> prepass;        ///< built on first use
-    std::optional<render::DepthPrepassProgram> prepassCutout;  ///< alpha-tested; built on first use
-    std::optional<render::ScreenStage> screen;                 ///< made on first use
-    std::optional<render::Presenter> presenter;                ///< made on first use
+    /// By alpha test and deformation (`preparePrepasses`), each built on first use.
+    std::array<std::optional<render::DepthPrepassProgram>, 2 * gpu::kMeshDeforms> prepasses;
+    std::optional<render::ScreenStage> screen;   ///< made on first use
+    std::optional<render::Presenter> presenter;  ///< made on first use
     /// By `render::SurfaceProgramBits`, each built on first use.
-    std::array<std::optional<render::SurfaceProgram>, 8> surfaces;
+    std::array<std::optional<render::SurfaceProgram>, render::kSurfacePrograms> surfaces;
     render::RenderTargets targets;
     std::vector<PassLights> passes;
-    std::vector<const render::LitProgram*> passPrograms;  ///< per pass, into `programs` (stable)
-    /// Forward, per pass: the maps variant for materials with maps (null in frames without).
-    std::vector<const render::LitProgram*> passMapPrograms;
+    /// Per pass, into `programs` (stable), by material maps and deformation: `[maps *
+    /// gpu::kMeshDeforms + deform]`, null for a kind the frame does not draw (forward: the maps
+    /// variant for materials with maps, a variant for each deformation; deferred: [0] only).
+    std::vector<std::array<const render::LitProgram*, 2 * gpu::kMeshDeforms>> passPrograms;
     FrameMaterials materials;                        ///< this frame's
     std::vector<render::PackingEntry> packingOrder;  ///< scratch of packLights
     PassBlocks lightBlocks, layerBlocks;
@@ -178,8 +185,9 @@ struct Renderer::Impl {
     void preparePrograms(const RenderOptions& options, FrameStats& stats);
     void uploadPasses();
     /// Draws every visible mesh (those whose bounds meet `reach`, unless it is null), a skinned
-    /// one in its pose; `perMesh(mesh, material)` sets the material's uniforms and texture and
-    /// returns the program to draw it with (made current here when it changes).
+    /// one in its pose; `perMesh(mesh, material, deform)` sets the material's uniforms and
+    /// texture and returns the program to draw it with (made current here when it changes), one
+    /// built for `deform` (gpu::meshDeform).
     template <typename PerMesh>
     void drawMeshes(const World& world, const CameraView& cam, const DAabb* reach, PerMesh&& perMesh, int& draws);
     /// The depth pre-pass; `cutouts`: the scene has cut-out materials, whose holes it leaves out.
@@ -212,7 +220,6 @@ Renderer::Impl::Impl() : softwareRenderer(queryGlInfo().softwareRenderer), timer
 
 void Renderer::Impl::preparePrograms(const RenderOptions& options, FrameStats& stats) {
     passPrograms.clear();
-    passMapPrograms.clear();
     for (PassLights& pass : passes) {
         render::LitVariant& v = pass.variant;
         v.aovs = options.aovs;
@@ -225,11 +232,17 @@ void Renderer::Impl::preparePrograms(const RenderOptions& options, FrameStats& s
         v.debugSlot = slot != pass.sceneLight.end() && v.debugView != SG_DEBUG_NONE
                           ? static_cast<int>(slot - pass.sceneLight.begin())
                           : -1;
-        passPrograms.push_back(&programs.get(v, stats.programsCompiled));
-        render::LitVariant withMaps = v;
-        withMaps.materialMaps = true;
-        passMapPrograms.push_back(!deferred && materials.maps ? &programs.get(withMaps, stats.programsCompiled)
-                                                              : nullptr);
+        auto& chosen = passPrograms.emplace_back();
+        chosen.fill(nullptr);
+        chosen[0] = &programs.get(v, stats.programsCompiled);
+        if (deferred) continue;  // one full-screen program reads whatever surfaces were drawn
+        for (std::size_t k = 0; k < chosen.size(); ++k) {
+            render::LitVariant kind = v;
+            kind.materialMaps = k >= gpu::kMeshDeforms;
+            kind.deform = static_cast<unsigned>(k % gpu::kMeshDeforms);
+            if ((kind.materialMaps && !materials.maps) || (materials.deforms & (1u << kind.deform)) == 0) continue;
+            chosen[k] = &programs.get(kind, stats.programsCompiled);
+        }
     }
 }
 
@@ -270,7 +283,8 @@ void Renderer::Impl::drawMeshes(const World& world, const CameraView& cam, const
         const glm::dmat4& worldFromLocal = skin != nullptr ? skin->worldFromFrame : wt.worldFromLocal;
         const glm::dmat3 linear(worldFromLocal);
         if (!(std::abs(glm::determinant(linear)) > 1e-30)) return;  // collapsed to zero area: nothing to see
-        const auto [program, uniforms] = perMesh(mesh, m);
+        const Morph* morph = world.tryGet<Morph>(e);
+        const auto [program, uniforms] = perMesh(mesh, m, gpu::meshDeform(skin, morph));
         if (program != current) {
             gl.UseProgram(program);
             current = program;
@@ -280,8 +294,8 @@ void Renderer::Impl::drawMeshes(const World& world, const CameraView& cam, const
         gl.ProgramUniformMatrix4fv(program, uniforms->csFromLocal, 1, GL_FALSE, glm::value_ptr(glm::mat4(csFromLocal)));
         const glm::mat3 normalFromLocal(glm::transpose(glm::inverse(linear)));
         gl.ProgramUniformMatrix3fv(program, uniforms->normalFromLocal, 1, GL_FALSE, glm::value_ptr(normalFromLocal));
-        const int indices = gpu::MeshCacheAccess::bindDeformed(meshes, mesh.data, program, uniforms->deform, skin,
-                                                               world.tryGet<Morph>(e));
+        const int indices =
+            gpu::MeshCacheAccess::bindDeformed(meshes, mesh.data, program, uniforms->deform, skin, morph);
         gl.DrawElements(GL_TRIANGLES, indices, GL_UNSIGNED_INT, nullptr);
         ++draws;
     });
@@ -290,16 +304,16 @@ void Renderer::Impl::drawMeshes(const World& world, const CameraView& cam, const
 
 void Renderer::Impl::depthPrepass(const World& world, const CameraView& cam, const MainCamera& mc, bool cutouts,
                                   FrameStats& stats) {
-    preparePair(prepass, prepassCutout, cutouts, render::buildDepthPrepass, mc, stats);
+    preparePrepasses(prepasses, cutouts, materials.deforms, mc, stats);
     gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl.DepthMask(GL_TRUE);
     gl.DepthFunc(GL_LESS);
     drawMeshes(
         world, cam, nullptr,
-        [this](const Mesh&, const Material& m) {
+        [this](const Mesh&, const Material& m, unsigned deform) {
             using Choice = std::pair<GLuint, const render::MeshUniforms*>;
-            if (!m.cutout()) return Choice{prepass->program.get(), &prepass->mesh};
-            const render::DepthPrepassProgram& p = *prepassCutout;
+            const render::DepthPrepassProgram& p = *prepasses[(m.cutout() ? gpu::kMeshDeforms : 0) + deform];
+            if (!m.cutout()) return Choice{p.program.get(), &p.mesh};
             gl.ProgramUniform1f(p.program.get(), p.alpha, m.alpha);
             gl.ProgramUniform1f(p.program.get(), p.alphaCutoff, m.alphaCutoff);
             gpu::MeshCacheAccess::bindTexture(meshes, m.baseColorTexture, SG_UNIT_BASE_COLOR);
@@ -370,9 +384,9 @@ void Renderer::Impl::surfacePass(const World& world, const CameraView& cam, cons
     const unsigned frameBits = materials.materialTargets ? render::kSurfaceMaterialTargets : 0u;
     drawMeshes(
         world, cam, nullptr,
-        [this, &mc, &stats, frameBits](const Mesh& mesh, const Material& m) {
+        [this, &mc, &stats, frameBits](const Mesh& mesh, const Material& m, unsigned deform) {
             const unsigned bits = frameBits | (m.cutout() ? render::kSurfaceAlphaTested : 0u) |
-                                  (m.usesMaps() ? render::kSurfaceMaps : 0u);
+                                  (m.usesMaps() ? render::kSurfaceMaps : 0u) | deform * render::kSurfaceDeformUnit;
             std::optional<render::SurfaceProgram>& slot = surfaces[bits];
             if (!slot) {
                 slot = render::buildSurfaceProgram(bits);
@@ -404,7 +418,7 @@ void Renderer::Impl::screenVisibilityPass(const ShadowFrame& frame, const MainCa
 
 void Renderer::Impl::screenLitPass(const MainCamera& mc, std::size_t index, const RenderOptions& options) {
     const PassLights& pass = passes[index];
-    const render::LitProgram& p = *passPrograms[index];
+    const render::LitProgram& p = *passPrograms[index][0];
     lightBlocks.bind(SG_BINDING_LIGHTS, index);
     gl.BindFramebuffer(GL_FRAMEBUFFER, targets.framebuffer());
     gl.Viewport(0, 0, options.width, options.height);
@@ -436,7 +450,7 @@ void Renderer::Impl::screenLitPass(const MainCamera& mc, std::size_t index, cons
 void Renderer::Impl::litPass(const World& world, const CameraView& cam, const MainCamera& mc, std::size_t index,
                              const ShadowMaps& maps, const RenderOptions& options, FrameStats& stats) {
     const PassLights& pass = passes[index];
-    const render::LitProgram& p = *passPrograms[index];
+    const auto& chosen = passPrograms[index];
     // Without AOVs every pass writes colour alone: the draw buffers set by the first stay (a
     // framebuffer change makes a CPU rasteriser flush its batch).
     if (index == 0 || options.aovs) targets.bindPass(static_cast<int>(index));
@@ -452,7 +466,6 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
         gl.Enablei(GL_BLEND, 0);
         gl.BlendFunc(GL_ONE, GL_ONE);
     }
-    const GLuint id = p.program.get();
     // A pass lights only its lights' screen bounds. With AOVs every pass covers the screen, so
     // that each light's visibility is written wherever there is geometry.
     const bool scissored = !options.aovs && pass.bounds != PixelRect{0, 0, options.width, options.height};
@@ -460,9 +473,7 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
         gl.Enable(GL_SCISSOR_TEST);
         gl.Scissor(pass.bounds.x0, pass.bounds.y0, pass.bounds.x1 - pass.bounds.x0, pass.bounds.y1 - pass.bounds.y0);
     }
-    gl.UseProgram(id);
-    const render::LitProgram* withMaps = passMapPrograms[index];
-    for (const render::LitProgram* program : {&p, withMaps}) {
+    for (const render::LitProgram* program : chosen) {
         if (program == nullptr) continue;
         gl.ProgramUniformMatrix4fv(program->program.get(), program->mesh.clipFromCs, 1, GL_FALSE,
                                    glm::value_ptr(mc.clipFromCs));
@@ -470,12 +481,13 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
     }
     drawMeshes(
         world, cam, scissored && !pass.unbounded ? &pass.wsReach : nullptr,
-        [this, &p, withMaps](const Mesh& mesh, const Material& m) {
-            const render::LitProgram& chosen = m.usesMaps() && withMaps != nullptr ? *withMaps : p;
-            const GLuint program = chosen.program.get();
-            render::setMaterial(program, chosen.material, mesh, m);
-            render::bindMaterialTextures(meshes, m, &chosen == withMaps);
-            return std::pair<GLuint, const render::MeshUniforms*>{program, &chosen.mesh};
+        [this, &chosen](const Mesh& mesh, const Material& m, unsigned deform) {
+            const bool withMaps = m.usesMaps() && materials.maps;
+            const render::LitProgram& p = *chosen[(withMaps ? gpu::kMeshDeforms : 0) + deform];
+            const GLuint program = p.program.get();
+            render::setMaterial(program, p.material, mesh, m);
+            render::bindMaterialTextures(meshes, m, withMaps);
+            return std::pair<GLuint, const render::MeshUniforms*>{program, &p.mesh};
         },
         stats.mainDrawCalls);
     gl.Disable(GL_BLEND);

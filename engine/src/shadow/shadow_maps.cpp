@@ -52,7 +52,8 @@ struct ShadowMapGpu {
 
 /// A depth-only program of the shadow pass, shared by every light type: the nearest depth, or
 /// (`defines` SG_DEPTH_BEHIND_FIRST …) the second pass of a second-depth mode; with
-/// SG_ALPHA_TESTED, for cut-out casters. Skinned casters go through any of them (uSkinned).
+/// SG_ALPHA_TESTED, for cut-out casters; each also built for skinned and morphed casters
+/// (gpu::appendDeformDefines), when a layer first draws one.
 struct DepthProgram {
     gpu::Program program;
     GLint lightFromLocal = -1;
@@ -190,9 +191,10 @@ void describe(const ShadowLightPlan& plan, LightShadowStats& ls) {
 
 struct ShadowMaps::Impl {
     DepthProgram depth{"Shadow/Depth", {}};
-    /// The other depth programs, by depth mode (`DepthMode`) and alpha test (0 opaque, 1
-    /// cut-out), built when a layer first needs one (the nearest opaque one is `depth`).
-    std::array<std::array<std::optional<DepthProgram>, 2>, 3> others;
+    /// The other depth programs, by depth mode (`DepthMode`), alpha test (0 opaque, 1 cut-out)
+    /// and deformation (gpu::MeshDeformBits), built when a layer first needs one (the nearest,
+    /// opaque, rigid one is `depth`).
+    std::array<std::array<std::array<std::optional<DepthProgram>, gpu::kMeshDeforms>, 2>, 3> others;
     NearestScratch scratch;
     /// The distance fields of the sdf lights' casters, made when a light first uses sdf.
     std::optional<gpu::DistanceFieldAtlas> fields;
@@ -214,8 +216,8 @@ struct ShadowMaps::Impl {
     void drawLayer(const World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k,
                    LightShadowStats& ls);
     /// The program of depth mode `mode` (the second pass's for Midpoint and Second), opaque or
-    /// alpha-tested, built on first use.
-    const DepthProgram& program(DepthMode mode, bool cutout);
+    /// alpha-tested, for casters deformed as `deform` says, built on first use.
+    const DepthProgram& program(DepthMode mode, bool cutout, unsigned deform = 0);
     /// Brings the filter chain of every layer of `plan` whose map changed up to date.
     void updateChains(const ShadowLightPlan& plan, LightShadowStats& ls);
 };
@@ -288,9 +290,9 @@ void ShadowMaps::Impl::updateChains(const ShadowLightPlan& plan, LightShadowStat
     }
 }
 
-const DepthProgram& ShadowMaps::Impl::program(DepthMode mode, bool cutout) {
-    if (mode == DepthMode::Nearest && !cutout) return depth;
-    std::optional<DepthProgram>& p = others[static_cast<std::size_t>(mode)][cutout ? 1 : 0];
+const DepthProgram& ShadowMaps::Impl::program(DepthMode mode, bool cutout, unsigned deform) {
+    if (mode == DepthMode::Nearest && !cutout && deform == 0) return depth;
+    std::optional<DepthProgram>& p = others[static_cast<std::size_t>(mode)][cutout ? 1 : 0][deform];
     if (!p) {
         std::vector<std::string> defines;
         std::string label = "Shadow/Depth";
@@ -301,22 +303,14 @@ const DepthProgram& ShadowMaps::Impl::program(DepthMode mode, bool cutout) {
             defines.emplace_back("SG_ALPHA_TESTED");
             label += "/alpha";
         }
+        label += gpu::deformLabel(deform);
+        gpu::appendDeformDefines(deform, defines);
         p.emplace(std::move(label), std::move(defines));
     }
     return *p;
 }
 
 namespace {
-
-/// Whether a caster of `layer` is a cut-out mesh (`Material::cutout`), whose depth needs the
-/// alpha test.
-bool anyCutout(const World& world, const ShadowLayerPlan& layer) {
-    return std::any_of(layer.casters.begin(), layer.casters.end(), [&](Entity caster) {
-        const Mesh* mesh = world.tryGet<Mesh>(caster);
-        const Material* m = world.tryGet<Material>(caster);
-        return mesh != nullptr && m != nullptr && m->cutout();
-    });
-}
 
 /// The faces of a solid caster (`MeshData::solid`, `ShadowCasterDraw::solid`) a nearest-depth
 /// layer may cull, for object transform `worldFromLocal` and object bounds `localBounds`:
@@ -403,12 +397,14 @@ struct CasterPass {
 };
 
 /// Draws every caster of `layer` into the bound framebuffer, with `opaque` (current, its layer
-/// uniforms set) or, for a cut-out caster, `cutout` (set up here when first needed; null when the
-/// layer has none); `first`: the first pass of a second-depth mode. A skinned caster is drawn in
-/// its pose. `pass` says whether solids are culled and gathers what was drawn. Returns the draw
-/// calls made.
+/// uniforms set: the rigid, opaque program) or, for a cut-out or deformed caster,
+/// `programFor(cutout, deform)` (made current and set up here); `first`: the first pass of a
+/// second-depth mode. A skinned caster
+/// is drawn in its pose. `pass` says whether solids are culled and gathers what was drawn.
+/// Returns the draw calls made.
+template <typename ProgramFor>
 int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& layer, const DepthProgram& opaque,
-                const DepthProgram* cutout, bool first, CasterPass& pass) {
+                ProgramFor&& programFor, bool first, CasterPass& pass) {
     const CasterDrawContext context{layer.lightFromWorld,
                                     layer.clipFromLight,
                                     layer.depthScale,
@@ -429,17 +425,16 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
             const Skin* skin = world.tryGet<Skin>(caster);
             if (skin != nullptr && !skin->posed) continue;
             const Morph* morph = world.tryGet<Morph>(caster);
-            const bool morphed = morph != nullptr && !morph->drawn.empty();
+            const unsigned deform = gpu::meshDeform(skin, morph);
             const Material* m = world.tryGet<Material>(caster);
-            const bool alphaTested = cutout != nullptr && m != nullptr && m->cutout();
+            const bool alphaTested = m != nullptr && m->cutout();
             // A posed skin or a morph may fold a part inside out, and a cut-out's holes show its inside.
-            const bool rigidOpaqueSolid =
-                pass.cullSolids && mesh->data->solid && skin == nullptr && !morphed && !alphaTested;
+            const bool rigidOpaqueSolid = pass.cullSolids && mesh->data->solid && deform == 0 && !alphaTested;
             pass.prepare(layer, rigidOpaqueSolid, wt->worldFromLocal, mesh->data->bounds, [&] {
                 const WorldBounds* bounds = world.tryGet<WorldBounds>(caster);
                 return bounds != nullptr ? std::optional<DAabb>(bounds->box) : std::nullopt;
             });
-            choose(alphaTested ? *cutout : opaque);
+            choose(alphaTested || deform != 0 ? programFor(alphaTested, deform) : opaque);
             const GLuint name = current->program.get();
             if (alphaTested) {
                 gl.ProgramUniform1f(name, current->alpha, m->alpha);
@@ -457,8 +452,6 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
             pass.prepare(layer, pass.cullSolids && own->solid && !own->draw, wt->worldFromLocal, own->localBounds,
                          [&] { return std::optional<DAabb>(transformBounds(wt->worldFromLocal, own->localBounds)); });
             choose(opaque);
-            gl.ProgramUniform1i(opaque.program.get(), opaque.deform.skinned, 0);
-            gl.ProgramUniform1i(opaque.program.get(), opaque.deform.morphCount, 0);
             drawOwnCaster(*own, *wt, context);
         } else {
             continue;
@@ -488,7 +481,9 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
     }
     gl.Viewport(0, 0, map.mapSize, map.mapSize);
     const DepthMode mode = plan.settings.depthMode;
-    const bool cutout = anyCutout(world, layer);
+    const auto programFor = [this, mode](bool alphaTested, unsigned deform) -> const DepthProgram& {
+        return program(mode, alphaTested, deform);
+    };
     if (mode != DepthMode::Nearest) {
         // First pass: the nearest depth, into the scratch the second pass reads, by the second
         // pass's own program (see uFirstPass in shadow_depth.frag.glsl).
@@ -499,8 +494,7 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
         program.use(layer, true);
         CasterPass firstPass;
         firstPass.mapSize = map.mapSize;
-        ls.castersDrawn +=
-            drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, true, firstPass);
+        ls.castersDrawn += drawCasters(world, meshes, layer, program, programFor, true, firstPass);
     }
     const GLuint framebuffer = map.framebuffer.get();
     gl.NamedFramebufferTextureLayer(framebuffer, GL_DEPTH_ATTACHMENT, map.array.get(), 0, static_cast<GLint>(k));
@@ -517,8 +511,7 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
     pass.cullSolids = mode == DepthMode::Nearest;
     pass.gatherTexels = map.chain && map.chain->kind == FilterChainKind::MinMax;
     pass.mapSize = map.mapSize;
-    ls.castersDrawn +=
-        drawCasters(world, meshes, layer, program, cutout ? &this->program(mode, true) : nullptr, false, pass);
+    ls.castersDrawn += drawCasters(world, meshes, layer, program, programFor, false, pass);
     ls.castersCulled += pass.culled;
     map.drawnTexels[k] = pass.gatherTexels ? pass.texels : PixelRect{0, 0, map.mapSize, map.mapSize};
     if (mode != DepthMode::Nearest) gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
