@@ -3,7 +3,7 @@
 //   shadow_render SCENE [--out DIR] [--size WxH] [--camera N] [--time T] [--frames N --dt S]
 //                 [--technique NAME] [--depth-mode MODE] [--aov color,visibility,position,depth]
 //                 [--debug NAME] [--debug-light I] [--frame-images] [--no-cache] [--exposure E]
-//                 [--shader-cache DIR] [--field-voxels N] [--sdf-start-offset M]
+//                 [--shader-cache DIR] [--field-voxels N] [--sdf-start-offset M] [--max-filter-texels N]
 //                 [--animation NAME|INDEX|all] [--no-default-lights] [--no-ground]
 //
 // SCENE is a sample scene's name (samples/scenes, e.g. courtyard), a .gltf/.glb path or
@@ -53,7 +53,8 @@ struct Options {
     bool frameImages = false;
     bool noCache = false;
     int fieldVoxels = 64;                 ///< technique sdf: voxels along each mesh field's edge (cubed: the budget)
-    std::optional<float> sdfStartOffset;  ///< absent: each light keeps its own
+    std::optional<float> sdfStartOffset;   ///< absent: each light keeps its own
+    std::optional<float> maxFilterTexels;  ///< absent: each light keeps its own
     std::string shaderCache;
     std::string screenVisibility = "auto";
     bool contactShadows = false;    ///< turn every shadowed light's contact shadows on
@@ -63,6 +64,16 @@ struct Options {
 };
 
 int fail(int code, const std::string& message) { return samples::failAs("shadow_render", code, message); }
+
+/// A shadowed light's settings with the command line's overrides (checked before) applied.
+void overrideShadow(Shadow& s, const Options& o, std::optional<ShadowTechnique> technique,
+                    std::optional<DepthMode> depthMode) {
+    if (technique) s.technique = *technique;
+    if (depthMode) samples::applyDepthMode(s, *depthMode);
+    if (o.contactShadows) s.contactShadows = true;
+    if (o.sdfStartOffset) s.sdfStartOffset = *o.sdfStartOffset;
+    if (o.maxFilterTexels) s.maxFilterTexels = *o.maxFilterTexels;
+}
 
 Result<DebugView> parseDebug(const std::string& name) {
     if (name.empty()) return DebugView::None;
@@ -145,6 +156,9 @@ int run(const Options& o) {
     if (o.sdfStartOffset && !(*o.sdfStartOffset >= 0.0f && *o.sdfStartOffset <= 1.0f)) {
         return fail(kExitBadInput, "--sdf-start-offset: must be a number of metres in [0, 1]");
     }
+    if (o.maxFilterTexels && !(*o.maxFilterTexels >= 1.0f && *o.maxFilterTexels <= 256.0f)) {
+        return fail(kExitBadInput, "--max-filter-texels: must be a number of texels in [1, 256]");
+    }
     if (o.camera && *o.camera < 0)
         return fail(kExitBadInput, "--camera " + std::to_string(*o.camera) + ": must be >= 0");
 
@@ -155,18 +169,7 @@ int run(const Options& o) {
         return fail(kExitBadInput, "--debug-light " + std::to_string(o.debugLight) + ": the scene has " +
                                        std::to_string(scene.lights.size()) + " lights");
     }
-    if (technique) {
-        scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.technique = *technique; });
-    }
-    if (depthMode) {
-        scene.world.view<Shadow>().each([&](Entity, Shadow& s) { samples::applyDepthMode(s, *depthMode); });
-    }
-    if (o.contactShadows) {
-        scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.contactShadows = true; });
-    }
-    if (o.sdfStartOffset) {
-        scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.sdfStartOffset = *o.sdfStartOffset; });
-    }
+    scene.world.view<Shadow>().each([&](Entity, Shadow& s) { overrideShadow(s, o, technique, depthMode); });
     Result<Entity> chosen =
         samples::chooseCameraAndRig(scene, o.camera, o.time, o.rig, static_cast<double>(size->first) / size->second);
     if (!chosen) return fail(kExitBadInput, chosen.error().message);
@@ -269,6 +272,8 @@ int main(int argc, char** argv) {
         "technique sdf: voxels along the edge of each mesh's distance field, [16, 256] (default 64: 64^3 voxels)");
     app.add_option("--sdf-start-offset", o.sdfStartOffset,
                    "technique sdf: override every light's sdfStartOffset (m), [0, 1]");
+    app.add_option("--max-filter-texels", o.maxFilterTexels,
+                   "override every light's maxFilterTexels (the widest filter, texels), [1, 256]");
     app.add_option("--screen-visibility", o.screenVisibility, samples::kScreenVisibilityHelp);
     app.add_flag("--contact-shadows", o.contactShadows,
                  "turn on every shadowed light's screen-space contact shadows (drawn by the screen-space "

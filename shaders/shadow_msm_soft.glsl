@@ -34,7 +34,7 @@ float sg_msmSoftVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
     float maxRadius = L.maxFilterTexels * r.texelMetres;
     float dReceiver = center.depth;
     float reference = sg_momentsReference(r, center);
-    float size = max(L.emitterSize, 0.0);
+    float size = sg_apparentEmitterSize(L, r.toLight);
     float penumbra = 0.0;
     if (size > 0.0) {
         float searchRadius = sg_softMomentsSearchRadius(L, r, dReceiver, size, maxRadius);

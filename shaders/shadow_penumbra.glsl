@@ -23,10 +23,23 @@ float sg_penumbraRadius(sg_GpuLight L, float dReceiver, float dBlocker, float si
 }
 
 // A spot's emitter is a disk facing along the spot's axis: seen from a receiver off the axis it
-// is an ellipse, narrower by cos(angle off the axis) towards the axis. So is everything the
-// PCSS search and filter cover (the emitter seen through the receiver): `r` with its lateral
-// axes squeezed that way, so that every lateral offset lands where the emitter's shape says.
-// A sphere (point light) and the sun's disk look round from everywhere: `r` as it is.
+// is an ellipse, narrower towards the axis by the cosine of the angle off it, which this returns
+// for a receiver in direction `toLight` (unit, towards the light). A sphere (point light) and the
+// sun's disk look round from everywhere: 1.
+float sg_emitterForeshortening(sg_GpuLight L, vec3 toLight) {
+    return L.type == SG_LIGHT_SPOT ? clamp(dot(-toLight, L.wsDirection), 0.0, 1.0) : 1.0;
+}
+
+// The emitter's size (emitterSize's unit) as the disk of the same area as it looks from `r`:
+// what a round region stands in for the ellipse with (the soft moment techniques' squares, the
+// distance-field march's cone).
+float sg_apparentEmitterSize(sg_GpuLight L, vec3 toLight) {
+    return max(L.emitterSize, 0.0) * sqrt(sg_emitterForeshortening(L, toLight));
+}
+
+// The PCSS search and filter cover the emitter seen through the receiver, so they take the
+// ellipse itself: `r` with its lateral axes squeezed towards the spot's axis, so that every
+// lateral offset lands where the emitter's shape says (`r` as it is for a round emitter).
 sg_Receiver sg_emitterShaped(sg_GpuLight L, sg_Receiver r) {
     vec3 ray = normalize(r.lsPosition);  // from the light, whose axis is -z in its space
     vec3 towardAxis = vec3(0.0, 0.0, -1.0) + ray.z * ray;  // the axis, less its part along the ray
@@ -35,7 +48,7 @@ sg_Receiver sg_emitterShaped(sg_GpuLight L, sg_Receiver r) {
     if (L.type != SG_LIGHT_SPOT || len < 1e-6) return r;
     e /= len;
     // o -> o - (1 - cos) (o.e) e, applied to the axes: axis i gains -(1 - cos) e_i (e.x t1 + e.y t2).
-    vec2 k = (1.0 - clamp(-ray.z, 0.0, 1.0)) * e;
+    vec2 k = (1.0 - sg_emitterForeshortening(L, r.toLight)) * e;
     vec3 cs = e.x * r.csTangent1 + e.y * r.csTangent2;
     vec3 ls = e.x * r.lsTangent1 + e.y * r.lsTangent2;
     vec4 clip = e.x * r.clipTangent1 + e.y * r.clipTangent2;

@@ -217,11 +217,8 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
     vec3 dir = sun ? -L.wsDirection : sg_safeNormalize(L.csPosition - origin, r.toLight);
     float tEnd = sun ? 1e30 : length(L.csPosition - origin);
     // A point-sized emitter (tan e = 0) is a cone of 1e-6: the hard shadow, without 0/0. A
-    // spot's emitter is a disk square to its axis, seen from off the axis as an ellipse whose
-    // short axis is cos(angle off the axis) of its radius: the cone takes the disk of the same
-    // area (radius sqrt(cos) of the emitter's).
-    float emitter = max(L.emitterSize, 0.0);
-    if (L.type == SG_LIGHT_SPOT) emitter *= sqrt(clamp(dot(-dir, L.wsDirection), 0.0, 1.0));
+    // spot's elliptic emitter: the cone takes the disk of the same area.
+    float emitter = sg_apparentEmitterSize(L, dir);
     float tanE = max(sun ? tan(emitter) : emitter / max(tEnd, 1e-6), 1e-6);
 
     // The field casters the cone around the ray segment meets, by bounding sphere, cluster by cluster: the

@@ -16,7 +16,7 @@ float sg_vssmVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
     float maxRadius = L.maxFilterTexels * r.texelMetres;
     float dReceiver = center.depth;
     float reference = sg_summedReference(L, r, center);
-    float size = max(L.emitterSize, 0.0);
+    float size = sg_apparentEmitterSize(L, r.toLight);
     // The blocker search region, then the penumbra: one loop body reads both, so the table's
     // 16 fetches are compiled once, and a SIMD group whose regions hold no blocker stops after
     // the first read. Without an emitter the penumbra is 0 and only it is read.
