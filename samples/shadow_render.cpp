@@ -52,7 +52,7 @@ struct Options {
     int debugLight = 0;
     bool frameImages = false;
     bool noCache = false;
-    int fieldVoxels = 64;                 ///< technique sdf: voxels along each mesh field's edge (cubed: the budget)
+    int fieldVoxels = 64;                  ///< technique sdf: voxels along each mesh field's edge (cubed: the budget)
     std::optional<float> sdfStartOffset;   ///< absent: each light keeps its own
     std::optional<float> maxFilterTexels;  ///< absent: each light keeps its own
     std::string shaderCache;
