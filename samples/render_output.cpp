@@ -223,8 +223,10 @@ nlohmann::json animationJson(const Scene& scene) {
     return {{"clips", clips}, {"played", played}, {"duration", scene.animationDuration}};
 }
 
-void printSceneWarnings(const char* program, const Scene& scene) {
-    for (const Warning& w : scene.warnings) std::cerr << program << ": warning: " << w.message << "\n";
+void printSceneWarnings(const char* program, const Scene& scene, std::size_t from) {
+    for (std::size_t k = from; k < scene.warnings.size(); ++k) {
+        std::cerr << program << ": warning: " << scene.warnings[k].message << "\n";
+    }
 }
 
 double unixSecondsNow() {

@@ -131,8 +131,9 @@ inline constexpr const char* kAnimationHelp =
 /// longest of those (s): stats.json's and reference.json's `animation`.
 [[nodiscard]] nlohmann::json animationJson(const Scene& scene);
 
-/// Prints the scene's load warnings on stderr, one line each (`program: warning: ...`): once,
-/// when the scene is loaded; stats.json lists them too.
-void printSceneWarnings(const char* program, const Scene& scene);
+/// Prints the scene's warnings from index `from` on stderr, one line each (`program: warning:
+/// ...`): those of loading once, when the scene is loaded, and those the frames added after
+/// them; stats.json lists them too.
+void printSceneWarnings(const char* program, const Scene& scene, std::size_t from = 0);
 
 }  // namespace shadow::samples

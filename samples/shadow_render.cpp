@@ -236,9 +236,7 @@ int run(const Options& o) {
         samples::statsJson(scene, frames, options.width, options.height, o.technique.value_or(""), startTime);
     if (Status s = writeTextFileAtomic(o.out + "/stats.json", json); !s) return fail(kExitFailure, s.error().message);
     // The scene's warnings the frames added (once per entity), then the last frame's.
-    for (std::size_t k = loadWarnings; k < scene.warnings.size(); ++k) {
-        std::cerr << "shadow_render: warning: " << scene.warnings[k].message << "\n";
-    }
+    samples::printSceneWarnings("shadow_render", scene, loadWarnings);
     for (const Warning& w : frames.back().warnings) std::cerr << "shadow_render: warning: " << w.message << "\n";
     return 0;
 }
