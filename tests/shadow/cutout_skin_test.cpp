@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "render/render_test_support.h"
+#include "shadow/truth_test_support.h"
 
 namespace shadow::test {
 namespace {
@@ -259,36 +260,6 @@ SkinnedScene skinnedScene(ShadowTechnique technique) {
     return s;
 }
 
-/// Shadowed ground pixels (visibility < 0.5) of light 0, and mismatches against the reference.
-struct SkinShadow {
-    int shadowed = 0;
-    int referenceShadowed = 0;
-    int mismatches = 0;
-};
-
-SkinShadow measureSkin(Scene& scene, const RenderedFrame& frame, const CameraView& view) {
-    reference::ReferenceOptions options;
-    options.width = kWidth;
-    options.height = kHeight;
-    options.samples = 1;
-    options.wsPositions = &frame.images.position;
-    auto ref = reference::traceVisibility(scene, view, options);
-    EXPECT_TRUE(static_cast<bool>(ref)) << (ref ? "" : ref.error().message);
-    SkinShadow out;
-    if (!ref) return out;
-    for (int y = 0; y < kHeight; ++y) {
-        for (int x = 0; x < kWidth; ++x) {
-            if (!isGroundPixel(frame.images, x, y)) continue;
-            const bool engine = frame.images.visibility.at(0).at(x, y, 0) < 0.5f;
-            const bool truth = ref->visibility.at(0).at(x, y, 0) < 0.5f;
-            out.shadowed += engine ? 1 : 0;
-            out.referenceShadowed += truth ? 1 : 0;
-            out.mismatches += engine != truth ? 1 : 0;
-        }
-    }
-    return out;
-}
-
 // The shadow of a skinned bar follows its joints: bent 90 degrees up at the elbow, the far half
 // stands over the elbow and its shadow shrinks to the near half's; the engine agrees with the
 // reference's CPU skinning in both poses (mismatches at most 6 % of the shadow: its outline to
@@ -298,10 +269,10 @@ TEST(SkinnedShadow, FollowsTheJointsAndAgreesWithTheReference) {
     SkinnedScene s = skinnedScene(ShadowTechnique::Hard);
     FrameRunner runner;
     const RenderedFrame straight = renderFrame(runner, s.scene, kWidth, kHeight);
-    const SkinShadow a = measureSkin(s.scene, straight, runner.lastCamera());
+    const GroundAgreement a = groundAgreement(s.scene, runner.lastCamera(), straight.images);
     s.scene.world.get<Transform>(s.elbow).rotation = glm::angleAxis(glm::radians(90.0), glm::dvec3(0.0, 0.0, 1.0));
     const RenderedFrame bent = renderFrame(runner, s.scene, kWidth, kHeight);
-    const SkinShadow b = measureSkin(s.scene, bent, runner.lastCamera());
+    const GroundAgreement b = groundAgreement(s.scene, runner.lastCamera(), bent.images);
     std::printf("straight: %d shadowed (reference %d, %d mismatches); bent: %d (reference %d, %d mismatches)\n",
                 a.shadowed, a.referenceShadowed, a.mismatches, b.shadowed, b.referenceShadowed, b.mismatches);
     ASSERT_GT(a.referenceShadowed, 500);

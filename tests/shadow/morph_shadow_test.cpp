@@ -79,27 +79,6 @@ Footprint footprint(const FrameImages& images, const Rect& shape) {
     return f;
 }
 
-/// Ground pixels the ray-traced reference shadows from light 0, and of all ground pixels those
-/// where `frame`'s shadow disagrees with it.
-struct ReferenceAgreement {
-    int shadowed = 0;
-    int mismatches = 0;
-};
-
-ReferenceAgreement compareWithReference(Scene& scene, const FrameRunner& runner, const RenderedFrame& frame) {
-    const std::optional<reference::ReferenceResult> ref = truthAt(scene, runner.lastCamera(), frame.images, 1);
-    ReferenceAgreement a;
-    for (int y = 0; y < kHeight && ref; ++y) {
-        for (int x = 0; x < kWidth; ++x) {
-            if (!isGroundPixel(frame.images, x, y)) continue;
-            const bool truth = ref->visibility.at(0).at(x, y, 0) < 0.5f;
-            a.shadowed += truth ? 1 : 0;
-            a.mismatches += truth != (frame.images.visibility.at(0).at(x, y, 0) < 0.5f) ? 1 : 0;
-        }
-    }
-    return a;
-}
-
 // Weight 0 casts the square's shadow, weight 1 the sheet stretched to twice its width: each
 // matches the projection of its shape (mismatches at most a tenth of the pixels under the moved
 // part, which the base shape would get wrong; measured 0).
@@ -141,11 +120,11 @@ TEST(MorphShadow, ReferenceSeesTheSameDeformation) {
     Scene scene = sheetScene(gltf_test::morphSheetDoc(1.0f));
     FrameRunner runner;
     const RenderedFrame frame = renderFrame(runner, scene, kWidth, kHeight);
-    const ReferenceAgreement ref = compareWithReference(scene, runner, frame);
-    std::printf("reference: %d shadowed ground pixels, %d mismatches\n", ref.shadowed, ref.mismatches);
+    const GroundAgreement ref = groundAgreement(scene, runner.lastCamera(), frame.images);
+    std::printf("reference: %d shadowed ground pixels, %d mismatches\n", ref.referenceShadowed, ref.mismatches);
     const Footprint geometry = footprint(frame.images, stretchedSheet(1.0));
-    ASSERT_GT(ref.shadowed, geometry.predicted * 9 / 10) << "the reference's shadow is the stretched sheet's";
-    EXPECT_LE(ref.mismatches, 0.03 * ref.shadowed);
+    ASSERT_GT(ref.referenceShadowed, geometry.predicted * 9 / 10) << "the reference's shadow is the stretched sheet's";
+    EXPECT_LE(ref.mismatches, 0.03 * ref.referenceShadowed);
 }
 
 /// `morphSheetDoc`'s sheet at weight 1, skinned (glTF `skins`) to one joint, node 1 "joint" at
@@ -185,18 +164,18 @@ TEST(MorphShadow, MorphedThenSkinnedCastsItsShape) {
     const Footprint right = footprint(frame.images, kMorphedThenSkinned);
     const Footprint swapped = footprint(frame.images, kSkinnedThenMorphed);
     const Footprint skinOnly = footprint(frame.images, kSkinnedOnly);
-    const ReferenceAgreement ref = compareWithReference(scene, runner, frame);
+    const GroundAgreement ref = groundAgreement(scene, runner.lastCamera(), frame.images);
     std::printf(
         "morphed then skinned: %d predicted (%d under the moved part), %d mismatches of %d judged; skinned then "
         "morphed: %d mismatches; skin alone: %d; reference: %d shadowed, %d mismatches\n",
         right.predicted, right.band, right.mismatches, right.judged, swapped.mismatches, skinOnly.mismatches,
-        ref.shadowed, ref.mismatches);
+        ref.referenceShadowed, ref.mismatches);
     ASSERT_GT(right.band, 300);
     EXPECT_LE(right.mismatches, 0.1 * right.band);
     EXPECT_GT(swapped.mismatches, right.band / 2) << "the order matters on this pose";
     EXPECT_GT(skinOnly.mismatches, right.band / 2) << "the morph matters on this pose";
-    ASSERT_GT(ref.shadowed, right.predicted * 9 / 10) << "the reference's shadow is the same shape";
-    EXPECT_LE(ref.mismatches, 0.03 * ref.shadowed);
+    ASSERT_GT(ref.referenceShadowed, right.predicted * 9 / 10) << "the reference's shadow is the same shape";
+    EXPECT_LE(ref.mismatches, 0.03 * ref.referenceShadowed);
 }
 
 // Unchanged weights reuse every layer; a changed weight redraws them.

@@ -52,6 +52,32 @@ inline VisibilityErrors light0Errors(const FrameImages& images, const reference:
     return lightErrors(images, truth, 0);
 }
 
+/// Light 0's shadow on the ground (`isGroundPixel`) of `images` against the traced truth (one
+/// ray a pixel, at `images`' positions, a point-sized emitter's exact answer): shadowed pixels
+/// (visibility < 0.5) of each, and the pixels where they disagree.
+struct GroundAgreement {
+    int shadowed = 0;           ///< by the engine
+    int referenceShadowed = 0;  ///< by the truth
+    int mismatches = 0;
+};
+
+inline GroundAgreement groundAgreement(Scene& scene, const CameraView& camera, const FrameImages& images) {
+    GroundAgreement out;
+    const std::optional<reference::ReferenceResult> truth = truthAt(scene, camera, images, 1);
+    if (!truth) return out;
+    for (int y = 0; y < images.position.height; ++y) {
+        for (int x = 0; x < images.position.width; ++x) {
+            if (!isGroundPixel(images, x, y)) continue;
+            const bool engine = images.visibility.at(0).at(x, y, 0) < 0.5f;
+            const bool traced = truth->visibility.at(0).at(x, y, 0) < 0.5f;
+            out.shadowed += engine ? 1 : 0;
+            out.referenceShadowed += traced ? 1 : 0;
+            out.mismatches += engine != traced ? 1 : 0;
+        }
+    }
+    return out;
+}
+
 /// Renders one frame of `scene` at `width` x `height` for each technique of `techniques` (every
 /// shadowed light set to it) and traces the truth once, with `samples` rays per pixel, at the
 /// first frame's pixel positions: a technique moves no surface, so one truth serves every frame.
