@@ -17,11 +17,32 @@
 const float sg_kVsmMomentUlps = 4.0 * 1.1920929e-7;
 
 // Chebyshev's bound for a receiver at `reference` (stored units) and a region of moments `m`,
-// with the variance at least `minVariance`.
-float sg_chebyshevUpperBound(vec2 m, float reference, float minVariance) {
+// with the variance at least `minVariance`, of which `planeVariance` is the receiver's own plane
+// spread over the region (sg_planeVariance) rather than evidence of blockers.
+//
+// Chebyshev's bound reads all of a region's variance as depths split between the receiver and
+// something in front of it. Over a wide region a sloped receiver's own texels spread by
+// slope x radius around its depth, and the bound then calls a region half lit that is mostly
+// blockers (VSSM's and MSM-soft's searches took blockers at the light and spread their
+// penumbrae). Taking the lit part p of the region as the receiver's plane, whose own variance is
+// a, the region's variance holds p a of it; the bound on the rest, p = (var - p a) /
+// (var - p a + d^2), is the smaller root of a p^2 - (var + d^2 + a) p + var = 0, written so that
+// a = 0 is Chebyshev's bound exactly. The plane's share is at most the region's variance (a flat
+// region under a steep receiver is not the receiver's plane).
+float sg_chebyshevUpperBound(vec2 m, float reference, float minVariance, float planeVariance) {
     float variance = max(m.y - m.x * m.x, minVariance);
     float d = reference - m.x;
-    return d <= 0.0 ? 1.0 : variance / (variance + d * d);
+    float a = min(planeVariance, variance);
+    float b = variance + d * d + a;
+    return d <= 0.0 ? 1.0 : 2.0 * variance / (b + sqrt(max(b * b - 4.0 * a * variance, 0.0)));
+}
+
+// The variance of the receiver plane's stored depths over a region of radius `radius` (m) whose
+// per-axis variance is radius^2 / 4 (the chain's trilinear fetch and the summed-area square both
+// are, sg_regionMoments): the plane's depth changes by r.depthSlope per lateral metre.
+float sg_planeVariance(sg_Receiver r, float radius) {
+    float spread = r.depthSlope * radius / r.depthScale;
+    return 0.25 * spread * spread;
 }
 
 // The chain level whose texels are as wide as a region of radius `radius` (m) at the receiver.
@@ -91,9 +112,10 @@ float sg_momentsReference(sg_Receiver r, sg_Tap center) {
 }
 
 // Visibility of the receiver at `reference` (stored units) behind a region of moments `m`:
-// Chebyshev's bound with the variance at least `minVariance`, then the light-bleeding reduction.
-float sg_momentsVisibility(sg_GpuLight L, vec2 m, float reference, float minVariance) {
-    float p = sg_chebyshevUpperBound(m, reference, minVariance);
+// Chebyshev's bound with the variance at least `minVariance` (`planeVariance` of it the
+// receiver's plane), then the light-bleeding reduction.
+float sg_momentsVisibility(sg_GpuLight L, vec2 m, float reference, float minVariance, float planeVariance) {
+    float p = sg_chebyshevUpperBound(m, reference, minVariance, planeVariance);
     float cut = clamp(L.lightBleedReduction, 0.0, 0.95);
     return clamp((p - cut) / (1.0 - cut), 0.0, 1.0);
 }

@@ -34,14 +34,16 @@ const float sg_kVssmLeastBlockers = 1e-3;
 
 // Steps 2 and 3's first half: the penumbra half-width (m) behind a blocker search region of
 // moments `m` (E[z], E[z^2], stored units) for a receiver at `reference` (stored units) and
-// `dReceiver` (m), the variance at least `minVariance`; -1 when the region holds (almost) no
-// blocker, where the receiver is lit.
-float sg_softMomentsPenumbra(sg_GpuLight L, sg_Receiver r, vec2 m, float reference, float minVariance, float dReceiver,
-                             float size, float maxRadius) {
-    float lit = sg_chebyshevUpperBound(m, reference, minVariance);
+// `dReceiver` (m), the variance at least `minVariance` (the region of radius `searchRadius`);
+// -1 when the region holds (almost) no blocker, where the receiver is lit. `dBlocker` is the
+// blockers' mean depth (m) it found.
+float sg_softMomentsPenumbra(sg_GpuLight L, sg_Receiver r, vec2 m, float reference, float minVariance,
+                             float searchRadius, float dReceiver, float size, float maxRadius, out float dBlocker) {
+    dBlocker = dReceiver;
+    float lit = sg_chebyshevUpperBound(m, reference, minVariance, sg_planeVariance(r, searchRadius));
     if (1.0 - lit < sg_kVssmLeastBlockers) return -1.0;
     float zBlocker = (m.x - lit * reference) / (1.0 - lit);
-    float dBlocker = clamp(zBlocker * r.depthScale, 0.0, dReceiver);
+    dBlocker = clamp(zBlocker * r.depthScale, 0.0, dReceiver);
     SG_DEBUG_STORE(sg_debugBlockerDepth, dBlocker);
     return min(sg_penumbraRadius(L, dReceiver, dBlocker, size), maxRadius);
 }

@@ -13,8 +13,10 @@ float sg_vsmVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
     sg_Tap center = sg_lateralTap(L, r, vec2(0.0));
     if (sg_outsideMap(center)) return 1.0;
     // PCF's disk of pcfRadius at the receiver, at most maxFilterTexels.
+    // Chebyshev's bound as it is (no plane share, sg_chebyshevUpperBound): over PCF's few texels the
+    // receiver's plane spreads little, and taking it out put false shadow on curved receivers.
     vec2 m = sg_regionMoments(slot, L, r, center, sg_pcfRadius(L, r)).xy;
-    return sg_momentsVisibility(L, m, sg_momentsReference(r, center), sg_varianceFloor(r, m));
+    return sg_momentsVisibility(L, m, sg_momentsReference(r, center), sg_varianceFloor(r, m), 0.0);
 }
 
 #endif

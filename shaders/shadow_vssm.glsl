@@ -28,11 +28,12 @@ float sg_vssmVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
         vec2 m = sg_summedRegionMoments(slot, L, r, center, radius);
         float minVariance = sg_summedVarianceFloor(L, r, center, m);
         if (k + 1 < reads) {
-            radius = sg_softMomentsPenumbra(L, r, m, reference, minVariance, dReceiver, size, maxRadius);
+            float dBlocker;
+            radius = sg_softMomentsPenumbra(L, r, m, reference, minVariance, radius, dReceiver, size, maxRadius, dBlocker);
             if (radius < 0.0) break;  // no blocker: lit
         } else {
             SG_DEBUG_STORE(sg_debugPenumbra, radius);
-            visibility = sg_momentsVisibility(L, m, reference, minVariance);
+            visibility = sg_momentsVisibility(L, m, reference, minVariance, sg_planeVariance(r, radius));
         }
     }
     return visibility;
