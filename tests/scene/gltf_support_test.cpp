@@ -67,7 +67,7 @@ TEST(GltfSupport, WhatTheMaterialsReadAndExtensionsOnlyListedAreNotWarnedAbout) 
 
 TEST(GltfSupport, EachKindLeftOutIsOneWarningNamingItsFirstUse) {
     Doc doc = twoMaterialDoc({{"emissiveFactor", {0, 0, 0}}, {"extensions", {{"KHR_materials_unlit", json::object()}}}},
-                             {{"emissiveFactor", {1, 0.5, 0}}});
+                             {{"emissiveFactor", {1, 0.5, 0}}, {"alphaMode", "BLEND"}});
     doc.j["extensionsUsed"] = {"KHR_materials_unlit", "EXT_made_up"};
     // Vertex colours on the second mesh.
     doc.j["meshes"][1]["primitives"][0]["attributes"]["COLOR_0"] = 0;
@@ -78,13 +78,15 @@ TEST(GltfSupport, EachKindLeftOutIsOneWarningNamingItsFirstUse) {
     std::vector<std::string> elements;
     for (const Warning& warning : w) elements.push_back(warning.element);
     // In the table's order, then the unknown extension; the emission is read, not warned about.
+    // A blended material, drawn as a cut-out, is said too.
     const std::vector<std::string> expected = {"materials[0].extensions.KHR_materials_unlit",
-                                               "meshes[1].primitives[0].attributes.COLOR_0",
+                                               "meshes[1].primitives[0].attributes.COLOR_0", "materials[1].alphaMode",
                                                "meshes[0].extensions.EXT_made_up"};
     EXPECT_EQ(elements, expected);
-    ASSERT_EQ(w.size(), 3u);
+    ASSERT_EQ(w.size(), 4u);
     EXPECT_NE(w[0].message.find("KHR_materials_unlit (used once, first at"), std::string::npos) << w[0].message;
-    EXPECT_NE(w[2].message.find("an extension the module does not know"), std::string::npos) << w[2].message;
+    EXPECT_NE(w[2].message.find("cut-outs at alpha 0.5"), std::string::npos) << w[2].message;
+    EXPECT_NE(w[3].message.find("an extension the module does not know"), std::string::npos) << w[3].message;
 }
 
 TEST(GltfSupport, BasisuTextureWithoutFallbackDrawsTheMaterialWithoutIt) {

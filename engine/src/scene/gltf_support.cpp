@@ -51,6 +51,8 @@ constexpr FeatureSupport kFeatures[] = {
     {"COLOR_0", Support::Dropped, "vertex colours are not drawn"},
     {"JOINTS_1", Support::Dropped, "only a vertex's first four joint influences (JOINTS_0/WEIGHTS_0) pose it"},
     {"magFilter NEAREST", Support::Dropped, "textures are filtered linearly (pixel art is drawn blurred)"},
+    {"alphaMode BLEND", Support::Dropped,
+     "blended surfaces are not blended: they are drawn, and cast shadows, as cut-outs at alpha 0.5"},
 };
 
 /// The uses of one extension or feature: how many, and the first.
@@ -140,6 +142,11 @@ void collectMaterialFeatures(const json& document, Uses& uses) {
         constexpr int kNearest = 9728;
         if (const json* mag = member(sampler, "magFilter"); mag != nullptr && *mag == kNearest) {
             record(uses, "magFilter NEAREST", where + ".magFilter");
+        }
+    });
+    eachElement(document, "materials", [&](const json& material, const std::string& where) {
+        if (const json* mode = member(material, "alphaMode"); mode != nullptr && *mode == "BLEND") {
+            record(uses, "alphaMode BLEND", where + ".alphaMode");
         }
     });
 }
