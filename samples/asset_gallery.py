@@ -154,11 +154,26 @@ def count(n, noun):
     return f"{n} {noun}" + ("" if n == 1 else "s")
 
 
+def material_features(materials):
+    """Material features beyond base colour and metallic-roughness factors."""
+    out = []
+    if any("normalTexture" in m for m in materials):
+        out.append("normal maps")
+    if any("emissiveTexture" in m or any(m.get("emissiveFactor", [])) for m in materials):
+        out.append("emission")
+    if any("KHR_texture_transform" in json.dumps(m) for m in materials):
+        out.append("texture transforms")
+    for mode in sorted({m.get("alphaMode", "OPAQUE") for m in materials} - {"OPAQUE"}):
+        out.append(f"alpha `{mode}`" + (" (drawn as a cut-out)" if mode == "BLEND" else ""))
+    return out
+
+
 def exercises(gltf, external, clip, time):
     """What the file asks of the loader and renderer, in a few words."""
     out = []
     if gltf.get("images"):
         out.append(count(len(gltf["images"]), "texture image"))
+    out += material_features(gltf.get("materials", []))
     joints = max((len(s["joints"]) for s in gltf.get("skins", [])), default=0)
     if joints:
         out.append(f"skin ({joints} joints)")
