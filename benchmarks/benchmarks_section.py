@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""Replaces one section of BENCHMARKS.md, the text between <!-- NAME:begin --> and <!-- NAME:end -->,
-with the file BODY; a section not yet there is appended under HEADING. Every other section stays
-as it is, so each benchmark script rewrites only its own figures.
+"""Replaces one section of BENCHMARKS.md (or of another Markdown file: the README's asset gallery,
+samples/asset_gallery.sh), the text between <!-- NAME:begin --> and <!-- NAME:end -->, with the
+file BODY; a section not yet there is appended under HEADING. Every other section stays as it is,
+so each script rewrites only its own figures.
 
     python3 benchmarks/benchmarks_section.py NAME HEADING BODY [BENCHMARKS.md]
 """

@@ -25,23 +25,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-is_git_dir() { [ -n "$1" ] && git --git-dir="$1" rev-parse --verify -q HEAD >/dev/null 2>&1; }
-
-raylib_git=${1:-${RAYLIB_GIT:-}}
-if [ -z "$raylib_git" ]; then
-  for candidate in /work/.mirror/*raylib* /work/.mirror/*raylib*/repo; do
-    if is_git_dir "$candidate"; then
-      raylib_git=$candidate
-      break
-    fi
-  done
-fi
-if [ -n "$raylib_git" ] && ! is_git_dir "$raylib_git" && is_git_dir "$raylib_git/.git"; then
-  raylib_git=$raylib_git/.git  # a clone's work tree
-fi
-if ! is_git_dir "$raylib_git"; then
+source samples/find_snapshot.sh
+given=${1:-${RAYLIB_GIT:-}}
+if ! raylib_git=$(find_snapshot raylib "$given"); then
   echo "run_real_assets: skipped: no git directory of the raylib repository" \
-    "(${raylib_git:-none found under /work/.mirror/}); give it as the first argument or RAYLIB_GIT"
+    "(${given:-none found under /work/.mirror/}); give it as the first argument or RAYLIB_GIT"
   exit 0
 fi
 work=${2:-${WORK:-out/real_assets}}
