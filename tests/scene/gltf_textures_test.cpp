@@ -92,5 +92,26 @@ TEST(GltfTextures, TextureReadingATexcoordSetThePrimitiveLacksWarnsAndIsLeftOut)
                       ".pbrMetallicRoughness.baseColorTexture reads: the primitive is drawn without that texture");
 }
 
+/// Exporters write KTX2 (and WebP, DDS) files as core images, outside glTF 2.0's PNG and JPEG:
+/// the file loads, drawn without that texture, with one warning naming the image; a file that
+/// claims to be a PNG and does not decode stays an error.
+TEST(GltfTextures, ImageInAFormatTheLoaderDoesNotDecodeIsLeftOutWithAWarning) {
+    const fs::path dir = testDir();
+    writeText(dir / "bark.ktx2", std::string("\xABKTX 20\xBB\r\n\x1A\n", 12) + std::string(64, '\0'));
+    const fs::path path = texturedDoc(dir, "bark.ktx2", 0);
+    auto scene = loadGltf(path.string());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    EXPECT_EQ(scene->world.get<Material>(findByName(*scene, "tri")).baseColorTexture, nullptr);
+    ASSERT_EQ(scene->warnings.size(), 1u);
+    expectWarning(scene->warnings[0], WarningCode::UnsupportedFeature, "images[0]",
+                  path.string() +
+                      ": images[0] (bark.ktx2): not a PNG or JPEG image, the formats the loader decodes; the "
+                      "materials using it are drawn without this texture");
+
+    writeText(dir / "broken.png", std::string("\x89PNG\r\n\x1a\n", 8) + std::string(64, 'x'));
+    EXPECT_MESSAGE(loadError(texturedDoc(dir, "broken.png", 0)),
+                   "images[0]: is not an image the loader decodes (PNG or JPEG)");
+}
+
 }  // namespace
 }  // namespace shadow

@@ -66,14 +66,14 @@ struct Importer {
     std::vector<gltf::LightDefinition> lights;
     std::vector<gltf::ImportedClip> clips;
     std::vector<std::optional<std::vector<gltf::MeshPart>>> meshes;  // built on first use
-    gltf::TextureImporter textures{model};
+    Scene scene;
+    gltf::TextureImporter textures{model, scene.warnings};
     std::vector<Entity> entityOfNode;  ///< null for nodes outside the chosen scene
     /// Entities carrying a mesh of a skinned node, with that node: skinned once every node is.
     std::vector<std::pair<Entity, std::size_t>> skinned;
     /// Per node, the entities carrying its mesh's primitives when they have morph targets: what
     /// the node's `weights` channels animate.
     std::vector<std::vector<Entity>> morphedOfNode;
-    Scene scene;
 
     Importer(const tinygltf::Model& m, const GltfLoadOptions& o) : model(m), options(o) {}
 

@@ -2,6 +2,7 @@
 
 #include <stb_image.h>
 
+#include <algorithm>
 #include <climits>
 #include <cstring>
 
@@ -39,6 +40,16 @@ Result<std::vector<unsigned char>> encodedImage(const tinygltf::Model& model, st
     }
     const auto first = data.begin() + static_cast<std::ptrdiff_t>(v.byteOffset);
     return std::vector<unsigned char>(first, first + static_cast<std::ptrdiff_t>(v.byteLength));
+}
+
+/// Whether `bytes` begin as a PNG or a JPEG file does (its signature), decodable or not.
+bool looksLikePngOrJpeg(const std::vector<unsigned char>& bytes) {
+    static constexpr unsigned char kPng[] = {0x89, 'P', 'N', 'G'};
+    static constexpr unsigned char kJpeg[] = {0xFF, 0xD8, 0xFF};
+    const auto startsWith = [&](const auto& magic) {
+        return bytes.size() >= sizeof(magic) && std::memcmp(bytes.data(), magic, sizeof(magic)) == 0;
+    };
+    return startsWith(kPng) || startsWith(kJpeg);
 }
 
 /// Decodes `bytes` (PNG or JPEG) to RGBA8, checking the size before decoding.
@@ -90,6 +101,24 @@ Result<std::shared_ptr<const Texture>> TextureImporter::get(int index, const std
     const std::string imageName = indexed("images", imageIndex);
     auto bytes = encodedImage(model_, imageIndex, imageName);
     if (!bytes) return bytes.error();
+    // Not a PNG or a JPEG, nor anything else the decoder reads: a format left out (KTX2, WebP, DDS
+    // named as a core image), drawn without, where a PNG or JPEG that does not decode is an error.
+    int width = 0;
+    int height = 0;
+    int channels = 0;
+    if (!looksLikePngOrJpeg(*bytes) &&
+        stbi_info_from_memory(bytes->data(), static_cast<int>(std::min<std::size_t>(bytes->size(), INT_MAX)), &width,
+                              &height, &channels) == 0) {
+        if (!dropped_[imageIndex]) {
+            dropped_[imageIndex] = true;
+            const std::string& uri = model_.images[imageIndex].uri;
+            warnings_.push_back({WarningCode::UnsupportedFeature, imageName,
+                                 imageName + (uri.empty() || uri.rfind("data:", 0) == 0 ? "" : " (" + uri + ")") +
+                                     ": not a PNG or JPEG image, the formats the loader decodes; the materials "
+                                     "using it are drawn without this texture"});
+        }
+        return std::shared_ptr<const Texture>{};
+    }
     auto decoded = decode(*bytes, imageName);
     if (!decoded) return decoded.error();
     decoded->name = model_.images[imageIndex].name.empty() ? imageName : model_.images[imageIndex].name;

@@ -4,6 +4,7 @@
 
 #include <shadow/components.h>
 #include <shadow/result.h>
+#include <shadow/warnings.h>
 #include <tiny_gltf.h>
 
 #include <memory>
@@ -22,17 +23,23 @@ inline constexpr int kMaxTextureEdge = 16384;
 /// decodes one when a material first uses it.
 class TextureImporter {
 public:
-    explicit TextureImporter(const tinygltf::Model& model) : model_(model), textures_(model.textures.size()) {}
+    /// `warnings` receives one UnsupportedFeature warning per image left out (see `get`).
+    TextureImporter(const tinygltf::Model& model, std::vector<Warning>& warnings)
+        : model_(model), warnings_(warnings), textures_(model.textures.size()) {}
 
     /// `textures[index]`, decoded to RGBA8 with its sampler's wrap modes; `where` names the
-    /// referring element. An image that is missing, not PNG/JPEG, or larger than the limits is an
-    /// error naming it. Null for a texture whose only image is an extension's (KHR_texture_basisu,
-    /// EXT_texture_webp without a `source`): the material is drawn without it.
+    /// referring element. An image that is missing, a PNG or JPEG that does not decode, or one
+    /// larger than the limits is an error naming it. Null, and the material drawn without it, for a
+    /// texture whose only image is an extension's (KHR_texture_basisu, EXT_texture_webp without a
+    /// `source`), and for an image in a format the loader does not decode at all (KTX2, WebP,
+    /// DDS named as a core image, as some exporters write them): one warning naming the image.
     [[nodiscard]] Result<std::shared_ptr<const Texture>> get(int index, const std::string& where);
 
 private:
     const tinygltf::Model& model_;
-    std::vector<std::shared_ptr<const Texture>> textures_;  ///< by texture index, once decoded
+    std::vector<Warning>& warnings_;
+    std::vector<std::shared_ptr<const Texture>> textures_;                        ///< by texture index, once decoded
+    std::vector<bool> dropped_ = std::vector<bool>(model_.images.size(), false);  ///< by image: warned
 };
 
 }  // namespace shadow::gltf
