@@ -1,9 +1,10 @@
 // Surface pass of the screen-space visibility stage (render/screen_visibility.h): the scene's
 // geometry drawn once, through the lit pass's vertex shader, into what the stage and the
-// deferred lit pass read back per pixel: the camera-relative position, the shading normal, the
-// triangle's own normal and the material (material.glsl, as the forward lit pass reads it).
-// With SG_ALPHA_TESTED (cut-out materials) the holes are left out. With SG_GBUFFER_MATERIAL
-// (a frame with normal maps or emission) also the lighting normal and the emitted radiance.
+// deferred lit pass read back per pixel (packed as screen_gbuffer.glsl says): the depth along
+// the view, the interpolated normal, the triangle's own normal and the material (material.glsl,
+// as the forward lit pass reads it). With SG_ALPHA_TESTED (cut-out materials) the holes are left
+// out. With SG_GBUFFER_MATERIAL (a frame with normal maps or emission) also the lighting normal
+// and the emitted radiance.
 #include "shadow_surface.glsl"
 #include "screen_gbuffer.glsl"
 #include "material.glsl"
@@ -16,16 +17,12 @@ in vec2 vTexcoord1;
 #endif
 
 uniform int uReceiveShadows;
+uniform vec3 uCameraForward;  // unit, world space
 
-layout(location = 0) out vec4 outPosition;  // camera-relative xyz, sg_gbufferFlags
-// Octahedral: the interpolated normal the shadow lookups take (xy; the lighting normal too
-// without SG_GBUFFER_MATERIAL), the triangle's normal (zw).
-layout(location = 1) out vec4 outNormals;
-layout(location = 2) out vec4 outAlbedo;    // linear albedo, shininess
-layout(location = 3) out vec4 outSpecular;  // specular colour, ambient occlusion
+layout(location = 0) out uvec4 outSurface;   // sg_packSurface
+layout(location = 1) out uvec4 outMaterial;  // sg_packMaterial
 #ifdef SG_GBUFFER_MATERIAL
-layout(location = 4) out vec4 outShading;   // octahedral lighting normal (xy)
-layout(location = 5) out vec4 outEmission;  // emitted radiance (rgb)
+layout(location = 2) out uvec4 outExtra;     // sg_packExtra: emission, lighting normal
 #endif
 
 void main() {
@@ -44,12 +41,10 @@ void main() {
     mi.tangent = vWsTangent;
 #endif
     MaterialSample m = sg_material(mi);
-    outPosition = vec4(cs, sg_gbufferFlags(uReceiveShadows != 0, s.curvature));
-    outNormals = vec4(sg_octEncode(s.normal), sg_octEncode(s.geoNormal));
-    outAlbedo = vec4(m.albedo, clamp(m.shininess, 1.0, 4096.0));
-    outSpecular = vec4(m.specular, m.occlusion);
+    // At least a trace of depth: 0 is "nothing drawn" (the near plane keeps it far above that).
+    outSurface = sg_packSurface(max(dot(cs, uCameraForward), 1e-30), uReceiveShadows != 0, s.geoNormal, s.normal);
+    outMaterial = sg_packMaterial(m.albedo, clamp(m.shininess, 1.0, 4096.0), m.specular, m.occlusion);
 #ifdef SG_GBUFFER_MATERIAL
-    outShading = vec4(sg_octEncode(m.normal), 0.0, 0.0);
-    outEmission = vec4(m.emission, 1.0);
+    outExtra = sg_packExtra(m.emission, m.normal);
 #endif
 }

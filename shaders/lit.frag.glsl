@@ -26,14 +26,12 @@
 #endif
 
 #ifdef SG_DEFERRED
-layout(binding = SG_UNIT_GBUFFER_ALBEDO) uniform sampler2D sg_gbufferAlbedo;
-layout(binding = SG_UNIT_GBUFFER_SPECULAR) uniform sampler2D sg_gbufferSpecular;
+layout(binding = SG_UNIT_GBUFFER_MATERIAL) uniform usampler2D sg_gbufferMaterial;
 // Slots 0-3 of the pass in layer 0, 4-7 in layer 1 (screen_visibility.frag.glsl).
 layout(binding = SG_UNIT_SCREEN_VISIBILITY) uniform sampler2DArray sg_screenVisibility;
 #ifdef SG_GBUFFER_MATERIAL
-// A frame with normal maps or emission: the lighting normal and the emitted radiance.
-layout(binding = SG_UNIT_GBUFFER_SHADING) uniform sampler2D sg_gbufferShading;
-layout(binding = SG_UNIT_GBUFFER_EMISSION) uniform sampler2D sg_gbufferEmission;
+// A frame with normal maps or emission: the emitted radiance and the lighting normal.
+layout(binding = SG_UNIT_GBUFFER_EXTRA) uniform usampler2D sg_gbufferExtra;
 #endif
 #else
 in vec4 vCsPositionU;  // lit.vert.glsl: position and texture u
@@ -135,30 +133,31 @@ vec3 debugColor = vec3(0.0);
 void main() {
 #ifdef SG_DEFERRED
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    vec4 gPosition = texelFetch(sg_gbufferPosition, pixel, 0);
-    vec4 gNormals = texelFetch(sg_gbufferNormals, pixel, 0);
-    vec4 gAlbedo = texelFetch(sg_gbufferAlbedo, pixel, 0);
-    vec4 gSpecular = texelFetch(sg_gbufferSpecular, pixel, 0);
+    uvec4 gSurface = texelFetch(sg_gbufferSurface, pixel, 0);
+    uvec4 gMaterial = texelFetch(sg_gbufferMaterial, pixel, 0);
     // Only pixels the surface pass drew run (depth-tested at the far plane): the background
     // keeps the targets' clear values, as forward leaves it.
-    bool receiveShadows = sg_gbufferReceives(gPosition.w);
+    bool receiveShadows = sg_gbufferReceives(gSurface);
     vec4 screenVisibility[2] = vec4[](texelFetch(sg_screenVisibility, ivec3(pixel, 0), 0),
                                       SG_PASS_LIGHTS > 4 ? texelFetch(sg_screenVisibility, ivec3(pixel, 1), 0) : vec4(1.0));
-    vec3 vCsPosition = gPosition.xyz;
+    vec3 vCsPosition = sg_gbufferPosition(pixel, gSurface);
+    vec2 albedoRg = unpackHalf2x16(gMaterial.x), albedoB = unpackHalf2x16(gMaterial.y);
+    vec2 specularRg = unpackHalf2x16(gMaterial.z), specularB = unpackHalf2x16(gMaterial.w);
     Surface s;
     s.csPosition = vCsPosition;
     s.toViewer = normalize(-vCsPosition);
-    s.geoNormal = sg_octDecode(gNormals.zw);
-    s.curvature = sg_gbufferCurvature(gPosition.w);
-    s.normal = sg_octDecode(gNormals.xy);
-    s.albedo = gAlbedo.rgb;
-    s.specular = gSpecular.rgb;
-    s.shininess = gAlbedo.a;
-    float occlusion = gSpecular.a;
+    s.geoNormal = sg_gbufferGeoNormal(gSurface);
+    s.curvature = 0.0;  // shading does not read it
+    s.normal = sg_gbufferNormal(gSurface);
+    s.albedo = vec3(albedoRg, albedoB.x);
+    s.specular = vec3(specularRg, specularB.x);
+    s.shininess = albedoB.y;
+    float occlusion = specularB.y;
     vec3 emission = vec3(0.0);
 #ifdef SG_GBUFFER_MATERIAL
-    s.normal = sg_octDecode(texelFetch(sg_gbufferShading, pixel, 0).xy);
-    emission = texelFetch(sg_gbufferEmission, pixel, 0).rgb;
+    uvec4 gExtra = texelFetch(sg_gbufferExtra, pixel, 0);
+    emission = vec3(unpackHalf2x16(gExtra.x), unpackHalf2x16(gExtra.y).x);
+    s.normal = sg_octDecode(unpackSnorm2x16(gExtra.z));
 #endif
 #else
     vec3 vCsPosition = vCsPositionU.xyz;

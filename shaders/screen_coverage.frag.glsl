@@ -7,6 +7,6 @@
 
 void main() {
     ivec2 src = min(ivec2(gl_FragCoord.xy) * SG_VIS_DIVISOR + SG_VIS_DIVISOR / 2,
-                    textureSize(sg_gbufferPosition, 0) - 1);
-    gl_FragDepth = sg_gbufferReceives(texelFetch(sg_gbufferPosition, src, 0).w) ? 0.0 : 1.0;
+                    textureSize(sg_gbufferSurface, 0) - 1);
+    gl_FragDepth = sg_gbufferReceives(texelFetch(sg_gbufferSurface, src, 0)) ? 0.0 : 1.0;
 }

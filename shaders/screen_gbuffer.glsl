@@ -1,15 +1,18 @@
-// The surface targets of the screen-space visibility stage, as its passes read them: units,
-// the coverage flags and the octahedral normal encoding (render/screen_visibility.h).
+// The surface targets of the screen-space visibility stage, as its passes write and read them
+// (render/screen_visibility.h): two RGBA32UI texels a pixel, and a third with normal maps or
+// emission, packed so that a pass reads what it needs in as few fetches as it can (on a CPU
+// rasteriser each fetch of a full-screen target costs about as much as the arithmetic of a light).
+//   surface  (SG_UNIT_GBUFFER_SURFACE): x the depth along the view (float bits; negative on a
+//            surface that does not receive shadows, 0 where nothing was drawn), y z the
+//            triangle's normal, octahedral (float bits: the lookups compare depths on its
+//            plane), w the interpolated normal the lookups take (octahedral, 2 x snorm16). The
+//            camera-relative position is the pixel's ray times the depth (sg_gbufferPosition).
+//   material (SG_UNIT_GBUFFER_MATERIAL): half floats albedo rgb, shininess, specular rgb, occlusion.
+//   extra    (SG_UNIT_GBUFFER_EXTRA, SG_GBUFFER_MATERIAL): half floats emission rgb, and the
+//            lighting normal (octahedral, 2 x snorm16).
 #ifndef SG_SCREEN_GBUFFER
 #define SG_SCREEN_GBUFFER
 #include "shared_constants.h"
-
-// The position target's w: 0 where nothing was drawn, 1 + curvature (1/m) on a surface that
-// receives shadows, -(1 + curvature) on one that does not.
-float sg_gbufferFlags(bool receives, float curvature) { return receives ? 1.0 + curvature : -1.0 - curvature; }
-bool sg_gbufferCovered(float w) { return w != 0.0; }
-bool sg_gbufferReceives(float w) { return w > 0.0; }
-float sg_gbufferCurvature(float w) { return abs(w) - 1.0; }
 
 // A unit vector as two numbers in [-1, 1]: the octahedron's faces unfolded onto a square.
 vec2 sg_octEncode(vec3 n) {
@@ -27,8 +30,40 @@ vec3 sg_octDecode(vec2 p) {
     return normalize(n);
 }
 
+// The surface texel of a surface at depth `viewDepth` (> 0) along the view.
+uvec4 sg_packSurface(float viewDepth, bool receives, vec3 geoNormal, vec3 normal) {
+    vec2 geo = sg_octEncode(geoNormal);
+    return uvec4(floatBitsToUint(receives ? viewDepth : -viewDepth), floatBitsToUint(geo.x), floatBitsToUint(geo.y),
+                 packSnorm2x16(sg_octEncode(normal)));
+}
+
+uvec4 sg_packMaterial(vec3 albedo, float shininess, vec3 specular, float occlusion) {
+    return uvec4(packHalf2x16(albedo.rg), packHalf2x16(vec2(albedo.b, shininess)), packHalf2x16(specular.rg),
+                 packHalf2x16(vec2(specular.b, occlusion)));
+}
+
+uvec4 sg_packExtra(vec3 emission, vec3 lightingNormal) {
+    return uvec4(packHalf2x16(emission.rg), packHalf2x16(vec2(emission.b, 0.0)), packSnorm2x16(sg_octEncode(lightingNormal)),
+                 0u);
+}
+
+// The surface texel's signed depth: 0 where nothing was drawn, negative where it receives no shadow.
+float sg_gbufferDepth(uvec4 surface) { return uintBitsToFloat(surface.x); }
+bool sg_gbufferCovered(uvec4 surface) { return sg_gbufferDepth(surface) != 0.0; }
+bool sg_gbufferReceives(uvec4 surface) { return sg_gbufferDepth(surface) > 0.0; }
+vec3 sg_gbufferGeoNormal(uvec4 surface) { return sg_octDecode(vec2(uintBitsToFloat(surface.y), uintBitsToFloat(surface.z))); }
+vec3 sg_gbufferNormal(uvec4 surface) { return sg_octDecode(unpackSnorm2x16(surface.w)); }
+
 #ifdef SG_READS_GBUFFER
-layout(binding = SG_UNIT_GBUFFER_POSITION) uniform sampler2D sg_gbufferPosition;
-layout(binding = SG_UNIT_GBUFFER_NORMALS) uniform sampler2D sg_gbufferNormals;
+layout(binding = SG_UNIT_GBUFFER_SURFACE) uniform usampler2D sg_gbufferSurface;
+// The camera-relative ray through pixel centre p, scaled to unit depth along the view:
+// uRay00 + (p.x + 0.5) uRayDx + (p.y + 0.5) uRayDy.
+uniform vec3 uRay00, uRayDx, uRayDy;
+
+// The camera-relative position of the surface drawn at pixel `p`, its surface texel `surface`.
+vec3 sg_gbufferPosition(ivec2 p, uvec4 surface) {
+    vec3 ray = uRay00 + (float(p.x) + 0.5) * uRayDx + (float(p.y) + 0.5) * uRayDy;
+    return ray * abs(sg_gbufferDepth(surface));
+}
 #endif
 #endif

@@ -19,9 +19,6 @@
 
 uniform vec3 uCameraForward;  // unit, world space
 uniform float uPixelAngle;    // 2 tan(fov / 2) / height: a pixel's footprint per metre of depth
-// The camera-relative ray through pixel centre p, scaled to unit depth along the view:
-// uRay00 + (p.x + 0.5) uRayDx + (p.y + 0.5) uRayDy.
-uniform vec3 uRay00, uRayDx, uRayDy;
 
 #ifdef SG_VIS_CONTACT
 // Per channel: the contact march's length, metres when > 0, automatic when < 0, none when 0 (a
@@ -81,7 +78,7 @@ float sg_contactVisibility(vec3 cs, vec3 geoNormal, vec3 toLight, float length, 
     float footprint = max(dot(cs, uCameraForward), 0.0) * uPixelAngle;
     vec3 n = dot(geoNormal, toLight) < 0.0 ? -geoNormal : geoNormal;
     vec3 start = cs + n * footprint;
-    vec2 size = vec2(textureSize(sg_gbufferPosition, 0));
+    vec2 size = vec2(textureSize(sg_gbufferSurface, 0));
     // Interleaved gradient noise: a different start on each pixel of a 4x4 block.
     float jitter = fract(52.9829189 * fract(dot(vec2(p), vec2(0.06711056, 0.00583715))));
     float v = 1.0;
@@ -93,29 +90,29 @@ float sg_contactVisibility(vec3 cs, vec3 geoNormal, vec3 toLight, float length, 
         ivec2 pixel = ivec2((ndc * 0.5 + 0.5) * size);
         bool onScreen = clip.w > 0.0 && all(greaterThanEqual(pixel, ivec2(0))) && all(lessThan(pixel, ivec2(size)));
         pixel = clamp(pixel, ivec2(0), ivec2(size) - 1);
-        vec4 there = texelFetch(sg_gbufferPosition, pixel, 0);
-        vec3 thereNormal = sg_octDecode(texelFetch(sg_gbufferNormals, pixel, 0).zw);
+        uvec4 surface = texelFetch(sg_gbufferSurface, pixel, 0);
+        vec3 there = sg_gbufferPosition(pixel, surface);
+        vec3 thereNormal = sg_gbufferGeoNormal(surface);
         // Behind the plane of the surface there, as seen from the camera: its normal turned to face it.
-        vec3 facing = dot(thereNormal, there.xyz) > 0.0 ? -thereNormal : thereNormal;
-        float behind = dot(there.xyz - q, facing);
-        float deeper = dot(q - there.xyz, uCameraForward);  // along the view: how far past it q lies
+        vec3 facing = dot(thereNormal, there) > 0.0 ? -thereNormal : thereNormal;
+        float behind = dot(there - q, facing);
+        float deeper = dot(q - there, uCameraForward);  // along the view: how far past it q lies
         // The receiver's own pixel and its neighbours are its own surface at the screen's
         // resolution: a march that stays on them resolves nothing the screen can show.
         bool away = max(abs(pixel.x - p.x), abs(pixel.y - p.y)) > 1;
-        if (onScreen && away && sg_gbufferCovered(there.w) && behind > 0.0 && deeper < thickness) v = 0.0;
+        if (onScreen && away && sg_gbufferCovered(surface) && behind > 0.0 && deeper < thickness) v = 0.0;
     }
     return v;
 }
 #endif
 
-// The group's visibility at the surface drawn at full-resolution pixel `p`, whose position
-// target holds `position`.
-vec4 visibilityAt(ivec2 p, vec4 position) {
-    vec4 normals = texelFetch(sg_gbufferNormals, p, 0);
-    vec3 cs = position.xyz;
-    float curvature = sg_gbufferCurvature(position.w);
-    vec3 normal = sg_octDecode(normals.xy);
-    vec3 geoNormal = sg_octDecode(normals.zw);
+// The group's visibility at the surface drawn at full-resolution pixel `p`, whose surface
+// texel is `surface`.
+vec4 visibilityAt(ivec2 p, uvec4 surface) {
+    vec3 cs = sg_gbufferPosition(p, surface);
+    float curvature = 0.0;  // the lookups do not read it (sg_makeReceiver)
+    vec3 normal = sg_gbufferNormal(surface);
+    vec3 geoNormal = sg_gbufferGeoNormal(surface);
     float viewDistance = dot(cs, uCameraForward);
     vec4 mask = vec4(1.0);
 #if SG_GROUP0_COUNT == 1
@@ -159,32 +156,33 @@ vec4 visibilityAt(ivec2 p, vec4 position) {
 
 // The full-resolution pixel whose surface stage sample `q` holds.
 ivec2 stageSource(ivec2 q) {
-    return min(q * SG_VIS_DIVISOR + SG_VIS_DIVISOR / 2, textureSize(sg_gbufferPosition, 0) - 1);
+    return min(q * SG_VIS_DIVISOR + SG_VIS_DIVISOR / 2, textureSize(sg_gbufferSurface, 0) - 1);
 }
 
 #ifndef SG_VIS_RESOLVE
 void main() {
     ivec2 src = stageSource(ivec2(gl_FragCoord.xy));
-    vec4 position = texelFetch(sg_gbufferPosition, src, 0);
-    bool receives = sg_gbufferReceives(position.w);
+    uvec4 surface = texelFetch(sg_gbufferSurface, src, 0);
+    bool receives = sg_gbufferReceives(surface);
     // Depth-tested (SG_FULLSCREEN_FAR, GREATER) against the scene's depth at full resolution, or
     // against the coverage at this one (screen_coverage.frag.glsl): blocks without a surface
     // are skipped before they run, the others run straight-line.
-    vec4 v = receives ? visibilityAt(src, position) : vec4(1.0);
+    vec4 v = receives ? visibilityAt(src, surface) : vec4(1.0);
     outVisibility = v;
-    outDepth = receives ? dot(position.xyz, uCameraForward) : 0.0;
+    outDepth = receives ? sg_gbufferDepth(surface) : 0.0;
 }
 #else
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    vec4 position = texelFetch(sg_gbufferPosition, p, 0);
-    bool receives = sg_gbufferReceives(position.w);
-    vec3 geoNormal = sg_octDecode(texelFetch(sg_gbufferNormals, p, 0).zw);
+    uvec4 surface = texelFetch(sg_gbufferSurface, p, 0);
+    bool receives = sg_gbufferReceives(surface);
+    vec3 position = sg_gbufferPosition(p, surface);
+    vec3 geoNormal = sg_gbufferGeoNormal(surface);
     // How far off this pixel's plane a sample of the same surface may lie: a stage sample is up
     // to 1.5 blocks away, and a curved surface leaves its tangent plane by about that much.
-    float footprint = max(dot(position.xyz, uCameraForward), 0.0) * uPixelAngle;
+    float footprint = max(sg_gbufferDepth(surface), 0.0) * uPixelAngle;
     float tolerance = 1.5 * float(SG_VIS_DIVISOR) * footprint;
-    float planeOffset = dot(position.xyz, geoNormal);
+    float planeOffset = dot(position, geoNormal);
     vec2 stageSize = vec2(textureSize(uStageDepth, 0));
     // Samples sit at block centres q * d + d / 2: the four around p, p's place between them, and
     // their 2x2 gathered at the corner they share (texels (base + 1) / size; gather order

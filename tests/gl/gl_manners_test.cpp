@@ -199,7 +199,7 @@ struct HostObjects {
         bindOn(SG_UNIT_SHADOW_MINMAX + 1, GL_TEXTURE_2D_ARRAY, array);
         bindOn(SG_UNIT_MASK_DEPTH, GL_TEXTURE_CUBE_MAP, cube);
         bindOn(SG_UNIT_MASK_NORMAL, GL_TEXTURE_2D, flat);
-        bindOn(SG_UNIT_GBUFFER_ALBEDO, GL_TEXTURE_CUBE_MAP, cube);
+        bindOn(SG_UNIT_SCREEN_DEPTH, GL_TEXTURE_CUBE_MAP, cube);
         bindOn(SG_UNIT_SCREEN_VISIBILITY, GL_TEXTURE_2D_ARRAY, array);
         gl.BindSampler(SG_UNIT_SCREEN_VISIBILITY, samplers[1]);
         gl.BindSampler(0, samplers[0]);

@@ -97,20 +97,18 @@
 #define SG_MAX_MASK_LIGHTS 4
 
 // The renderer's screen-space visibility stage (RenderOptions::screenVisibility): units of its
-// surface targets (camera-relative position, normals, albedo, specular and coverage) and of the
-// per-light visibility it resolves, read by the stage's passes and the deferred lit pass. The
-// stage and the lit pass bind the shadow units too: these take the units above them.
-#define SG_UNIT_GBUFFER_POSITION 24
-#define SG_UNIT_GBUFFER_NORMALS 25
-#define SG_UNIT_GBUFFER_ALBEDO 29
-#define SG_UNIT_GBUFFER_SPECULAR 30
+// surface targets (shaders/screen_gbuffer.glsl: the surface's depth, coverage and normals; its
+// material) and of the per-light visibility it resolves, read by the stage's passes and the
+// deferred lit pass. The stage and the lit pass bind the shadow units too: these take the units
+// above them.
+#define SG_UNIT_GBUFFER_SURFACE 24
+#define SG_UNIT_GBUFFER_MATERIAL 25
 #define SG_UNIT_SCREEN_VISIBILITY 31
 // With materials that have normal maps or emit (RenderOptions' frame holds one), the surface
 // pass also stores the lighting normal and the emitted radiance, which only the deferred lit
-// pass reads: it compiles no technique, so these take the distance-field units.
-#define SG_UNIT_GBUFFER_SHADING 26
-#define SG_UNIT_GBUFFER_EMISSION 27
-// The reduced-resolution stage's sample depths, read by its resolve (no albedo read there).
+// pass reads: it compiles no technique, so this takes a distance-field unit.
+#define SG_UNIT_GBUFFER_EXTRA 26
+// The reduced-resolution stage's sample depths, read by its resolve.
 #define SG_UNIT_SCREEN_DEPTH 29
 
 // Unit the pyramid builder reads its source from.

@@ -83,6 +83,9 @@ LitProgram buildLit(const LitVariant& variant) {
     p.ambientSky = gl.GetUniformLocation(id, "uAmbientSky");
     p.ambientGround = gl.GetUniformLocation(id, "uAmbientGround");
     p.cameraForward = gl.GetUniformLocation(id, "uCameraForward");
+    p.ray00 = gl.GetUniformLocation(id, "uRay00");
+    p.rayDx = gl.GetUniformLocation(id, "uRayDx");
+    p.rayDy = gl.GetUniformLocation(id, "uRayDy");
     return p;
 }
 
@@ -208,6 +211,7 @@ SurfaceProgram buildSurfaceProgram(unsigned bits) {
     p.material = materialUniforms(id);
     p.alpha = gl.GetUniformLocation(id, "uAlpha");
     p.alphaCutoff = gl.GetUniformLocation(id, "uAlphaCutoff");
+    p.cameraForward = gl.GetUniformLocation(id, "uCameraForward");
     return p;
 }
 

@@ -43,6 +43,7 @@ struct LitProgram {
     MeshUniforms mesh;
     MaterialUniforms material;
     GLint firstPass = -1, ambientSky = -1, ambientGround = -1, cameraForward = -1;
+    GLint ray00 = -1, rayDx = -1, rayDy = -1;  ///< deferred: the pixels' rays (ScreenRays)
 };
 
 /// A depth pre-pass program: the lit vertex shader and no fragment work, or (alpha-tested, for
@@ -83,7 +84,7 @@ struct SurfaceProgram {
     gpu::Program program;
     MeshUniforms mesh;
     MaterialUniforms material;
-    GLint alpha = -1, alphaCutoff = -1;
+    GLint alpha = -1, alphaCutoff = -1, cameraForward = -1;
 };
 
 /// What a surface program is built for (each a bit of `SurfaceProgramKey`).

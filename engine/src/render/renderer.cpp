@@ -143,6 +143,9 @@ void setPassUniforms(const render::LitProgram& p, const MainCamera& mc, std::siz
                      const RenderOptions& options) {
     const GLuint id = p.program.get();
     gl.ProgramUniform3fv(id, p.cameraForward, 1, glm::value_ptr(mc.forward));
+    gl.ProgramUniform3fv(id, p.ray00, 1, glm::value_ptr(mc.rays.ray00));
+    gl.ProgramUniform3fv(id, p.rayDx, 1, glm::value_ptr(mc.rays.dx));
+    gl.ProgramUniform3fv(id, p.rayDy, 1, glm::value_ptr(mc.rays.dy));
     gl.ProgramUniform1i(id, p.firstPass, index == 0 ? 1 : 0);
     gl.ProgramUniform3fv(id, p.ambientSky, 1, glm::value_ptr(glm::max(options.ambientSky, glm::vec3(0.0f))));
     gl.ProgramUniform3fv(id, p.ambientGround, 1, glm::value_ptr(glm::max(options.ambientGround, glm::vec3(0.0f))));
@@ -395,6 +398,7 @@ void Renderer::Impl::surfacePass(const World& world, const CameraView& cam, cons
             const render::SurfaceProgram& p = *slot;
             const GLuint id = p.program.get();
             gl.ProgramUniformMatrix4fv(id, p.mesh.clipFromCs, 1, GL_FALSE, glm::value_ptr(mc.clipFromCs));
+            gl.ProgramUniform3fv(id, p.cameraForward, 1, glm::value_ptr(mc.forward));
             render::setMaterial(id, p.material, mesh, m);
             if (m.cutout()) {
                 gl.ProgramUniform1f(id, p.alpha, m.alpha);
@@ -497,15 +501,19 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
 namespace {
 
 /// The texture units and uniform-buffer binding points the lit passes bind.
-/// The three sampler arrays' units, the distance-field technique's two, the base colour's and the
-/// screen-space visibility stage's five.
+/// The three sampler arrays' units, the distance-field technique's two (the stage's extra surface
+/// target shares the first), the base colour's, the other material maps' (the stage's surface
+/// targets and sample depths share them) and the stage's visibility.
 constexpr std::size_t kLitUnitCount = SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS + 8;
 constexpr std::array<GLint, kLitUnitCount> litTextureUnits() {
     std::array<GLint, kLitUnitCount> units{};
     std::iota(units.begin(), units.end() - 8, 0);
-    const std::array<GLint, 8> others{SG_UNIT_SDF_ATLAS,        SG_UNIT_SDF_INSTANCES,    SG_UNIT_BASE_COLOR,
-                                      SG_UNIT_GBUFFER_POSITION, SG_UNIT_GBUFFER_NORMALS,  SG_UNIT_GBUFFER_ALBEDO,
-                                      SG_UNIT_GBUFFER_SPECULAR, SG_UNIT_SCREEN_VISIBILITY};
+    const std::array<GLint, 8> others{SG_UNIT_SDF_ATLAS,          SG_UNIT_SDF_INSTANCES,    SG_UNIT_BASE_COLOR,
+                                      SG_UNIT_METALLIC_ROUGHNESS, SG_UNIT_NORMAL_MAP,       SG_UNIT_OCCLUSION,
+                                      SG_UNIT_EMISSIVE,           SG_UNIT_SCREEN_VISIBILITY};
+    static_assert(SG_UNIT_GBUFFER_SURFACE == SG_UNIT_METALLIC_ROUGHNESS &&
+                  SG_UNIT_GBUFFER_MATERIAL == SG_UNIT_NORMAL_MAP && SG_UNIT_SCREEN_DEPTH == SG_UNIT_OCCLUSION &&
+                  SG_UNIT_GBUFFER_EXTRA == SG_UNIT_SDF_ATLAS);
     std::copy(others.begin(), others.end(), units.end() - 8);
     return units;
 }

@@ -24,6 +24,9 @@ gpu::Texture makeTarget(const std::string& label, GLenum format, int w, int h, i
     } else {
         gl.TextureStorage2D(t.get(), 1, format, w, h);
     }
+    // Read texel by texel; an integer texture is incomplete (reads 0) with any linear filter.
+    gl.TextureParameteri(t.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TextureParameteri(t.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     return t;
 }
 
@@ -99,11 +102,10 @@ ScreenStage::ScreenStage() {
 
 std::int64_t ScreenStage::bytesFor(int width, int height, bool materialTargets) {
     const std::int64_t pixels = std::int64_t{width} * height;
-    // Full size: position and normals RGBA32F, albedo and specular RGBA16F, two RGBA8 visibility
-    // layers, the refine marks (32F); the material targets RG32F and RGBA16F. Half and quarter
-    // size (each made on first use): two RGBA8 layers, the samples' depths (R32F) and the
-    // coverage (32F).
-    const std::int64_t full = 16 + 16 + 8 + 8 + 2 * 4 + 4 + (materialTargets ? 8 + 8 : 0);
+    // Full size: the surface and material targets (RGBA32UI each), two RGBA8 visibility layers,
+    // the refine marks (32F); the extra target RGBA32UI. Half and quarter size (each made on
+    // first use): two RGBA8 layers, the samples' depths (R32F) and the coverage (32F).
+    const std::int64_t full = 16 + 16 + 2 * 4 + 4 + (materialTargets ? 16 : 0);
     const std::int64_t reduced = 2 * 4 + 4 + 4;
     return pixels * full + (pixels / 4 + pixels / 16) * reduced;
 }
@@ -112,11 +114,9 @@ void ScreenStage::ensure(int width, int height, GLuint depthBuffer, bool materia
     if (!surfaces_ || width_ != width || height_ != height) makeTargets(width, height);
     depthBuffer_ = depthBuffer;
     gl.NamedFramebufferTexture(surfaces_.get(), GL_DEPTH_ATTACHMENT, depthBuffer, 0);
-    if (materialTargets && !shading_) {
-        shading_ = makeTarget("Main/Surfaces/shading", GL_RG32F, width, height);
-        emission_ = makeTarget("Main/Surfaces/emission", GL_RGBA16F, width, height);
-        gl.NamedFramebufferTexture(surfaces_.get(), GL_COLOR_ATTACHMENT4, shading_.get(), 0);
-        gl.NamedFramebufferTexture(surfaces_.get(), GL_COLOR_ATTACHMENT5, emission_.get(), 0);
+    if (materialTargets && !extra_) {
+        extra_ = makeTarget("Main/Surfaces/extra", GL_RGBA32UI, width, height);
+        gl.NamedFramebufferTexture(surfaces_.get(), GL_COLOR_ATTACHMENT2, extra_.get(), 0);
     }
 }
 
@@ -128,21 +128,17 @@ void ScreenStage::makeTargets(int width, int height) {
     coverage_ = {};
     surfaces_ = gpu::makeFramebuffer("Main/Surfaces/framebuffer");
     visibility_ = gpu::makeFramebuffer("Main/ScreenVisibility/framebuffer");
-    // Float targets throughout: the shadow lookups compare depths on the receiver's plane, which
-    // half floats would move by more than the automatic bias (0.05 texel).
-    position_ = makeTarget("Main/Surfaces/position", GL_RGBA32F, width, height);
-    normals_ = makeTarget("Main/Surfaces/normals", GL_RGBA32F, width, height);
-    albedo_ = makeTarget("Main/Surfaces/albedo", GL_RGBA16F, width, height);
-    specular_ = makeTarget("Main/Surfaces/specular", GL_RGBA16F, width, height);
+    // Packed (shaders/screen_gbuffer.glsl): each pass reads what it needs in one or two fetches.
+    // The depth and the triangle's normal keep full floats: the shadow lookups compare depths on
+    // the receiver's plane, which half floats would move by more than the automatic bias.
+    surface_ = makeTarget("Main/Surfaces/surface", GL_RGBA32UI, width, height);
+    material_ = makeTarget("Main/Surfaces/material", GL_RGBA32UI, width, height);
     full_ = makeTarget("Main/ScreenVisibility/full", GL_RGBA8, width, height, 2);
     refine_ = makeTarget("Main/ScreenVisibility/refine", GL_DEPTH_COMPONENT32F, width, height);
-    shading_ = {};
-    emission_ = {};
+    extra_ = {};
     const GLuint fb = surfaces_.get();
-    gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, position_.get(), 0);
-    gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, normals_.get(), 0);
-    gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT2, albedo_.get(), 0);
-    gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT3, specular_.get(), 0);
+    gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, surface_.get(), 0);
+    gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, material_.get(), 0);
 }
 
 void ScreenStage::ensureStageTarget(int divisor) {
@@ -191,21 +187,20 @@ void ScreenStage::attachCoverage(int divisor, FrameStats& stats) {
 void ScreenStage::beginSurfaces(bool materialTargets) {
     coverageDrawn_ = 0;
     const GLuint fb = surfaces_.get();
-    // A frame without the material targets writes four: their programs have four outputs.
-    const std::array<GLenum, 6> buffers{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                                        GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4, GL_COLOR_ATTACHMENT5};
-    gl.NamedFramebufferDrawBuffers(fb, materialTargets ? 6 : 4, buffers.data());
+    // A frame without the extra target writes two: their programs have two outputs.
+    const std::array<GLenum, 3> buffers{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    gl.NamedFramebufferDrawBuffers(fb, materialTargets ? 3 : 2, buffers.data());
     if (gl.CheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
         throw GlError("screen-space visibility: the surface framebuffer is incomplete");
     }
     gl.BindFramebuffer(GL_FRAMEBUFFER, fb);
     gl.Viewport(0, 0, width_, height_);
-    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    const GLuint zero[4] = {0, 0, 0, 0};
     const float farDepth = 1.0f;
     gl.DepthMask(GL_TRUE);
     gl.ClearNamedFramebufferfv(fb, GL_DEPTH, 0, &farDepth);
-    // Only the position target's w (coverage) is read where nothing was drawn.
-    gl.ClearNamedFramebufferfv(fb, GL_COLOR, 0, zero);
+    // Only the surface target's depth (0: nothing drawn) is read where nothing was drawn.
+    gl.ClearNamedFramebufferuiv(fb, GL_COLOR, 0, zero);
 }
 
 ScreenStage::Program& ScreenStage::program(const LitVariant& group, int firstSlot, int divisor, bool resolve,
@@ -259,10 +254,8 @@ void ScreenStage::computeVisibility(const ShadowFrame& frame, const PassLights& 
     gl.Disable(GL_BLEND);
     gl.DepthMask(GL_FALSE);
     gl.BindVertexArray(empty_.get());
-    gl.BindTextureUnit(SG_UNIT_GBUFFER_POSITION, position_.get());
-    gl.BindTextureUnit(SG_UNIT_GBUFFER_NORMALS, normals_.get());
-    for (const GLuint unit :
-         {SG_UNIT_GBUFFER_POSITION, SG_UNIT_GBUFFER_NORMALS, SG_UNIT_SCREEN_DEPTH, SG_UNIT_SCREEN_VISIBILITY}) {
+    gl.BindTextureUnit(SG_UNIT_GBUFFER_SURFACE, surface_.get());
+    for (const GLuint unit : {SG_UNIT_GBUFFER_SURFACE, SG_UNIT_SCREEN_DEPTH, SG_UNIT_SCREEN_VISIBILITY}) {
         gl.BindSampler(unit, 0);
     }
     gl.Enable(GL_SCISSOR_TEST);
@@ -371,18 +364,13 @@ void ScreenStage::reducedStage(const Group& g, const ScreenRays& rays, FrameStat
 
 void ScreenStage::bindForLighting(bool materialTargets) const {
     if (materialTargets) {
-        gl.BindTextureUnit(SG_UNIT_GBUFFER_SHADING, shading_.get());
-        gl.BindTextureUnit(SG_UNIT_GBUFFER_EMISSION, emission_.get());
-        gl.BindSampler(SG_UNIT_GBUFFER_SHADING, 0);
-        gl.BindSampler(SG_UNIT_GBUFFER_EMISSION, 0);
+        gl.BindTextureUnit(SG_UNIT_GBUFFER_EXTRA, extra_.get());
+        gl.BindSampler(SG_UNIT_GBUFFER_EXTRA, 0);
     }
-    gl.BindTextureUnit(SG_UNIT_GBUFFER_POSITION, position_.get());
-    gl.BindTextureUnit(SG_UNIT_GBUFFER_NORMALS, normals_.get());
-    gl.BindTextureUnit(SG_UNIT_GBUFFER_ALBEDO, albedo_.get());
-    gl.BindTextureUnit(SG_UNIT_GBUFFER_SPECULAR, specular_.get());
+    gl.BindTextureUnit(SG_UNIT_GBUFFER_SURFACE, surface_.get());
+    gl.BindTextureUnit(SG_UNIT_GBUFFER_MATERIAL, material_.get());
     gl.BindTextureUnit(SG_UNIT_SCREEN_VISIBILITY, full_.get());
-    for (const GLuint unit : {SG_UNIT_GBUFFER_POSITION, SG_UNIT_GBUFFER_NORMALS, SG_UNIT_GBUFFER_ALBEDO,
-                              SG_UNIT_GBUFFER_SPECULAR, SG_UNIT_SCREEN_VISIBILITY}) {
+    for (const GLuint unit : {SG_UNIT_GBUFFER_SURFACE, SG_UNIT_GBUFFER_MATERIAL, SG_UNIT_SCREEN_VISIBILITY}) {
         gl.BindSampler(unit, 0);
     }
 }

@@ -1,5 +1,5 @@
 // The screen-space visibility stage of the renderer (RenderOptions::screenVisibility): the
-// scene drawn once into surface targets (camera-relative position, normals, material), then per
+// scene drawn once into surface targets (depth along the view, normals, material), then per
 // lit pass each group of four lights' visibility computed over the screen at the resolution its
 // penumbrae need and brought back to full resolution without crossing geometric edges
 // (shaders/screen_visibility.frag.glsl), then the pass's lights shaded by one full-screen
@@ -126,8 +126,8 @@ private:
     int width_ = 0, height_ = 0;
     GLuint depthBuffer_ = 0;  ///< the renderer's, which the surface pass fills
     gpu::Framebuffer surfaces_, visibility_;
-    gpu::Texture position_, normals_, albedo_, specular_;
-    gpu::Texture shading_, emission_;         ///< the material targets: lighting normal (RG32F), emission (RGBA16F)
+    gpu::Texture surface_, material_;         ///< RGBA32UI, packed as shaders/screen_gbuffer.glsl says
+    gpu::Texture extra_;                      ///< RGBA32UI: emission and lighting normal (material targets)
     gpu::Texture full_;                       ///< RGBA8 array: slots 0-3, 4-7 of the pass
     gpu::Texture refine_;                     ///< depth 0 marks the pixels the refine pass recomputes
     std::array<gpu::Texture, 3> stage_;       ///< reduced-resolution arrays by divisor 2, 4 (index 1, 2)
