@@ -3,8 +3,8 @@
 #   bash benchmarks/run_auto_budget.sh [SCENE...]   (default: plates bunny plates-boxes)
 # Per scene: the ray-traced truth (shadow_reference), PCSS at its defaults, then --technique auto
 # with the budget equal to PCSS's measured frame time (its shadow passes + main passes, median)
-# and with half of it. Every run redraws its layers every frame (--no-cache) and times 8 frames
-# after a warm-up one. Prints one line per run: frame ms, each auto light's choice, predicted and
+# and with half of it. Every run redraws its layers every frame (--no-cache) and times 39 frames
+# after a warm-up one (40 frames at 30 per second: the calibration settles and the 1 s hold passes). Prints one line per run: frame ms, each auto light's choice, predicted and
 # measured shadow-pass ms, and the visibility RMSE of every light's receiver pixels pooled against the truth
 # (shadow_compare's allLights).
 # Uses build/bin; results in benchmarks/results/tmp/auto.
@@ -39,7 +39,7 @@ PY
 for scene in "${scenes[@]}"; do
   ref="$out/$scene/ref"
   [ -f "$ref/reference.json" ] || "$bin/shadow_reference" "builtin:$scene" --out "$ref" --size "$size" --samples 256 >/dev/null
-  common=(--size "$size" --frames 9 --no-cache --aov visibility,position)
+  common=(--size "$size" --frames 40 --no-cache --aov visibility,position)
   "$bin/shadow_render" "builtin:$scene" "${common[@]}" --technique pcss --out "$out/$scene/pcss" 2>/dev/null
   echo "$scene pcss default: $(summary "$out/$scene/pcss" "$ref" 2>"$out/$scene/frame.txt")"
   budget=$(awk '{print $2}' "$out/$scene/frame.txt")

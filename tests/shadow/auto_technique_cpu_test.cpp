@@ -137,6 +137,25 @@ TEST(AutoTechnique, HysteresisSwitchesAtMostOnceASecondUnderFlippingInputs) {
     EXPECT_LE(at * dt, kAutoHoldSeconds + kAutoConfirmFrames * dt + 1e-9);
 }
 
+TEST(AutoTechnique, OverBudgetMovesToACheaperCandidateWithoutWaitingForTheHold) {
+    AutoTechniqueState state;
+    AutoLightInput in;
+    in.pixels = 100000;
+    in.penumbraTexels1024 = 40;
+    const std::uint64_t id = 3;
+    std::vector<AutoLightChoice> out(1);
+    state.choose({&id, 1}, {&in, 1}, 0.0, 0.0, out);  // no budget: the least error, a dear one
+    const double dear = state.costs().totalMs(in, autoCandidates()[out[0].candidate]);
+    const double budget = 0.25 * dear;
+    const double dt = 1.0 / 60.0;
+    int at = -1;
+    for (int f = 1; f < 30 && at < 0; ++f) {
+        state.choose({&id, 1}, {&in, 1}, budget, f * dt, out);
+        if (state.costs().totalMs(in, autoCandidates()[out[0].candidate]) <= budget) at = f;
+    }
+    EXPECT_EQ(at, kAutoConfirmFrames) << "within the budget after the confirmation frames, not after the hold";
+}
+
 TEST(AutoTechnique, CalibrationConvergesToTheMeasuredRatio) {
     AutoCostModel costs;
     for (int i = 0; i < 60; ++i) {

@@ -102,9 +102,11 @@ inline constexpr double kAutoCalibrationRate = 0.3;
                                                     double budgetMs);
 
 /// Hysteresis: a light moves to a new candidate only when the chooser has preferred it for
-/// `kAutoConfirmFrames` frames in a row, its predicted error is lower by more than
-/// `kAutoSwitchGain` (or the current one is over budget), and at least `kAutoHoldSeconds` of
-/// scene time passed since its last switch (`kAutoHoldFrames` frames without a time).
+/// `kAutoConfirmFrames` frames in a row, and either its predicted error is lower by more than
+/// `kAutoSwitchGain` and at least `kAutoHoldSeconds` of scene time passed since its last switch
+/// (`kAutoHoldFrames` frames without a time), or the choices held exceed the budget by more than
+/// `kAutoSwitchGain` and the new candidate is cheaper (a cheaper move cannot flip back before
+/// the hold, as a dearer one waits for it).
 inline constexpr int kAutoConfirmFrames = 3;
 inline constexpr double kAutoSwitchGain = 0.1;
 inline constexpr double kAutoHoldSeconds = 1.0;

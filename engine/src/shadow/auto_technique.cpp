@@ -188,7 +188,8 @@ void AutoTechniqueState::choose(std::span<const std::uint64_t> ids, std::span<co
         for (const Held& k : held_) h = k.id == ids[i] ? &k : h;
         current += costs_.totalMs(inputs[i], at(h != nullptr && h->current >= 0 ? h->current : best[i]));
     }
-    const bool overBudget = budgetMs > 0.0 && std::isfinite(budgetMs) && current > budgetMs;
+    const bool overBudget =
+        budgetMs > 0.0 && std::isfinite(budgetMs) && current > (1.0 + kAutoSwitchGain) * budgetMs;
     for (Held& h : held_) h.seen = false;
     for (std::size_t i = 0; i < ids.size(); ++i) {
         Held& h = held(ids[i]);
@@ -210,7 +211,11 @@ void AutoTechniqueState::choose(std::span<const std::uint64_t> ids, std::span<co
                                (1.0 - kAutoSwitchGain) * autoPredictedRmse(inputs[i], at(h.current));
             const bool waited =
                 std::isfinite(time) ? time - h.switchedAt >= kAutoHoldSeconds : h.framesSinceSwitch >= kAutoHoldFrames;
-            if (h.pendingFrames >= kAutoConfirmFrames && (gains || overBudget) && waited) {
+            // Over budget, a move to a cheaper candidate need not wait: it cannot flip back
+            // before the hold, since a dearer one must wait.
+            const bool cheaper =
+                overBudget && costs_.totalMs(inputs[i], at(best[i])) < costs_.totalMs(inputs[i], at(h.current));
+            if (h.pendingFrames >= kAutoConfirmFrames && ((gains && waited) || cheaper)) {
                 h.current = best[i];
                 h.pending = -1;
                 h.pendingFrames = 0;
