@@ -154,8 +154,10 @@ Result<ScreenVisibility> parseScreenVisibilitySetting(const std::string& name) {
 }
 
 Result<ShadowTechnique> parseTechnique(const std::string& name) {
+    if (name == kAutoTechniqueName) return ShadowTechnique::Pcss;  // the planner chooses (Shadow::autoTechnique)
     if (const auto t = techniqueFromName(name)) return *t;
-    return Error{ErrorCode::InvalidArgument, "unknown technique '" + name + "' (known: " + techniqueNameList() + ")"};
+    return Error{ErrorCode::InvalidArgument,
+                 "unknown technique '" + name + "' (known: " + techniqueNameList() + ", " + kAutoTechniqueName + ")"};
 }
 
 namespace {
@@ -163,6 +165,23 @@ namespace {
 nlohmann::json spreadJson(const std::vector<double>& values) {
     const Spread s = spreadOf(values);
     return {{"median", s.median}, {"min", s.min}, {"max", s.max}, {"samples", values.size()}};
+}
+
+/// Technique auto's choice for light `ls` and what the planner predicted of it, beside what its
+/// shadow passes measured in frame `last`.
+nlohmann::json autoJson(const LightShadowStats& ls, const FrameStats& last) {
+    const double predicted = ls.predictedShadowPassMs + ls.predictedLookupMs;
+    return {{"technique", ls.technique},
+            {"mapSize", ls.mapSize},
+            {"pcfSamples", ls.pcfSamples},
+            {"blockerSamples", ls.blockerSamples},
+            {"predictedMs", predicted},
+            {"predictedShadowPassMs", ls.predictedShadowPassMs},
+            {"predictedLookupMs", ls.predictedLookupMs},
+            {"predictedRmse", ls.predictedRmse},
+            {"penumbraTexels1024", ls.penumbraTexels1024},
+            {"pixels", ls.pixels},
+            {"measuredShadowPassMs", last.passMs("Shadow/" + ls.name + "/")}};
 }
 
 nlohmann::json lightsJson(const Scene& scene, const FrameStats& last) {
@@ -177,7 +196,9 @@ nlohmann::json lightsJson(const Scene& scene, const FrameStats& last) {
         j["index"] = i;
         j["node"] = name != nullptr ? name->value : "";
         j["type"] = light != nullptr ? shadow::lightTypeName(light->type) : "";
-        j["technique"] = shadow != nullptr ? techniqueName(shadow->technique) : "none";
+        j["technique"] = shadow == nullptr       ? "none"
+                         : shadow->autoTechnique ? kAutoTechniqueName
+                                                 : techniqueName(shadow->technique);
         j["visibility"] = "visibility_" + std::to_string(i) + ".exr";
         // FrameStats::lights is indexed like Scene::lights; lights that asked for no map have none.
         if (i < last.lights.size() && last.lights[i].requestedMapSize > 0) {
@@ -197,6 +218,7 @@ nlohmann::json lightsJson(const Scene& scene, const FrameStats& last) {
                            {"affectsView", ls.affectsView},
                            {"regionTest", ls.regionTest},
                            {"depthMode", shadow != nullptr ? depthModeName(shadow->depthMode) : "nearest"}};
+            if (ls.automatic) j["auto"] = autoJson(ls, last);
         }
         lights.push_back(j);
     }

@@ -1,7 +1,7 @@
 // shadow_render: renders a scene headless (OSMesa) and writes images, AOVs and stats.json.
 //
 //   shadow_render SCENE [--out DIR] [--size WxH] [--camera N] [--time T] [--frames N --dt S]
-//                 [--technique NAME] [--depth-mode MODE] [--aov color,visibility,position,depth]
+//                 [--technique NAME|auto] [--shadow-budget-ms MS] [--depth-mode MODE] [--aov color,visibility,position,depth]
 //                 [--debug NAME] [--debug-light I] [--frame-images] [--no-cache] [--exposure E]
 //                 [--shader-cache DIR] [--field-voxels N] [--sdf-start-offset M] [--max-filter-texels N]
 //                 [--animation NAME|INDEX|all] [--no-default-lights] [--no-ground]
@@ -46,6 +46,7 @@ struct Options {
     int frames = 1;
     double dt = 1.0 / 30.0;
     std::optional<std::string> technique;  ///< absent: each light keeps its own
+    std::optional<double> shadowBudgetMs;  ///< technique auto's budget; absent: none
     std::optional<std::string> depthMode;  ///< absent: each light keeps its own
     std::string aov = "color,visibility,position,depth";
     std::string debug;
@@ -68,7 +69,10 @@ int fail(int code, const std::string& message) { return samples::failAs("shadow_
 /// A shadowed light's settings with the command line's overrides (checked before) applied.
 void overrideShadow(Shadow& s, const Options& o, std::optional<ShadowTechnique> technique,
                     std::optional<DepthMode> depthMode) {
-    if (technique) s.technique = *technique;
+    if (technique) {
+        s.technique = *technique;
+        s.autoTechnique = o.technique == kAutoTechniqueName;
+    }
     if (depthMode) samples::applyDepthMode(s, *depthMode);
     if (o.contactShadows) s.contactShadows = true;
     if (o.sdfStartOffset) s.sdfStartOffset = *o.sdfStartOffset;
@@ -132,6 +136,9 @@ int run(const Options& o) {
         auto t = samples::parseTechnique(*o.technique);
         if (!t) return fail(kExitBadInput, "--technique: " + t.error().message);
         technique = *t;
+    }
+    if (o.shadowBudgetMs && !(std::isfinite(*o.shadowBudgetMs) && *o.shadowBudgetMs >= 0.0)) {
+        return fail(kExitBadInput, "--shadow-budget-ms: must be a finite number of milliseconds >= 0 (0: no budget)");
     }
     const Result<ScreenVisibility> screenVisibility = samples::parseScreenVisibilitySetting(o.screenVisibility);
     if (!screenVisibility) return fail(kExitBadInput, "--screen-visibility: " + screenVisibility.error().message);
@@ -203,6 +210,11 @@ int run(const Options& o) {
 
     FrameRunner runner;
     runner.shadows().planner().setCaching(!o.noCache);
+    if (o.shadowBudgetMs) {
+        ShadowLimits limits = runner.shadows().planner().limits();
+        limits.shadowBudgetMs = *o.shadowBudgetMs;
+        runner.shadows().planner().setLimits(limits);
+    }
     samples::setFieldEdge(runner.shadows().planner(), o.fieldVoxels);
     std::vector<FrameStats> frames;
     std::optional<float> exposure = o.exposure;
@@ -255,7 +267,12 @@ int main(int argc, char** argv) {
     app.add_option("--animation", o.animation, samples::kAnimationHelp);
     app.add_option("--frames", o.frames, "frames to render");
     app.add_option("--dt", o.dt, "time step between frames (s)");
-    app.add_option("--technique", o.technique, "override every shadowed light: " + techniqueNameList());
+    app.add_option("--technique", o.technique,
+                   "override every shadowed light: " + techniqueNameList() + ", " + kAutoTechniqueName +
+                       " (chosen per light and frame within --shadow-budget-ms)");
+    app.add_option("--shadow-budget-ms", o.shadowBudgetMs,
+                   "technique auto: ms per frame the auto lights' shadow passes and lookups may take, >= 0 "
+                   "(default 0: no budget, least predicted error)");
     app.add_option("--depth-mode", o.depthMode,
                    "override every shadowed light's depth mode: nearest|midpoint|second (midpoint and second "
                    "also set constant and slope bias to 0)");

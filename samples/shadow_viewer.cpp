@@ -364,7 +364,12 @@ int run(const Options& o) {
     }
     app.state.rigChoice = o.rig;
     if (Status s = loadInto(app.state, o.scene, o.camera); !s) return fail(kExitBadInput, s.error().message);
-    if (technique) app.state.scene.world.view<Shadow>().each([&](Entity, Shadow& s) { s.technique = *technique; });
+    if (technique) {
+        app.state.scene.world.view<Shadow>().each([&](Entity, Shadow& s) {
+            s.technique = *technique;
+            s.autoTechnique = o.technique == kAutoTechniqueName;
+        });
+    }
     app.state.options.debugView = *debug;
     app.state.options.debugLight = o.debugLight;
     app.state.options.screenVisibility = *screenVisibility;
@@ -398,7 +403,9 @@ int main(int argc, char** argv) {
     app.add_option("--camera", o.camera, "index of the scene camera to start with (default: the first)");
     app.add_option("--time", o.time, "animation time to start at (s)");
     app.add_option("--animation", o.animation, samples::kAnimationHelp);
-    app.add_option("--technique", o.technique, "override every shadowed light: " + techniqueNameList());
+    app.add_option("--technique", o.technique,
+                   "override every shadowed light: " + techniqueNameList() + ", " + kAutoTechniqueName +
+                       " (chosen per light and frame, no budget)");
     app.add_option("--debug", o.debug, "debug view: none|cascade|blocker|penumbra|visibility|steps|closest");
     app.add_option("--debug-light", o.debugLight, "scene light index the debug view shows");
     app.add_option("--screen-visibility", o.screenVisibility, samples::kScreenVisibilityHelp);

@@ -266,6 +266,34 @@ TEST(ShadowRenderCli, DepthModeFlagSetsEveryShadowedLightAndReportsTheScratch) {
     EXPECT_EQ(open, shadowed) << stats["warnings"].dump(2);
 }
 
+TEST(ShadowRenderCli, TechniqueAutoReportsEachLightsChoiceWithinTheBudget) {
+    TempDir tmp;
+    const std::string out = tmp / "out";
+    // A budget below any candidate's predicted time: every light takes its cheapest, hard at 512.
+    const CliRun run = runCli(tmp,
+                              "builtin:default --size 32x18 --aov color --frames 3 --technique auto "
+                              "--shadow-budget-ms 0.0001 --out " +
+                                  quoted(out));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const nlohmann::json stats = readJson(out + "/stats.json");
+    ASSERT_FALSE(stats.is_discarded()) << "stats.json is not JSON";
+    int automatic = 0;
+    for (const nlohmann::json& light : stats["lights"]) {
+        if (!light.contains("shadow")) continue;
+        ++automatic;
+        EXPECT_EQ(light["technique"], "auto") << light.dump();
+        ASSERT_TRUE(light.contains("auto")) << light.dump();
+        const nlohmann::json& a = light["auto"];
+        EXPECT_EQ(a["technique"], "hard") << a.dump();
+        EXPECT_EQ(a["mapSize"], 512) << a.dump();
+        EXPECT_EQ(light["shadow"]["mapSize"], 512) << light.dump();
+        EXPECT_GT(a["predictedMs"].get<double>(), 0.0) << a.dump();
+        EXPECT_GT(a["predictedRmse"].get<double>(), 0.0) << a.dump();
+        EXPECT_GE(a["measuredShadowPassMs"].get<double>(), 0.0) << a.dump();
+    }
+    EXPECT_EQ(automatic, 3);
+}
+
 struct BadInput {
     const char* what;
     std::string args;  // everything after the scene and --out
@@ -288,6 +316,9 @@ TEST(ShadowRenderCli, BadInputExitsWithCode2AndWritesNothing) {
         {"size not a size", "--size abc", "builtin:default", "--size"},
         {"unknown technique", "--technique foo", "builtin:default", "foo"},
         {"unknown depth mode", "--depth-mode mid", "builtin:default", "--depth-mode: unknown depth mode 'mid'"},
+        {"negative shadow budget", "--shadow-budget-ms -1", "builtin:default", "--shadow-budget-ms: must be"},
+        {"NaN shadow budget", "--shadow-budget-ms nan", "builtin:default", "--shadow-budget-ms"},
+        {"shadow budget not a number", "--shadow-budget-ms fast", "builtin:default", "--shadow-budget-ms"},
         {"depth mode without a value", "--depth-mode", "builtin:default", "--depth-mode"},
         {"unknown screen visibility", "--screen-visibility halfway", "builtin:default",
          "--screen-visibility: unknown setting 'halfway'"},

@@ -22,6 +22,22 @@ TEST(GltfShadowExtras, RejectsNonFiniteNumbers) {
     EXPECT_EQ(result.error().message, "L.extras.shadow.radius: not finite");
 }
 
+TEST(GltfShadowExtras, TechniqueAutoAsksThePlannerToChoose) {
+    const auto extras = object({{"shadow", object({{"technique", tinygltf::Value(std::string("auto"))}})}});
+    const auto result = gltf::parseShadowExtras(extras, "L");
+    ASSERT_TRUE(result.ok()) << result.error().message;
+    EXPECT_TRUE(result->shadow.autoTechnique);
+    EXPECT_NE(result->shadow.technique, ShadowTechnique::None);  // a light with a map
+    const auto pcf = gltf::parseShadowExtras(
+        object({{"shadow", object({{"technique", tinygltf::Value(std::string("pcf"))}})}}), "L");
+    ASSERT_TRUE(pcf.ok());
+    EXPECT_FALSE(pcf->shadow.autoTechnique);
+    const auto typo = gltf::parseShadowExtras(
+        object({{"shadow", object({{"technique", tinygltf::Value(std::string("autom"))}})}}), "L");
+    ASSERT_FALSE(typo.ok());
+    EXPECT_NE(typo.error().message.find("auto)"), std::string::npos) << typo.error().message;
+}
+
 TEST(GltfShadowExtras, AcceptsIntegralRealAsInteger) {
     const auto extras = object({{"shadow", object({{"mapSize", tinygltf::Value(512.0)}})}});
     const auto result = gltf::parseShadowExtras(extras, "L");

@@ -331,6 +331,8 @@ struct Light {
 /// Whether this build offers technique `t`: every Public row; the Baseline rows only in builds
 /// with SHADOW_BASELINE_TECHNIQUES (the benchmarks').
 [[nodiscard]] bool techniqueAvailable(ShadowTechnique t);
+/// How glTF `extras.shadow.technique` and the CLI ask for technique auto (`Shadow::autoTechnique`).
+inline constexpr const char* kAutoTechniqueName = "auto";
 /// The technique named `name` if this build offers it, or nullopt.
 [[nodiscard]] std::optional<ShadowTechnique> techniqueFromName(std::string_view name);
 /// The technique of the table named `name`, offered by this build or not: a scene file may name
@@ -396,6 +398,11 @@ inline constexpr float kAutoContactLengthPixels = 32.0f;
 /// and the clamp is reported in stats.json.
 struct Shadow {
     ShadowTechnique technique = ShadowTechnique::Hard;
+    /// glTF `"technique": "auto"`: the shadow planner chooses `technique` (hard, PCF or PCSS),
+    /// `mapSize`, `pcfSamples` and `blockerSamples` for this light every frame, within
+    /// `ShadowLimits::shadowBudgetMs` (docs/auto_technique.md); the four fields set here are
+    /// then ignored (the rest hold); technique None still means no shadow. Default false.
+    bool autoTechnique = false;
     /// Edge of one shadow-map layer in texels, [1, GL_MAX_TEXTURE_SIZE]. Default 1024.
     int mapSize = 1024;
     /// Constant depth bias (m), [0, 10], or `kAutomatic` (the default): `kAutoConstantBiasTexels`

@@ -9,12 +9,14 @@
 // `ShadowFrame::warnings`.
 #pragma once
 
+#include <shadow/auto_technique.h>
 #include <shadow/caster_draw.h>
 #include <shadow/components.h>
 #include <shadow/scene.h>
 #include <shadow/warnings.h>
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -22,6 +24,9 @@
 #include <vector>
 
 namespace shadow {
+
+class AutoPlanning;
+struct FrameStats;
 
 /// One layer of a light's array as decided by `ShadowPlanner::prepare`.
 struct ShadowLayerPlan {
@@ -103,6 +108,11 @@ struct ShadowLightPlan {
     /// what stays there (a game's own casters, non-uniform scales) casts through its map. Empty
     /// for the other techniques.
     std::vector<Entity> fieldCasters;
+    /// `Shadow::autoTechnique`: `settings` hold the planner's choice this frame (`autoChoice`).
+    bool automatic = false;
+    /// An auto light's choice and its predictions; candidate -1 on its first frame (nothing is
+    /// known of it yet: it takes PCSS at 1024 texels and 16 + 16 taps).
+    AutoLightChoice autoChoice;
     /// Index of `fieldCasters[0]` among every light's field casters, in scene-light order:
     /// where the shader finds its instances (`ShadowMaps::fieldInstances`).
     int fieldFirst = 0;
@@ -175,6 +185,14 @@ struct ShadowLimits {
     /// pyramid for a redrawn layer; a very large value: always). A frame that redraws no layer
     /// always reads the pyramid.
     float pyramidTexelsPerPixel = 6.0f;
+    /// Milliseconds per frame the lights with `Shadow::autoTechnique` may spend together on their
+    /// shadow passes and their lookups in the lit pass, as the planner predicts them
+    /// (`AutoCostModel`, calibrated by `ShadowPlanner::observe`). The planner picks each auto
+    /// light's technique, map size and taps to minimise the predicted screen-weighted error within
+    /// it (docs/auto_technique.md). Default 0: no budget (each auto light takes the candidate of
+    /// least predicted error). Range >= 0; NaN, infinite or negative values count as 0, with a
+    /// `SettingClamped` warning for NaN and negative ones.
+    double shadowBudgetMs = 0.0;
 };
 
 /// GPU memory (bytes) of the maps of one light with technique `technique`, `layers` layers of
@@ -207,6 +225,15 @@ public:
     const ShadowFrame& prepare(const World& world, const CameraView& camera, const std::vector<Entity>& lights);
     /// The last prepared frame.
     [[nodiscard]] const ShadowFrame& frame() const { return frame_; }
+    /// Scene time (s) of the frames prepared from now on: auto lights switch at most once a
+    /// second of it (`kAutoHoldSeconds`). Never set (NaN), the hold is counted in frames.
+    void setSceneTime(double seconds) { sceneTime_ = seconds; }
+    /// Calibrates the auto lights' cost model from the pass timings of the frame last prepared
+    /// (`FrameStats::passes`: its shadow passes and "Main/Lit*"). Without calls the model keeps
+    /// its defaults, measured on llvmpipe. A frame without auto lights costs nothing here.
+    void observe(const FrameStats& stats);
+    /// The auto lights' calibrated cost model.
+    [[nodiscard]] const AutoCostModel& autoCosts() const;
     /// With caching off every layer is dirty every frame (reference for cache tests).
     void setCaching(bool enabled) { caching_ = enabled; }
     /// The limits the next `prepare` respects.
@@ -241,6 +268,8 @@ private:
     std::vector<std::pair<Entity, LightMemory>> memory_;
     struct Scratch;  ///< the working lists of `prepare` (planner.cpp), kept for their storage
     std::unique_ptr<Scratch> scratch_;
+    std::unique_ptr<AutoPlanning> auto_;  ///< auto lights' choices and calibration (auto_planning.h)
+    double sceneTime_ = std::numeric_limits<double>::quiet_NaN();
     ShadowLimits limits_;
     bool caching_ = true;
 };

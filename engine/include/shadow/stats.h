@@ -48,6 +48,17 @@ struct LightShadowStats {
     /// for the others), in bytes.
     long long mapBytes = 0;
     long long filterChainBytes = 0;
+    /// Technique auto (`Shadow::autoTechnique`): the planner chose `technique` and `mapSize` and
+    /// these taps; what it predicted of them (`AutoLightChoice`; all 0 on the light's first frame,
+    /// when nothing is known of it yet).
+    bool automatic = false;
+    int pcfSamples = 0;
+    int blockerSamples = 0;
+    double predictedShadowPassMs = 0.0;
+    double predictedLookupMs = 0.0;
+    double predictedRmse = 0.0;
+    double penumbraTexels1024 = 0.0;  ///< `AutoLightInput::penumbraTexels1024` it was chosen from
+    double pixels = 0.0;              ///< `AutoLightInput::pixels` it was chosen from
 };
 
 /// Everything measured in one frame. Timings are milliseconds.

@@ -56,6 +56,7 @@ void FrameRunner::runFrame(Scene& scene, double t, Entity camera, const RenderOp
     impl_->camera.pixelHeight = options.height;
 
     t0 = std::chrono::steady_clock::now();
+    impl_->shadows.planner().setSceneTime(t);
     impl_->shadows.prepare(scene.world, impl_->camera, scene.lights);
     stats.cpuShadowPrepareMs = msSince(t0);
 
@@ -63,6 +64,7 @@ void FrameRunner::runFrame(Scene& scene, double t, Entity camera, const RenderOp
     impl_->shadows.render(scene.world, impl_->renderer.meshes(), stats);
     impl_->renderer.render(scene.world, impl_->camera, impl_->shadows, options, stats);
     stats.cpuRenderSubmitMs = msSince(t0);
+    impl_->shadows.planner().observe(stats);  // technique auto's cost model, from this frame's passes
 }
 
 }  // namespace shadow

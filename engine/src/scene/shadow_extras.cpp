@@ -30,7 +30,8 @@ Result<ShadowTechnique> parseTechnique(const tinygltf::Value& v, const std::stri
     auto name = readString(v, where);
     if (!name) return name.error();
     if (const auto t = techniqueFromAnyName(*name)) return *t;
-    return elementError(where, "unknown technique \"" + *name + "\" (expected one of " + techniqueNameList() + ")");
+    return elementError(where, "unknown technique \"" + *name + "\" (expected one of " + techniqueNameList() + ", " +
+                                   kAutoTechniqueName + ")");
 }
 
 Result<FilterKernel> parseKernel(const tinygltf::Value& v, const std::string& where) {
@@ -165,9 +166,14 @@ Result<LightShadowExtras> parseShadowExtras(const tinygltf::Value& extras, const
     if (object->value == nullptr) return out;
 
     if (const tinygltf::Value* technique = member(*object->value, kTechniqueKey)) {
-        auto parsed = parseTechnique(*technique, object->where + "." + kTechniqueKey);
-        if (!parsed) return parsed.error();
-        out.shadow.technique = *parsed;
+        if (technique->IsString() && technique->Get<std::string>() == kAutoTechniqueName) {
+            out.shadow.autoTechnique = true;
+            out.shadow.technique = ShadowTechnique::Pcss;  // a technique with a map; the planner chooses
+        } else {
+            auto parsed = parseTechnique(*technique, object->where + "." + kTechniqueKey);
+            if (!parsed) return parsed.error();
+            out.shadow.technique = *parsed;
+        }
     }
     if (const tinygltf::Value* kernel = member(*object->value, kKernelKey)) {
         auto parsed = parseKernel(*kernel, object->where + "." + kKernelKey);

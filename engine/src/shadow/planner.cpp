@@ -5,6 +5,7 @@
 
 #include "core/camera.h"
 #include "core/screen_bounds.h"
+#include "shadow/auto_planning.h"
 #include "shadow/frustum.h"
 #include "shadow/light_projection.h"
 #include "shadow/map_memory.h"
@@ -440,8 +441,11 @@ struct ShadowPlanner::Scratch {
     std::vector<double> fieldVoxels;  ///< resolveFieldLengths' scratch
 };
 
-ShadowPlanner::ShadowPlanner() : scratch_(std::make_unique<Scratch>()) {}
+ShadowPlanner::ShadowPlanner() : scratch_(std::make_unique<Scratch>()), auto_(std::make_unique<AutoPlanning>()) {}
 ShadowPlanner::~ShadowPlanner() = default;
+
+void ShadowPlanner::observe(const FrameStats& stats) { auto_->observe(stats); }
+const AutoCostModel& ShadowPlanner::autoCosts() const { return auto_->costs(); }
 
 const ShadowFrame& ShadowPlanner::prepare(const World& world, const CameraView& camera,
                                           const std::vector<Entity>& lights) {
@@ -479,6 +483,7 @@ const ShadowFrame& ShadowPlanner::prepare(const World& world, const CameraView& 
         plan.affectsView = lightAffectsView(plan.light, {plan.wsPosition, plan.wsDirection}, cameraFrustum);
         candidates.push_back({&plan});
     }
+    auto_->choose(frame_.lights, limits_, sceneTime_, frame_.warnings);
     // Sizes first: the layers' texel snapping and margins depend on them.
     fitMemoryBudget(candidates, camera.wsPosition, limits_.maxShadowBytes, frame_.warnings);
     for (const Candidate& c : candidates) {
@@ -498,6 +503,7 @@ const ShadowFrame& ShadowPlanner::prepare(const World& world, const CameraView& 
         frame_.techniquesInUse |= 1u << static_cast<unsigned>(plan.technique());
     }
     numberFieldCasters(frame_.lights);
+    auto_->learn(world, camera, frame_);
     // Forget lights that are gone so their memory does not grow without bound.
     std::erase_if(memory_, [&](const auto& m) {
         return std::none_of(frame_.lights.begin(), frame_.lights.end(),

@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""Fits technique auto's error model (engine/src/shadow/auto_technique.cpp) to the error-against-time
+sweep (benchmarks/results/error_vs_time.csv) and states the fit's error.
+
+    python3 benchmarks/fit_auto_error.py [--bin build/bin] [--csv benchmarks/results/error_vs_time.csv]
+
+Each light's penumbra width (texels of a 1024 map) and screen pixels come from the planner itself:
+`shadow_render builtin:SCENE --technique auto` reports them in stats.json (lights.auto). The sweep
+pools every light of a scene, so the model's prediction is pooled the same way: the pixel-weighted
+mean of the lights' squared RMSE. Parameters are fitted by minimising the RMS of
+log(predicted / measured) over the sweep's hard, PCF (16 taps, Vogel) and PCSS (Vogel) rows.
+Prints the constants for auto_technique.cpp and the per-row and overall fit error.
+"""
+import argparse
+import csv
+import json
+import math
+import subprocess
+import tempfile
+
+SCENES = ["plates", "bunny", "default"]
+EDGE = 0.2887  # a unit step against a linear ramp
+NAMES = ["kHardBlur", "kPcfBlur", "kPcssTaps", "kPcssTexel", "kPenumbraShare", "kPenumbraShareFloor", "kOtherError"]
+
+
+def features(binary, scene, size):
+    with tempfile.TemporaryDirectory() as out:
+        subprocess.run([binary, "builtin:" + scene, "--size", size, "--technique", "auto", "--frames", "2",
+                        "--out", out, "--aov", "color"], check=True, capture_output=True)
+        stats = json.load(open(out + "/stats.json"))
+    return [(l["auto"]["penumbraTexels1024"], l["auto"]["pixels"]) for l in stats["lights"] if "auto" in l]
+
+
+def light_rmse(p, technique, size, taps, w1024):
+    hard_blur, pcf_blur, pcss_taps, pcss_texel, share_k, share_floor, other = p
+    w = w1024 * size / 1024.0
+    if technique == "hard":
+        pen = EDGE * w / (w + hard_blur)
+    elif technique == "pcf":
+        pen = EDGE * w / (w + pcf_blur)
+    else:
+        pen = min(EDGE, math.hypot(pcss_taps / taps, pcss_texel / max(w, 1e-3)))
+    share = min(1.0, share_k * w1024 / 1024.0 + share_floor)
+    return math.sqrt(share * pen * pen + other * other)
+
+
+def pooled(p, row, lights):
+    total = sum(px for _, px in lights)
+    mse = sum(px * light_rmse(p, row["technique"], row["size"], row["taps"], w) ** 2 for w, px in lights)
+    return math.sqrt(mse / total)
+
+
+def loss(p, rows, feats):
+    if min(p) <= 0:
+        return 1e9
+    errs = [math.log(pooled(p, r, feats[r["scene"]]) / r["rmse"]) for r in rows]
+    return math.sqrt(sum(e * e for e in errs) / len(errs))
+
+
+def nelder_mead(f, x0, steps=4000):
+    """Minimises f over log-parameters (all parameters are positive)."""
+    g = lambda y: f([math.exp(v) for v in y])
+    n = len(x0)
+    simplex = [[math.log(v) for v in x0]]
+    for i in range(n):
+        y = list(simplex[0])
+        y[i] += 0.5
+        simplex.append(y)
+    values = [g(y) for y in simplex]
+    for _ in range(steps):
+        order = sorted(range(n + 1), key=lambda i: values[i])
+        simplex = [simplex[i] for i in order]
+        values = [values[i] for i in order]
+        centroid = [sum(simplex[i][k] for i in range(n)) / n for k in range(n)]
+        reflect = [c + (c - w) for c, w in zip(centroid, simplex[-1])]
+        fr = g(reflect)
+        if fr < values[0]:
+            expand = [c + 2 * (c - w) for c, w in zip(centroid, simplex[-1])]
+            fe = g(expand)
+            simplex[-1], values[-1] = (expand, fe) if fe < fr else (reflect, fr)
+        elif fr < values[-2]:
+            simplex[-1], values[-1] = reflect, fr
+        else:
+            contract = [c + 0.5 * (w - c) for c, w in zip(centroid, simplex[-1])]
+            fc = g(contract)
+            if fc < values[-1]:
+                simplex[-1], values[-1] = contract, fc
+            else:
+                simplex = [simplex[0]] + [[b + 0.5 * (y - b) for b, y in zip(simplex[0], s)] for s in simplex[1:]]
+                values = [values[0]] + [g(y) for y in simplex[1:]]
+    best = min(range(n + 1), key=lambda i: values[i])
+    return [math.exp(v) for v in simplex[best]]
+
+
+def sweep_rows(path):
+    rows = []
+    for r in csv.DictReader(open(path)):
+        c = r["config"]
+        if r["scene"] not in SCENES or any(k in c for k in ("midpoint", "screen", "r0.05", "poisson")):
+            continue
+        if r["technique"] == "hard" or (r["technique"] == "pcf" and "taps16 " in c) or r["technique"] == "pcss":
+            rows.append({"scene": r["scene"], "config": c, "technique": r["technique"], "size": int(r["mapSize"]),
+                         "taps": int(r["blockerSamples"]), "rmse": float(r["rmse"])})
+    return rows
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--bin", default="build/bin")
+    ap.add_argument("--csv", default="benchmarks/results/error_vs_time.csv")
+    ap.add_argument("--size", default="320x240")
+    a = ap.parse_args()
+    feats = {s: features(a.bin + "/shadow_render", s, a.size) for s in SCENES}
+    rows = sweep_rows(a.csv)
+    p = nelder_mead(lambda q: loss(q, rows, feats), [1.0, 2.0, 0.6, 1.5, 1.0, 0.01, 0.005])
+    for name, value in zip(NAMES, p):
+        print(f"constexpr double {name} = {value:.4g};")
+    print("\n| scene | config | measured RMSE | predicted | ratio |\n|---|---|---:|---:|---:|")
+    for r in rows:
+        pr = pooled(p, r, feats[r["scene"]])
+        print(f"| {r['scene']} | {r['config']} | {r['rmse']:.4f} | {pr:.4f} | {pr / r['rmse']:.2f} |")
+    print(f"\nfit error: RMS of log(predicted / measured) = {loss(p, rows, feats):.3f} over {len(rows)} rows")
+
+
+if __name__ == "__main__":
+    main()

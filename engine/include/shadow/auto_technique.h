@@ -1,0 +1,155 @@
+// `technique: "auto"`: the planner picks a light's technique, map size and tap counts each frame
+// (docs/auto_technique.md). Three pure pieces, testable without GL, and the state that ties them
+// to frames:
+//   `AutoCostModel`    predicted milliseconds of a light's shadow passes and lookups, from what the
+//                      planner knows (layers, caster triangles, map texels, screen pixels), its
+//                      coefficients scaled to the measured pass timings as the module runs;
+//   `autoPredictedRmse` predicted visibility RMSE over the light's lit pixels, a fit of the
+//                      error-against-time sweep against the penumbra's width in map texels;
+//   `chooseAutoCandidates` the candidates of every auto light that minimise the predicted
+//                      screen-weighted error within a budget;
+//   `AutoTechniqueState` the choice kept from frame to frame (hysteresis) and the calibration.
+//
+// What this does not do: VSM/VSSM/MSM/MSM-soft and sdf are not candidates (their costs, chains
+// and failure modes are not modelled yet), nor depth modes or cascades; the budget covers the
+// auto lights alone.
+#pragma once
+
+#include <shadow/techniques.h>
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+namespace shadow {
+
+struct FrameStats;
+
+/// One configuration an auto light may take.
+struct AutoCandidate {
+    ShadowTechnique technique = ShadowTechnique::Pcss;
+    int mapSize = 1024;
+    int pcfSamples = 16;      ///< PCF taps (PCSS: its filter's)
+    int blockerSamples = 16;  ///< PCSS blocker-search points (unused by hard and PCF)
+};
+
+/// The candidates, cheapest family first: hard, PCF (16 taps) and PCSS (16 + 16 taps, the
+/// module's defaults; and 8 + 8) at 512, 1024 and 2048 texels.
+[[nodiscard]] std::span<const AutoCandidate> autoCandidates();
+
+/// What the planner knows of one auto light, from its last planned frame.
+struct AutoLightInput {
+    /// Screen pixels the light can reach (its screen rectangle), >= 0.
+    double pixels = 0.0;
+    /// Layers of its map that hold casters (drawn when redrawn), >= 0.
+    int layers = 1;
+    /// Caster triangles over those layers (a caster in two layers counts twice), >= 0.
+    double casterTriangles = 0.0;
+    /// Share of its layers redrawn per frame (1: every frame; 0: a static light, cached), [0, 1].
+    double redrawShare = 1.0;
+    /// Width of its widest penumbra in texels of a 1024-texel map: emitter size x (receiver -
+    /// nearest caster) / nearest caster, over the texel's footprint at the receiver. >= 0.
+    double penumbraTexels1024 = 0.0;
+};
+
+/// Predicted milliseconds of one light in one candidate; coefficients in ms.
+class AutoCostModel {
+public:
+    /// The shadow passes: redrawShare x (layers x perLayer + triangles x perTriangle + layers x
+    /// mapSize^2 x perTexel), times the calibrated scale of the shadow passes.
+    [[nodiscard]] double shadowPassMs(const AutoLightInput& in, const AutoCandidate& c) const;
+    /// The lookups: pixels x (perPixel + taps x perTap), times the calibrated scale of the lit pass.
+    /// Taps: hard 1, PCF `pcfSamples`, PCSS `blockerSamples` / 2 + `pcfSamples` (the search reads
+    /// its points in pairs).
+    [[nodiscard]] double lookupMs(const AutoLightInput& in, const AutoCandidate& c) const;
+    [[nodiscard]] double totalMs(const AutoLightInput& in, const AutoCandidate& c) const {
+        return shadowPassMs(in, c) + lookupMs(in, c);
+    }
+    /// Calibration from a measured shadow pass of `predictedMs` that took `measuredMs`: an
+    /// exponential moving average (weight `kAutoCalibrationRate`) of their ratio, clamped to
+    /// [1/64, 64] per frame.
+    void observeShadowPass(double predictedMs, double measuredMs);
+    /// The same for the lit pass as a whole (its shading and every light's lookups).
+    void observeLitPass(double predictedMs, double measuredMs);
+    /// Predicted lit-pass shading without lookups: `pixels` x `lights` x perShadedPixel, times the
+    /// lit pass's scale (what `observeLitPass` compares with, lookups added).
+    [[nodiscard]] double shadingMs(double pixels, int lights) const;
+
+    double perLayerMs = 0.2;           ///< a layer's bind, clear and draw set-up
+    double perTriangleMs = 6e-5;       ///< one caster triangle in one layer
+    double perTexelMs = 2.5e-6;        ///< one texel of one layer (clear, raster, read)
+    double perPixelMs = 2.0e-5;        ///< a lookup's set-up per pixel the light reaches
+    double perTapMs = 2.5e-6;          ///< one tap per pixel
+    double perShadedPixelMs = 6.0e-5;  ///< one light's shading of one pixel, lookups aside
+    double shadowScale = 1.0;          ///< measured / predicted shadow passes (calibrated)
+    double litScale = 1.0;             ///< measured / predicted lit pass (calibrated)
+};
+
+/// Weight of the newest frame in the calibration's moving averages.
+inline constexpr double kAutoCalibrationRate = 0.3;
+
+/// Predicted visibility RMSE of a light over its lit pixels in candidate `c`, from its penumbra's
+/// width in texels of `c`'s map (docs/auto_technique.md states the fit and its error).
+[[nodiscard]] double autoPredictedRmse(const AutoLightInput& in, const AutoCandidate& c);
+
+/// The candidate (index into `autoCandidates()`) per light that minimises the pixel-weighted sum
+/// of predicted mean squared errors, sum pixels x rmse^2, with the summed predicted time within
+/// `budgetMs` (0 or infinite: no budget, each light takes its least error). Greedy: every light
+/// starts at its cheapest candidate, then the upgrade of most error saved per millisecond that
+/// still fits is taken until none fits. Over budget at the cheapest, the cheapest stay.
+[[nodiscard]] std::vector<int> chooseAutoCandidates(std::span<const AutoLightInput> lights, const AutoCostModel& costs,
+                                                    double budgetMs);
+
+/// Hysteresis: a light moves to a new candidate only when the chooser has preferred it for
+/// `kAutoConfirmFrames` frames in a row, and either its predicted error is lower by more than
+/// `kAutoSwitchGain` and at least `kAutoHoldSeconds` of scene time passed since its last switch
+/// (`kAutoHoldFrames` frames without a time), or the choices held exceed the budget by more than
+/// `kAutoSwitchGain` and the new candidate is cheaper (a cheaper move cannot flip back before
+/// the hold, as a dearer one waits for it).
+inline constexpr int kAutoConfirmFrames = 3;
+inline constexpr double kAutoSwitchGain = 0.1;
+inline constexpr double kAutoHoldSeconds = 1.0;
+inline constexpr int kAutoHoldFrames = 30;
+
+/// One auto light's choice and what it was predicted to cost.
+struct AutoLightChoice {
+    int candidate = -1;  ///< into `autoCandidates()`; -1 before the first choice
+    double predictedShadowPassMs = 0.0;
+    double predictedLookupMs = 0.0;
+    double predictedRmse = 0.0;
+    AutoLightInput input;  ///< what the choice was made from
+};
+
+/// The choice of every auto light kept from frame to frame, and the calibrated cost model.
+class AutoTechniqueState {
+public:
+    /// Chooses for this frame's auto lights, `ids` identifying each across frames (entity
+    /// indices), `inputs` what is known of each; writes `out[i]`. `time` is the scene time (s),
+    /// NaN when unknown (the hold is then counted in frames).
+    void choose(std::span<const std::uint64_t> ids, std::span<const AutoLightInput> inputs, double budgetMs,
+                double time, std::span<AutoLightChoice> out);
+    /// Calibrates the cost model from a frame's pass timings (its shadow passes per light, named
+    /// "Shadow/<light>/…", and its "Main/Lit*" passes) against what was predicted for it.
+    /// `predictedShadowMs[i]` and `names[i]` belong to the lights whose passes were drawn.
+    void calibrate(std::span<const std::string_view> names, std::span<const double> predictedShadowMs,
+                   double predictedLitMs, const FrameStats& stats);
+    [[nodiscard]] const AutoCostModel& costs() const { return costs_; }
+    [[nodiscard]] AutoCostModel& costs() { return costs_; }
+
+private:
+    struct Held {
+        std::uint64_t id = 0;
+        int current = -1;
+        int pending = -1;
+        int pendingFrames = 0;
+        double switchedAt = 0.0;  ///< scene time of the last switch
+        int framesSinceSwitch = 0;
+        bool seen = false;
+    };
+    Held& held(std::uint64_t id);
+    AutoCostModel costs_;
+    std::vector<Held> held_;
+};
+
+}  // namespace shadow

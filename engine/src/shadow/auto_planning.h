@@ -1,0 +1,50 @@
+// The shadow planner's side of technique "auto" (auto_technique.h): per frame, the settings of
+// every auto light before its map is sized, and afterwards what the next frame should know of it.
+#pragma once
+
+#include <shadow/auto_technique.h>
+#include <shadow/shadow_planner.h>
+
+#include <string>
+#include <vector>
+
+namespace shadow {
+
+/// Owned by `ShadowPlanner`; one per planner.
+class AutoPlanning {
+public:
+    /// Sets `settings` (technique, mapSize, taps), `automatic` and `autoChoice` of every light of
+    /// `lights` whose settings ask for auto, from what `learn` kept of it last frame; clamps the
+    /// budget (`ShadowLimits::shadowBudgetMs`, warnings into `warnings`). `time`: scene time or NaN.
+    void choose(std::vector<ShadowLightPlan>& lights, const ShadowLimits& limits, double time,
+                std::vector<Warning>& warnings);
+    /// After the frame's layers are planned: what each auto light's next choice starts from, and
+    /// what this frame's passes are predicted to take (for `observe`).
+    void learn(const World& world, const CameraView& camera, const ShadowFrame& frame);
+    /// Calibrates the cost model from the timings of the frame `learn` saw.
+    void observe(const FrameStats& stats);
+    [[nodiscard]] const AutoCostModel& costs() const { return state_.costs(); }
+
+private:
+    struct Known {
+        Entity entity;
+        AutoLightInput input;
+        bool seen = false;
+    };
+    Known* known(Entity e);
+
+    AutoTechniqueState state_;
+    std::vector<Known> known_;
+    bool anyAuto_ = false;  ///< the frame `learn` saw had an auto light
+    // Predictions of the frame learn saw, for observe.
+    std::vector<std::string> drawnNames_;
+    std::vector<double> drawnPredictedMs_;
+    double litPredictedMs_ = 0.0;
+    // choose's working lists, kept for their storage.
+    std::vector<std::uint64_t> ids_;
+    std::vector<AutoLightInput> inputs_;
+    std::vector<AutoLightChoice> choices_;
+    std::vector<ShadowLightPlan*> plans_;
+};
+
+}  // namespace shadow

@@ -1,0 +1,242 @@
+// technique "auto": candidates, cost and error models, the chooser and its hysteresis (see
+// auto_technique.h; docs/auto_technique.md says where the numbers come from).
+#include <shadow/auto_technique.h>
+#include <shadow/stats.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace shadow {
+namespace {
+
+constexpr std::array<AutoCandidate, 12> kCandidates{{
+    {ShadowTechnique::Hard, 512, 1, 1},
+    {ShadowTechnique::Hard, 1024, 1, 1},
+    {ShadowTechnique::Hard, 2048, 1, 1},
+    {ShadowTechnique::Pcf, 512, 16, 1},
+    {ShadowTechnique::Pcf, 1024, 16, 1},
+    {ShadowTechnique::Pcf, 2048, 16, 1},
+    {ShadowTechnique::Pcss, 512, 8, 8},
+    {ShadowTechnique::Pcss, 1024, 8, 8},
+    {ShadowTechnique::Pcss, 2048, 8, 8},
+    {ShadowTechnique::Pcss, 512, 16, 16},
+    {ShadowTechnique::Pcss, 1024, 16, 16},
+    {ShadowTechnique::Pcss, 2048, 16, 16},
+}};
+
+/// Taps a lookup takes per pixel (the search reads its points in pairs, as 2x2 gathers).
+double tapsOf(const AutoCandidate& c) {
+    switch (c.technique) {
+        case ShadowTechnique::Hard: return 1.0;
+        case ShadowTechnique::Pcf: return c.pcfSamples;
+        default: return 0.5 * c.blockerSamples + c.pcfSamples;
+    }
+}
+
+/// Multiplies `scale` by the ratio measured / predicted, damped (a geometric moving average).
+void calibrateScale(double& scale, double predictedMs, double measuredMs) {
+    if (!(predictedMs > 0.0) || !(measuredMs > 0.0) || !std::isfinite(predictedMs) || !std::isfinite(measuredMs)) {
+        return;
+    }
+    const double ratio = std::clamp(measuredMs / predictedMs, 1.0 / 64.0, 64.0);
+    scale = std::clamp(scale * std::pow(ratio, kAutoCalibrationRate), 1e-6, 1e6);
+}
+
+// The error model, fitted by benchmarks/fit_auto_error.py to benchmarks/results/error_vs_time.csv
+// (27 rows of hard, PCF and PCSS on plates, bunny and default; RMS of log(predicted / measured)
+// 0.36, a factor of 1.43). RMSE over a light's penumbra pixels, for a penumbra w texels wide in
+// the candidate's map:
+//   hard: kEdge * w / (w + kHardBlur), PCF: kEdge * w / (w + kPcfBlur) (a step against a ramp);
+//   PCSS: sqrt((kPcssTaps / taps)^2 + (kPcssTexel / w)^2) (the blocker search's sampling, and
+//   the penumbra's estimate from few texels).
+// RMSE over all its lit pixels: sqrt(share x penumbra^2 + kOtherError^2), share the part of them
+// in penumbra, which grows with the penumbra: min(1, kPenumbraShare * w1024 / 1024 +
+// kPenumbraShareFloor); kOtherError what no candidate removes (acne, leaks at contact).
+constexpr double kEdge = 0.2887;  // a unit step against a linear ramp: 1 / sqrt(12)
+constexpr double kHardBlur = 13.01;
+constexpr double kPcfBlur = 26.4;
+constexpr double kPcssTaps = 0.611;
+constexpr double kPcssTexel = 2.839;
+constexpr double kPenumbraShare = 0.8441;
+constexpr double kPenumbraShareFloor = 0.0;
+constexpr double kOtherError = 0.007252;
+
+}  // namespace
+
+std::span<const AutoCandidate> autoCandidates() { return kCandidates; }
+
+double AutoCostModel::shadowPassMs(const AutoLightInput& in, const AutoCandidate& c) const {
+    const double texels = static_cast<double>(c.mapSize) * c.mapSize;
+    const double perFrame =
+        in.layers * (perLayerMs + texels * perTexelMs) + std::max(in.casterTriangles, 0.0) * perTriangleMs;
+    return shadowScale * std::clamp(in.redrawShare, 0.0, 1.0) * perFrame;
+}
+
+double AutoCostModel::lookupMs(const AutoLightInput& in, const AutoCandidate& c) const {
+    return litScale * std::max(in.pixels, 0.0) * (perPixelMs + tapsOf(c) * perTapMs);
+}
+
+double AutoCostModel::shadingMs(double pixels, int lights) const {
+    return litScale * std::max(pixels, 0.0) * std::max(lights, 0) * perShadedPixelMs;
+}
+
+void AutoCostModel::observeShadowPass(double predictedMs, double measuredMs) {
+    calibrateScale(shadowScale, predictedMs, measuredMs);
+}
+
+void AutoCostModel::observeLitPass(double predictedMs, double measuredMs) {
+    calibrateScale(litScale, predictedMs, measuredMs);
+}
+
+double autoPredictedRmse(const AutoLightInput& in, const AutoCandidate& c) {
+    const double w1024 = std::max(in.penumbraTexels1024, 0.0);
+    const double w = w1024 * c.mapSize / 1024.0;
+    double penumbra = 0.0;
+    switch (c.technique) {
+        case ShadowTechnique::Hard: penumbra = kEdge * w / (w + kHardBlur); break;
+        case ShadowTechnique::Pcf: penumbra = kEdge * w / (w + kPcfBlur); break;
+        default: {
+            const double taps = kPcssTaps / std::max(c.blockerSamples, 1);
+            const double texel = kPcssTexel / std::max(w, 1e-3);
+            penumbra = std::min(kEdge, std::sqrt(taps * taps + texel * texel));
+        }
+    }
+    const double share = std::min(1.0, kPenumbraShare * w1024 / 1024.0 + kPenumbraShareFloor);
+    return std::sqrt(share * penumbra * penumbra + kOtherError * kOtherError);
+}
+
+namespace {
+
+/// Error a candidate leaves, weighted by the light's pixels (the chooser's objective).
+double weightedError(const AutoLightInput& in, const AutoCandidate& c) {
+    const double rmse = autoPredictedRmse(in, c);
+    return std::max(in.pixels, 1.0) * rmse * rmse;
+}
+
+}  // namespace
+
+std::vector<int> chooseAutoCandidates(std::span<const AutoLightInput> lights, const AutoCostModel& costs,
+                                      double budgetMs) {
+    const std::span<const AutoCandidate> candidates = autoCandidates();
+    const int n = static_cast<int>(candidates.size());
+    std::vector<int> choice(lights.size(), 0);
+    const bool unlimited = !(budgetMs > 0.0) || !std::isfinite(budgetMs);
+    double spent = 0.0;
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        int pick = 0;
+        for (int k = 1; k < n; ++k) {
+            const auto& c = candidates[static_cast<std::size_t>(k)];
+            const auto& p = candidates[static_cast<std::size_t>(pick)];
+            const bool better = unlimited ? weightedError(lights[i], c) < weightedError(lights[i], p)
+                                          : costs.totalMs(lights[i], c) < costs.totalMs(lights[i], p);
+            if (better) pick = k;
+        }
+        choice[i] = pick;
+        spent += costs.totalMs(lights[i], candidates[static_cast<std::size_t>(pick)]);
+    }
+    if (unlimited) return choice;
+    // Upgrades by error saved per millisecond, the best that fits first, until none fits.
+    for (;;) {
+        double bestRate = 0.0;
+        std::size_t bestLight = 0;
+        int bestPick = -1;
+        double bestExtra = 0.0;
+        for (std::size_t i = 0; i < lights.size(); ++i) {
+            const AutoCandidate& now = candidates[static_cast<std::size_t>(choice[i])];
+            const double nowError = weightedError(lights[i], now);
+            const double nowMs = costs.totalMs(lights[i], now);
+            for (int k = 0; k < n; ++k) {
+                const AutoCandidate& c = candidates[static_cast<std::size_t>(k)];
+                const double saved = nowError - weightedError(lights[i], c);
+                const double extra = costs.totalMs(lights[i], c) - nowMs;
+                if (!(saved > 0.0) || spent + extra > budgetMs) continue;
+                const double rate = extra > 0.0 ? saved / extra : std::numeric_limits<double>::infinity();
+                if (rate > bestRate) {
+                    bestRate = rate;
+                    bestLight = i;
+                    bestPick = k;
+                    bestExtra = extra;
+                }
+            }
+        }
+        if (bestPick < 0) return choice;
+        choice[bestLight] = bestPick;
+        spent += bestExtra;
+    }
+}
+
+AutoTechniqueState::Held& AutoTechniqueState::held(std::uint64_t id) {
+    for (Held& h : held_) {
+        if (h.id == id) return h;
+    }
+    Held& h = held_.emplace_back();
+    h.id = id;
+    return h;
+}
+
+void AutoTechniqueState::choose(std::span<const std::uint64_t> ids, std::span<const AutoLightInput> inputs,
+                                double budgetMs, double time, std::span<AutoLightChoice> out) {
+    const std::vector<int> best = chooseAutoCandidates(inputs, costs_, budgetMs);
+    const std::span<const AutoCandidate> candidates = autoCandidates();
+    const auto at = [&](int k) -> const AutoCandidate& { return candidates[static_cast<std::size_t>(k)]; };
+    double current = 0.0;  // predicted time of the choices held, for the budget test
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        const Held* h = nullptr;
+        for (const Held& k : held_) h = k.id == ids[i] ? &k : h;
+        current += costs_.totalMs(inputs[i], at(h != nullptr && h->current >= 0 ? h->current : best[i]));
+    }
+    const bool overBudget = budgetMs > 0.0 && std::isfinite(budgetMs) && current > (1.0 + kAutoSwitchGain) * budgetMs;
+    for (Held& h : held_) h.seen = false;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        Held& h = held(ids[i]);
+        h.seen = true;
+        ++h.framesSinceSwitch;
+        if (std::isfinite(time) && time < h.switchedAt) h.switchedAt = time;  // the scene's clock went back
+        if (h.current < 0 || best[i] == h.current) {
+            if (h.current < 0) {
+                h.switchedAt = std::isfinite(time) ? time : 0.0;
+                h.framesSinceSwitch = 0;
+            }
+            h.current = best[i];
+            h.pending = -1;
+            h.pendingFrames = 0;
+        } else {
+            h.pendingFrames = h.pending == best[i] ? h.pendingFrames + 1 : 1;
+            h.pending = best[i];
+            const bool gains = autoPredictedRmse(inputs[i], at(best[i])) <
+                               (1.0 - kAutoSwitchGain) * autoPredictedRmse(inputs[i], at(h.current));
+            const bool waited =
+                std::isfinite(time) ? time - h.switchedAt >= kAutoHoldSeconds : h.framesSinceSwitch >= kAutoHoldFrames;
+            // Over budget, a move to a cheaper candidate need not wait: it cannot flip back
+            // before the hold, since a dearer one must wait.
+            const bool cheaper =
+                overBudget && costs_.totalMs(inputs[i], at(best[i])) < costs_.totalMs(inputs[i], at(h.current));
+            if (h.pendingFrames >= kAutoConfirmFrames && ((gains && waited) || cheaper)) {
+                h.current = best[i];
+                h.pending = -1;
+                h.pendingFrames = 0;
+                h.switchedAt = std::isfinite(time) ? time : 0.0;
+                h.framesSinceSwitch = 0;
+            }
+        }
+        const AutoCandidate& c = at(h.current);
+        out[i] = {h.current, costs_.shadowPassMs(inputs[i], c), costs_.lookupMs(inputs[i], c),
+                  autoPredictedRmse(inputs[i], c), inputs[i]};
+    }
+    std::erase_if(held_, [](const Held& h) { return !h.seen; });
+}
+
+void AutoTechniqueState::calibrate(std::span<const std::string_view> names, std::span<const double> predictedShadowMs,
+                                   double predictedLitMs, const FrameStats& stats) {
+    std::string prefix;
+    for (std::size_t i = 0; i < names.size() && i < predictedShadowMs.size(); ++i) {
+        prefix.assign("Shadow/").append(names[i]).append("/");
+        costs_.observeShadowPass(predictedShadowMs[i], stats.passMs(prefix));
+    }
+    costs_.observeLitPass(predictedLitMs, stats.passMs("Main/Lit"));
+}
+
+}  // namespace shadow

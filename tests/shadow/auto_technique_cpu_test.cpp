@@ -1,0 +1,214 @@
+// Technique auto (engine/src/shadow/auto_technique.cpp, auto_planning.cpp): the chooser against
+// its budget, the hysteresis against inputs that flip, the calibration, and the planner's use.
+#include <gtest/gtest.h>
+#include <shadow/auto_technique.h>
+
+#include "shadow/planner_test_support.h"
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace shadow {
+namespace {
+
+/// Three lights: a wide penumbra on a large share of the screen, a narrow one, one with many
+/// caster triangles.
+std::vector<AutoLightInput> threeLights() {
+    AutoLightInput wide;
+    wide.pixels = 200000;
+    wide.penumbraTexels1024 = 60;
+    AutoLightInput narrow;
+    narrow.pixels = 50000;
+    narrow.penumbraTexels1024 = 2;
+    AutoLightInput heavy;
+    heavy.pixels = 100000;
+    heavy.layers = 6;
+    heavy.casterTriangles = 400000;
+    heavy.penumbraTexels1024 = 20;
+    return {wide, narrow, heavy};
+}
+
+double timeOf(const std::vector<AutoLightInput>& in, const std::vector<int>& pick, const AutoCostModel& costs) {
+    double ms = 0.0;
+    for (std::size_t i = 0; i < in.size(); ++i) ms += costs.totalMs(in[i], autoCandidates()[pick[i]]);
+    return ms;
+}
+
+double errorOf(const std::vector<AutoLightInput>& in, const std::vector<int>& pick) {
+    double e = 0.0;
+    for (std::size_t i = 0; i < in.size(); ++i) {
+        const double r = autoPredictedRmse(in[i], autoCandidates()[pick[i]]);
+        e += in[i].pixels * r * r;
+    }
+    return e;
+}
+
+TEST(AutoTechnique, ChooserStaysWithinTheBudgetAndSpendsMoreOnlyForLessError) {
+    const std::vector<AutoLightInput> in = threeLights();
+    const AutoCostModel costs;
+    double cheapest = 0.0;
+    for (const AutoLightInput& l : in) {
+        double least = std::numeric_limits<double>::infinity();
+        for (const AutoCandidate& c : autoCandidates()) least = std::min(least, costs.totalMs(l, c));
+        cheapest += least;
+    }
+    double lastError = std::numeric_limits<double>::infinity();
+    for (const double scale : {1.0, 1.5, 2.0, 4.0, 8.0}) {
+        const double budget = cheapest * scale;
+        const std::vector<int> pick = chooseAutoCandidates(in, costs, budget);
+        ASSERT_EQ(pick.size(), in.size());
+        EXPECT_LE(timeOf(in, pick, costs), budget * (1 + 1e-12)) << "budget " << budget;
+        const double error = errorOf(in, pick);
+        EXPECT_LE(error, lastError * (1 + 1e-12)) << "a larger budget must not raise the error";
+        lastError = error;
+        // No single change of one light that fits the budget lowers the error (greedy's fixpoint).
+        for (std::size_t i = 0; i < in.size(); ++i) {
+            for (int k = 0; k < static_cast<int>(autoCandidates().size()); ++k) {
+                std::vector<int> other = pick;
+                other[i] = k;
+                if (timeOf(in, other, costs) <= budget) {
+                    EXPECT_GE(errorOf(in, other), error * (1 - 1e-9));
+                }
+            }
+        }
+    }
+    // Over budget even at the cheapest: the cheapest, every light.
+    const std::vector<int> starved = chooseAutoCandidates(in, costs, cheapest * 0.5);
+    EXPECT_NEAR(timeOf(in, starved, costs), cheapest, cheapest * 1e-12);
+}
+
+TEST(AutoTechnique, WithoutBudgetEachLightTakesItsLeastPredictedError) {
+    const std::vector<AutoLightInput> in = threeLights();
+    const std::vector<int> pick = chooseAutoCandidates(in, AutoCostModel{}, 0.0);
+    for (std::size_t i = 0; i < in.size(); ++i) {
+        for (const AutoCandidate& c : autoCandidates()) {
+            EXPECT_LE(autoPredictedRmse(in[i], autoCandidates()[pick[i]]), autoPredictedRmse(in[i], c));
+        }
+    }
+    // A wide penumbra is soft: PCSS.
+    EXPECT_EQ(autoCandidates()[pick[0]].technique, ShadowTechnique::Pcss);
+}
+
+TEST(AutoTechnique, ErrorModelFallsWithMapSizeAndTapsAndHardMissesWidePenumbrae) {
+    AutoLightInput l;
+    l.pixels = 1000;
+    l.penumbraTexels1024 = 20;
+    const auto rmse = [&](ShadowTechnique t, int size, int taps) {
+        return autoPredictedRmse(l, {t, size, taps, taps});
+    };
+    EXPECT_LT(rmse(ShadowTechnique::Pcss, 2048, 16), rmse(ShadowTechnique::Pcss, 1024, 16));
+    EXPECT_LT(rmse(ShadowTechnique::Pcss, 1024, 16), rmse(ShadowTechnique::Pcss, 1024, 8));
+    l.penumbraTexels1024 = 100;
+    EXPECT_LT(rmse(ShadowTechnique::Pcss, 1024, 16), 0.5 * rmse(ShadowTechnique::Hard, 1024, 1));
+}
+
+TEST(AutoTechnique, HysteresisSwitchesAtMostOnceASecondUnderFlippingInputs) {
+    AutoTechniqueState state;
+    AutoLightInput soft;
+    soft.pixels = 100000;
+    soft.penumbraTexels1024 = 80;
+    AutoLightInput sharp = soft;
+    sharp.penumbraTexels1024 = 0.5;
+    const std::uint64_t id = 7;
+    std::vector<AutoLightChoice> out(1);
+    int switches = 0;
+    int last = -1;
+    const double dt = 1.0 / 60.0;
+    // Inputs that prefer other candidates, flipping every 4 frames for 3 seconds.
+    for (int f = 0; f < 180; ++f) {
+        const AutoLightInput in = (f / 4) % 2 == 0 ? soft : sharp;
+        state.choose({&id, 1}, {&in, 1}, 0.0, f * dt, out);
+        if (last >= 0 && out[0].candidate != last) ++switches;
+        last = out[0].candidate;
+    }
+    EXPECT_LE(switches, 3) << "at most one switch per second of scene time";
+    // A lasting change is followed, after the hold.
+    AutoTechniqueState steady;
+    steady.choose({&id, 1}, {&soft, 1}, 0.0, 0.0, out);
+    const int first = out[0].candidate;
+    int at = -1;
+    for (int f = 1; f < 180 && at < 0; ++f) {
+        steady.choose({&id, 1}, {&sharp, 1}, 0.0, f * dt, out);
+        if (out[0].candidate != first) at = f;
+    }
+    ASSERT_GE(at, 0) << "never followed a lasting change";
+    EXPECT_GE(at * dt, kAutoHoldSeconds - 1e-9);
+    EXPECT_LE(at * dt, kAutoHoldSeconds + kAutoConfirmFrames * dt + 1e-9);
+}
+
+TEST(AutoTechnique, OverBudgetMovesToACheaperCandidateWithoutWaitingForTheHold) {
+    AutoTechniqueState state;
+    AutoLightInput in;
+    in.pixels = 100000;
+    in.penumbraTexels1024 = 40;
+    const std::uint64_t id = 3;
+    std::vector<AutoLightChoice> out(1);
+    state.choose({&id, 1}, {&in, 1}, 0.0, 0.0, out);  // no budget: the least error, a dear one
+    const double dear = state.costs().totalMs(in, autoCandidates()[out[0].candidate]);
+    const double budget = 0.25 * dear;
+    const double dt = 1.0 / 60.0;
+    int at = -1;
+    for (int f = 1; f < 30 && at < 0; ++f) {
+        state.choose({&id, 1}, {&in, 1}, budget, f * dt, out);
+        if (state.costs().totalMs(in, autoCandidates()[out[0].candidate]) <= budget) at = f;
+    }
+    EXPECT_EQ(at, kAutoConfirmFrames) << "within the budget after the confirmation frames, not after the hold";
+}
+
+TEST(AutoTechnique, CalibrationConvergesToTheMeasuredRatio) {
+    AutoCostModel costs;
+    for (int i = 0; i < 60; ++i) {
+        const double predicted = 4.0 * costs.shadowScale;
+        costs.observeShadowPass(predicted, 4.0 * 2.5);  // the GPU is 2.5 times slower than the defaults
+        costs.observeLitPass(10.0 * costs.litScale, 10.0 * 0.2);
+    }
+    EXPECT_NEAR(costs.shadowScale, 2.5, 2.5 * 1e-3);
+    EXPECT_NEAR(costs.litScale, 0.2, 0.2 * 1e-3);
+    costs.observeShadowPass(1.0, 0.0);  // nothing measured (timing off): unchanged
+    EXPECT_NEAR(costs.shadowScale, 2.5, 2.5 * 1e-3);
+}
+
+TEST(AutoTechnique, PlannerResolvesAutoLightsToConcreteSettingsWithinTheBudget) {
+    test::TestScene t;
+    Light spot = test::lightOf(LightType::Spot);
+    spot.radius = 0.2f;
+    Shadow s;
+    s.autoTechnique = true;
+    s.technique = ShadowTechnique::Pcss;
+    const Entity light = addLight(t.scene, "spot", spot, s, {0, 6, 0}, {0, -1, 0});
+    addMeshInstance(t.scene.world, "box under the spot", makeBoxMesh(glm::vec3(0.4f)), test::at({0, 2, 0}));
+    ShadowPlanner planner;
+    ShadowLimits limits = planner.limits();
+    limits.shadowBudgetMs = 1e-6;  // below every candidate: the cheapest
+    planner.setLimits(limits);
+    CameraView view = t.update();
+    view.pixelWidth = 320;
+    view.pixelHeight = 240;
+    planner.setSceneTime(0.0);
+    const ShadowFrame& first = planner.prepare(t.scene.world, view, t.scene.lights);
+    ASSERT_EQ(first.lights.size(), 1u);
+    EXPECT_TRUE(first.lights[0].automatic);
+    EXPECT_EQ(first.lights[0].autoChoice.candidate, -1) << "nothing known yet: the defaults";
+    EXPECT_EQ(first.lights[0].settings.technique, ShadowTechnique::Pcss);
+    EXPECT_EQ(first.lights[0].mapSize, 1024);
+    planner.setSceneTime(1.0 / 30.0);
+    const ShadowFrame& second = planner.prepare(t.scene.world, view, t.scene.lights);
+    const ShadowLightPlan& plan = second.lights[0];
+    EXPECT_EQ(plan.entity, light);
+    ASSERT_GE(plan.autoChoice.candidate, 0);
+    EXPECT_EQ(plan.settings.technique, ShadowTechnique::Hard);
+    EXPECT_EQ(plan.mapSize, 512);
+    EXPECT_GT(plan.autoChoice.input.penumbraTexels1024, 0.0);
+    EXPECT_EQ(second.techniquesInUse & techniqueBit(ShadowTechnique::Pcss), 0u);
+    // A bad budget: one warning, treated as none.
+    limits.shadowBudgetMs = -3.0;
+    planner.setLimits(limits);
+    const ShadowFrame& bad = planner.prepare(t.scene.world, view, t.scene.lights);
+    int clamped = 0;
+    for (const Warning& w : bad.warnings) clamped += w.element == "shadowBudgetMs" ? 1 : 0;
+    EXPECT_EQ(clamped, 1);
+}
+
+}  // namespace
+}  // namespace shadow
