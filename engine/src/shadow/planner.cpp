@@ -430,6 +430,30 @@ struct PlannedFrom {
     }
 };
 
+/// Every light of `lights` described into `frame.lights` and clamped once; the shadowed ones
+/// become `candidates` for a map.
+void collectCandidates(const World& world, const std::vector<Entity>& lights, const ShadowLimits& limits,
+                       const Frustum& cameraFrustum, ShadowFrame& frame, std::vector<Candidate>& candidates) {
+    candidates.clear();
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        ShadowLightPlan& plan = frame.lights[i];
+        describeLight(world, lights[i], static_cast<int>(i), plan);
+        if (!plan.shaded) continue;  // a non-finite transform is reported by the transform system
+        const Shadow* shadow = world.tryGet<Shadow>(plan.entity);
+        if (shadow == nullptr || shadow->technique == ShadowTechnique::None) {
+            plan.settings.technique = ShadowTechnique::None;
+            clampLight(plan.light, plan.name, frame.warnings);
+            plan.affectsView = lightAffectsView(plan.light, {plan.wsPosition, plan.wsDirection}, cameraFrustum);
+            continue;
+        }
+        plan.settings = *shadow;
+        clampShadowSettings(plan.settings, plan.light, limits, plan.name, frame.warnings);
+        plan.mapSize = plan.settings.mapSize;
+        plan.affectsView = lightAffectsView(plan.light, {plan.wsPosition, plan.wsDirection}, cameraFrustum);
+        candidates.push_back({&plan});
+    }
+}
+
 }  // namespace
 
 struct ShadowPlanner::Scratch {
@@ -464,25 +488,7 @@ const ShadowFrame& ShadowPlanner::prepare(const World& world, const CameraView& 
     frame_.wsGeometry = geometry.everything;
     const Frustum cameraFrustum = Frustum::fromMatrix(cameraClipFromWorld(camera));
 
-    // Every light is clamped once, here; the shadowed ones become candidates for a map.
-    candidates.clear();
-    for (std::size_t i = 0; i < lights.size(); ++i) {
-        ShadowLightPlan& plan = frame_.lights[i];
-        describeLight(world, lights[i], static_cast<int>(i), plan);
-        if (!plan.shaded) continue;  // a non-finite transform is reported by the transform system
-        const Shadow* shadow = world.tryGet<Shadow>(plan.entity);
-        if (shadow == nullptr || shadow->technique == ShadowTechnique::None) {
-            plan.settings.technique = ShadowTechnique::None;
-            clampLight(plan.light, plan.name, frame_.warnings);
-            plan.affectsView = lightAffectsView(plan.light, {plan.wsPosition, plan.wsDirection}, cameraFrustum);
-            continue;
-        }
-        plan.settings = *shadow;
-        clampShadowSettings(plan.settings, plan.light, limits_, plan.name, frame_.warnings);
-        plan.mapSize = plan.settings.mapSize;
-        plan.affectsView = lightAffectsView(plan.light, {plan.wsPosition, plan.wsDirection}, cameraFrustum);
-        candidates.push_back({&plan});
-    }
+    collectCandidates(world, lights, limits_, cameraFrustum, frame_, candidates);
     auto_->choose(frame_.lights, limits_, sceneTime_, frame_.warnings);
     // Sizes first: the layers' texel snapping and margins depend on them.
     fitMemoryBudget(candidates, camera.wsPosition, limits_.maxShadowBytes, frame_.warnings);
