@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace shadow {
+namespace shadow::default_rig_cli_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -224,4 +224,4 @@ TEST(DefaultRigCli, ReferenceTracesTheSameRig) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::default_rig_cli_test
