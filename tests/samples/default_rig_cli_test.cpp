@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 using test::writeCube;
 
 test::ProcessRun run(const test::TempDir& tmp, const std::string& program, const std::string& args) {
-    return test::runProgram(std::string(SHADOW_BIN_DIR) + "/" + program, args, tmp / (program + ".log"));
+    return test::runProgram(std::string(SHADOW_BIN_DIR "/") + program, args, tmp / (program + ".log"));
 }
 
 nlohmann::json readJson(const std::string& path) {
