@@ -4,6 +4,7 @@
 #pragma once
 
 #include <shadow/components.h>
+#include <shadow/image_io.h>
 #include <shadow/warnings.h>
 
 #include <algorithm>
@@ -89,6 +90,24 @@ public:
 private:
     std::filesystem::path path_;
 };
+
+/// The exit code of the project's command-line programs on bad input (arguments, files).
+constexpr int kExitBadInput = 2;
+
+/// The whole content of the file at `path`; throws std::filesystem::filesystem_error when there is
+/// none (the test fails naming it).
+inline std::string readBytes(const std::filesystem::path& path) {
+    std::string bytes(std::filesystem::file_size(path), '\0');
+    std::ifstream(path, std::ios::binary).read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    return bytes;
+}
+
+/// A one-channel `width` x `height` image holding `values`, row by row.
+inline ImageF imageOf(int width, int height, const std::vector<float>& values) {
+    ImageF image = makeImage(width, height, 1);
+    image.pixels = values;
+    return image;
+}
 
 /// `s` quoted for the POSIX shell.
 inline std::string shellQuoted(const std::string& s) {

@@ -27,11 +27,7 @@ namespace fs = std::filesystem;
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-ImageF imageOf(int width, int height, const std::vector<float>& values) {
-    ImageF image = makeImage(width, height, 1);
-    image.pixels = values;
-    return image;
-}
+using test::imageOf;
 
 /// A position-like RGBA mask: A from `coverage`, RGB deliberately NaN so that a reader of the
 /// wrong channel would notice.

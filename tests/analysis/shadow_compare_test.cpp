@@ -29,7 +29,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kExitBadInput = 2;
+using test::kExitBadInput;
 
 fs::path compareBinary() {
     std::error_code ec;
@@ -37,11 +37,7 @@ fs::path compareBinary() {
     return ec ? fs::path("shadow_compare") : self.parent_path() / "shadow_compare";
 }
 
-std::string shellQuoted(const std::string& s) {
-    std::string out = "'";
-    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
+using test::shellQuoted;
 
 std::string readText(const std::string& file) {
     std::ifstream in(file);
@@ -56,11 +52,7 @@ struct CliRun {
     std::string err;
 };
 
-ImageF imageOf(int width, int height, const std::vector<float>& values) {
-    ImageF image = makeImage(width, height, 1);
-    image.pixels = values;
-    return image;
-}
+using test::imageOf;
 
 /// A fresh directory per test under $SHADOW_TEST_TMP (or the system temp dir), removed after.
 class ShadowCompareCli : public ::testing::Test {

@@ -183,14 +183,14 @@ TEST(World, RemoveKeepsOtherEntitiesComponentsIntact) {
     std::vector<Entity> es;
     for (int i = 0; i < 5; ++i) {
         es.push_back(world.create());
-        world.emplace<Label>(es.back(), "n" + std::to_string(i), i);
+        world.emplace<Label>(es.back(), std::string("n").append(std::to_string(i)), i);
         world.emplace<Owned>(es.back(), std::make_unique<int>(i));
     }
     EXPECT_TRUE(world.remove<Label>(es[1]));  // swap-and-pop moves the last one into its place
     EXPECT_TRUE(world.remove<Owned>(es[1]));
     EXPECT_FALSE(world.remove<Label>(es[1]));
     for (int i : {0, 2, 3, 4}) {
-        EXPECT_EQ(world.get<Label>(es[i]).text(), "n" + std::to_string(i));
+        EXPECT_EQ(world.get<Label>(es[i]).text(), std::string("n").append(std::to_string(i)));
         EXPECT_EQ(*world.get<Owned>(es[i]).value, i);
     }
     EXPECT_FALSE(world.has<Label>(es[1]));

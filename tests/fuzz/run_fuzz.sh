@@ -37,7 +37,9 @@ seed_tests=${SHADOW_SEED_TESTS:-$src/build/bin/shadow_core_tests}
 max_len=8192  # glTF documents need a few kB to reach the importer's later stages
 
 flags="-O2 -gline-tables-only -DNDEBUG"
-cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+generator=()  # Ninja for a new folder, as .ci/setup
+[ -f "$build/CMakeCache.txt" ] || generator=(-G Ninja)
+cmake -S "$src" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DSHADOW_FUZZ=ON \
   "-DCMAKE_C_FLAGS_RELWITHDEBINFO=$flags" "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$flags" \
   -DSHADOW_BUILD_BENCHMARKS=OFF -DSHADOW_BUILD_VIEWER=OFF >/dev/null

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-namespace shadow {
+namespace shadow::image_io_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -549,4 +549,4 @@ TEST(AutoExposure, CountsOnlyFiniteLitPixels) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::image_io_test

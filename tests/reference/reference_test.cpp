@@ -29,7 +29,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kExitBadInput = 2;
+using test::kExitBadInput;
 
 // ---- Helpers ----
 

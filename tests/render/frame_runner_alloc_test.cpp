@@ -69,8 +69,6 @@ protected:
     void SetUp() override { ASSERT_TRUE(test::allocationCountingWorks()) << "operator new does not count"; }
 };
 
-}  // namespace
-
 // builtin:default as shadow_render renders it by default: a PCSS sun with three cascades, a
 // PCF spot and a hard point light, with AOVs.
 TEST_F(FrameRunnerAllocations, DefaultSceneAllocatesNothingPerFrame) {
@@ -117,4 +115,5 @@ TEST_F(FrameRunnerAllocations, ManyLightsAllocateNothingPerFrame) {
         << "see stderr for where the first ones come from";
 }
 
+}  // namespace
 }  // namespace shadow

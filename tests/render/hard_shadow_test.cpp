@@ -18,7 +18,7 @@
 
 #include "render/render_test_support.h"
 
-namespace shadow {
+namespace shadow::hard_shadow_test {
 namespace {
 
 constexpr int kWidth = 256;
@@ -166,4 +166,4 @@ TEST(HardShadow, PointLightFootprintAcrossCubeFacesMatchesGeometry) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::hard_shadow_test

@@ -9,7 +9,7 @@
 
 #include "render/material_test_support.h"
 
-namespace shadow {
+namespace shadow::materials_test {
 namespace {
 
 constexpr float kHalf = 1.0f;  // the plane's half edge (m)
@@ -245,4 +245,4 @@ TEST(Materials, DoubleSidedShadesTheBackFaceAndSingleSidedCullsIt) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::materials_test

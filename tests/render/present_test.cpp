@@ -14,7 +14,7 @@
 #include <cstdlib>
 #include <vector>
 
-namespace shadow {
+namespace shadow::present_test {
 namespace {
 
 /// Linear RGB over 256 x 64 pixels: luminance from 1e-7 to 3e4 along x (log-spaced, so every
@@ -133,4 +133,4 @@ TEST(Present, RendererPresentsTheFrameAsTheCpuToneMapsItsReadback) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::present_test

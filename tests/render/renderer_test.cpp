@@ -13,7 +13,7 @@
 #include "render/material_test_support.h"
 #include "render/render_test_support.h"
 
-namespace shadow {
+namespace shadow::renderer_test {
 namespace {
 
 constexpr int kWidth = 160;
@@ -345,4 +345,4 @@ TEST(Renderer, PositionAndDepthAovsMatchTheCameraRayHitOnTheGround) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::renderer_test

@@ -16,7 +16,7 @@
 #include "shadow/truth_test_support.h"
 #include "render/screen_visibility.h"
 
-namespace shadow {
+namespace shadow::screen_visibility_test {
 namespace {
 
 struct Rendered {
@@ -377,4 +377,4 @@ TEST(ScreenVisibility, SettingNamesRoundTrip) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::screen_visibility_test

@@ -17,14 +17,14 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace shadow {
+namespace shadow::default_rig_cli_test {
 namespace {
 
 namespace fs = std::filesystem;
 using test::writeCube;
 
 test::ProcessRun run(const test::TempDir& tmp, const std::string& program, const std::string& args) {
-    return test::runProgram(std::string(SHADOW_BIN_DIR) + "/" + program, args, tmp / (program + ".log"));
+    return test::runProgram(std::string(SHADOW_BIN_DIR "/") + program, args, tmp / (program + ".log"));
 }
 
 nlohmann::json readJson(const std::string& path) {
@@ -224,4 +224,4 @@ TEST(DefaultRigCli, ReferenceTracesTheSameRig) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::default_rig_cli_test

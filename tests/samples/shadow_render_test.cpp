@@ -18,12 +18,12 @@
 #include <string>
 #include <vector>
 
-namespace shadow {
+namespace shadow::shadow_render_test {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kExitBadInput = 2;
+using test::kExitBadInput;
 constexpr int kWidth = 96;
 constexpr int kHeight = 54;
 
@@ -495,9 +495,9 @@ TEST(ShadowRenderCli, ShaderCacheFolderServesTheSecondRun) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::shadow_render_test
 
-namespace shadow {
+namespace shadow::shadow_render_test {
 namespace {
 
 // Every sample scene (samples/scenes) renders headless by its name, animated, with every light
@@ -525,4 +525,4 @@ TEST(ShadowRenderCli, SampleScenesRenderByName) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::shadow_render_test

@@ -18,12 +18,12 @@
 
 #include <sys/stat.h>
 
-namespace shadow {
+namespace shadow::viewer_test {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kExitBadInput = 2;
+using test::kExitBadInput;
 constexpr int kWidth = 320;
 constexpr int kHeight = 180;
 
@@ -228,4 +228,4 @@ TEST(ShadowViewerScript, ScriptThatIsNoRegularFileOrTooLargeIsOneMessage) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::viewer_test

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "test_support.h"
+
 namespace shadow::gltf_test {
 
 namespace fs = std::filesystem;
@@ -75,11 +77,7 @@ inline std::string base64(const std::vector<unsigned char>& bytes) {
 
 inline void writeText(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
-inline std::string readBytes(const fs::path& path) {
-    std::string bytes(fs::file_size(path), '\0');
-    std::ifstream(path, std::ios::binary).read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    return bytes;
-}
+using test::readBytes;
 
 /// A glTF document under construction, with one binary buffer.
 struct Doc {

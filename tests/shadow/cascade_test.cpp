@@ -13,7 +13,7 @@
 
 #include "shadow/soft_test_support.h"
 
-namespace shadow {
+namespace shadow::cascade_test {
 namespace {
 
 constexpr int kCascades = 3;
@@ -307,4 +307,4 @@ TEST(Cascade, SplitsIncreaseToTheShadowDistance) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::cascade_test

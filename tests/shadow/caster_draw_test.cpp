@@ -17,7 +17,7 @@
 
 #include "render/render_test_support.h"
 
-namespace shadow {
+namespace shadow::caster_draw_test {
 namespace {
 
 const glm::dvec3 kBoxAt{0.2, 0.6, -0.1};
@@ -314,4 +314,4 @@ TEST(ShadowSystem, ALightsTextureStaysWithTheLightWhateverTheOrder) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::caster_draw_test

@@ -18,7 +18,7 @@
 
 #include "shadow/soft_test_support.h"
 
-namespace shadow {
+namespace shadow::cube_seam_test {
 namespace {
 
 constexpr double kLightHeight = 3.0;
@@ -99,4 +99,4 @@ TEST(CubeSeam, PenumbraAcrossAFaceBoundaryJumpsNoMoreThanMeasured) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::cube_seam_test

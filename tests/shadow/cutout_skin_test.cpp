@@ -16,7 +16,7 @@
 #include "render/render_test_support.h"
 #include "shadow/truth_test_support.h"
 
-namespace shadow::test {
+namespace shadow::test::cutout_skin_test {
 namespace {
 
 constexpr int kWidth = 240;
@@ -330,4 +330,4 @@ TEST(SkinnedShadow, NonFiniteJointSkipsTheMesh) {
 }
 
 }  // namespace
-}  // namespace shadow::test
+}  // namespace shadow::test::cutout_skin_test

@@ -13,7 +13,7 @@
 #include "shadow/soft_test_support.h"
 #include "test_support.h"
 
-namespace shadow {
+namespace shadow::depth_mode_test {
 namespace {
 
 constexpr int kMapSize = 64;
@@ -95,4 +95,4 @@ TEST(DepthMode, ChangingTheModeRedrawsTheLayersAndReusesThemAfter) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::depth_mode_test

@@ -18,7 +18,7 @@
 #include "shadow/truth_test_support.h"
 #include "scene/gltf_test_support.h"
 
-namespace shadow::test {
+namespace shadow::test::morph_shadow_test {
 namespace {
 
 using gltf_test::json;
@@ -209,4 +209,4 @@ TEST(MorphShadow, DroppedTargetsReportedOnceByTheFrames) {
 }
 
 }  // namespace
-}  // namespace shadow::test
+}  // namespace shadow::test::morph_shadow_test

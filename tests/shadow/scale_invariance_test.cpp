@@ -20,7 +20,7 @@
 #include "shadow/soft_test_support.h"
 #include "test_support.h"
 
-namespace shadow::test {
+namespace shadow::test::scale_invariance_test {
 namespace {
 
 /// Multiplies every length of `scene` by `k` (see the file comment).
@@ -123,4 +123,4 @@ TEST(ScaleInvariance, SlowBunnyUnderThreeLightTypesCastsTheSameShadowsAtAnyScale
 }
 
 }  // namespace
-}  // namespace shadow::test
+}  // namespace shadow::test::scale_invariance_test

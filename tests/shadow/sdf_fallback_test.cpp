@@ -18,7 +18,7 @@
 #include "shadow/truth_test_support.h"
 #include "test_support.h"
 
-namespace shadow::test {
+namespace shadow::test::sdf_fallback_test {
 namespace {
 
 constexpr int kWidth = 160;
@@ -103,4 +103,4 @@ TEST(SdfFallback, ThinClosedPlatesHighAboveTheGroundKeepTheirUmbraUnderAWideLigh
 }
 
 }  // namespace
-}  // namespace shadow::test
+}  // namespace shadow::test::sdf_fallback_test

@@ -20,7 +20,7 @@
 #include "shadow/soft_test_support.h"
 #include "test_support.h"
 
-namespace shadow {
+namespace shadow::sdf_test {
 namespace {
 
 /// Prints one measured figure.
@@ -250,4 +250,4 @@ TEST(DistanceFieldShadows, AClosedCasterThinnerThanTwoVoxelsCastsThroughTheMapAt
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::sdf_test

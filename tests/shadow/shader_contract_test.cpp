@@ -23,7 +23,7 @@
 #include "gl/gl_test_support.h"
 #include "render/render_test_support.h"
 
-namespace shadow {
+namespace shadow::shader_contract_test {
 namespace {
 
 constexpr int kWidth = 160;
@@ -438,4 +438,4 @@ TEST(ShaderContract, ShaderInputsRefuseWhatIsNotASceneLight) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::shader_contract_test

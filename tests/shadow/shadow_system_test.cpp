@@ -21,7 +21,7 @@
 #include "render/render_test_support.h"
 #include "test_support.h"
 
-namespace shadow {
+namespace shadow::shadow_system_test {
 namespace {
 
 // The parts take what they read as const: a frame, maps and a world handed to them cannot be
@@ -188,4 +188,4 @@ TEST(ShadowSystem, CountsTheProgramsItsPassesBuild) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::shadow_system_test

@@ -17,7 +17,7 @@
 
 #include "shadow/soft_test_support.h"
 
-namespace shadow {
+namespace shadow::soft_shadow_test {
 namespace {
 
 using test::countGround;
@@ -448,4 +448,4 @@ TEST(SoftShadow, ThinWallShadowGapStaysWithinTheDepthBias) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::soft_shadow_test

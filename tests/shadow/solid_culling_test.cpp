@@ -18,7 +18,7 @@
 #include "render/render_test_support.h"
 #include "shadow/soft_test_support.h"
 
-namespace shadow {
+namespace shadow::solid_culling_test {
 namespace {
 
 constexpr int kMapSize = 256;
@@ -172,4 +172,4 @@ TEST(SolidCullingInside, KeepsBothSidesOfASolidTheLightIsIn) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::solid_culling_test

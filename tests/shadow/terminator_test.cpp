@@ -18,7 +18,7 @@
 #include "shadow/truth_test_support.h"
 #include "test_support.h"
 
-namespace shadow::test {
+namespace shadow::test::terminator_test {
 namespace {
 
 constexpr int kWidth = 160;
@@ -99,4 +99,4 @@ TEST(Terminator, PcfAndPcssAtTheirDefaultsAreNoWorseThanHardOnTheBunny) {
 }
 
 }  // namespace
-}  // namespace shadow::test
+}  // namespace shadow::test::terminator_test

@@ -14,7 +14,7 @@
 
 #include "shadow/soft_test_support.h"
 
-namespace shadow {
+namespace shadow::vsm_test {
 namespace {
 
 constexpr double kPlateHalf = 1.0;  // the plate's half-width (m); its shadow is |x|, |z| <= 1
@@ -180,4 +180,4 @@ TEST(Vsm, EveryLightTypeGivesFiniteVisibility) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::vsm_test

@@ -7,7 +7,7 @@
 
 #include "stability/stability_test_support.h"
 
-namespace shadow {
+namespace shadow::contact_test {
 namespace {
 
 constexpr double kPlateThickness = 0.001;
@@ -95,4 +95,4 @@ TEST(Stability, PlateOneCentimetreAboveTheGroundCastsAMomentShadowUnderAVertical
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::contact_test

@@ -8,7 +8,7 @@
 
 #include "stability/stability_test_support.h"
 
-namespace shadow {
+namespace shadow::degenerate_geometry_test {
 namespace {
 
 const glm::dvec3 kBoxCenter{0.0, 1.2, 0.0};
@@ -137,4 +137,4 @@ TEST(Stability, SceneWithoutMeshesOrWithoutLightsRendersFinite) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::degenerate_geometry_test

@@ -9,7 +9,7 @@
 
 #include "stability/stability_test_support.h"
 
-namespace shadow {
+namespace shadow::degenerate_pose_test {
 namespace {
 
 const glm::dvec3 kBoxCenter{0.0, 1.2, 0.0};
@@ -186,4 +186,4 @@ TEST(Stability, BlockerAtTheLightAndReceiverOnTheBlocker) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::degenerate_pose_test

@@ -11,7 +11,7 @@
 
 #include "stability/stability_test_support.h"
 
-namespace shadow {
+namespace shadow::depth_range_test {
 namespace {
 
 /// Edge band half-width in shadow texels and the largest mismatch allowed beyond it, as a
@@ -144,4 +144,4 @@ TEST(Stability, SunOverTenKilometresKeepsMetreCastersExact) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::depth_range_test

@@ -10,7 +10,7 @@
 #include "stability/stability_test_support.h"
 #include "test_support.h"
 
-namespace shadow {
+namespace shadow::emitter_size_test {
 namespace {
 
 const glm::dvec3 kBoxCenter{0.0, 1.2, 0.0};
@@ -156,4 +156,4 @@ TEST(Stability, EmitterSizesBeyondTheirRangeAreClampedWithAWarning) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::emitter_size_test

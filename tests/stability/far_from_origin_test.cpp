@@ -9,7 +9,7 @@
 
 #include "stability/stability_test_support.h"
 
-namespace shadow {
+namespace shadow::far_from_origin_test {
 namespace {
 
 constexpr double kBandTexels = 2.0;
@@ -109,4 +109,4 @@ TEST(Stability, TranslatedSceneMatchesTheOriginScene) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::far_from_origin_test

@@ -16,30 +16,9 @@
 namespace shadow {
 namespace {
 
-/// Largest fraction of lit-plane pixels allowed to read as shadowed (the bound), in two
-/// readings: visibility < 0.5 (false shadow, the acne measure of the soft-shadow tests) and
-/// visibility < 0.99 (any darkening at all: a filter whose taps half fail reads 0.5-0.9 and
-/// escapes the first reading).
-constexpr double kMaxAcneFraction = 0.001;
-constexpr std::array<double, 5> kElevationsDeg{10.0, 5.0, 2.0, 1.0, 0.5};
 /// The seeds' textbook PCSS filters in the receiver's map UV with one reference depth, so a
 /// steep receiver shadows itself by design; it is held to the bound down to this elevation.
 constexpr double kTextbookLowestDeg = 2.0;
-constexpr double kAzimuth = 0.4;  // no texel axis lines up with the light
-
-glm::dvec3 downAt(double elevationDeg) {
-    const double e = elevationDeg * test::kPi / 180.0;
-    return glm::normalize(glm::dvec3(std::cos(e) * std::cos(kAzimuth), -std::sin(e), std::cos(e) * std::sin(kAzimuth)));
-}
-
-struct Acne {
-    int plane = 0;     ///< lit-plane pixels considered
-    int dark = 0;      ///< visibility < 0.5
-    int darkened = 0;  ///< visibility < 0.99
-    float lowest = 1.0f;
-    [[nodiscard]] double darkFraction() const { return plane > 0 ? static_cast<double>(dark) / plane : 0.0; }
-    [[nodiscard]] double darkenedFraction() const { return plane > 0 ? static_cast<double>(darkened) / plane : 0.0; }
-};
 
 /// Renders the plane lit by `type` at every elevation with every technique, checks the bound,
 /// and prints every figure.
@@ -52,8 +31,8 @@ void expectNoAcne(LightType type) {
     light.radius = 0.1f;
     const Entity e = addLight(scene, "light", light, test::shadowWith(ShadowTechnique::Hard), {0, 8, 0}, {0, -1, 0});
     addCamera(scene, "camera", Camera{}, {0.0, 9.0, 13.0}, {0.0, 0.0, 0.0});
-    for (double deg : kElevationsDeg) {
-        const glm::dvec3 dir = downAt(deg);
+    for (double deg : test::kGrazingElevationsDeg) {
+        const glm::dvec3 dir = test::grazingDirection(deg);
         // A spot 8 m from the plane's centre, aimed at it; the sun's position does not matter.
         const glm::dvec3 position = type == LightType::Spot ? -8.0 * dir : glm::dvec3(0, 8, 0);
         Transform& t = scene.world.get<Transform>(e);
@@ -63,7 +42,7 @@ void expectNoAcne(LightType type) {
         std::snprintf(name, sizeof(name), "%s at %.1f deg", type == LightType::Spot ? "spot" : "sun", deg);
         test::forEveryTechnique(
             scene, 256, 192, name, [&](ShadowTechnique technique, const test::RenderedFrame& frame, FrameRunner&) {
-                Acne a;
+                test::AcneCount a;  // lit: the lit plane pixels considered
                 const ImageF& v = frame.images.visibility[0];
                 for (int y = 0; y < v.height; ++y) {
                     for (int x = 0; x < v.width; ++x) {
@@ -73,7 +52,7 @@ void expectNoAcne(LightType type) {
                         if (type == LightType::Spot && !test::insideCone(p, position, dir, kSpotHalfAngle - 0.02))
                             continue;
                         const float value = v.at(x, y, 0);
-                        ++a.plane;
+                        ++a.lit;
                         a.dark += value < 0.5f ? 1 : 0;
                         a.darkened += value < 0.99f ? 1 : 0;
                         a.lowest = std::min(a.lowest, value);
@@ -83,15 +62,15 @@ void expectNoAcne(LightType type) {
                     "[ measured ] acne, %s, %s: false shadow %.5f, darkened %.5f, lowest "
                     "visibility %.3f\n",
                     techniqueName(technique), name, a.darkFraction(), a.darkenedFraction(), a.lowest);
-                ASSERT_GT(a.plane, 500) << name << ": too few lit plane pixels to judge";
+                ASSERT_GT(a.lit, 500) << name << ": too few lit plane pixels to judge";
                 if (technique == ShadowTechnique::PcssTextbook) {
                     if (deg >= kTextbookLowestDeg) {
-                        EXPECT_LT(a.darkFraction(), kMaxAcneFraction) << name;
+                        EXPECT_LT(a.darkFraction(), test::kMaxAcneFraction) << name;
                     }
                     return;
                 }
-                EXPECT_LT(a.darkFraction(), kMaxAcneFraction) << techniqueName(technique) << ", " << name;
-                EXPECT_LT(a.darkenedFraction(), kMaxAcneFraction) << techniqueName(technique) << ", " << name;
+                EXPECT_LT(a.darkFraction(), test::kMaxAcneFraction) << techniqueName(technique) << ", " << name;
+                EXPECT_LT(a.darkenedFraction(), test::kMaxAcneFraction) << techniqueName(technique) << ", " << name;
             });
     }
 }

@@ -11,7 +11,7 @@
 #include "stability/stability_test_support.h"
 #include "test_support.h"
 
-namespace shadow {
+namespace shadow::many_lights_test {
 namespace {
 
 const glm::dvec3 kBoxHalf{0.4, 0.6, 0.4};
@@ -130,4 +130,4 @@ TEST(Stability, MemoryBudgetHalvesFarLightsFirstAndKeepsEveryShadow) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::many_lights_test

@@ -18,7 +18,7 @@
 #include "stability/stability_test_support.h"
 #include "test_support.h"
 
-namespace shadow {
+namespace shadow::map_size_test {
 namespace {
 
 const glm::dvec3 kBoxCenter{0.0, 1.2, 0.0};
@@ -288,4 +288,4 @@ TEST(Stability, MemoryBudgetRanksLightsThatCannotReachTheViewAsFarthest) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::map_size_test

@@ -23,7 +23,7 @@
 #include "stability/stability_test_support.h"
 #include "test_support.h"
 
-namespace shadow {
+namespace shadow::sdf_stability_test {
 namespace {
 
 /// One light of a scene, as the checks need it.
@@ -658,4 +658,4 @@ TEST(Stability, SdfFieldThatFitsBesideAnotherIsHeld) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::sdf_stability_test

@@ -13,13 +13,9 @@
 #include "stability/stability_test_support.h"
 #include "test_support.h"
 
-namespace shadow {
+namespace shadow::second_depth_test {
 namespace {
 
-/// The grazing-light suite's bound (grazing_light_test.cpp): lit pixels read as shadowed.
-constexpr double kMaxAcneFraction = 0.001;
-constexpr std::array<double, 5> kElevationsDeg{10.0, 5.0, 2.0, 1.0, 0.5};
-constexpr double kAzimuth = 0.4;
 constexpr std::array<ShadowTechnique, 3> kTechniques{ShadowTechnique::Hard, ShadowTechnique::Pcf,
                                                      ShadowTechnique::Pcss};
 
@@ -44,21 +40,8 @@ void apply(Scene& scene, ShadowTechnique technique, const Setting& setting) {
     });
 }
 
-glm::dvec3 downAt(double elevationDeg) {
-    const double e = elevationDeg * test::kPi / 180.0;
-    return glm::normalize(glm::dvec3(std::cos(e) * std::cos(kAzimuth), -std::sin(e), std::cos(e) * std::sin(kAzimuth)));
-}
-
 constexpr double kSphereRadius = 0.5;
 const glm::dvec3 kSphereCentre{0.0, 0.6, 0.0};
-
-struct Acne {
-    int lit = 0;       ///< pixels that must read lit
-    int dark = 0;      ///< of those, visibility < 0.5
-    int darkened = 0;  ///< visibility < 0.99
-    [[nodiscard]] double darkFraction() const { return lit > 0 ? static_cast<double>(dark) / lit : 0.0; }
-    [[nodiscard]] double darkenedFraction() const { return lit > 0 ? static_cast<double>(darkened) / lit : 0.0; }
-};
 
 /// The receivers, each alone in its scene so that every pixel facing the light must read lit:
 /// a closed slab whose top is y = 0 (flat), and a sphere (curved).
@@ -83,7 +66,7 @@ double measureGrazing(LightType type, Receiver receiver) {
     const Entity e = addLight(scene, "light", light, test::shadowWith(ShadowTechnique::Hard), {0, 8, 0}, {0, -1, 0});
     // The slab from above; the sphere from the side the light comes from, close enough to fill
     // the view.
-    const glm::dvec3 towardsLight(-std::cos(kAzimuth), 0.3, -std::sin(kAzimuth));
+    const glm::dvec3 towardsLight(-std::cos(test::kGrazingAzimuth), 0.3, -std::sin(test::kGrazingAzimuth));
     if (receiver == Receiver::Slab) {
         addCamera(scene, "camera", Camera{}, {0.0, 3.0, 5.0}, {0.0, 0.3, 0.0});
     } else {
@@ -92,8 +75,8 @@ double measureGrazing(LightType type, Receiver receiver) {
     const char* what = receiver == Receiver::Slab ? "slab" : "sphere";
     test::glContext();
     double worstUnbiasedNearest = 0.0;
-    for (double deg : kElevationsDeg) {
-        const glm::dvec3 dir = downAt(deg);
+    for (double deg : test::kGrazingElevationsDeg) {
+        const glm::dvec3 dir = test::grazingDirection(deg);
         // A spot 8 m from the receiver's centre, aimed at it; the sun's position does not matter.
         const glm::dvec3 target = receiver == Receiver::Slab ? glm::dvec3(0.0) : kSphereCentre;
         const glm::dvec3 position = type == LightType::Spot ? target - 8.0 * dir : glm::dvec3(0, 8, 0);
@@ -105,7 +88,7 @@ double measureGrazing(LightType type, Receiver receiver) {
             for (ShadowTechnique technique : kTechniques) {
                 apply(scene, technique, setting);
                 const test::RenderedFrame frame = test::renderFrame(runner, scene, 256, 192);
-                Acne a;
+                test::AcneCount a;
                 const FrameImages& im = frame.images;
                 for (int y = 0; y < im.position.height; ++y) {
                     for (int x = 0; x < im.position.width; ++x) {
@@ -135,8 +118,8 @@ double measureGrazing(LightType type, Receiver receiver) {
                 if (setting.mode != DepthMode::Midpoint) continue;
                 const std::string name =
                     std::string(what) + ", " + techniqueName(technique) + " at " + std::to_string(deg) + " deg";
-                EXPECT_LT(a.darkFraction(), kMaxAcneFraction) << name;
-                EXPECT_LT(a.darkenedFraction(), kMaxAcneFraction) << name;
+                EXPECT_LT(a.darkFraction(), test::kMaxAcneFraction) << name;
+                EXPECT_LT(a.darkenedFraction(), test::kMaxAcneFraction) << name;
             }
         }
     }
@@ -262,4 +245,4 @@ TEST(Stability, MidpointDepthKeepsTheShadowOfAThinPlateJustAboveTheGround) {
 }
 
 }  // namespace
-}  // namespace shadow
+}  // namespace shadow::second_depth_test

@@ -159,6 +159,34 @@ void forEveryTechnique(Scene& scene, int width, int height, const std::string& w
     }
 }
 
+/// The grazing-light bound (grazing_light_test.cpp, second_depth_test.cpp): the largest fraction
+/// of the pixels that must read lit allowed to read as shadowed, in two readings: visibility < 0.5
+/// (false shadow, the acne measure of the soft-shadow tests) and visibility < 0.99 (any darkening
+/// at all: a filter whose taps half fail reads 0.5-0.9 and escapes the first reading).
+inline constexpr double kMaxAcneFraction = 0.001;
+/// The grazing lights' elevations above the receiver (degrees), from steep to grazing.
+inline constexpr std::array<double, 5> kGrazingElevationsDeg{10.0, 5.0, 2.0, 1.0, 0.5};
+/// The grazing lights' azimuth (rad): no texel axis lines up with the light.
+inline constexpr double kGrazingAzimuth = 0.4;
+
+/// Unit direction of light travelling downwards at `elevationDeg` degrees above the horizon,
+/// turned by kGrazingAzimuth about +Y.
+inline glm::dvec3 grazingDirection(double elevationDeg) {
+    const double e = elevationDeg * kPi / 180.0;
+    return glm::normalize(
+        glm::dvec3(std::cos(e) * std::cos(kGrazingAzimuth), -std::sin(e), std::cos(e) * std::sin(kGrazingAzimuth)));
+}
+
+/// The pixels that must read lit, and how many of them read shadowed or darkened.
+struct AcneCount {
+    int lit = 0;       ///< pixels that must read lit
+    int dark = 0;      ///< of those, visibility < 0.5
+    int darkened = 0;  ///< visibility < 0.99
+    float lowest = 1.0f;
+    [[nodiscard]] double darkFraction() const { return lit > 0 ? static_cast<double>(dark) / lit : 0.0; }
+    [[nodiscard]] double darkenedFraction() const { return lit > 0 ? static_cast<double>(darkened) / lit : 0.0; }
+};
+
 /// Prints one measured figure in the form the README table quotes.
 inline void reportFigure(const std::string& what, double value, const char* unit = "") {
     std::printf("[ measured ] %s: %.6g%s\n", what.c_str(), value, unit);

@@ -1,13 +1,13 @@
 // Built-in procedural scenes, so the main job and the tests need no asset files.
 #include <shadow/scene.h>
 
+#include <glm/gtc/constants.hpp>
+
 #include <functional>
 #include <map>
 
 namespace shadow {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Material matte(float r, float g, float b) {
     Material m;
@@ -78,7 +78,7 @@ double addDefaultMovingCasters(World& w, const std::shared_ptr<const MeshData>& 
     spin.axis = {0.0, 1.0, 0.0};
     spin.speed = 0.8;
     w.emplace<ProceduralMotion>(spinner, spin);
-    return 2.0 * kPi / orbit.speed;
+    return 2.0 * glm::pi<double>() / orbit.speed;
 }
 
 /// The default scene's lights, one of each type, each with its own technique: a PCSS sun, a
@@ -100,8 +100,8 @@ void addDefaultLights(Scene& scene) {
     spot.color = {0.6f, 0.75f, 1.0f};
     spot.intensity = 60.0f;
     spot.range = 30.0f;
-    spot.outerConeAngle = static_cast<float>(kPi / 5.0);
-    spot.innerConeAngle = static_cast<float>(kPi / 7.0);
+    spot.outerConeAngle = static_cast<float>(glm::pi<double>() / 5.0);
+    spot.innerConeAngle = static_cast<float>(glm::pi<double>() / 7.0);
     spot.radius = 0.15f;
     Shadow spotShadow;
     spotShadow.technique = ShadowTechnique::Pcf;

@@ -3,6 +3,8 @@
 
 #include "scene/default_camera.h"
 
+#include <glm/gtc/constants.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,8 +15,7 @@
 namespace shadow {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDegree = kPi / 180.0;
+constexpr double kDegree = glm::pi<double>() / 180.0;
 /// The ground lies this fraction of the model's size below the bounds' lowest point: close enough
 /// for the model to stand on it, far enough that a flat base of the model does not fight it.
 constexpr double kGroundGap = 1e-3;
@@ -34,7 +35,7 @@ DefaultRigOptions clamped(DefaultRigOptions o) {
         return std::isnan(v) ? fallback : std::clamp(v, lo, hi);
     };
     o.sunElevation = clamp(o.sunElevation, 10.0 * kDegree, 90.0 * kDegree, d.sunElevation);
-    o.sunAzimuth = clamp(o.sunAzimuth, -kPi, kPi, d.sunAzimuth);
+    o.sunAzimuth = clamp(o.sunAzimuth, -glm::pi<double>(), glm::pi<double>(), d.sunAzimuth);
     o.angularRadius = clamp(o.angularRadius, 0.0f, 0.2f, d.angularRadius);
     o.intensity = clamp(o.intensity, 0.0f, 1e12f, d.intensity);
     o.mapSize = std::clamp(o.mapSize, 1, 16384);

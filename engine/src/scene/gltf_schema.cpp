@@ -116,7 +116,9 @@ Status checkLeaf(const json& value, const std::string& type, const std::string& 
     return Ok{};
 }
 
-std::string member(const std::string& where, const std::string& key) { return where.empty() ? key : where + "." + key; }
+std::string childPath(const std::string& where, const std::string& key) {
+    return where.empty() ? key : where + "." + key;
+}
 
 /// `document` against `shape` (see `schema`), depth first with a stack of its own (a file's
 /// arrays may be long; the schema is only a few levels deep).
@@ -146,9 +148,10 @@ Status check(const json& document, const json& shape) {
             return elementError(next.where, std::string("must be an object, not ") + typeName(value));
         for (const auto& [key, sub] : next.shape->items()) {
             if (key == "*") {
-                for (const auto& [name, item] : value.items()) stack.push_back({&item, &sub, member(next.where, name)});
+                for (const auto& [name, item] : value.items())
+                    stack.push_back({&item, &sub, childPath(next.where, name)});
             } else if (const auto found = value.find(key); found != value.end()) {
-                stack.push_back({&*found, &sub, member(next.where, key)});
+                stack.push_back({&*found, &sub, childPath(next.where, key)});
             }
         }
     }

@@ -98,14 +98,14 @@ void collectExtensions(const json& document, Uses& uses) {
 /// `object[key]` when `object` is an object holding `key`, else null. Looked up by value, not
 /// through nlohmann's iterators, whose null checks GCC cannot see through at -O3
 /// (-Wnull-dereference).
-const json* member(const json& object, const char* key) {
+const json* jsonMember(const json& object, const char* key) {
     if (!object.is_object() || !object.contains(key)) return nullptr;
     return &object.at(key);
 }
 
-/// `member(object, key)` when it is an array, else null.
+/// `jsonMember(object, key)` when it is an array, else null.
 const json* arrayMember(const json& object, const char* key) {
-    const json* found = member(object, key);
+    const json* found = jsonMember(object, key);
     return found != nullptr && found->is_array() ? found : nullptr;
 }
 
@@ -126,10 +126,10 @@ void collectPrimitiveFeatures(const json& document, Uses& uses) {
         for (std::size_t p = 0; p < primitives->size(); ++p) {
             const json& primitive = primitives->at(p);
             const std::string where = meshWhere + "." + indexed("primitives", p);
-            if (const json* mode = member(primitive, "mode"); mode != nullptr && *mode != 4) {
+            if (const json* mode = jsonMember(primitive, "mode"); mode != nullptr && *mode != 4) {
                 record(uses, "primitive modes other than TRIANGLES", where + ".mode");
             }
-            const json* attributes = member(primitive, "attributes");
+            const json* attributes = jsonMember(primitive, "attributes");
             if (attributes == nullptr || !attributes->is_object()) continue;
             if (attributes->contains("COLOR_0")) record(uses, "COLOR_0", where + ".attributes.COLOR_0");
             if (attributes->contains("JOINTS_1")) record(uses, "JOINTS_1", where + ".attributes.JOINTS_1");
@@ -140,7 +140,7 @@ void collectPrimitiveFeatures(const json& document, Uses& uses) {
 void collectMaterialFeatures(const json& document, Uses& uses) {
     eachElement(document, "samplers", [&](const json& sampler, const std::string& where) {
         constexpr int kNearest = 9728;
-        if (const json* mag = member(sampler, "magFilter"); mag != nullptr && *mag == kNearest) {
+        if (const json* mag = jsonMember(sampler, "magFilter"); mag != nullptr && *mag == kNearest) {
             record(uses, "magFilter NEAREST", where + ".magFilter");
         }
     });
