@@ -145,7 +145,7 @@ void collectMaterialFeatures(const json& document, Uses& uses) {
         }
     });
     eachElement(document, "materials", [&](const json& material, const std::string& where) {
-        if (const json* mode = member(material, "alphaMode"); mode != nullptr && *mode == "BLEND") {
+        if (const json* mode = jsonMember(material, "alphaMode"); mode != nullptr && *mode == "BLEND") {
             record(uses, "alphaMode BLEND", where + ".alphaMode");
         }
     });
