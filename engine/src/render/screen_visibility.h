@@ -41,11 +41,11 @@ inline constexpr int kMinAutoStageHeight = 360;
 /// Whether a frame of `passes` (lights of `frame`) runs the stage under `setting`: never when
 /// Off, always when it forces a resolution. For Auto, where the stage measured faster than the
 /// forward passes on llvmpipe (BENCHMARKS.md, screen-space visibility): a light with technique
-/// pcss or sdf (their filters are the dearest: sdf 0.37 of forward's frame on the bunny spots,
-/// PCSS 0.52-1.0), or two or more lights that filter (any technique but hard: the sample scenes
-/// 0.52-0.98); and always when a light asks for contact shadows, which only the stage draws.
+/// pcss or sdf (their filters are the dearest: sdf 0.36 of forward's frame on the bunny spots,
+/// PCSS 0.68-0.90), or two or more lights that filter (any technique but hard: the sample scenes
+/// 0.72-0.89); and always when a light asks for contact shadows, which only the stage draws.
 /// One PCF, VSM, VSSM or MSM light alone, and hard shadows, stay forward: their lookups cost
-/// less than the stage's surface and full-screen passes (PCF 1.14-1.17 of forward). So does an
+/// about what the stage's surface and full-screen passes do (PCF 1.06-1.13 of forward). So does an
 /// image under `kMinAutoStageHeight` rows (`height`), contact shadows aside.
 [[nodiscard]] bool screenStagePays(ScreenVisibility setting, const ShadowFrame& frame,
                                    const std::vector<PassLights>& passes, int height);
