@@ -164,8 +164,7 @@ void AutoPlanning::learn(const World& world, const CameraView& camera, const Sha
 
 void AutoPlanning::observe(const FrameStats& stats) {
     if (!anyAuto_) return;
-    std::vector<std::string_view> names(drawnNames_.begin(), drawnNames_.end());
-    state_.calibrate(names, drawnPredictedMs_, litPredictedMs_, stats);
+    state_.calibrate(drawnNames_, drawnPredictedMs_, litPredictedMs_, stats);
 }
 
 }  // namespace shadow

@@ -6,6 +6,7 @@
 #include <shadow/shadow_planner.h>
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace shadow {
@@ -37,7 +38,9 @@ private:
     std::vector<Known> known_;
     bool anyAuto_ = false;  ///< the frame `learn` saw had an auto light
     // Predictions of the frame learn saw, for observe.
-    std::vector<std::string> drawnNames_;
+    /// Names of the lights whose passes were predicted, into the prepared frame's plans (valid
+    /// until the next `prepare`, which `observe` precedes): no copy a frame.
+    std::vector<std::string_view> drawnNames_;
     std::vector<double> drawnPredictedMs_;
     double litPredictedMs_ = 0.0;
     // choose's working lists, kept for their storage.
