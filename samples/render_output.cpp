@@ -205,6 +205,8 @@ nlohmann::json lightsJson(const Scene& scene, const FrameStats& last) {
             const LightShadowStats& ls = last.lights[i];
             j["shadow"] = {{"mapSize", ls.mapSize},
                            {"requestedMapSize", ls.requestedMapSize},
+                           {"pcfSamples", ls.pcfSamples},
+                           {"blockerSamples", ls.blockerSamples},
                            {"layers", ls.layers},
                            {"layersDrawn", ls.layersDrawn},
                            {"layersReused", ls.layersReused},

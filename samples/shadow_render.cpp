@@ -4,6 +4,7 @@
 //                 [--technique NAME|auto] [--shadow-budget-ms MS] [--depth-mode MODE] [--aov color,visibility,position,depth]
 //                 [--debug NAME] [--debug-light I] [--frame-images] [--no-cache] [--exposure E]
 //                 [--shader-cache DIR] [--field-voxels N] [--sdf-start-offset M] [--max-filter-texels N]
+//                 [--map-size N] [--pcf-samples N] [--blocker-samples N]
 //                 [--animation NAME|INDEX|all] [--no-default-lights] [--no-ground]
 //
 // SCENE is a sample scene's name (samples/scenes, e.g. courtyard), a .gltf/.glb path or
@@ -56,6 +57,9 @@ struct Options {
     int fieldVoxels = 64;                  ///< technique sdf: voxels along each mesh field's edge (cubed: the budget)
     std::optional<float> sdfStartOffset;   ///< absent: each light keeps its own
     std::optional<float> maxFilterTexels;  ///< absent: each light keeps its own
+    std::optional<int> mapSize;            ///< absent: each light keeps its own
+    std::optional<int> pcfSamples;         ///< absent: each light keeps its own
+    std::optional<int> blockerSamples;     ///< absent: each light keeps its own
     std::string shaderCache;
     std::string screenVisibility = "auto";
     bool contactShadows = false;    ///< turn every shadowed light's contact shadows on
@@ -77,6 +81,28 @@ void overrideShadow(Shadow& s, const Options& o, std::optional<ShadowTechnique> 
     if (o.contactShadows) s.contactShadows = true;
     if (o.sdfStartOffset) s.sdfStartOffset = *o.sdfStartOffset;
     if (o.maxFilterTexels) s.maxFilterTexels = *o.maxFilterTexels;
+    if (o.mapSize) s.mapSize = *o.mapSize;
+    if (o.pcfSamples) s.pcfSamples = *o.pcfSamples;
+    if (o.blockerSamples) s.blockerSamples = *o.blockerSamples;
+}
+
+/// The first of the integer overrides outside its range, as the message to fail with; empty
+/// when all are in range.
+std::string checkCountOverrides(const Options& o) {
+    struct Count {
+        const char* option;
+        const std::optional<int>& value;
+        int lo, hi;
+    };
+    const Count counts[] = {{"--map-size", o.mapSize, 1, 16384},
+                            {"--pcf-samples", o.pcfSamples, 1, 64},
+                            {"--blocker-samples", o.blockerSamples, 1, 64}};
+    for (const Count& c : counts) {
+        if (c.value && (*c.value < c.lo || *c.value > c.hi)) {
+            return std::string(c.option) + ": must be in [" + std::to_string(c.lo) + ", " + std::to_string(c.hi) + "]";
+        }
+    }
+    return {};
 }
 
 Result<DebugView> parseDebug(const std::string& name) {
@@ -166,6 +192,7 @@ int run(const Options& o) {
     if (o.maxFilterTexels && !(*o.maxFilterTexels >= 1.0f && *o.maxFilterTexels <= 256.0f)) {
         return fail(kExitBadInput, "--max-filter-texels: must be a number of texels in [1, 256]");
     }
+    if (const std::string bad = checkCountOverrides(o); !bad.empty()) return fail(kExitBadInput, bad);
     if (o.camera && *o.camera < 0)
         return fail(kExitBadInput, "--camera " + std::to_string(*o.camera) + ": must be >= 0");
 
@@ -289,6 +316,12 @@ int main(int argc, char** argv) {
                    "technique sdf: override every light's sdfStartOffset (m), [0, 1]");
     app.add_option("--max-filter-texels", o.maxFilterTexels,
                    "override every light's maxFilterTexels (the widest filter, texels), [1, 256]");
+    app.add_option("--map-size", o.mapSize,
+                   "override every light's mapSize (texels per layer edge), [1, 16384]; an auto light's is chosen");
+    app.add_option("--pcf-samples", o.pcfSamples,
+                   "override every light's pcfSamples (most PCF taps), [1, 64]; an auto light's are chosen");
+    app.add_option("--blocker-samples", o.blockerSamples,
+                   "override every light's blockerSamples (PCSS search points), [1, 64]; an auto light's are chosen");
     app.add_option("--screen-visibility", o.screenVisibility, samples::kScreenVisibilityHelp);
     app.add_flag("--contact-shadows", o.contactShadows,
                  "turn on every shadowed light's screen-space contact shadows (drawn by the screen-space "

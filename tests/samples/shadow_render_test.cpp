@@ -294,6 +294,27 @@ TEST(ShadowRenderCli, TechniqueAutoReportsEachLightsChoiceWithinTheBudget) {
     EXPECT_EQ(automatic, 3);
 }
 
+TEST(ShadowRenderCli, MapSizeAndTapOverridesReachEveryShadowedLight) {
+    TempDir tmp;
+    const std::string out = tmp / "out";
+    const CliRun run = runCli(tmp,
+                              "builtin:default --size 32x18 --aov color --technique pcss --map-size 256 "
+                              "--pcf-samples 8 --blocker-samples 4 --out " +
+                                  quoted(out));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const nlohmann::json stats = readJson(out + "/stats.json");
+    ASSERT_FALSE(stats.is_discarded()) << "stats.json is not JSON";
+    int shadowed = 0;
+    for (const nlohmann::json& light : stats["lights"]) {
+        if (!light.contains("shadow")) continue;
+        ++shadowed;
+        EXPECT_EQ(light["shadow"]["mapSize"], 256) << light.dump();
+        EXPECT_EQ(light["shadow"]["pcfSamples"], 8) << light.dump();
+        EXPECT_EQ(light["shadow"]["blockerSamples"], 4) << light.dump();
+    }
+    EXPECT_EQ(shadowed, 3);
+}
+
 struct BadInput {
     const char* what;
     std::string args;  // everything after the scene and --out
@@ -378,6 +399,11 @@ TEST(ShadowRenderCli, BadInputExitsWithCode2AndWritesNothing) {
         {"filter under a texel", "--max-filter-texels 0.5", "builtin:default", "--max-filter-texels"},
         {"filter over 256 texels", "--max-filter-texels 300", "builtin:default", "--max-filter-texels"},
         {"filter NaN", "--max-filter-texels nan", "builtin:default", "--max-filter-texels"},
+        {"map size 0", "--map-size 0", "builtin:default", "--map-size"},
+        {"map size over 16384", "--map-size 20000", "builtin:default", "--map-size"},
+        {"map size not an integer", "--map-size 1.5", "builtin:default", "--map-size"},
+        {"no PCF taps", "--pcf-samples 0", "builtin:default", "--pcf-samples"},
+        {"blocker points over 64", "--blocker-samples 65", "builtin:default", "--blocker-samples"},
         {"unknown flag", "--bogus", "builtin:default", "--bogus"},
         {"a clip the scene lacks", "--animation walk", "builtin:default", "animation \"walk\""},
         {"--animation without a value", "--animation", "builtin:default", "--animation"},
