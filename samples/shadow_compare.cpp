@@ -11,7 +11,8 @@
 // run: not before its startTime, not after the record itself (kRunClockSlack either way);
 // otherwise it is an earlier run's, left behind, and the comparison is refused. A folder without
 // a record (images made by hand) compares every visibility_<i>.exr of B, with a warning. Receiver pixels are those of B's position.exr (A = 1), else A's, else every
-// pixel; --mask overrides. Prints one JSON document to stdout: per light and for all lights
+// pixel; --mask overrides (--mask lit: each light over B's lit_<i>.exr, where the reference
+// says it shades the surface). Prints one JSON document to stdout: per light and for all lights
 // pooled, RMSE, MAE, p99 |error|, the fraction with |error| > 0.1, penumbra RMSE, false shadow
 // in lit pixels, light leaking in the umbra and the pixel counts (definitions in
 // shadow/metrics.h, echoed in the JSON's "definitions"). Writes a signed-error heat map
@@ -287,7 +288,7 @@ int main(int argc, char** argv) {
     app.add_option("--out", o.out, "folder for the error_<i>.png heat maps (default: A)");
     app.add_option("--mask", o.mask,
                    "EXR whose A (or Y) channel > 0.5 marks receiver pixels (default: B's "
-                   "position.exr, else A's, else every pixel)");
+                   "position.exr, else A's, else every pixel); the word lit: each light over B's lit_<i>.exr");
     if (const std::optional<int> exit = samples::parseCommandLine(app, argc, argv, "shadow_compare")) return *exit;
     try {
         return run(o);

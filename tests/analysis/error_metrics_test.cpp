@@ -498,5 +498,35 @@ TEST(ErrorMetrics, InteriorUmbraKeepsItsMarginFromEveryOtherPixel) {
     EXPECT_EQ(r->leakPixels, 1);
 }
 
+
+TEST_F(MetricsDirTest, CompareFoldersLitMasksJudgeEachLightWhereTheTruthSaysItShades) {
+    const std::string est = path("est", true);
+    const std::string tru = path("truth", true);
+    writeVisibility(tru, 0, imageOf(2, 2, {1, 1, 1, 1}));
+    writeVisibility(tru, 1, imageOf(2, 2, {1, 1, 1, 1}));
+    writeVisibility(est, 0, imageOf(2, 2, {0, 1, 1, 1}));  // wrong at pixel 0
+    writeVisibility(est, 1, imageOf(2, 2, {1, 1, 1, 0}));  // wrong at pixel 3
+    writePosition(tru, rgbaMask(2, 2, {1, 1, 1, 1}));
+    // Light 0 shades pixels 1-3 (its error at pixel 0 is outside), light 1 pixels 2 and 3.
+    ASSERT_TRUE(writeExr(tru + "/lit_0.exr", imageOf(2, 2, {0, 1, 1, 1}), {"Y"}).ok());
+    ASSERT_TRUE(writeExr(tru + "/lit_1.exr", imageOf(2, 2, {0, 0, 1, 1}), {"Y"}).ok());
+
+    Result<FolderComparison> r = compareFolders(est, tru, kLitMasks);
+    ASSERT_TRUE(r.ok()) << r.error().message;
+    ASSERT_EQ(r->lights.size(), 2u);
+    EXPECT_EQ(r->lights[0].errors.receiverPixels, 3);
+    EXPECT_EQ(r->lights[0].errors.rmse, 0.0);
+    EXPECT_EQ(r->lights[1].errors.receiverPixels, 2);
+    EXPECT_DOUBLE_EQ(r->lights[1].errors.rmse, std::sqrt(0.5));
+    EXPECT_EQ(r->allLights.receiverPixels, 5);
+    EXPECT_DOUBLE_EQ(r->allLights.rmse, std::sqrt(1.0 / 5.0));
+
+    // A light whose lit mask is missing: one error naming the file.
+    fs::remove(tru + "/lit_1.exr");
+    r = compareFolders(est, tru, kLitMasks);
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.error().message.find("lit_1.exr"), std::string::npos) << r.error().message;
+}
+
 }  // namespace
 }  // namespace shadow

@@ -150,9 +150,15 @@ struct FolderComparison {
     std::vector<std::string> warnings;
 };
 
+/// `compareFolders`' mask keyword: each light `<i>` judged over `truthDir`'s lit_<i>.exr (where the
+/// reference says it shades the surface), as the error-against-time sweep judges it.
+inline constexpr const char* kLitMasks = "lit";
+
 /// Compares the visibility_<i>.exr of `truthDir` for every `<i>` in `lights` (every such file
-/// found in `truthDir` when `lights` is empty) with the same file in `estimateDir`. The mask is the EXR `maskPath` when not empty (its channel A, or Y when it has no A), else
-/// truth's position.exr A, else the estimate's position.exr A, else every pixel. Errors name
+/// found in `truthDir` when `lights` is empty) with the same file in `estimateDir`. The mask is
+/// the EXR `maskPath` when not empty (its channel A, or Y when it has no A; `kLitMasks`: each
+/// light's own lit_<i>.exr of `truthDir`), else truth's position.exr A, else the estimate's
+/// position.exr A, else every pixel. Errors name
 /// the file at fault: a missing or non-folder directory, a truth folder without visibility
 /// files, a light missing from either folder, an unreadable EXR, a size mismatch, a non-finite
 /// truth pixel.

@@ -395,7 +395,8 @@ Result<FolderComparison> compareFolders(const std::string& estimateDir, const st
         return Error{ErrorCode::FileUnreadable, truthDir + ": no visibility_<i>.exr files (truth)"};
     Result<std::vector<int>> estimateIndices = visibilityIndices(estimateDir);
     if (!estimateIndices.ok()) return estimateIndices.error();
-    Result<Mask> mask = findMask(maskPath, truthDir, estimateDir);
+    Result<Mask> mask = maskPath == kLitMasks ? Result<Mask>(Mask{std::nullopt, joinPath(truthDir, "lit_<i>.exr")})
+                                              : findMask(maskPath, truthDir, estimateDir);
     if (!mask.ok()) return mask.error();
     const ImageF* maskImage = mask->image ? &*mask->image : nullptr;
 
@@ -428,9 +429,18 @@ Result<FolderComparison> compareFolders(const std::string& estimateDir, const st
                          truthPath + ": size " + sizeText(*truth) + " differs from the first light's " +
                              std::to_string(result.width) + "x" + std::to_string(result.height)};
         }
-        ErrorAccumulator light = accumulate(*estimate, *truth, maskImage);
+        // kLitMasks: each light where the truth says it shades the surface.
+        Result<Mask> own = maskPath == kLitMasks
+                               ? readMaskFile(joinPath(truthDir, "lit_" + std::to_string(index) + ".exr"))
+                               : Result<Mask>(Mask{std::nullopt, ""});
+        if (!own.ok()) return own.error();
+        const ImageF* lightMask = own->image ? &*own->image : maskImage;
+        if (Status s = checkInputs(*estimate, *truth, lightMask); !s.ok()) {
+            return s.error().within(estimatePath + " vs " + truthPath + " (mask " + own->source + "): ");
+        }
+        ErrorAccumulator light = accumulate(*estimate, *truth, lightMask);
         pooled.merge(light);
-        result.lights.push_back({index, light.finish(), heatMapOf(*estimate, *truth, maskImage)});
+        result.lights.push_back({index, light.finish(), heatMapOf(*estimate, *truth, lightMask)});
     }
     result.allLights = pooled.finish();
     return result;
