@@ -498,7 +498,6 @@ TEST(ErrorMetrics, InteriorUmbraKeepsItsMarginFromEveryOtherPixel) {
     EXPECT_EQ(r->leakPixels, 1);
 }
 
-
 TEST_F(MetricsDirTest, CompareFoldersLitMasksJudgeEachLightWhereTheTruthSaysItShades) {
     const std::string est = path("est", true);
     const std::string tru = path("truth", true);

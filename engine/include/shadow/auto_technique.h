@@ -17,6 +17,8 @@
 
 #include <shadow/techniques.h>
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string_view>
@@ -38,6 +40,11 @@ struct AutoCandidate {
 /// module's defaults; and 8 + 8) at 512, 1024 and 2048 texels.
 [[nodiscard]] std::span<const AutoCandidate> autoCandidates();
 
+/// The candidate of the module's defaults, PCSS at 1024 texels with 16 + 16 taps: what an auto
+/// light takes while nothing is known of it, and where the chooser starts when the budget
+/// affords it for every light.
+inline constexpr int kAutoDefaultCandidate = 10;
+
 /// What the planner knows of one auto light, from its last planned frame.
 struct AutoLightInput {
     /// Screen pixels the light can reach (its screen rectangle), >= 0.
@@ -51,17 +58,26 @@ struct AutoLightInput {
     /// Width of its widest penumbra in texels of a 1024-texel map: emitter size x (receiver -
     /// nearest caster) / nearest caster, over the texel's footprint at the receiver. >= 0.
     double penumbraTexels1024 = 0.0;
+    /// This light's own measured / predicted shadow passes beyond the model's common scale (its
+    /// casters' culling and overdraw, which the triangle count does not see); 1 until measured.
+    double passScale = 1.0;
 };
+
+/// The parts of the lit pass the calibration scales apart: every shaded light's shading, and
+/// the lookups of each candidate family.
+enum class AutoLitTerm { Shading, Hard, Pcf, Pcss };
+inline constexpr std::size_t kAutoLitTerms = 4;
 
 /// Predicted milliseconds of one light in one candidate; coefficients in ms.
 class AutoCostModel {
 public:
     /// The shadow passes: redrawShare x (layers x perLayer + triangles x perTriangle + layers x
-    /// mapSize^2 x perTexel), times the calibrated scale of the shadow passes.
+    /// mapSize^2 x perTexel), times the calibrated scales of the shadow passes (the common
+    /// `shadowScale` and the light's `passScale`).
     [[nodiscard]] double shadowPassMs(const AutoLightInput& in, const AutoCandidate& c) const;
-    /// The lookups: pixels x (perPixel + taps x perTap), times the calibrated scale of the lit pass.
-    /// Taps: hard 1, PCF `pcfSamples`, PCSS `blockerSamples` / 2 + `pcfSamples` (the search reads
-    /// its points in pairs).
+    /// The lookups: pixels x (perPixel[family] + taps x perTap), times the calibrated scale of the
+    /// candidate's family. Taps: hard 1, PCF `pcfSamples`, PCSS `blockerSamples` / 2 +
+    /// `pcfSamples` (the search reads its points in pairs).
     [[nodiscard]] double lookupMs(const AutoLightInput& in, const AutoCandidate& c) const;
     [[nodiscard]] double totalMs(const AutoLightInput& in, const AutoCandidate& c) const {
         return shadowPassMs(in, c) + lookupMs(in, c);
@@ -70,21 +86,42 @@ public:
     /// exponential moving average (weight `kAutoCalibrationRate`) of their ratio, clamped to
     /// [1/64, 64] per frame.
     void observeShadowPass(double predictedMs, double measuredMs);
-    /// The same for the lit pass as a whole (its shading and every light's lookups).
-    void observeLitPass(double predictedMs, double measuredMs);
+    /// The lit pass as a whole, `predictedMs[t]` the part of term t (scaled): the scales are a
+    /// least-squares fit over the recent frames (`kAutoLitMemory`), so terms that run together
+    /// are told apart as the mix of families changes from frame to frame.
+    void observeLitPass(std::span<const double, kAutoLitTerms> predictedMs, double measuredMs);
     /// Predicted lit-pass shading without lookups: `pixels` x `lights` x perShadedPixel, times the
-    /// lit pass's scale (what `observeLitPass` compares with, lookups added).
+    /// shading term's scale.
     [[nodiscard]] double shadingMs(double pixels, int lights) const;
+    /// The lit-pass term of candidate `c`'s lookups.
+    [[nodiscard]] static AutoLitTerm termOf(const AutoCandidate& c);
 
-    double perLayerMs = 0.2;           ///< a layer's bind, clear and draw set-up
-    double perTriangleMs = 6e-5;       ///< one caster triangle in one layer
-    double perTexelMs = 2.5e-6;        ///< one texel of one layer (clear, raster, read)
-    double perPixelMs = 2.0e-5;        ///< a lookup's set-up per pixel the light reaches
+    double perLayerMs = 0.2;      ///< a layer's bind, clear and draw set-up
+    double perTriangleMs = 6e-5;  ///< one caster triangle in one layer
+    double perTexelMs = 2.5e-6;   ///< one texel of one layer (clear, raster, read)
+    /// A lookup's set-up per pixel the light reaches, per family (hard, PCF, PCSS): the receiver
+    /// plane, the region test, PCSS's penumbra estimate.
+    std::array<double, 3> perPixelMs{4.0e-6, 2.0e-5, 4.0e-5};
     double perTapMs = 2.5e-6;          ///< one tap per pixel
     double perShadedPixelMs = 6.0e-5;  ///< one light's shading of one pixel, lookups aside
     double shadowScale = 1.0;          ///< measured / predicted shadow passes (calibrated)
-    double litScale = 1.0;             ///< measured / predicted lit pass (calibrated)
+    /// Measured / predicted of each lit-pass term (`AutoLitTerm`), calibrated.
+    std::array<double, kAutoLitTerms> litScale{1.0, 1.0, 1.0, 1.0};
+
+private:
+    // The lit-pass fit's normal equations over the recent frames (unscaled terms).
+    std::array<double, kAutoLitTerms * kAutoLitTerms> litNormal_{};
+    std::array<double, kAutoLitTerms> litRhs_{};
 };
+
+/// Weight of a frame one frame older in the lit pass's fit (about 20 frames of memory).
+inline constexpr double kAutoLitMemory = 0.95;
+/// Pull of the scales held in that fit, per term, against the data's mean weight per term: keeps
+/// a term the frames cannot tell apart where it was. One light's frames show its shading only
+/// together with its lookups, whatever the family, so they fix each family's total and the
+/// differences between families but not the split; the shading is held ten times firmer, and
+/// the lookups take what the frames show beyond it.
+inline constexpr std::array<double, kAutoLitTerms> kAutoLitPrior{0.1, 0.01, 0.01, 0.01};
 
 /// Weight of the newest frame in the calibration's moving averages.
 inline constexpr double kAutoCalibrationRate = 0.3;
@@ -96,16 +133,21 @@ inline constexpr double kAutoCalibrationRate = 0.3;
 /// The candidate (index into `autoCandidates()`) per light that minimises the pixel-weighted sum
 /// of predicted mean squared errors, sum pixels x rmse^2, with the summed predicted time within
 /// `budgetMs` (0 or infinite: no budget, each light takes its least error). Greedy: every light
-/// starts at its cheapest candidate, then the upgrade of most error saved per millisecond that
-/// still fits is taken until none fits. Over budget at the cheapest, the cheapest stay.
+/// starts at the module's defaults when their predicted time is within the budget (give or take
+/// `kAutoSwitchGain`, the predictions' own error), else at its cheapest candidate; then the move
+/// of most error saved per millisecond that still fits is taken until none fits. Over budget at
+/// the cheapest, the cheapest stay. Starting from the defaults, the error model only ever moves a
+/// light where it predicts less error: its absolute figures are rough (a factor of 1.5 on the
+/// scenes it was fitted on, docs/auto_technique.md), and the defaults are the configuration
+/// measured best in general, so a budget that affords them is never spent on a worse one.
 [[nodiscard]] std::vector<int> chooseAutoCandidates(std::span<const AutoLightInput> lights, const AutoCostModel& costs,
                                                     double budgetMs);
 
 /// Hysteresis: a light moves to a new candidate only when the chooser has preferred it for
 /// `kAutoConfirmFrames` frames in a row, and either its predicted error is lower by more than
 /// `kAutoSwitchGain` and at least `kAutoHoldSeconds` of scene time passed since its last switch
-/// (`kAutoHoldFrames` frames without a time), or the choices held exceed the budget by more than
-/// `kAutoSwitchGain` and the new candidate is cheaper (a cheaper move cannot flip back before
+/// (`kAutoHoldFrames` frames without a time), or the choices held are predicted over the budget
+/// and the new candidate is cheaper (a cheaper move cannot flip back before
 /// the hold, as a dearer one waits for it).
 inline constexpr int kAutoConfirmFrames = 3;
 inline constexpr double kAutoSwitchGain = 0.1;
@@ -132,8 +174,11 @@ public:
     /// Calibrates the cost model from a frame's pass timings (its shadow passes per light, named
     /// "Shadow/<light>/…", and its "Main/Lit*" passes) against what was predicted for it.
     /// `predictedShadowMs[i]` and `names[i]` belong to the lights whose passes were drawn.
-    void calibrate(std::span<const std::string_view> names, std::span<const double> predictedShadowMs,
-                   double predictedLitMs, const FrameStats& stats);
+    /// `ids[i]` the light's identity when it is an auto light (its own `passScale` is
+    /// calibrated too), else 0.
+    void calibrate(std::span<const std::string_view> names, std::span<const std::uint64_t> ids,
+                   std::span<const double> predictedShadowMs, std::span<const double, kAutoLitTerms> predictedLitMs,
+                   const FrameStats& stats);
     [[nodiscard]] const AutoCostModel& costs() const { return costs_; }
     [[nodiscard]] AutoCostModel& costs() { return costs_; }
 
@@ -145,11 +190,13 @@ private:
         int pendingFrames = 0;
         double switchedAt = 0.0;  ///< scene time of the last switch
         int framesSinceSwitch = 0;
+        double passScale = 1.0;  ///< `AutoLightInput::passScale`, calibrated
         bool seen = false;
     };
     Held& held(std::uint64_t id);
     AutoCostModel costs_;
     std::vector<Held> held_;
+    std::vector<AutoLightInput> scaled_;  ///< this frame's inputs with each light's passScale
 };
 
 }  // namespace shadow

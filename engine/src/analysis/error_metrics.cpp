@@ -318,6 +318,13 @@ std::vector<std::string> extraLightWarnings(const std::string& estimateDir, cons
     return warnings;
 }
 
+/// Light `index`'s own mask: with `kLitMasks`, the truth's lit_<index>.exr (where the reference
+/// says the light shades the surface); otherwise none (the folders' shared mask applies).
+Result<Mask> ownMask(const std::string& maskPath, const std::string& truthDir, int index) {
+    if (maskPath != kLitMasks) return Mask{std::nullopt, ""};
+    return readMaskFile(joinPath(truthDir, "lit_" + std::to_string(index) + ".exr"));
+}
+
 }  // namespace
 
 Result<VisibilityErrors> compareVisibility(const ImageF& estimate, const ImageF& truth, const ImageF* mask) {
@@ -429,10 +436,7 @@ Result<FolderComparison> compareFolders(const std::string& estimateDir, const st
                          truthPath + ": size " + sizeText(*truth) + " differs from the first light's " +
                              std::to_string(result.width) + "x" + std::to_string(result.height)};
         }
-        // kLitMasks: each light where the truth says it shades the surface.
-        Result<Mask> own = maskPath == kLitMasks
-                               ? readMaskFile(joinPath(truthDir, "lit_" + std::to_string(index) + ".exr"))
-                               : Result<Mask>(Mask{std::nullopt, ""});
+        Result<Mask> own = ownMask(maskPath, truthDir, index);
         if (!own.ok()) return own.error();
         const ImageF* lightMask = own->image ? &*own->image : maskImage;
         if (Status s = checkInputs(*estimate, *truth, lightMask); !s.ok()) {

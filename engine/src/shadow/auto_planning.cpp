@@ -13,9 +13,6 @@
 namespace shadow {
 namespace {
 
-/// What an auto light takes while nothing is known of it: PCSS at the module's defaults.
-constexpr AutoCandidate kFirstFrame{ShadowTechnique::Pcss, 1024, 16, 16};
-
 /// Pixels assumed when the image's size is unknown (`CameraView::pixelWidth` 0).
 constexpr double kUnknownScreenPixels = 640.0 * 360.0;
 
@@ -105,7 +102,7 @@ void AutoPlanning::choose(std::vector<ShadowLightPlan>& lights, const ShadowLimi
             inputs_.push_back(k->input);
             plans_.push_back(&plan);
         } else {
-            apply(kFirstFrame, limits, plan);
+            apply(autoCandidates()[kAutoDefaultCandidate], limits, plan);  // nothing known yet
         }
     }
     if (!any) return;
@@ -138,17 +135,20 @@ void AutoPlanning::learn(const World& world, const CameraView& camera, const Sha
     const auto shaded = std::count_if(frame.lights.begin(), frame.lights.end(),
                                       [](const ShadowLightPlan& p) { return p.shaded && p.affectsView; });
     const AutoCostModel& costs = state_.costs();
-    litPredictedMs_ = costs.shadingMs(screen, static_cast<int>(shaded));
+    litPredictedMs_.fill(0.0);
+    litPredictedMs_[static_cast<std::size_t>(AutoLitTerm::Shading)] = costs.shadingMs(screen, static_cast<int>(shaded));
     drawnNames_.clear();
+    drawnIds_.clear();
     drawnPredictedMs_.clear();
     for (Known& k : known_) k.seen = false;
     for (const ShadowLightPlan& plan : frame.lights) {
         if (!plan.hasMap() || !plan.affectsView) continue;
         const AutoLightInput in = describe(world, view, plan);
         const AutoCandidate c = settingsOf(plan);
-        litPredictedMs_ += costs.lookupMs(in, c);
+        litPredictedMs_[static_cast<std::size_t>(AutoCostModel::termOf(c))] += costs.lookupMs(in, c);
         if (in.redrawShare > 0.0 && c.technique == plan.settings.technique) {
             drawnNames_.push_back(plan.name);
+            drawnIds_.push_back(plan.automatic ? plan.entity.bits() : 0);
             drawnPredictedMs_.push_back(costs.shadowPassMs(in, c));
         }
         if (!plan.automatic) continue;
@@ -163,8 +163,9 @@ void AutoPlanning::learn(const World& world, const CameraView& camera, const Sha
 }
 
 void AutoPlanning::observe(const FrameStats& stats) {
-    if (!anyAuto_) return;
-    state_.calibrate(drawnNames_, drawnPredictedMs_, litPredictedMs_, stats);
+    // A frame that built programs timed their compile too: nothing to learn of the passes.
+    if (!anyAuto_ || stats.programsCompiled > 0) return;
+    state_.calibrate(drawnNames_, drawnIds_, drawnPredictedMs_, litPredictedMs_, stats);
 }
 
 }  // namespace shadow

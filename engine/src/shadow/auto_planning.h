@@ -5,6 +5,8 @@
 #include <shadow/auto_technique.h>
 #include <shadow/shadow_planner.h>
 
+#include <array>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -41,8 +43,9 @@ private:
     /// Names of the lights whose passes were predicted, into the prepared frame's plans (valid
     /// until the next `prepare`, which `observe` precedes): no copy a frame.
     std::vector<std::string_view> drawnNames_;
+    std::vector<std::uint64_t> drawnIds_;  ///< an auto light's entity bits, else 0
     std::vector<double> drawnPredictedMs_;
-    double litPredictedMs_ = 0.0;
+    std::array<double, kAutoLitTerms> litPredictedMs_{};
     // choose's working lists, kept for their storage.
     std::vector<std::uint64_t> ids_;
     std::vector<AutoLightInput> inputs_;

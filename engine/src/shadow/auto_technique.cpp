@@ -26,6 +26,11 @@ constexpr std::array<AutoCandidate, 12> kCandidates{{
     {ShadowTechnique::Pcss, 1024, 16, 16},
     {ShadowTechnique::Pcss, 2048, 16, 16},
 }};
+static_assert(kCandidates[kAutoDefaultCandidate].technique == ShadowTechnique::Pcss &&
+                  kCandidates[kAutoDefaultCandidate].mapSize == 1024 &&
+                  kCandidates[kAutoDefaultCandidate].pcfSamples == 16 &&
+                  kCandidates[kAutoDefaultCandidate].blockerSamples == 16,
+              "kAutoDefaultCandidate is the module's defaults");
 
 /// Taps a lookup takes per pixel (the search reads its points in pairs, as 2x2 gathers).
 double tapsOf(const AutoCandidate& c) {
@@ -72,23 +77,74 @@ double AutoCostModel::shadowPassMs(const AutoLightInput& in, const AutoCandidate
     const double texels = static_cast<double>(c.mapSize) * c.mapSize;
     const double perFrame =
         in.layers * (perLayerMs + texels * perTexelMs) + std::max(in.casterTriangles, 0.0) * perTriangleMs;
-    return shadowScale * std::clamp(in.redrawShare, 0.0, 1.0) * perFrame;
+    return shadowScale * in.passScale * std::clamp(in.redrawShare, 0.0, 1.0) * perFrame;
+}
+
+AutoLitTerm AutoCostModel::termOf(const AutoCandidate& c) {
+    switch (c.technique) {
+        case ShadowTechnique::Hard: return AutoLitTerm::Hard;
+        case ShadowTechnique::Pcf: return AutoLitTerm::Pcf;
+        default: return AutoLitTerm::Pcss;
+    }
 }
 
 double AutoCostModel::lookupMs(const AutoLightInput& in, const AutoCandidate& c) const {
-    return litScale * std::max(in.pixels, 0.0) * (perPixelMs + tapsOf(c) * perTapMs);
+    const auto term = static_cast<std::size_t>(termOf(c));
+    return litScale[term] * std::max(in.pixels, 0.0) * (perPixelMs[term - 1] + tapsOf(c) * perTapMs);
 }
 
 double AutoCostModel::shadingMs(double pixels, int lights) const {
-    return litScale * std::max(pixels, 0.0) * std::max(lights, 0) * perShadedPixelMs;
+    return litScale[static_cast<std::size_t>(AutoLitTerm::Shading)] * std::max(pixels, 0.0) * std::max(lights, 0) *
+           perShadedPixelMs;
 }
 
 void AutoCostModel::observeShadowPass(double predictedMs, double measuredMs) {
     calibrateScale(shadowScale, predictedMs, measuredMs);
 }
 
-void AutoCostModel::observeLitPass(double predictedMs, double measuredMs) {
-    calibrateScale(litScale, predictedMs, measuredMs);
+void AutoCostModel::observeLitPass(std::span<const double, kAutoLitTerms> predictedMs, double measuredMs) {
+    // Least squares over the recent frames, measured = sum_t unscaled_t x scale_t, each frame
+    // weighted kAutoLitMemory^age, pulled towards the scales held (weight kAutoLitPrior of the
+    // data's own): the scales of terms that ran together alone are told apart as the mix of
+    // families changes; a term that never ran keeps its scale.
+    std::array<double, kAutoLitTerms> unscaled{};
+    double total = 0.0;
+    for (std::size_t t = 0; t < kAutoLitTerms; ++t) {
+        unscaled[t] = std::max(predictedMs[t], 0.0) / litScale[t];
+        total += unscaled[t];
+    }
+    if (!(total > 0.0) || !(measuredMs > 0.0) || !std::isfinite(total) || !std::isfinite(measuredMs)) return;
+    double trace = 0.0;
+    for (std::size_t r = 0; r < kAutoLitTerms; ++r) {
+        for (std::size_t c = 0; c < kAutoLitTerms; ++c) {
+            litNormal_[r * kAutoLitTerms + c] =
+                kAutoLitMemory * litNormal_[r * kAutoLitTerms + c] + unscaled[r] * unscaled[c];
+        }
+        litRhs_[r] = kAutoLitMemory * litRhs_[r] + unscaled[r] * measuredMs;
+        trace += litNormal_[r * kAutoLitTerms + r];
+    }
+    std::array<double, kAutoLitTerms*(kAutoLitTerms + 1)> m{};  // [normal + prior | rhs + prior x scale]
+    for (std::size_t r = 0; r < kAutoLitTerms; ++r) {
+        const double prior = kAutoLitPrior[r] * trace / kAutoLitTerms;
+        for (std::size_t c = 0; c < kAutoLitTerms; ++c) m[r * 5 + c] = litNormal_[r * kAutoLitTerms + c];
+        m[r * 5 + r] += prior;
+        m[r * 5 + kAutoLitTerms] = litRhs_[r] + prior * litScale[r];
+    }
+    for (std::size_t k = 0; k < kAutoLitTerms; ++k) {  // symmetric positive definite: no pivoting
+        for (std::size_t r = k + 1; r < kAutoLitTerms; ++r) {
+            const double f = m[r * 5 + k] / m[k * 5 + k];
+            for (std::size_t c = k; c <= kAutoLitTerms; ++c) m[r * 5 + c] -= f * m[k * 5 + c];
+        }
+    }
+    std::array<double, kAutoLitTerms> x{};
+    for (std::size_t k = kAutoLitTerms; k-- > 0;) {
+        double v = m[k * 5 + kAutoLitTerms];
+        for (std::size_t c = k + 1; c < kAutoLitTerms; ++c) v -= m[k * 5 + c] * x[c];
+        x[k] = v / m[k * 5 + k];
+    }
+    for (std::size_t t = 0; t < kAutoLitTerms; ++t) {
+        if (std::isfinite(x[t])) litScale[t] = std::clamp(x[t], 1e-3, 1e3);
+    }
 }
 
 double autoPredictedRmse(const AutoLightInput& in, const AutoCandidate& c) {
@@ -138,7 +194,13 @@ std::vector<int> chooseAutoCandidates(std::span<const AutoLightInput> lights, co
         spent += costs.totalMs(lights[i], candidates[static_cast<std::size_t>(pick)]);
     }
     if (unlimited) return choice;
-    // Upgrades by error saved per millisecond, the best that fits first, until none fits.
+    double defaults = 0.0;
+    for (const AutoLightInput& light : lights) defaults += costs.totalMs(light, candidates[kAutoDefaultCandidate]);
+    if (defaults <= (1.0 + kAutoSwitchGain) * budgetMs) {
+        std::fill(choice.begin(), choice.end(), kAutoDefaultCandidate);
+        spent = defaults;
+    }
+    // Moves by error saved per millisecond, the best that fits first, until none fits.
     for (;;) {
         double bestRate = 0.0;
         std::size_t bestLight = 0;
@@ -152,7 +214,7 @@ std::vector<int> chooseAutoCandidates(std::span<const AutoLightInput> lights, co
                 const AutoCandidate& c = candidates[static_cast<std::size_t>(k)];
                 const double saved = nowError - weightedError(lights[i], c);
                 const double extra = costs.totalMs(lights[i], c) - nowMs;
-                if (!(saved > 0.0) || spent + extra > budgetMs) continue;
+                if (!(saved > 0.0) || (extra > 0.0 && spent + extra > budgetMs)) continue;
                 const double rate = extra > 0.0 ? saved / extra : std::numeric_limits<double>::infinity();
                 if (rate > bestRate) {
                     bestRate = rate;
@@ -172,13 +234,24 @@ AutoTechniqueState::Held& AutoTechniqueState::held(std::uint64_t id) {
     for (Held& h : held_) {
         if (h.id == id) return h;
     }
+    // A new light starts from the other auto lights' own scales (their geometric mean).
+    double logSum = 0.0;
+    for (const Held& other : held_) logSum += std::log(other.passScale);
+    const double start = held_.empty() ? 1.0 : std::exp(logSum / static_cast<double>(held_.size()));
     Held& h = held_.emplace_back();
     h.id = id;
+    h.passScale = start;
     return h;
 }
 
 void AutoTechniqueState::choose(std::span<const std::uint64_t> ids, std::span<const AutoLightInput> inputs,
                                 double budgetMs, double time, std::span<AutoLightChoice> out) {
+    // Each light with its own shadow-pass scale, as calibrated.
+    scaled_.assign(inputs.begin(), inputs.end());
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        for (const Held& h : held_) scaled_[i].passScale = h.id == ids[i] ? h.passScale : scaled_[i].passScale;
+    }
+    inputs = scaled_;
     const std::vector<int> best = chooseAutoCandidates(inputs, costs_, budgetMs);
     const std::span<const AutoCandidate> candidates = autoCandidates();
     const auto at = [&](int k) -> const AutoCandidate& { return candidates[static_cast<std::size_t>(k)]; };
@@ -188,7 +261,7 @@ void AutoTechniqueState::choose(std::span<const std::uint64_t> ids, std::span<co
         for (const Held& k : held_) h = k.id == ids[i] ? &k : h;
         current += costs_.totalMs(inputs[i], at(h != nullptr && h->current >= 0 ? h->current : best[i]));
     }
-    const bool overBudget = budgetMs > 0.0 && std::isfinite(budgetMs) && current > (1.0 + kAutoSwitchGain) * budgetMs;
+    const bool overBudget = budgetMs > 0.0 && std::isfinite(budgetMs) && current > budgetMs;
     for (Held& h : held_) h.seen = false;
     for (std::size_t i = 0; i < ids.size(); ++i) {
         Held& h = held(ids[i]);
@@ -229,12 +302,23 @@ void AutoTechniqueState::choose(std::span<const std::uint64_t> ids, std::span<co
     std::erase_if(held_, [](const Held& h) { return !h.seen; });
 }
 
-void AutoTechniqueState::calibrate(std::span<const std::string_view> names, std::span<const double> predictedShadowMs,
-                                   double predictedLitMs, const FrameStats& stats) {
+void AutoTechniqueState::calibrate(std::span<const std::string_view> names, std::span<const std::uint64_t> ids,
+                                   std::span<const double> predictedShadowMs,
+                                   std::span<const double, kAutoLitTerms> predictedLitMs, const FrameStats& stats) {
     std::string prefix;
-    for (std::size_t i = 0; i < names.size() && i < predictedShadowMs.size(); ++i) {
+    const std::size_t n = std::min({names.size(), ids.size(), predictedShadowMs.size()});
+    for (std::size_t i = 0; i < n; ++i) {
         prefix.assign("Shadow/").append(names[i]).append("/");
-        costs_.observeShadowPass(predictedShadowMs[i], stats.passMs(prefix));
+        const double measured = stats.passMs(prefix);
+        // An auto light calibrates its own scale against its whole prediction; the other lights
+        // the common scale (which a new auto light starts from, with the others' own scales).
+        Held* own = nullptr;
+        for (Held& h : held_) own = ids[i] != 0 && h.id == ids[i] ? &h : own;
+        if (own != nullptr) {
+            calibrateScale(own->passScale, own->passScale * predictedShadowMs[i], measured);
+        } else {
+            costs_.observeShadowPass(predictedShadowMs[i], measured);
+        }
     }
     costs_.observeLitPass(predictedLitMs, stats.passMs("Main/Lit"));
 }
