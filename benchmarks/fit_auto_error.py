@@ -1,8 +1,13 @@
 #!/usr/bin/env python3
-"""Fits technique auto's error model (engine/src/shadow/auto_technique.cpp) to the error-against-time
-sweep (benchmarks/results/error_vs_time.csv) and states the fit's error.
+"""Fits technique auto's error model (engine/src/shadow/auto_technique.cpp) and states the fit's error.
 
+    python3 benchmarks/fit_auto_error.py --auto-work DIR [--fit plates,bunny,default]
     python3 benchmarks/fit_auto_error.py [--bin build/bin] [--csv benchmarks/results/error_vs_time.csv]
+
+With --auto-work: the per-light rows of benchmarks/auto_budget.py's runs (DIR/<scene>/results.json:
+every light of every fixed configuration, its RMSE over its own lit mask, and its inputs as the
+planner saw them); the scenes named by --fit are fitted, the others only predicted (the check on
+scenes the model did not see). Without it, the older pooled fit to the error-against-time sweep:
 
 Each light's penumbra width (texels of a 1024 map) and screen pixels come from the planner itself:
 `shadow_render builtin:SCENE --technique auto` reports them in stats.json (lights.auto). The sweep
@@ -15,7 +20,9 @@ import argparse
 import csv
 import json
 import math
+import os
 import subprocess
+import sys
 import tempfile
 
 SCENES = ["plates", "bunny", "default"]
@@ -104,12 +111,65 @@ def sweep_rows(path):
     return rows
 
 
+def light_rows(work, scenes):
+    """Per-light rows of auto_budget.py's fixed configurations, for the scenes given."""
+    rows = []
+    for scene in scenes:
+        path = os.path.join(work, scene, "results.json")
+        if not os.path.exists(path):
+            sys.exit(f"fit_auto_error: {path}: missing (run benchmarks/auto_budget.py first)")
+        r = json.load(open(path))
+        for name, (technique, size, _pcf, blocker) in r["fixed"].items():
+            measured = r["runs"][name]["lightRmse"]
+            for index, inp in r["inputs"].items():
+                if index in measured and measured[index] > 0:
+                    rows.append({"scene": scene, "config": f"{name} {inp['node']}", "technique": technique,
+                                 "size": size, "taps": blocker, "rmse": measured[index],
+                                 "w": inp["penumbraTexels1024"]})
+    return rows
+
+
+def light_loss(p, rows):
+    if min(p) <= 0:
+        return 1e9
+    errs = [math.log(light_rmse(p, r["technique"], r["size"], r["taps"], r["w"]) / r["rmse"]) for r in rows]
+    return math.sqrt(sum(e * e for e in errs) / len(errs))
+
+
+def fit_lights(a):
+    scenes = sorted({d for d in os.listdir(a.auto_work) if os.path.exists(os.path.join(a.auto_work, d, "results.json"))})
+    fitted = a.fit.split(",")
+    rows = light_rows(a.auto_work, [s for s in scenes if s in fitted])
+    held = light_rows(a.auto_work, [s for s in scenes if s not in fitted])
+    p = a.constants or nelder_mead(lambda q: light_loss(q, rows), [13.0, 26.0, 0.6, 2.8, 0.84, 0.01, 0.007])
+    for name, value in zip(NAMES, p):
+        print(f"constexpr double {name} = {value:.4g};")
+    print("\n| scene | config, light | measured RMSE | predicted | ratio |\n|---|---|---:|---:|---:|")
+    for r in rows + held:
+        pr = light_rmse(p, r["technique"], r["size"], r["taps"], r["w"])
+        print(f"| {r['scene']} | {r['config']} | {r['rmse']:.4f} | {pr:.4f} | {pr / r['rmse']:.2f} |")
+    print(f"\nfit error: RMS of log(predicted / measured) = {light_loss(p, rows):.3f} over {len(rows)} rows of "
+          f"{', '.join(s for s in scenes if s in fitted)}")
+    if held:
+        within = sum(abs(light_rmse(p, r["technique"], r["size"], r["taps"], r["w"]) / r["rmse"] - 1) <= 0.3
+                     for r in held)
+        print(f"scenes not fitted ({', '.join(s for s in scenes if s not in fitted)}): RMS of log = "
+              f"{light_loss(p, held):.3f} over {len(held)} rows, {within} of them within 30 %")
+
+
 def main():
     ap = argparse.ArgumentParser()
+    ap.add_argument("--auto-work", help="benchmarks/auto_budget.py's work folder: fit its per-light rows")
+    ap.add_argument("--fit", default="plates,bunny,default", help="with --auto-work: the scenes fitted")
+    ap.add_argument("--constants", type=lambda t: [float(v) for v in t.split(",")],
+                    help="with --auto-work: evaluate these seven constants (in the order printed) instead of fitting")
     ap.add_argument("--bin", default="build/bin")
     ap.add_argument("--csv", default="benchmarks/results/error_vs_time.csv")
     ap.add_argument("--size", default="320x240")
     a = ap.parse_args()
+    if a.auto_work:
+        fit_lights(a)
+        return
     feats = {s: features(a.bin + "/shadow_render", s, a.size) for s in SCENES}
     rows = sweep_rows(a.csv)
     p = nelder_mead(lambda q: loss(q, rows, feats), [1.0, 2.0, 0.6, 1.5, 1.0, 0.01, 0.005])

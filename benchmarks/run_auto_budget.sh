@@ -1,52 +1,36 @@
 #!/usr/bin/env bash
-# Technique auto against PCSS at its defaults, on a few scenes at 320x240 (llvmpipe):
-#   bash benchmarks/run_auto_budget.sh [SCENE...]   (default: plates bunny plates-boxes)
-# Per scene: the ray-traced truth (shadow_reference), PCSS at its defaults, then --technique auto
-# with the budget equal to PCSS's measured frame time (its shadow passes + main passes, median)
-# and with half of it. Every run redraws its layers every frame (--no-cache) and times 39 frames
-# after a warm-up one (40 frames at 30 per second: the calibration settles and the 1 s hold passes). Prints one line per run: frame ms, each auto light's choice, predicted and
-# measured shadow-pass ms, and the visibility RMSE of every light's receiver pixels pooled against the truth
-# (shadow_compare's allLights).
-# Uses build/bin; results in benchmarks/results/tmp/auto.
+# Technique auto against PCSS at the module's defaults and against every fixed configuration it
+# chooses from (benchmarks/auto_budget.py says how each figure is measured):
+#   bash benchmarks/run_auto_budget.sh [SCENE...]
+# Default scenes: builtin:plates builtin:bunny builtin:default (the error model was fitted on
+# them) and builtin:plates-boxes and the sample scene fence (it was not). About 2 minutes a scene
+# per round. ROUNDS (1): interleaved rounds, medians; SIZE (320x240); WRITE_BENCHMARKS=0 leaves
+# BENCHMARKS.md alone (otherwise its "Technique auto" section is rewritten). Work files in
+# benchmarks/results/tmp/auto (each scene's results.json feeds benchmarks/fit_auto_error.py
+# --auto-work). Builds the three programs only when one is missing.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bin=build/bin
-out=benchmarks/results/tmp/auto
-size=320x240
 scenes=("$@")
-[ ${#scenes[@]} -gt 0 ] || scenes=(plates bunny plates-boxes)
-mkdir -p "$out"
-summary() {  # run dir, truth dir
-  python3 - "$1" "$2" "$bin" <<'PY'
-import json, subprocess, sys
-run, truth, b = sys.argv[1:4]
-s = json.load(open(run + "/stats.json"))
-t = s["timingsMs"]
-frame = t["shadowPassesTotal"]["median"] + t["mainPassesTotal"]["median"]
-cmp = json.loads(subprocess.run([b + "/shadow_compare", run, truth], check=True, capture_output=True, text=True).stdout)
-rmse = cmp["allLights"]["rmse"]
-choices = []
-for l in s["lights"]:
-    a = l.get("auto")
-    if a:
-        choices.append(f'{l["node"]}:{a["technique"]}{a["mapSize"]}/{a["blockerSamples"]} '
-                       f'pred {a["predictedMs"]:.2f} (pass {a["predictedShadowPassMs"]:.2f}, meas {a["measuredShadowPassMs"]:.2f})')
-print(f"frame {frame:.2f} ms  shadow {t['shadowPassesTotal']['median']:.2f}  main {t['mainPassesTotal']['median']:.2f}  "
-      f"rmse {rmse:.4f}  " + "; ".join(choices))
-print(f"FRAME {frame:.4f}", file=sys.stderr)
-PY
-}
-for scene in "${scenes[@]}"; do
-  ref="$out/$scene/ref"
-  [ -f "$ref/reference.json" ] || "$bin/shadow_reference" "builtin:$scene" --out "$ref" --size "$size" --samples 256 >/dev/null
-  common=(--size "$size" --frames 40 --no-cache --aov visibility,position)
-  "$bin/shadow_render" "builtin:$scene" "${common[@]}" --technique pcss --out "$out/$scene/pcss" 2>/dev/null
-  echo "$scene pcss default: $(summary "$out/$scene/pcss" "$ref" 2>"$out/$scene/frame.txt")"
-  budget=$(awk '{print $2}' "$out/$scene/frame.txt")
-  for share in 1 0.5; do
-    b=$(python3 -c "print($budget * $share)")
-    "$bin/shadow_render" "builtin:$scene" "${common[@]}" --technique auto --shadow-budget-ms "$b" \
-      --out "$out/$scene/auto$share" 2>/dev/null
-    echo "$scene auto budget ${b} ms: $(summary "$out/$scene/auto$share" "$ref" 2>/dev/null)"
-  done
+[ ${#scenes[@]} -gt 0 ] || scenes=(builtin:plates builtin:bunny builtin:default builtin:plates-boxes fence)
+for p in shadow_render shadow_reference shadow_compare; do
+  [ -x "build/bin/$p" ] || cmake --build build -j2 --target "$p"
 done
+work=benchmarks/results/tmp/auto
+rm -rf "$work"
+start=$(date +%s)
+report=$(mktemp)
+trap 'rm -f "$report" "$report.body"' EXIT
+python3 benchmarks/auto_budget.py "${scenes[@]}" --work "$work" --rounds "${ROUNDS:-1}" --size "${SIZE:-320x240}" \
+  --markdown "$report"
+if [ "${WRITE_BENCHMARKS:-1}" != 0 ]; then
+  {
+    echo "Produced by \`bash benchmarks/run_auto_budget.sh\` ($(($(date +%s) - start)) s, load average" \
+      "$(cut -d' ' -f1 /proc/loadavg) at the end). The checks are those of docs/auto_technique.md" \
+      "\"Measured\": at B, auto's RMSE against PCSS's; at B/2, auto's cost against B/2 and its RMSE" \
+      "against the best fixed configuration (one for every light) whose cost is within B/2; time =" \
+      "predicted / measured cost of auto's choices."
+    echo
+    cat "$report"
+  } > "$report.body"
+  python3 benchmarks/benchmarks_section.py auto-budget "Technique auto against fixed configurations" "$report.body"
+fi
