@@ -70,9 +70,8 @@ TEST(AutoTechniqueFrames, NoLightSwitchesMoreThanOnceASecondWithASteadyCamera) {
             for (double t : run.switches[i]) {
                 // The first second is the calibration's: moves to cheaper candidates need not wait.
                 if (t >= 1.0 && previous >= 1.0) {
-                    EXPECT_GE(t - previous, 1.0 - 1e-9)
-                        << "budget " << budget << " ms, light " << i << ": switches at " << previous << " and " << t
-                        << " s";
+                    EXPECT_GE(t - previous, 1.0 - 1e-9) << "budget " << budget << " ms, light " << i << ": switches at "
+                                                        << previous << " and " << t << " s";
                 }
                 previous = t;
             }
