@@ -21,6 +21,7 @@ import csv
 import json
 import math
 import os
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -157,8 +158,38 @@ def fit_lights(a):
               f"{light_loss(p, held):.3f} over {len(held)} rows, {within} of them within 30 %")
 
 
+def lookup_costs(work):
+    """The cost model's lit-pass defaults from auto_budget.py's fixed runs: per family, the lit pass's
+    growth over the run without shadows per pixel a light reaches (median over the scenes), then
+    the per-tap cost from PCSS's two tap counts and each family's per-pixel rest."""
+    growth = {}
+    for scene in sorted(os.listdir(work)):
+        path = os.path.join(work, scene, "results.json")
+        if not os.path.exists(path):
+            continue
+        r = json.load(open(path))
+        pixels = sum(v["pixels"] for v in r["inputs"].values())
+        lit = lambda key: json.load(open(os.path.join(work, scene, key.replace(" ", "_").replace("/", "-")
+                                                      .replace("+", "p"), "stats.json")))["timingsMs"]["passes"][
+            "Main/Lit"]["median"]
+        base = lit("none")
+        for name, (technique, _size, pcf, blocker) in r["fixed"].items():
+            growth.setdefault((technique, pcf, blocker), []).append((lit(name) - base) / pixels * 1e6)
+        growth.setdefault(("shading",), []).append(base / pixels * 1e6)
+    med = {k: statistics.median(v) for k, v in growth.items()}
+    tap = (med[("pcss", 16, 16)] - med[("pcss", 8, 8)]) / 12.0
+    print(f"ns per pixel a light reaches (median over {len(growth[('shading',)])} scenes):")
+    for k, v in sorted(med.items()):
+        print(f"  {' '.join(map(str, k))}: {v:.0f}")
+    print(f"perTapMs = {tap * 1e-6:.3g}; perPixelMs = {{{(med[('hard', 1, 1)] - tap) * 1e-6:.3g}, "
+          f"{(med[('pcf', 16, 16)] - 16 * tap) * 1e-6:.3g}, {(med[('pcss', 8, 8)] - 12 * tap) * 1e-6:.3g}}}; "
+          f"perShadedPixelMs = {med[('shading',)] * 1e-6:.3g}")
+
+
 def main():
     ap = argparse.ArgumentParser()
+    ap.add_argument("--lookup-costs", action="store_true",
+                    help="with --auto-work: print the lit pass's cost defaults measured by its fixed runs")
     ap.add_argument("--auto-work", help="benchmarks/auto_budget.py's work folder: fit its per-light rows")
     ap.add_argument("--fit", default="plates,bunny,default", help="with --auto-work: the scenes fitted")
     ap.add_argument("--constants", type=lambda t: [float(v) for v in t.split(",")],
@@ -167,6 +198,9 @@ def main():
     ap.add_argument("--csv", default="benchmarks/results/error_vs_time.csv")
     ap.add_argument("--size", default="320x240")
     a = ap.parse_args()
+    if a.auto_work and a.lookup_costs:
+        lookup_costs(a.auto_work)
+        return
     if a.auto_work:
         fit_lights(a)
         return

@@ -286,7 +286,7 @@ std::vector<nlohmann::json> shadowedLightsOf(const std::string& args) {
 TEST(ShadowRenderCli, TechniqueAutoReportsEachLightsChoiceWithinTheBudget) {
     // A budget below any candidate's predicted time: every light takes its cheapest, hard at 512.
     const std::vector<nlohmann::json> lights =
-        shadowedLightsOf("--frames 3 --technique auto --shadow-budget-ms 0.0001");
+        shadowedLightsOf("--frames 8 --technique auto --shadow-budget-ms 0.0001");
     for (const nlohmann::json& light : lights) {
         EXPECT_EQ(light["technique"], "auto") << light.dump();
         ASSERT_TRUE(light.contains("auto")) << light.dump();

@@ -66,12 +66,18 @@ TEST(AutoTechnique, ChooserStaysWithinTheBudgetAndSpendsMoreOnlyForLessError) {
         const double error = errorOf(in, pick);
         EXPECT_LE(error, lastError * (1 + 1e-12)) << "a larger budget must not raise the error";
         lastError = error;
-        // No single change of one light that fits the budget lowers the error (greedy's fixpoint).
+        // No single change of one light that fits what the chooser spends lowers the error
+        // (greedy's fixpoint): the whole budget when it affords the defaults, else all but the
+        // headroom.
+        const std::vector<int> defaults(in.size(), kAutoDefaultCandidate);
+        const double limit = timeOf(in, defaults, costs) <= (1.0 + kAutoSwitchGain) * budget
+                                 ? budget
+                                 : (1.0 - kAutoBudgetHeadroom) * budget;
         for (std::size_t i = 0; i < in.size(); ++i) {
             for (int k = 0; k < static_cast<int>(autoCandidates().size()); ++k) {
                 std::vector<int> other = pick;
                 other[i] = k;
-                if (timeOf(in, other, costs) <= budget) {
+                if (timeOf(in, other, costs) <= limit) {
                     EXPECT_GE(errorOf(in, other), error * (1 - 1e-9));
                 }
             }
@@ -296,7 +302,15 @@ TEST(AutoTechnique, PlannerResolvesAutoLightsToConcreteSettingsWithinTheBudget) 
     EXPECT_EQ(first.lights[0].autoChoice.candidate, -1) << "nothing known yet: the defaults";
     EXPECT_EQ(first.lights[0].settings.technique, ShadowTechnique::Pcss);
     EXPECT_EQ(first.lights[0].mapSize, 1024);
-    planner.setSceneTime(1.0 / 30.0);
+    // Without timings (nothing calls observe) the defaults are held kAutoWarmUpFramesUntimed
+    // frames, then the planner chooses from its built-in coefficients.
+    for (int f = 1; f < kAutoWarmUpFramesUntimed; ++f) {
+        planner.setSceneTime(f / 30.0);
+        const ShadowFrame& warming = planner.prepare(t.scene.world, view, t.scene.lights);
+        EXPECT_EQ(warming.lights[0].autoChoice.candidate, -1) << "frame " << f << ": still the defaults";
+        EXPECT_EQ(warming.lights[0].mapSize, 1024);
+    }
+    planner.setSceneTime(kAutoWarmUpFramesUntimed / 30.0);
     const ShadowFrame& second = planner.prepare(t.scene.world, view, t.scene.lights);
     const ShadowLightPlan& plan = second.lights[0];
     EXPECT_EQ(plan.entity, light);

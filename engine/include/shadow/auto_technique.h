@@ -100,10 +100,13 @@ public:
     double perTriangleMs = 6e-5;  ///< one caster triangle in one layer
     double perTexelMs = 2.5e-6;   ///< one texel of one layer (clear, raster, read)
     /// A lookup's set-up per pixel the light reaches, per family (hard, PCF, PCSS): the receiver
-    /// plane, the region test, PCSS's penumbra estimate.
-    std::array<double, 3> perPixelMs{4.0e-6, 2.0e-5, 4.0e-5};
-    double perTapMs = 2.5e-6;          ///< one tap per pixel
-    double perShadedPixelMs = 6.0e-5;  ///< one light's shading of one pixel, lookups aside
+    /// plane, the region test, PCSS's penumbra estimate. These three and the next two are
+    /// llvmpipe's at 320x240: medians over five scenes of the lit pass's growth per pixel
+    /// (`python3 benchmarks/fit_auto_error.py --auto-work DIR --lookup-costs` after
+    /// `bash benchmarks/run_auto_budget.sh`).
+    std::array<double, 3> perPixelMs{3.0e-5, 3.4e-5, 7.5e-5};
+    double perTapMs = 6.2e-6;          ///< one tap per pixel
+    double perShadedPixelMs = 4.0e-5;  ///< one light's shading of one pixel, lookups aside
     double shadowScale = 1.0;          ///< measured / predicted shadow passes (calibrated)
     /// Measured / predicted of each lit-pass term (`AutoLitTerm`), calibrated.
     std::array<double, kAutoLitTerms> litScale{1.0, 1.0, 1.0, 1.0};
@@ -134,8 +137,9 @@ inline constexpr double kAutoCalibrationRate = 0.3;
 /// of predicted mean squared errors, sum pixels x rmse^2, with the summed predicted time within
 /// `budgetMs` (0 or infinite: no budget, each light takes its least error). Greedy: every light
 /// starts at the module's defaults when their predicted time is within the budget (give or take
-/// `kAutoSwitchGain`, the predictions' own error), else at its cheapest candidate; then the move
-/// of most error saved per millisecond that still fits is taken until none fits. Over budget at
+/// `kAutoSwitchGain`, the predictions' own error), else at its cheapest candidate, and the
+/// budget then keeps `kAutoBudgetHeadroom` of itself free for the predictions' error; then the
+/// move of most error saved per millisecond that still fits is taken until none fits. Over budget at
 /// the cheapest, the cheapest stay. Starting from the defaults, the error model only ever moves a
 /// light where it predicts less error: its absolute figures are rough (a factor of 1.5 on the
 /// scenes it was fitted on, docs/auto_technique.md), and the defaults are the configuration
@@ -150,6 +154,14 @@ inline constexpr double kAutoCalibrationRate = 0.3;
 /// and the new candidate is cheaper (a cheaper move cannot flip back before
 /// the hold, as a dearer one waits for it).
 inline constexpr int kAutoConfirmFrames = 3;
+/// Frames the module's defaults are held when auto lights appear, their timings calibrating the
+/// cost model, before the first choice (without timings, `kAutoWarmUpFramesUntimed` frames): the
+/// first choice then knows what the defaults cost here, not what the built-in coefficients say.
+inline constexpr int kAutoWarmUpFrames = 3;
+inline constexpr int kAutoWarmUpFramesUntimed = 10;
+/// Share of a budget below the defaults' cost the chooser leaves unspent, so that choices
+/// predicted a little under the budget still fit it when measured.
+inline constexpr double kAutoBudgetHeadroom = 0.1;
 inline constexpr double kAutoSwitchGain = 0.1;
 inline constexpr double kAutoHoldSeconds = 1.0;
 inline constexpr int kAutoHoldFrames = 30;

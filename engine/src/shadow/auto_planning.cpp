@@ -93,19 +93,25 @@ void AutoPlanning::choose(std::vector<ShadowLightPlan>& lights, const ShadowLimi
     inputs_.clear();
     plans_.clear();
     bool any = false;
+    const bool warm = learnedFrames_ >= kAutoWarmUpFrames || plannedFrames_ >= kAutoWarmUpFramesUntimed;
     for (ShadowLightPlan& plan : lights) {
         if (!plan.settings.autoTechnique || plan.settings.technique == ShadowTechnique::None) continue;
         any = true;
         plan.automatic = true;
-        if (const Known* k = known(plan.entity)) {
+        const Known* k = known(plan.entity);
+        if (k != nullptr && warm) {
             ids_.push_back(plan.entity.bits());
             inputs_.push_back(k->input);
             plans_.push_back(&plan);
         } else {
-            apply(autoCandidates()[kAutoDefaultCandidate], limits, plan);  // nothing known yet
+            apply(autoCandidates()[kAutoDefaultCandidate], limits, plan);  // nothing known yet, or warming up
         }
     }
-    if (!any) return;
+    if (!any) {
+        learnedFrames_ = plannedFrames_ = 0;  // the next auto lights warm up again
+        return;
+    }
+    ++plannedFrames_;
     double budget = limits.shadowBudgetMs;
     if (std::isnan(budget) || budget < 0.0) {
         warnings.push_back({WarningCode::SettingClamped, "shadowBudgetMs",
@@ -165,6 +171,7 @@ void AutoPlanning::learn(const World& world, const CameraView& camera, const Sha
 void AutoPlanning::observe(const FrameStats& stats) {
     // A frame that built programs timed their compile too: nothing to learn of the passes.
     if (!anyAuto_ || stats.programsCompiled > 0) return;
+    ++learnedFrames_;
     state_.calibrate(drawnNames_, drawnIds_, drawnPredictedMs_, litPredictedMs_, stats);
 }
 

@@ -38,6 +38,11 @@ private:
 
     AutoTechniqueState state_;
     std::vector<Known> known_;
+    /// Frames whose timings calibrated the cost model, and frames planned, since the auto lights
+    /// appeared: the defaults are held until the first reaches `kAutoWarmUpFrames` (or the
+    /// second `kAutoWarmUpFramesUntimed`, for a host that never calls observe).
+    int learnedFrames_ = 0;
+    int plannedFrames_ = 0;
     bool anyAuto_ = false;  ///< the frame `learn` saw had an auto light
     // Predictions of the frame learn saw, for observe.
     /// Names of the lights whose passes were predicted, into the prepared frame's plans (valid

@@ -196,9 +196,11 @@ std::vector<int> chooseAutoCandidates(std::span<const AutoLightInput> lights, co
     if (unlimited) return choice;
     double defaults = 0.0;
     for (const AutoLightInput& light : lights) defaults += costs.totalMs(light, candidates[kAutoDefaultCandidate]);
+    double limit = (1.0 - kAutoBudgetHeadroom) * budgetMs;
     if (defaults <= (1.0 + kAutoSwitchGain) * budgetMs) {
         std::fill(choice.begin(), choice.end(), kAutoDefaultCandidate);
         spent = defaults;
+        limit = budgetMs;
     }
     // Moves by error saved per millisecond, the best that fits first, until none fits.
     for (;;) {
@@ -214,7 +216,7 @@ std::vector<int> chooseAutoCandidates(std::span<const AutoLightInput> lights, co
                 const AutoCandidate& c = candidates[static_cast<std::size_t>(k)];
                 const double saved = nowError - weightedError(lights[i], c);
                 const double extra = costs.totalMs(lights[i], c) - nowMs;
-                if (!(saved > 0.0) || (extra > 0.0 && spent + extra > budgetMs)) continue;
+                if (!(saved > 0.0) || (extra > 0.0 && spent + extra > limit)) continue;
                 const double rate = extra > 0.0 ? saved / extra : std::numeric_limits<double>::infinity();
                 if (rate > bestRate) {
                     bestRate = rate;
