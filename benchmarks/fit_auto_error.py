@@ -137,6 +137,23 @@ def light_loss(p, rows):
     return math.sqrt(sum(e * e for e in errs) / len(errs))
 
 
+def concordance(p, rows):
+    """Share of the pairs of one light's candidates, measured more than 5 % apart, whose predicted
+    order is the measured one: what the chooser relies on."""
+    by_light = {}
+    for r in rows:
+        by_light.setdefault((r["scene"], r["config"].split(" ", 2)[-1]), []).append(
+            (light_rmse(p, r["technique"], r["size"], r["taps"], r["w"]), r["rmse"]))
+    same = total = 0
+    for values in by_light.values():
+        for i, (p1, m1) in enumerate(values):
+            for p2, m2 in values[i + 1:]:
+                if abs(m1 - m2) >= 0.05 * max(m1, m2):
+                    total += 1
+                    same += (p1 - p2) * (m1 - m2) > 0
+    return f"{same} of {total} ({same / max(total, 1):.0%})"
+
+
 def fit_lights(a):
     scenes = sorted({d for d in os.listdir(a.auto_work) if os.path.exists(os.path.join(a.auto_work, d, "results.json"))})
     fitted = a.fit.split(",")
@@ -151,6 +168,8 @@ def fit_lights(a):
         print(f"| {r['scene']} | {r['config']} | {r['rmse']:.4f} | {pr:.4f} | {pr / r['rmse']:.2f} |")
     print(f"\nfit error: RMS of log(predicted / measured) = {light_loss(p, rows):.3f} over {len(rows)} rows of "
           f"{', '.join(s for s in scenes if s in fitted)}")
+    print(f"within each light, pairs of candidates measured more than 5 % apart that the model orders the same "
+          f"way: {concordance(p, rows + held)}")
     if held:
         within = sum(abs(light_rmse(p, r["technique"], r["size"], r["taps"], r["w"]) / r["rmse"] - 1) <= 0.3
                      for r in held)
