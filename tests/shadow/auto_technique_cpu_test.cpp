@@ -11,6 +11,7 @@
 #include <string>
 #include <string_view>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace shadow {
@@ -200,6 +201,32 @@ TEST(AutoTechnique, OverBudgetMovesToACheaperCandidateWithoutWaitingForTheHold) 
         if (state.costs().totalMs(in, autoCandidates()[out[0].candidate]) <= budget) at = f;
     }
     EXPECT_EQ(at, kAutoConfirmFrames) << "within the budget after the confirmation frames, not after the hold";
+}
+
+TEST(AutoTechnique, AfterItsFirstSecondALightOverBudgetStillWaitsForTheHold) {
+    AutoTechniqueState state;
+    AutoLightInput in;
+    in.pixels = 100000;
+    in.penumbraTexels1024 = 40;
+    const std::uint64_t id = 5;
+    std::vector<AutoLightChoice> out(1);
+    const double dt = 1.0 / 60.0;
+    state.choose({&id, 1}, {&in, 1}, 0.0, 0.0, out);  // no budget: the least error, a dear one
+    const double dear = state.costs().totalMs(in, autoCandidates()[out[0].candidate]);
+    // Past the first second, a budget at half the dear choice: one move down, then a budget
+    // far below that asks for another before the hold has passed since the first.
+    std::vector<std::pair<double, int>> switches;
+    int last = out[0].candidate;
+    for (int f = 1; f < 240; ++f) {
+        const double t = 1.5 + f * dt;
+        const double budget = t < 2.0 ? 0.5 * dear : 1e-6;
+        state.choose({&id, 1}, {&in, 1}, budget, t, out);
+        if (out[0].candidate != last) switches.emplace_back(t, out[0].candidate);
+        last = out[0].candidate;
+    }
+    ASSERT_GE(switches.size(), 2u) << "both budgets were followed";
+    EXPECT_LT(switches[0].first, 2.0) << "the first move down: the hold since the first choice had passed";
+    EXPECT_GE(switches[1].first - switches[0].first, kAutoHoldSeconds - 1e-9) << "the second waited for the hold";
 }
 
 TEST(AutoTechnique, CalibrationConvergesToTheMeasuredRatio) {

@@ -150,9 +150,10 @@ inline constexpr double kAutoCalibrationRate = 0.3;
 /// Hysteresis: a light moves to a new candidate only when the chooser has preferred it for
 /// `kAutoConfirmFrames` frames in a row, and either its predicted error is lower by more than
 /// `kAutoSwitchGain` and at least `kAutoHoldSeconds` of scene time passed since its last switch
-/// (`kAutoHoldFrames` frames without a time), or the choices held are predicted over the budget
-/// and the new candidate is cheaper (a cheaper move cannot flip back before
-/// the hold, as a dearer one waits for it).
+/// (`kAutoHoldFrames` frames without a time), or the choices held are predicted over the budget,
+/// the new candidate is cheaper and either the hold passed or the light made its first choice
+/// less than the hold ago (its calibration settling): after its first second no light switches
+/// twice within the hold.
 inline constexpr int kAutoConfirmFrames = 3;
 /// Frames the module's defaults are held when auto lights appear, their timings calibrating the
 /// cost model, before the first choice (without timings, `kAutoWarmUpFramesUntimed` frames): the
@@ -202,6 +203,8 @@ private:
         int pendingFrames = 0;
         double switchedAt = 0.0;  ///< scene time of the last switch
         int framesSinceSwitch = 0;
+        double firstAt = 0.0;  ///< scene time of the first choice
+        int framesSinceFirst = 0;
         double passScale = 1.0;  ///< `AutoLightInput::passScale`, calibrated
         bool seen = false;
     };

@@ -274,11 +274,13 @@ void AutoTechniqueState::choose(std::span<const std::uint64_t> ids, std::span<co
         Held& h = held(ids[i]);
         h.seen = true;
         ++h.framesSinceSwitch;
+        ++h.framesSinceFirst;
         if (std::isfinite(time) && time < h.switchedAt) h.switchedAt = time;  // the scene's clock went back
+        if (std::isfinite(time) && time < h.firstAt) h.firstAt = time;
         if (h.current < 0 || best[i] == h.current) {
             if (h.current < 0) {
-                h.switchedAt = std::isfinite(time) ? time : 0.0;
-                h.framesSinceSwitch = 0;
+                h.switchedAt = h.firstAt = std::isfinite(time) ? time : 0.0;
+                h.framesSinceSwitch = h.framesSinceFirst = 0;
             }
             h.current = best[i];
             h.pending = -1;
@@ -290,11 +292,15 @@ void AutoTechniqueState::choose(std::span<const std::uint64_t> ids, std::span<co
                                (1.0 - kAutoSwitchGain) * autoPredictedRmse(inputs[i], at(h.current));
             const bool waited =
                 std::isfinite(time) ? time - h.switchedAt >= kAutoHoldSeconds : h.framesSinceSwitch >= kAutoHoldFrames;
-            // Over budget, a move to a cheaper candidate need not wait: it cannot flip back
-            // before the hold, since a dearer one must wait.
+            // Over budget, a move to a cheaper candidate is taken without a gain in error, and
+            // in the light's first second (the calibration settling on what its first choices
+            // really cost) without waiting for the hold; after that every move waits for it, so
+            // that a dearer move measured over the budget is not undone within the second.
+            const bool settling =
+                std::isfinite(time) ? time - h.firstAt < kAutoHoldSeconds : h.framesSinceFirst < kAutoHoldFrames;
             const bool cheaper =
                 overBudget && costs_.totalMs(inputs[i], at(best[i])) < costs_.totalMs(inputs[i], at(h.current));
-            if (h.pendingFrames >= kAutoConfirmFrames && ((gains && waited) || cheaper)) {
+            if (h.pendingFrames >= kAutoConfirmFrames && ((gains && waited) || (cheaper && (settling || waited)))) {
                 h.current = best[i];
                 h.pending = -1;
                 h.pendingFrames = 0;
