@@ -209,6 +209,9 @@ private:
         bool seen = false;
     };
     Held& held(std::uint64_t id);
+    /// The hysteresis' test for a move the chooser confirmed: `gains` its error gain is enough,
+    /// `cheaper` it is a cheaper move while over the budget.
+    static bool mayMove(const Held& h, bool gains, bool cheaper, double time);
     AutoCostModel costs_;
     std::vector<Held> held_;
     std::vector<AutoLightInput> scaled_;  ///< this frame's inputs with each light's passScale

@@ -237,6 +237,18 @@ std::vector<int> chooseAutoCandidates(std::span<const AutoLightInput> lights, co
     }
 }
 
+bool AutoTechniqueState::mayMove(const Held& h, bool gains, bool cheaper, double time) {
+    const bool waited =
+        std::isfinite(time) ? time - h.switchedAt >= kAutoHoldSeconds : h.framesSinceSwitch >= kAutoHoldFrames;
+    // Over budget, a move to a cheaper candidate is taken without a gain in error, and in the
+    // light's first second (the calibration settling on what its first choices really cost)
+    // without waiting for the hold; after that every move waits for it, so that a dearer move
+    // measured over the budget is not undone within the second.
+    const bool settling =
+        std::isfinite(time) ? time - h.firstAt < kAutoHoldSeconds : h.framesSinceFirst < kAutoHoldFrames;
+    return (gains && waited) || (cheaper && (settling || waited));
+}
+
 AutoTechniqueState::Held& AutoTechniqueState::held(std::uint64_t id) {
     for (Held& h : held_) {
         if (h.id == id) return h;
@@ -290,17 +302,9 @@ void AutoTechniqueState::choose(std::span<const std::uint64_t> ids, std::span<co
             h.pending = best[i];
             const bool gains = autoPredictedRmse(inputs[i], at(best[i])) <
                                (1.0 - kAutoSwitchGain) * autoPredictedRmse(inputs[i], at(h.current));
-            const bool waited =
-                std::isfinite(time) ? time - h.switchedAt >= kAutoHoldSeconds : h.framesSinceSwitch >= kAutoHoldFrames;
-            // Over budget, a move to a cheaper candidate is taken without a gain in error, and
-            // in the light's first second (the calibration settling on what its first choices
-            // really cost) without waiting for the hold; after that every move waits for it, so
-            // that a dearer move measured over the budget is not undone within the second.
-            const bool settling =
-                std::isfinite(time) ? time - h.firstAt < kAutoHoldSeconds : h.framesSinceFirst < kAutoHoldFrames;
             const bool cheaper =
                 overBudget && costs_.totalMs(inputs[i], at(best[i])) < costs_.totalMs(inputs[i], at(h.current));
-            if (h.pendingFrames >= kAutoConfirmFrames && ((gains && waited) || (cheaper && (settling || waited)))) {
+            if (h.pendingFrames >= kAutoConfirmFrames && mayMove(h, gains, cheaper, time)) {
                 h.current = best[i];
                 h.pending = -1;
                 h.pendingFrames = 0;
