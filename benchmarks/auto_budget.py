@@ -74,6 +74,11 @@ class Scene:
         return run
 
 
+def folder(key):
+    """The run folder of a run's label (results.json names it, for fit_auto_error.py)."""
+    return key.replace(" ", "_").replace("/", "-").replace("+", "p")
+
+
 def fixed_args(c):
     t, m, p, b = c
     return ["--technique", t, "--map-size", str(m), "--pcf-samples", str(p), "--blocker-samples", str(b)]
@@ -93,7 +98,7 @@ def measure(scene, rounds):
     runs = {k: [] for k in keys}
     for _ in range(rounds):
         for k, extra in keys.items():
-            runs[k].append(scene.render(k.replace(" ", "_").replace("/", "-").replace("+", "p"), extra))
+            runs[k].append(scene.render(folder(k), extra))
     res = {k: median_runs(v) for k, v in runs.items()}
     base = res["none"]["frame"]
     budget = res["pcss"]["frame"] - base
@@ -111,8 +116,8 @@ def save(scene, res, budget):
     fixed configuration's per-light RMSE, each auto light's inputs)."""
     inputs = {l["index"]: {"node": l["node"], "penumbraTexels1024": l["auto"]["penumbraTexels1024"],
                            "pixels": l["auto"]["pixels"]} for l in res["autoB"]["lights"] if "auto" in l}
-    runs = {k: {"frame": r["frame"], "cost": r["cost"], "rmse": r.get("rmse"), "lightRmse": r.get("lightRmse")}
-            for k, r in res.items()}
+    runs = {k: {"folder": folder(k), "frame": r["frame"], "cost": r["cost"], "rmse": r.get("rmse"),
+                "lightRmse": r.get("lightRmse")} for k, r in res.items()}
     fixed = {label(c): list(c) for c in CANDIDATES}
     with open(os.path.join(scene.dir, "results.json"), "w") as f:
         json.dump({"scene": scene.name, "budget": budget, "inputs": inputs, "runs": runs, "fixed": fixed}, f, indent=1)

@@ -188,9 +188,8 @@ def lookup_costs(work):
             continue
         r = json.load(open(path))
         pixels = sum(v["pixels"] for v in r["inputs"].values())
-        lit = lambda key: json.load(open(os.path.join(work, scene, key.replace(" ", "_").replace("/", "-")
-                                                      .replace("+", "p"), "stats.json")))["timingsMs"]["passes"][
-            "Main/Lit"]["median"]
+        lit = lambda key: json.load(open(os.path.join(work, scene, r["runs"][key]["folder"], "stats.json")))[
+            "timingsMs"]["passes"]["Main/Lit"]["median"]
         base = lit("none")
         for name, (technique, _size, pcf, blocker) in r["fixed"].items():
             growth.setdefault((technique, pcf, blocker), []).append((lit(name) - base) / pixels * 1e6)

@@ -170,17 +170,18 @@ nlohmann::json spreadJson(const std::vector<double>& values) {
 /// Technique auto's choice for light `ls` and what the planner predicted of it, beside what its
 /// shadow passes measured in frame `last`.
 nlohmann::json autoJson(const LightShadowStats& ls, const FrameStats& last) {
-    const double predicted = ls.predictedShadowPassMs + ls.predictedLookupMs;
+    const AutoLightChoice& a = ls.autoChoice;
+    const double predicted = a.predictedShadowPassMs + a.predictedLookupMs;
     return {{"technique", ls.technique},
             {"mapSize", ls.mapSize},
             {"pcfSamples", ls.pcfSamples},
             {"blockerSamples", ls.blockerSamples},
             {"predictedMs", predicted},
-            {"predictedShadowPassMs", ls.predictedShadowPassMs},
-            {"predictedLookupMs", ls.predictedLookupMs},
-            {"predictedRmse", ls.predictedRmse},
-            {"penumbraTexels1024", ls.penumbraTexels1024},
-            {"pixels", ls.pixels},
+            {"predictedShadowPassMs", a.predictedShadowPassMs},
+            {"predictedLookupMs", a.predictedLookupMs},
+            {"predictedRmse", a.predictedRmse},
+            {"penumbraTexels1024", a.input.penumbraTexels1024},
+            {"pixels", a.input.pixels},
             {"measuredShadowPassMs", last.passMs("Shadow/" + ls.name + "/")}};
 }
 

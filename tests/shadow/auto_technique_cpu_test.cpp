@@ -184,15 +184,23 @@ TEST(AutoTechnique, HysteresisSwitchesAtMostOnceASecondUnderFlippingInputs) {
     EXPECT_LE(at * dt, kAutoHoldSeconds + kAutoConfirmFrames * dt + 1e-9);
 }
 
+/// A light of a wide penumbra that `state` has chosen for without a budget (its least
+/// error, a dear candidate) at scene time 0; returns that choice's predicted ms.
+double startAtLeastError(AutoTechniqueState& state, AutoLightInput& in, std::uint64_t id,
+                         std::vector<AutoLightChoice>& out) {
+    in.pixels = 100000;
+    in.penumbraTexels1024 = 40;
+    out.assign(1, {});
+    state.choose({&id, 1}, {&in, 1}, 0.0, 0.0, out);
+    return state.costs().totalMs(in, autoCandidates()[out[0].candidate]);
+}
+
 TEST(AutoTechnique, OverBudgetMovesToACheaperCandidateWithoutWaitingForTheHold) {
     AutoTechniqueState state;
     AutoLightInput in;
-    in.pixels = 100000;
-    in.penumbraTexels1024 = 40;
     const std::uint64_t id = 3;
-    std::vector<AutoLightChoice> out(1);
-    state.choose({&id, 1}, {&in, 1}, 0.0, 0.0, out);  // no budget: the least error, a dear one
-    const double dear = state.costs().totalMs(in, autoCandidates()[out[0].candidate]);
+    std::vector<AutoLightChoice> out;
+    const double dear = startAtLeastError(state, in, id, out);
     const double budget = 0.25 * dear;
     const double dt = 1.0 / 60.0;
     int at = -1;
@@ -206,13 +214,10 @@ TEST(AutoTechnique, OverBudgetMovesToACheaperCandidateWithoutWaitingForTheHold) 
 TEST(AutoTechnique, AfterItsFirstSecondALightOverBudgetStillWaitsForTheHold) {
     AutoTechniqueState state;
     AutoLightInput in;
-    in.pixels = 100000;
-    in.penumbraTexels1024 = 40;
     const std::uint64_t id = 5;
-    std::vector<AutoLightChoice> out(1);
+    std::vector<AutoLightChoice> out;
     const double dt = 1.0 / 60.0;
-    state.choose({&id, 1}, {&in, 1}, 0.0, 0.0, out);  // no budget: the least error, a dear one
-    const double dear = state.costs().totalMs(in, autoCandidates()[out[0].candidate]);
+    const double dear = startAtLeastError(state, in, id, out);
     // Past the first second, a budget at half the dear choice: one move down, then a budget
     // far below that asks for another before the hold has passed since the first.
     std::vector<std::pair<double, int>> switches;

@@ -103,7 +103,8 @@ public:
     /// plane, the region test, PCSS's penumbra estimate. These three and the next two are
     /// llvmpipe's at 320x240: medians over five scenes of the lit pass's growth per pixel
     /// (`python3 benchmarks/fit_auto_error.py --auto-work DIR --lookup-costs` after
-    /// `bash benchmarks/run_auto_budget.sh`).
+    /// `bash benchmarks/run_auto_budget.sh`; one round, so within about 30 % from run to run:
+    /// the calibration replaces them within the first frames).
     std::array<double, 3> perPixelMs{3.0e-5, 3.4e-5, 7.5e-5};
     double perTapMs = 6.2e-6;          ///< one tap per pixel
     double perShadedPixelMs = 4.0e-5;  ///< one light's shading of one pixel, lookups aside
@@ -155,6 +156,10 @@ inline constexpr double kAutoCalibrationRate = 0.3;
 /// less than the hold ago (its calibration settling): after its first second no light switches
 /// twice within the hold.
 inline constexpr int kAutoConfirmFrames = 3;
+inline constexpr double kAutoSwitchGain = 0.1;
+inline constexpr double kAutoHoldSeconds = 1.0;
+inline constexpr int kAutoHoldFrames = 30;
+
 /// Frames the module's defaults are held when auto lights appear, their timings calibrating the
 /// cost model, before the first choice (without timings, `kAutoWarmUpFramesUntimed` frames): the
 /// first choice then knows what the defaults cost here, not what the built-in coefficients say.
@@ -163,9 +168,6 @@ inline constexpr int kAutoWarmUpFramesUntimed = 10;
 /// Share of a budget below the defaults' cost the chooser leaves unspent, so that choices
 /// predicted a little under the budget still fit it when measured.
 inline constexpr double kAutoBudgetHeadroom = 0.1;
-inline constexpr double kAutoSwitchGain = 0.1;
-inline constexpr double kAutoHoldSeconds = 1.0;
-inline constexpr int kAutoHoldFrames = 30;
 
 /// One auto light's choice and what it was predicted to cost.
 struct AutoLightChoice {

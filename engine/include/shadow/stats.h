@@ -1,6 +1,7 @@
 // Per-frame statistics: pass timings and the counters that show what work was skipped.
 #pragma once
 
+#include <shadow/auto_technique.h>
 #include <shadow/warnings.h>
 
 #include <string>
@@ -48,17 +49,14 @@ struct LightShadowStats {
     /// for the others), in bytes.
     long long mapBytes = 0;
     long long filterChainBytes = 0;
-    /// Technique auto (`Shadow::autoTechnique`): the planner chose `technique` and `mapSize` and
-    /// these taps; what it predicted of them (`AutoLightChoice`; all 0 on the light's first frame,
-    /// when nothing is known of it yet).
-    bool automatic = false;
+    /// The taps it ran with.
     int pcfSamples = 0;
     int blockerSamples = 0;
-    double predictedShadowPassMs = 0.0;
-    double predictedLookupMs = 0.0;
-    double predictedRmse = 0.0;
-    double penumbraTexels1024 = 0.0;  ///< `AutoLightInput::penumbraTexels1024` it was chosen from
-    double pixels = 0.0;              ///< `AutoLightInput::pixels` it was chosen from
+    /// Technique auto (`Shadow::autoTechnique`): the planner chose `technique`, `mapSize` and the
+    /// taps; `autoChoice` is what it predicted of them and the inputs it chose from (candidate
+    /// -1 and all 0 while nothing is known of the light yet).
+    bool automatic = false;
+    AutoLightChoice autoChoice;
 };
 
 /// Everything measured in one frame. Timings are milliseconds.

@@ -188,11 +188,7 @@ void describe(const ShadowLightPlan& plan, LightShadowStats& ls) {
     ls.automatic = plan.automatic;
     ls.pcfSamples = plan.settings.pcfSamples;
     ls.blockerSamples = plan.settings.blockerSamples;
-    ls.predictedShadowPassMs = plan.autoChoice.predictedShadowPassMs;
-    ls.predictedLookupMs = plan.autoChoice.predictedLookupMs;
-    ls.predictedRmse = plan.autoChoice.predictedRmse;
-    ls.penumbraTexels1024 = plan.autoChoice.input.penumbraTexels1024;
-    ls.pixels = plan.autoChoice.input.pixels;
+    ls.autoChoice = plan.autoChoice;
 }
 
 }  // namespace
