@@ -150,6 +150,10 @@ public:
     T* find(Entity e) { return contains(e) ? &components_[sparse_[e.index()]] : nullptr; }
     const T* find(Entity e) const { return contains(e) ? &components_[sparse_[e.index()]] : nullptr; }
 
+    /// The component of `e`, which the caller has checked `contains`.
+    T& get(Entity e) { return components_[sparse_[e.index()]]; }
+    const T& get(Entity e) const { return components_[sparse_[e.index()]]; }
+
     [[nodiscard]] Entity ownerAt(std::size_t dense) const { return owners_[dense]; }
     T& atDense(std::size_t dense) { return components_[dense]; }
 
@@ -212,7 +216,7 @@ private:
             if (i >= drive->size()) continue;
             const Entity e = ownerOf(driver, i, std::index_sequence<I...>{});
             if ((std::get<I>(typed_)->contains(e) && ...)) {
-                f(e, *std::get<I>(typed_)->find(e)...);
+                f(e, std::get<I>(typed_)->get(e)...);
             }
         }
     }
