@@ -8,3 +8,12 @@ function(shadow_warnings target)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
 endfunction()
+
+# shadow_light_optimisation(target): -O1 in an optimised build, for code whose own work is small
+# beside what it calls: the test programs (comparisons of images, brute-force references) and
+# the command-line front ends (parsing, writing files), whose rendering, tracing and metrics run
+# in the libraries, which keep the build type's optimisation. Compiles in about half to two
+# thirds of the time of -O3 (shadow_compare.cpp 17.7 s -> 11.7, shadow_render.cpp 14.0 -> 9.9).
+function(shadow_light_optimisation target)
+  target_compile_options(${target} PRIVATE $<$<CONFIG:Release,RelWithDebInfo,MinSizeRel>:-O1>)
+endfunction()

@@ -17,7 +17,7 @@
 namespace shadow::render {
 namespace {
 
-gpu::Texture makeTarget(const std::string& label, GLenum format, int w, int h, int layers = 0) {
+gpu::Texture makeStageTarget(const std::string& label, GLenum format, int w, int h, int layers = 0) {
     gpu::Texture t = gpu::makeTexture(label, layers > 0 ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D);
     if (layers > 0) {
         gl.TextureStorage3D(t.get(), 1, format, w, h, layers);
@@ -115,7 +115,7 @@ void ScreenStage::ensure(int width, int height, GLuint depthBuffer, bool materia
     depthBuffer_ = depthBuffer;
     gl.NamedFramebufferTexture(surfaces_.get(), GL_DEPTH_ATTACHMENT, depthBuffer, 0);
     if (materialTargets && !extra_) {
-        extra_ = makeTarget("Main/Surfaces/extra", GL_RGBA32UI, width, height);
+        extra_ = makeStageTarget("Main/Surfaces/extra", GL_RGBA32UI, width, height);
         gl.NamedFramebufferTexture(surfaces_.get(), GL_COLOR_ATTACHMENT2, extra_.get(), 0);
     }
 }
@@ -131,10 +131,10 @@ void ScreenStage::makeTargets(int width, int height) {
     // Packed (shaders/screen_gbuffer.glsl): each pass reads what it needs in one or two fetches.
     // The depth and the triangle's normal keep full floats: the shadow lookups compare depths on
     // the receiver's plane, which half floats would move by more than the automatic bias.
-    surface_ = makeTarget("Main/Surfaces/surface", GL_RGBA32UI, width, height);
-    material_ = makeTarget("Main/Surfaces/material", GL_RGBA32UI, width, height);
-    full_ = makeTarget("Main/ScreenVisibility/full", GL_RGBA8, width, height, 2);
-    refine_ = makeTarget("Main/ScreenVisibility/refine", GL_DEPTH_COMPONENT32F, width, height);
+    surface_ = makeStageTarget("Main/Surfaces/surface", GL_RGBA32UI, width, height);
+    material_ = makeStageTarget("Main/Surfaces/material", GL_RGBA32UI, width, height);
+    full_ = makeStageTarget("Main/ScreenVisibility/full", GL_RGBA8, width, height, 2);
+    refine_ = makeStageTarget("Main/ScreenVisibility/refine", GL_DEPTH_COMPONENT32F, width, height);
     extra_ = {};
     const GLuint fb = surfaces_.get();
     gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, surface_.get(), 0);
@@ -145,9 +145,9 @@ void ScreenStage::ensureStageTarget(int divisor) {
     const auto i = static_cast<std::size_t>(divisorIndex(divisor));
     if (stage_[i]) return;
     const int w = reduced(width_, divisor), h = reduced(height_, divisor);
-    stage_[i] = makeTarget("Main/ScreenVisibility/stage" + std::to_string(divisor), GL_RGBA8, w, h, 2);
-    stageDepth_[i] = makeTarget("Main/ScreenVisibility/stageDepth" + std::to_string(divisor), GL_R32F, w, h);
-    coverage_[i] = makeTarget("Main/ScreenVisibility/coverage" + std::to_string(divisor), GL_DEPTH_COMPONENT32F, w, h);
+    stage_[i] = makeStageTarget("Main/ScreenVisibility/stage" + std::to_string(divisor), GL_RGBA8, w, h, 2);
+    stageDepth_[i] = makeStageTarget("Main/ScreenVisibility/stageDepth" + std::to_string(divisor), GL_R32F, w, h);
+    coverage_[i] = makeStageTarget("Main/ScreenVisibility/coverage" + std::to_string(divisor), GL_DEPTH_COMPONENT32F, w, h);
     // The resolve gathers 2x2 samples: clamped at the border, never filtered.
     for (const GLuint t : {stage_[i].get(), stageDepth_[i].get()}) {
         gl.TextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
