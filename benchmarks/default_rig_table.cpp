@@ -14,9 +14,8 @@
 #include <shadow/image_io.h>
 
 #include "cli_common.h"
+#include "command_line.h"
 #include "render_output.h"
-
-#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -73,12 +72,13 @@ int main(int argc, char** argv) {
     std::vector<std::string> files;
     std::string size = "640x360", out;
     double time = 0.0;
-    CLI::App app{"The default rig on glTF files: the model's framing and the sun's shadow, as a Markdown table."};
-    app.add_option("files", files, ".gltf/.glb files")->required();
-    app.add_option("--size", size, "image size WxH");
-    app.add_option("--time", time, "animation time (s)");
-    app.add_option("--out", out, "write each picture to this folder as <stem>.png");
-    if (const auto exit = samples::parseCommandLine(app, argc, argv, "default_rig_table")) return *exit;
+    samples::CommandLine app{
+        "The default rig on glTF files: the model's framing and the sun's shadow, as a Markdown table."};
+    app.add("files", files, ".gltf/.glb files").required();
+    app.add("--size", size, "image size WxH");
+    app.add("--time", time, "animation time (s)");
+    app.add("--out", out, "write each picture to this folder as <stem>.png");
+    if (const auto exit = app.parse(argc, argv, "default_rig_table")) return *exit;
     const auto parsed = samples::parseSize(size);
     if (!parsed) return samples::failAs("default_rig_table", samples::kExitBadInput, parsed.error().message);
     auto context = createOsMesaContext();

@@ -16,8 +16,8 @@
 
 #include "render_output.h"
 #include "cli_common.h"
+#include "command_line.h"
 
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -484,20 +484,13 @@ int run(const Options& o) {
 int main(int argc, char** argv) {
     shadow::samples::keepFreedHeap();
     Options o;
-    CLI::App app{"Error against time for every shadow technique and setting (see the file header)."};
-    app.add_option("--scenes", o.scenes, "scenes to sweep")->delimiter(',');
-    app.add_option("--references", o.references, "folder with one shadow_reference output per scene name");
-    app.add_option("--out", o.out, "results folder");
-    app.add_option("--size", o.size, "image size WxH");
-    app.add_option("--frames", o.frames, "timed frames per configuration")->check(CLI::Range(1, 1000));
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::cerr << "error_vs_time: " << e.what() << "\n";
-        return 2;
-    }
+    samples::CommandLine app{"Error against time for every shadow technique and setting (see the file header)."};
+    app.add("--scenes", o.scenes, "scenes to sweep").delimiter(',');
+    app.add("--references", o.references, "folder with one shadow_reference output per scene name");
+    app.add("--out", o.out, "results folder");
+    app.add("--size", o.size, "image size WxH");
+    app.add("--frames", o.frames, "timed frames per configuration").range(1, 1000);
+    if (const std::optional<int> exit = app.parse(argc, argv, "error_vs_time")) return *exit;
     try {
         return run(o);
     } catch (const std::exception& e) {

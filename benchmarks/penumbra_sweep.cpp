@@ -16,8 +16,7 @@
 
 #include "render_output.h"
 #include "cli_common.h"
-
-#include <CLI/CLI.hpp>
+#include "command_line.h"
 
 #include <algorithm>
 #include <array>
@@ -150,18 +149,11 @@ int run(const Options& o) {
 int main(int argc, char** argv) {
     shadow::samples::keepFreedHeap();
     Options o;
-    CLI::App app{"Frame time against penumbra width (see the file header)."};
-    app.add_option("--size", o.size, "image size WxH");
-    app.add_option("--frames", o.frames, "timed frames per configuration")->check(CLI::Range(1, 1000));
-    app.add_option("--rounds", o.rounds, "interleaved rounds")->check(CLI::Range(1, 100));
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::cerr << "penumbra_sweep: " << e.what() << "\n";
-        return 2;
-    }
+    samples::CommandLine app{"Frame time against penumbra width (see the file header)."};
+    app.add("--size", o.size, "image size WxH");
+    app.add("--frames", o.frames, "timed frames per configuration").range(1, 1000);
+    app.add("--rounds", o.rounds, "interleaved rounds").range(1, 100);
+    if (const std::optional<int> exit = app.parse(argc, argv, "penumbra_sweep")) return *exit;
     try {
         return run(o);
     } catch (const std::exception& e) {

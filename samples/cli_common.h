@@ -1,17 +1,16 @@
 // What the sample CLIs share: the exit codes of the CLI contract (docs/output_contract.md), the
-// one-line failure message, parsing a command line into them, and the heap setting of the
-// programs that render. Header-only, so that shadow_compare, which links no sample library,
+// one-line failure message and the heap setting of the programs that render (their command
+// lines: command_line.h). Header-only, so that shadow_compare, which links no sample library,
 // shares it too.
 #pragma once
 
-#include <CLI/CLI.hpp>
+#include <cstdlib>  // defines __GLIBC__ with glibc
 
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
 
 #include <iostream>
-#include <optional>
 #include <string>
 
 namespace shadow::samples {
@@ -36,20 +35,6 @@ inline constexpr int kExitBadInput = 2;  ///< bad arguments, files or settings: 
 inline int failAs(const char* program, int code, const std::string& message) {
     std::cerr << program << ": " << message << "\n";
     return code;
-}
-
-/// Parses the command line into `app`'s options: nullopt when the program is to run, else the
-/// exit code to return (0 after --help; kExitBadInput after one message naming the problem).
-inline std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv, const char* program) {
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::cerr << program << ": " << e.what() << "\n(see " << program << " --help)\n";
-        return kExitBadInput;
-    }
-    return std::nullopt;
 }
 
 }  // namespace shadow::samples

@@ -23,7 +23,6 @@
 // one message, exit code 2.
 #include <shadow/metrics.h>
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -36,6 +35,7 @@
 #include <vector>
 
 #include "cli_common.h"
+#include "command_line.h"
 
 namespace {
 
@@ -280,16 +280,16 @@ int run(const Options& o) {
 
 int main(int argc, char** argv) {
     Options o;
-    CLI::App app{
+    samples::CommandLine app{
         "Compares the visibility_<i>.exr images of two render folders and prints the errors as "
         "JSON.\nA = ESTIMATE_DIR (images under test), B = TRUTH_DIR (reference); error = A - B."};
-    app.add_option("ESTIMATE_DIR", o.estimateDir, "A: folder with the estimated visibility_<i>.exr")->required();
-    app.add_option("TRUTH_DIR", o.truthDir, "B: folder with the true visibility_<i>.exr")->required();
-    app.add_option("--out", o.out, "folder for the error_<i>.png heat maps (default: A)");
-    app.add_option("--mask", o.mask,
-                   "EXR whose A (or Y) channel > 0.5 marks receiver pixels (default: B's "
-                   "position.exr, else A's, else every pixel); the word lit: each light over B's lit_<i>.exr");
-    if (const std::optional<int> exit = samples::parseCommandLine(app, argc, argv, "shadow_compare")) return *exit;
+    app.add("ESTIMATE_DIR", o.estimateDir, "A: folder with the estimated visibility_<i>.exr").required();
+    app.add("TRUTH_DIR", o.truthDir, "B: folder with the true visibility_<i>.exr").required();
+    app.add("--out", o.out, "folder for the error_<i>.png heat maps (default: A)");
+    app.add("--mask", o.mask,
+            "EXR whose A (or Y) channel > 0.5 marks receiver pixels (default: B's "
+            "position.exr, else A's, else every pixel); the word lit: each light over B's lit_<i>.exr");
+    if (const std::optional<int> exit = app.parse(argc, argv, "shadow_compare")) return *exit;
     try {
         return run(o);
     } catch (const std::exception& e) {

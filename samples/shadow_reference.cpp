@@ -20,7 +20,6 @@
 #include <shadow/scene.h>
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <chrono>
 #include <algorithm>
 #include <cmath>
@@ -32,6 +31,7 @@
 
 #include <shadow/reference.h>
 #include "cli_common.h"
+#include "command_line.h"
 #include "render_output.h"
 
 namespace {
@@ -236,24 +236,24 @@ int run(Options& o) {
 
 int main(int argc, char** argv) {
     Options o;
-    CLI::App app{"Ray-traces every light's visibility (the reference the shadow maps approximate)."};
-    app.add_option("scene", o.scene, "a sample scene's name, a .gltf/.glb file or builtin:NAME")->required();
-    app.add_option("--out", o.out, "output folder (created if missing)");
-    CLI::Option* sizeOption =
-        app.add_option("--size", o.size, "image size WxH (default 640x360, or that of --positions)");
-    app.add_option("--camera", o.camera, "index of the scene camera to use (default: the first)");
-    app.add_option("--time", o.time, "animation time (s)");
-    app.add_option("--animation", o.animation, samples::kAnimationHelp);
-    app.add_option("--samples", o.samples, "shadow rays per pixel and light, [1, 1048576]");
-    app.add_option("--positions", o.positions, "shade the world positions of an engine position.exr");
-    app.add_option("--threads", o.threads, "worker threads (0 = all cores)");
-    app.add_option("--seed", o.seed, "seed of the sample patterns");
-    app.add_flag_callback(
+    samples::CommandLine app{"Ray-traces every light's visibility (the reference the shadow maps approximate)."};
+    app.add("scene", o.scene, "a sample scene's name, a .gltf/.glb file or builtin:NAME").required();
+    app.add("--out", o.out, "output folder (created if missing)");
+    const samples::CommandLine::Option sizeOption =
+        app.add("--size", o.size, "image size WxH (default 640x360, or that of --positions)");
+    app.add("--camera", o.camera, "index of the scene camera to use (default: the first)");
+    app.add("--time", o.time, "animation time (s)");
+    app.add("--animation", o.animation, samples::kAnimationHelp);
+    app.add("--samples", o.samples, "shadow rays per pixel and light, [1, 1048576]");
+    app.add("--positions", o.positions, "shade the world positions of an engine position.exr");
+    app.add("--threads", o.threads, "worker threads (0 = all cores)");
+    app.add("--seed", o.seed, "seed of the sample patterns");
+    app.flag(
         "--no-default-lights", [&o] { o.rig.lights = false; }, samples::kNoDefaultLightsHelp);
-    app.add_flag_callback(
+    app.flag(
         "--no-ground", [&o] { o.rig.ground = false; }, samples::kNoGroundHelp);
-    if (const std::optional<int> exit = samples::parseCommandLine(app, argc, argv, "shadow_reference")) return *exit;
-    o.sizeGiven = sizeOption->count() > 0;
+    if (const std::optional<int> exit = app.parse(argc, argv, "shadow_reference")) return *exit;
+    o.sizeGiven = sizeOption.given();
     try {
         return run(o);
     } catch (const std::exception& e) {

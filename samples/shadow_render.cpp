@@ -20,9 +20,8 @@
 #include <shadow/scene.h>
 
 #include "cli_common.h"
+#include "command_line.h"
 #include "render_output.h"
-
-#include <CLI/CLI.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -285,54 +284,53 @@ int run(const Options& o) {
 int main(int argc, char** argv) {
     shadow::samples::keepFreedHeap();
     Options o;
-    CLI::App app{"Renders a scene with per-light shadows, headless, and writes images, AOVs and stats.json."};
-    app.add_option("scene", o.scene, "a sample scene's name, a .gltf/.glb file or builtin:NAME")->required();
-    app.add_option("--out", o.out, "output folder (created if missing)");
-    app.add_option("--size", o.size, "image size WxH");
-    app.add_option("--camera", o.camera, "index of the scene camera to use (default: the first)");
-    app.add_option("--time", o.time, "animation time of the first frame (s)");
-    app.add_option("--animation", o.animation, samples::kAnimationHelp);
-    app.add_option("--frames", o.frames, "frames to render");
-    app.add_option("--dt", o.dt, "time step between frames (s)");
-    app.add_option("--technique", o.technique,
-                   "override every shadowed light: " + techniqueNameList() + ", " + kAutoTechniqueName +
-                       " (chosen per light and frame within --shadow-budget-ms)");
-    app.add_option("--shadow-budget-ms", o.shadowBudgetMs,
-                   "technique auto: ms per frame the auto lights' shadow passes and lookups may take, >= 0 "
-                   "(default 0: no budget, least predicted error)");
-    app.add_option("--depth-mode", o.depthMode,
-                   "override every shadowed light's depth mode: nearest|midpoint|second (midpoint and second "
-                   "also set constant and slope bias to 0)");
-    app.add_option("--aov", o.aov, "outputs: color,visibility,position,depth");
-    app.add_option("--debug", o.debug, "debug view: shadowmap|cascade|blocker|penumbra|visibility|steps|closest");
-    app.add_option("--debug-light", o.debugLight, "scene light index the debug view shows");
-    app.add_option("--exposure", o.exposure, "exposure of color.png (default: log-average luminance to 0.18)");
-    app.add_flag("--frame-images", o.frameImages, "write every frame as frames/color_<k>.png");
-    app.add_flag("--no-cache", o.noCache, "redraw every shadow layer every frame");
-    app.add_option(
-        "--field-voxels", o.fieldVoxels,
-        "technique sdf: voxels along the edge of each mesh's distance field, [16, 256] (default 64: 64^3 voxels)");
-    app.add_option("--sdf-start-offset", o.sdfStartOffset,
-                   "technique sdf: override every light's sdfStartOffset (m), [0, 1]");
-    app.add_option("--max-filter-texels", o.maxFilterTexels,
-                   "override every light's maxFilterTexels (the widest filter, texels), [1, 256]");
-    app.add_option("--map-size", o.mapSize,
-                   "override every light's mapSize (texels per layer edge), [1, 16384]; an auto light's is chosen");
-    app.add_option("--pcf-samples", o.pcfSamples,
-                   "override every light's pcfSamples (most PCF taps), [1, 64]; an auto light's are chosen");
-    app.add_option("--blocker-samples", o.blockerSamples,
-                   "override every light's blockerSamples (PCSS search points), [1, 64]; an auto light's are chosen");
-    app.add_option("--screen-visibility", o.screenVisibility, samples::kScreenVisibilityHelp);
-    app.add_flag("--contact-shadows", o.contactShadows,
-                 "turn on every shadowed light's screen-space contact shadows (drawn by the screen-space "
-                 "visibility stage: with --screen-visibility off they are left out)");
-    app.add_flag_callback(
+    samples::CommandLine app{
+        "Renders a scene with per-light shadows, headless, and writes images, AOVs and stats.json."};
+    app.add("scene", o.scene, "a sample scene's name, a .gltf/.glb file or builtin:NAME").required();
+    app.add("--out", o.out, "output folder (created if missing)");
+    app.add("--size", o.size, "image size WxH");
+    app.add("--camera", o.camera, "index of the scene camera to use (default: the first)");
+    app.add("--time", o.time, "animation time of the first frame (s)");
+    app.add("--animation", o.animation, samples::kAnimationHelp);
+    app.add("--frames", o.frames, "frames to render");
+    app.add("--dt", o.dt, "time step between frames (s)");
+    app.add("--technique", o.technique,
+            "override every shadowed light: " + techniqueNameList() + ", " + kAutoTechniqueName +
+                " (chosen per light and frame within --shadow-budget-ms)");
+    app.add("--shadow-budget-ms", o.shadowBudgetMs,
+            "technique auto: ms per frame the auto lights' shadow passes and lookups may take, >= 0 "
+            "(default 0: no budget, least predicted error)");
+    app.add("--depth-mode", o.depthMode,
+            "override every shadowed light's depth mode: nearest|midpoint|second (midpoint and second "
+            "also set constant and slope bias to 0)");
+    app.add("--aov", o.aov, "outputs: color,visibility,position,depth");
+    app.add("--debug", o.debug, "debug view: shadowmap|cascade|blocker|penumbra|visibility|steps|closest");
+    app.add("--debug-light", o.debugLight, "scene light index the debug view shows");
+    app.add("--exposure", o.exposure, "exposure of color.png (default: log-average luminance to 0.18)");
+    app.flag("--frame-images", o.frameImages, "write every frame as frames/color_<k>.png");
+    app.flag("--no-cache", o.noCache, "redraw every shadow layer every frame");
+    app.add("--field-voxels", o.fieldVoxels,
+            "technique sdf: voxels along the edge of each mesh's distance field, [16, 256] (default 64: 64^3 voxels)");
+    app.add("--sdf-start-offset", o.sdfStartOffset, "technique sdf: override every light's sdfStartOffset (m), [0, 1]");
+    app.add("--max-filter-texels", o.maxFilterTexels,
+            "override every light's maxFilterTexels (the widest filter, texels), [1, 256]");
+    app.add("--map-size", o.mapSize,
+            "override every light's mapSize (texels per layer edge), [1, 16384]; an auto light's is chosen");
+    app.add("--pcf-samples", o.pcfSamples,
+            "override every light's pcfSamples (most PCF taps), [1, 64]; an auto light's are chosen");
+    app.add("--blocker-samples", o.blockerSamples,
+            "override every light's blockerSamples (PCSS search points), [1, 64]; an auto light's are chosen");
+    app.add("--screen-visibility", o.screenVisibility, samples::kScreenVisibilityHelp);
+    app.flag("--contact-shadows", o.contactShadows,
+             "turn on every shadowed light's screen-space contact shadows (drawn by the screen-space "
+             "visibility stage: with --screen-visibility off they are left out)");
+    app.flag(
         "--no-default-lights", [&o] { o.rig.lights = false; }, samples::kNoDefaultLightsHelp);
-    app.add_flag_callback(
+    app.flag(
         "--no-ground", [&o] { o.rig.ground = false; }, samples::kNoGroundHelp);
-    app.add_option("--shader-cache", o.shaderCache,
-                   "folder of linked program binaries, read and written (the driver's own cache aside)");
-    if (const std::optional<int> exit = samples::parseCommandLine(app, argc, argv, "shadow_render")) return *exit;
+    app.add("--shader-cache", o.shaderCache,
+            "folder of linked program binaries, read and written (the driver's own cache aside)");
+    if (const std::optional<int> exit = app.parse(argc, argv, "shadow_render")) return *exit;
     try {
         return run(o);
     } catch (const GlError& e) {

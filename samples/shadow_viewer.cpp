@@ -16,13 +16,13 @@
 // shadow_render's color.png) and DIR/color_ui.png (the window with the UI), then exits. Bad input:
 // one message, exit code 2, nothing written.
 #include "cli_common.h"
+#include "command_line.h"
 #include "render_output.h"
 #include "viewer_app.h"
 #include "viewer_script.h"
 #include "viewer_settings.h"
 #include "viewer_ui.h"
 
-#include <CLI/CLI.hpp>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
@@ -397,31 +397,32 @@ int run(const Options& o) {
 int main(int argc, char** argv) {
     shadow::samples::keepFreedHeap();
     Options o;
-    CLI::App app{"Shows a scene with per-light shadows in a window, with panels to tune them; or runs a script."};
-    app.add_option("scene", o.scene, "a .gltf/.glb file or builtin:NAME (default builtin:default)");
-    app.add_option("--size", o.size, "render size WxH (default: the window's, 1280x720 at first)");
-    app.add_option("--camera", o.camera, "index of the scene camera to start with (default: the first)");
-    app.add_option("--time", o.time, "animation time to start at (s)");
-    app.add_option("--animation", o.animation, samples::kAnimationHelp);
-    app.add_option("--technique", o.technique,
-                   "override every shadowed light: " + techniqueNameList() + ", " + kAutoTechniqueName +
-                       " (chosen per light and frame, no budget)");
-    app.add_option("--debug", o.debug, "debug view: none|cascade|blocker|penumbra|visibility|steps|closest");
-    app.add_option("--debug-light", o.debugLight, "scene light index the debug view shows");
-    app.add_option("--screen-visibility", o.screenVisibility, samples::kScreenVisibilityHelp);
-    app.add_flag_callback(
+    samples::CommandLine app{
+        "Shows a scene with per-light shadows in a window, with panels to tune them; or runs a script."};
+    app.add("scene", o.scene, "a .gltf/.glb file or builtin:NAME (default builtin:default)");
+    app.add("--size", o.size, "render size WxH (default: the window's, 1280x720 at first)");
+    app.add("--camera", o.camera, "index of the scene camera to start with (default: the first)");
+    app.add("--time", o.time, "animation time to start at (s)");
+    app.add("--animation", o.animation, samples::kAnimationHelp);
+    app.add("--technique", o.technique,
+            "override every shadowed light: " + techniqueNameList() + ", " + kAutoTechniqueName +
+                " (chosen per light and frame, no budget)");
+    app.add("--debug", o.debug, "debug view: none|cascade|blocker|penumbra|visibility|steps|closest");
+    app.add("--debug-light", o.debugLight, "scene light index the debug view shows");
+    app.add("--screen-visibility", o.screenVisibility, samples::kScreenVisibilityHelp);
+    app.flag(
         "--no-default-lights", [&o] { o.rig.lights = false; }, samples::kNoDefaultLightsHelp);
-    app.add_flag_callback(
+    app.flag(
         "--no-ground", [&o] { o.rig.ground = false; }, samples::kNoGroundHelp);
-    auto* script = app.add_option("--script", o.script, "run this script (docs/viewer.md) and exit");
-    auto* frames = app.add_option("--frames", o.frames, "render N frames from --time, then exit");
-    app.add_option("--dt", o.dt, "time step between the frames of --frames (s)");
-    auto* screenshot = app.add_option("--screenshot", o.screenshotDir,
-                                      "after the frames of --frames (default 1), write DIR/color.png (the scene) and "
-                                      "DIR/color_ui.png (the window), then exit");
-    script->excludes(frames);
-    script->excludes(screenshot);
-    if (const std::optional<int> exit = samples::parseCommandLine(app, argc, argv, "shadow_viewer")) return *exit;
+    auto script = app.add("--script", o.script, "run this script (docs/viewer.md) and exit");
+    auto frames = app.add("--frames", o.frames, "render N frames from --time, then exit");
+    app.add("--dt", o.dt, "time step between the frames of --frames (s)");
+    auto screenshot = app.add("--screenshot", o.screenshotDir,
+                              "after the frames of --frames (default 1), write DIR/color.png (the scene) and "
+                              "DIR/color_ui.png (the window), then exit");
+    script.excludes(frames);
+    script.excludes(screenshot);
+    if (const std::optional<int> exit = app.parse(argc, argv, "shadow_viewer")) return *exit;
     try {
         return run(o);
     } catch (const GlError& e) {

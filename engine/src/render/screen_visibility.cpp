@@ -147,7 +147,8 @@ void ScreenStage::ensureStageTarget(int divisor) {
     const int w = reduced(width_, divisor), h = reduced(height_, divisor);
     stage_[i] = makeStageTarget("Main/ScreenVisibility/stage" + std::to_string(divisor), GL_RGBA8, w, h, 2);
     stageDepth_[i] = makeStageTarget("Main/ScreenVisibility/stageDepth" + std::to_string(divisor), GL_R32F, w, h);
-    coverage_[i] = makeStageTarget("Main/ScreenVisibility/coverage" + std::to_string(divisor), GL_DEPTH_COMPONENT32F, w, h);
+    coverage_[i] =
+        makeStageTarget("Main/ScreenVisibility/coverage" + std::to_string(divisor), GL_DEPTH_COMPONENT32F, w, h);
     // The resolve gathers 2x2 samples: clamped at the border, never filtered.
     for (const GLuint t : {stage_[i].get(), stageDepth_[i].get()}) {
         gl.TextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
