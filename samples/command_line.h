@@ -24,11 +24,11 @@ public:
     /// One declared option: a handle into its command line, valid while that lives.
     class Option {
     public:
-        Option& required();                   ///< parsing fails without it
+        Option& required();                     ///< parsing fails without it
         Option& excludes(const Option& other);  ///< parsing fails when both are given
-        Option& range(int low, int high);      ///< a number within [low, high]
-        Option& delimiter(char separator);     ///< a list given as one separated word too
-        [[nodiscard]] bool given() const;      ///< it was on the command line
+        Option& range(int low, int high);       ///< a number within [low, high]
+        Option& delimiter(char separator);      ///< a list given as one separated word too
+        [[nodiscard]] bool given() const;       ///< it was on the command line
 
     private:
         friend class CommandLine;
