@@ -52,7 +52,9 @@ def light_rmse(p, technique, size, taps, w1024):
     elif technique == "pcf":
         pen = EDGE * w / (w + pcf_blur)
     else:
-        pen = min(EDGE, math.hypot(pcss_taps / taps, pcss_texel / max(w, 1e-3)))
+        # Never more than hard's at the same map: with no penumbra to estimate, PCSS filters over
+        # its narrowest kernel, the edge hard shadows have.
+        pen = min(EDGE, math.hypot(pcss_taps / taps, pcss_texel / max(w, 1e-3)), EDGE * w / (w + hard_blur))
     share = min(1.0, share_k * w1024 / 1024.0 + share_floor)
     return math.sqrt(share * pen * pen + other * other)
 

@@ -362,3 +362,57 @@ TEST(AutoTechnique, PlannerResolvesAutoLightsToConcreteSettingsWithinTheBudget) 
 
 }  // namespace
 }  // namespace shadow
+
+namespace shadow {
+namespace {
+
+TEST(AutoTechnique, TheFrameAfterAProgramBuildTeachesTheCostModelNothing) {
+    // The first frame after the programs were built runs slower than the steady state; its
+    // timing is not learnt, so the defaults are held for the settle frame and the warm-up's
+    // timed frames, and a settle frame 50 times slower than the rest leaves the prediction at
+    // the steady timings.
+    test::TestScene t;
+    Light spot = test::lightOf(LightType::Spot);
+    spot.radius = 0.2f;
+    Shadow s;
+    s.autoTechnique = true;
+    addLight(t.scene, "spot", spot, s, {0, 6, 0}, {0, -1, 0});
+    addMeshInstance(t.scene.world, "box under the spot", makeBoxMesh(glm::vec3(0.4f)), test::at({0, 2, 0}));
+    CameraView view = t.update();
+    view.pixelWidth = 320;
+    view.pixelHeight = 240;
+    const double steadyMs = 2.0;
+    const auto run = [&](double settleMs) {
+        ShadowPlanner planner;
+        planner.setCaching(false);  // the layer drawn, and timed, every frame
+        std::vector<int> candidates;
+        double predicted = 0.0;
+        for (int f = 0; f < 2 + kAutoSettleFrames + kAutoWarmUpFrames; ++f) {
+            planner.setSceneTime(f / 30.0);
+            const ShadowFrame& frame = planner.prepare(t.scene.world, view, t.scene.lights);
+            candidates.push_back(frame.lights.at(0).autoChoice.candidate);
+            predicted = frame.lights[0].autoChoice.predictedShadowPassMs + frame.lights[0].autoChoice.predictedLookupMs;
+            FrameStats stats;
+            stats.programsCompiled = f == 0 ? 3 : 0;
+            const bool settle = f >= 1 && f <= kAutoSettleFrames;
+            stats.passes.push_back({"Shadow/spot/layer0", settle ? settleMs : steadyMs});
+            stats.passes.push_back({"Main/Lit", settle ? settleMs : steadyMs});
+            planner.observe(stats);
+        }
+        return std::make_pair(candidates, predicted);
+    };
+    const auto [held, steadyPrediction] = run(steadyMs);
+    // Frame 0 builds, frames 1..kAutoSettleFrames settle, then kAutoWarmUpFrames are learnt:
+    // the first choice is made on the frame after them.
+    const std::size_t first = 1 + kAutoSettleFrames + kAutoWarmUpFrames;
+    for (std::size_t f = 0; f < first; ++f) EXPECT_EQ(held[f], -1) << "frame " << f << ": the defaults";
+    EXPECT_GE(held[first], 0) << "the first choice";
+    ASSERT_GT(steadyPrediction, 0.0);
+    const auto [slowHeld, slowPrediction] = run(50.0 * steadyMs);
+    EXPECT_GE(slowHeld[first], 0);
+    EXPECT_NEAR(slowPrediction, steadyPrediction, 1e-6 * steadyPrediction)
+        << "the settle frame's timing was learnt";
+}
+
+}  // namespace
+}  // namespace shadow

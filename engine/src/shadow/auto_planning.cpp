@@ -169,8 +169,17 @@ void AutoPlanning::learn(const World& world, const CameraView& camera, const Sha
 }
 
 void AutoPlanning::observe(const FrameStats& stats) {
-    // A frame that built programs timed their compile too: nothing to learn of the passes.
-    if (!anyAuto_ || stats.programsCompiled > 0) return;
+    if (!anyAuto_) return;
+    // A frame that built programs timed their compile too, and the frames right after it are
+    // slower than the steady state (kAutoSettleFrames): nothing to learn of the passes.
+    if (stats.programsCompiled > 0) {
+        settling_ = kAutoSettleFrames;
+        return;
+    }
+    if (settling_ > 0) {
+        --settling_;
+        return;
+    }
     ++learnedFrames_;
     state_.calibrate(drawnNames_, drawnIds_, drawnPredictedMs_, litPredictedMs_, stats);
 }

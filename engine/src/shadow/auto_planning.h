@@ -43,6 +43,9 @@ private:
     /// second `kAutoWarmUpFramesUntimed`, for a host that never calls observe).
     int learnedFrames_ = 0;
     int plannedFrames_ = 0;
+    /// Timed frames still to pass unlearnt after a frame that built programs
+    /// (`kAutoSettleFrames`).
+    int settling_ = 0;
     bool anyAuto_ = false;  ///< the frame `learn` saw had an auto light
     // Predictions of the frame learn saw, for observe.
     /// Names of the lights whose passes were predicted, into the prepared frame's plans (valid
