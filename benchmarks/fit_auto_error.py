@@ -218,7 +218,7 @@ def main():
     ap.add_argument("--auto-work", help="benchmarks/auto_budget.py's work folder: fit its per-light rows")
     ap.add_argument("--fit", default="plates,bunny,default", help="with --auto-work: the scenes fitted")
     ap.add_argument("--constants", type=lambda t: [float(v) for v in t.split(",")],
-                    help="with --auto-work: evaluate these seven constants (in the order printed) instead of fitting")
+                    help="with --auto-work: evaluate these seven constants, or eight with the edge band (in the order printed), instead of fitting")
     ap.add_argument("--bin", default="build/bin")
     ap.add_argument("--csv", default="benchmarks/results/error_vs_time.csv")
     ap.add_argument("--size", default="320x240")
