@@ -311,22 +311,30 @@ TEST(AutoTechnique, EachAutoLightLearnsItsOwnShadowPassScale) {
     }
 }
 
-TEST(AutoTechnique, PlannerResolvesAutoLightsToConcreteSettingsWithinTheBudget) {
-    test::TestScene t;
+/// An auto spot named "spot" over a box, and the camera's view at 320x240.
+CameraView autoSpotOverABox(test::TestScene& t, Entity* light = nullptr) {
     Light spot = test::lightOf(LightType::Spot);
     spot.radius = 0.2f;
     Shadow s;
     s.autoTechnique = true;
     s.technique = ShadowTechnique::Pcss;
-    const Entity light = addLight(t.scene, "spot", spot, s, {0, 6, 0}, {0, -1, 0});
+    const Entity e = addLight(t.scene, "spot", spot, s, {0, 6, 0}, {0, -1, 0});
+    if (light != nullptr) *light = e;
     addMeshInstance(t.scene.world, "box under the spot", makeBoxMesh(glm::vec3(0.4f)), test::at({0, 2, 0}));
+    CameraView view = t.update();
+    view.pixelWidth = 320;
+    view.pixelHeight = 240;
+    return view;
+}
+
+TEST(AutoTechnique, PlannerResolvesAutoLightsToConcreteSettingsWithinTheBudget) {
+    test::TestScene t;
+    Entity light;
+    const CameraView view = autoSpotOverABox(t, &light);
     ShadowPlanner planner;
     ShadowLimits limits = planner.limits();
     limits.shadowBudgetMs = 1e-6;  // below every candidate: the cheapest
     planner.setLimits(limits);
-    CameraView view = t.update();
-    view.pixelWidth = 320;
-    view.pixelHeight = 240;
     planner.setSceneTime(0.0);
     const ShadowFrame& first = planner.prepare(t.scene.world, view, t.scene.lights);
     ASSERT_EQ(first.lights.size(), 1u);
@@ -360,27 +368,13 @@ TEST(AutoTechnique, PlannerResolvesAutoLightsToConcreteSettingsWithinTheBudget) 
     EXPECT_EQ(clamped, 1);
 }
 
-}  // namespace
-}  // namespace shadow
-
-namespace shadow {
-namespace {
-
 TEST(AutoTechnique, TheFrameAfterAProgramBuildTeachesTheCostModelNothing) {
     // The first frame after the programs were built runs slower than the steady state; its
     // timing is not learnt, so the defaults are held for the settle frame and the warm-up's
     // timed frames, and a settle frame 50 times slower than the rest leaves the prediction at
     // the steady timings.
     test::TestScene t;
-    Light spot = test::lightOf(LightType::Spot);
-    spot.radius = 0.2f;
-    Shadow s;
-    s.autoTechnique = true;
-    addLight(t.scene, "spot", spot, s, {0, 6, 0}, {0, -1, 0});
-    addMeshInstance(t.scene.world, "box under the spot", makeBoxMesh(glm::vec3(0.4f)), test::at({0, 2, 0}));
-    CameraView view = t.update();
-    view.pixelWidth = 320;
-    view.pixelHeight = 240;
+    const CameraView view = autoSpotOverABox(t);
     const double steadyMs = 2.0;
     const auto run = [&](double settleMs) {
         ShadowPlanner planner;
@@ -410,8 +404,7 @@ TEST(AutoTechnique, TheFrameAfterAProgramBuildTeachesTheCostModelNothing) {
     ASSERT_GT(steadyPrediction, 0.0);
     const auto [slowHeld, slowPrediction] = run(50.0 * steadyMs);
     EXPECT_GE(slowHeld[first], 0);
-    EXPECT_NEAR(slowPrediction, steadyPrediction, 1e-6 * steadyPrediction)
-        << "the settle frame's timing was learnt";
+    EXPECT_NEAR(slowPrediction, steadyPrediction, 1e-6 * steadyPrediction) << "the settle frame's timing was learnt";
 }
 
 }  // namespace
