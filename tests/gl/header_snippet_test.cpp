@@ -14,6 +14,7 @@
 #include "gl/gl_api.h"
 #include "gl/gl_test_support.h"
 #include "render/render_test_support.h"
+#include "test_support.h"
 
 namespace shadow {
 namespace {
@@ -59,8 +60,7 @@ std::string backquotedCall(const std::string& path, const std::string& opening) 
 
 TEST(HeaderSnippets, TheShaderContractsExampleCompilesAsWritten) {
     test::glContext();
-    const std::vector<std::string> example =
-        headerExample(std::string(SHADOW_SOURCE_DIR) + "/engine/include/shadow/shadow_shaders.h");
+    const std::vector<std::string> example = headerExample(test::sourcePath("engine/include/shadow/shadow_shaders.h"));
     ASSERT_GE(example.size(), 2u) << "the header's example was not found";
     std::ostringstream body;
     for (const std::string& line : example) body << "    " << line << "\n";
@@ -82,8 +82,8 @@ void main() {
 
 TEST(HeaderSnippets, TheSpecialisedCallOfTheShaderInputsCompiles) {
     test::glContext();
-    const std::string call = backquotedCall(std::string(SHADOW_SOURCE_DIR) + "/engine/include/shadow/shadow_shaders.h",
-                                            "sg_shadowVisibility(");
+    const std::string call =
+        backquotedCall(test::sourcePath("engine/include/shadow/shadow_shaders.h"), "sg_shadowVisibility(");
     ASSERT_FALSE(call.empty()) << "ShadowShaderInputs' specialised call was not found";
     // Its names as a game's shader would have them: the surface, and the slot's configuration as
     // compile-time constants.

@@ -19,6 +19,7 @@
 #include "gl/shader_sources.h"
 #include "gl/gl_test_support.h"
 #include "render/render_test_support.h"
+#include "test_support.h"
 
 namespace shadow {
 namespace {
@@ -38,7 +39,7 @@ std::vector<ShadowTechnique> allTechniques() {
 
 // The checked-in copy is what the table writes; SHADOW_WRITE_TECHNIQUES_GLSL=1 rewrites it.
 TEST(TechniqueGlsl, InstalledFileIsTheOneTheTableWrites) {
-    const std::string path = std::string(SHADOW_SOURCE_DIR) + "/shaders/shadow_techniques.glsl";
+    const std::string path = test::sourcePath("shaders/shadow_techniques.glsl");
     const std::string expected = gpu::installedTechniquesGlsl();
     if (const char* write = std::getenv("SHADOW_WRITE_TECHNIQUES_GLSL");
         write != nullptr && std::string(write) == "1") {
@@ -91,7 +92,7 @@ TEST(TechniqueGlsl, SharedCodeNamesNoTechnique) {
 
 // The README's table lists every technique of this build with the table's own description.
 TEST(TechniqueGlsl, ReadmeTableIsTheTechniqueTable) {
-    const std::string readme = readFile(std::string(SHADOW_SOURCE_DIR) + "/README.md");
+    const std::string readme = readFile(test::sourcePath("README.md"));
     const std::size_t begin = readme.find("<!-- techniques:begin -->");
     const std::size_t end = readme.find("<!-- techniques:end -->");
     ASSERT_NE(begin, std::string::npos);

@@ -42,6 +42,7 @@
 
 #include "gl/gl_api.h"
 #include "render/render_test_support.h"
+#include "test_support.h"
 
 namespace shadow {
 namespace {
@@ -339,7 +340,7 @@ layout(location = 0) out vec4 outColor;
 /// The README's game shader, as written there (between its game-shader markers); empty when
 /// the markers are missing.
 std::string readmesGameShader() {
-    std::ifstream readme(std::string(SHADOW_SOURCE_DIR) + "/README.md");
+    std::ifstream readme(test::sourcePath("README.md"));
     std::stringstream text;
     text << readme.rdbuf();
     const std::string all = text.str();

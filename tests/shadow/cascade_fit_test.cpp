@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "render/render_test_support.h"
+#include "test_support.h"
 
 namespace shadow {
 namespace {
@@ -127,7 +128,7 @@ TEST(CascadeFit, WideSunEveryCascadeColoursReceiverPixels) {
 // The sample scene of a sun over 300 m (samples/scenes/sunfield.gltf, four cascades), a scene
 // the fit was not tuned on.
 TEST(CascadeFit, SunfieldSampleEveryCascadeColoursReceiverPixels) {
-    Result<Scene> loaded = loadGltf(std::string(SHADOW_SOURCE_DIR) + "/samples/scenes/sunfield.gltf");
+    Result<Scene> loaded = loadGltf(test::sourcePath("samples/scenes/sunfield.gltf"));
     ASSERT_TRUE(loaded) << loaded.error().message;
     Scene scene = std::move(loaded).value();
     expectEveryCascadeShows(scene, "sunfield", 4);
