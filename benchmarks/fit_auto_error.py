@@ -2,6 +2,7 @@
 """Fits technique auto's error model (engine/src/shadow/auto_technique.cpp) and states the fit's error.
 
     python3 benchmarks/fit_auto_error.py --auto-work DIR [--fit plates,bunny,default]
+    python3 benchmarks/fit_auto_error.py --auto-work DIR --settle
     python3 benchmarks/fit_auto_error.py [--bin build/bin] [--csv benchmarks/results/error_vs_time.csv]
 
 With --auto-work: the per-light rows of benchmarks/auto_budget.py's runs (DIR/<scene>/results.json:
@@ -211,8 +212,30 @@ def lookup_costs(work):
           f"perShadedPixelMs = {med[('shading',)] * 1e-6:.3g}")
 
 
+def settle_frames(work):
+    """How much slower than the steady state the frames after the programs' build run, over
+    every fixed configuration of auto_budget.py's runs (what kAutoSettleFrames rests on)."""
+    import glob
+    columns = [[] for _ in range(8)]
+    for path in sorted(glob.glob(os.path.join(work, "*", "*", "stats.json"))):
+        if os.path.basename(os.path.dirname(path)).startswith("auto"):
+            continue
+        frames = json.load(open(path))["perFrame"]
+        if len(frames) < 20:
+            continue
+        steady = statistics.median(f["mainMs"] + f["shadowMs"] for f in frames[10:])
+        for k in range(1, 9):
+            columns[k - 1].append((frames[k]["mainMs"] + frames[k]["shadowMs"]) / steady)
+    for k, ratios in enumerate(columns, 1):
+        if ratios:
+            print(f"frame {k} after the build: median {statistics.median(ratios):.3f}, mean "
+                  f"{statistics.mean(ratios):.3f} of the steady frame ({len(ratios)} runs)")
+
+
 def main():
     ap = argparse.ArgumentParser()
+    ap.add_argument("--settle", action="store_true",
+                    help="with --auto-work: the frames after the programs' build against the steady frame")
     ap.add_argument("--lookup-costs", action="store_true",
                     help="with --auto-work: print the lit pass's cost defaults measured by its fixed runs")
     ap.add_argument("--auto-work", help="benchmarks/auto_budget.py's work folder: fit its per-light rows")
@@ -223,6 +246,9 @@ def main():
     ap.add_argument("--csv", default="benchmarks/results/error_vs_time.csv")
     ap.add_argument("--size", default="320x240")
     a = ap.parse_args()
+    if a.auto_work and a.settle:
+        settle_frames(a.auto_work)
+        return
     if a.auto_work and a.lookup_costs:
         lookup_costs(a.auto_work)
         return

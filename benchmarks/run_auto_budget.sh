@@ -24,7 +24,7 @@ python3 benchmarks/auto_budget.py "${scenes[@]}" --work "$work" --rounds "${ROUN
   --markdown "$report"
 if [ "${WRITE_BENCHMARKS:-1}" != 0 ]; then
   {
-    echo "Produced by \`bash benchmarks/run_auto_budget.sh\` ($(($(date +%s) - start)) s, load average" \
+    echo "Produced by \`${ROUNDS:+ROUNDS=$ROUNDS }bash benchmarks/run_auto_budget.sh\` ($(($(date +%s) - start)) s, load average" \
       "$(cut -d' ' -f1 /proc/loadavg) at the end). The checks are those of docs/auto_technique.md" \
       "\"Measured\": at B, auto's RMSE against PCSS's; at B/2, auto's cost against B/2 and its RMSE" \
       "against the best fixed configuration (one for every light) whose cost is within B/2; time =" \

@@ -167,9 +167,10 @@ inline constexpr int kAutoWarmUpFrames = 3;
 inline constexpr int kAutoWarmUpFramesUntimed = 10;
 /// Timed frames after a frame that built programs whose timings the cost model does not learn
 /// from: over the 70 fixed-configuration runs of benchmarks/run_auto_budget.sh, the first frame
-/// after the compile took 1.25x the steady frame (median; mean 1.37x), the next ones 1.04-1.05x.
-/// Learnt, it made the warm-up price the defaults 1.5-2x too high on a quiet machine, and a
-/// budget equal to their measured cost bought hard shadows.
+/// after the compile took 1.17-1.25x the steady frame (median of two runs' runs; mean up to
+/// 1.37x), the next ones 1.03-1.07x (fit_auto_error.py --settle). Learnt, it made the warm-up
+/// price the defaults 1.5-2x too high on a quiet machine, and a budget equal to their measured
+/// cost bought hard shadows.
 inline constexpr int kAutoSettleFrames = 1;
 /// Share of a budget below the defaults' cost the chooser leaves unspent, so that choices
 /// predicted a little under the budget still fit it when measured.
