@@ -19,6 +19,7 @@ Prints the constants for auto_technique.cpp and the per-row and overall fit erro
 """
 import argparse
 import csv
+import glob
 import json
 import math
 import os
@@ -48,14 +49,15 @@ def light_rmse(p, technique, size, taps, w1024):
     # penumbra narrower than that (a point-sized light's: 0) still leaves that much edge to err.
     w1024 = w1024 + band * 1024.0 / size
     w = w1024 * size / 1024.0
+    hard = EDGE * w / (w + hard_blur)
     if technique == "hard":
-        pen = EDGE * w / (w + hard_blur)
+        pen = hard
     elif technique == "pcf":
         pen = EDGE * w / (w + pcf_blur)
     else:
         # Never more than hard's at the same map: with no penumbra to estimate, PCSS filters over
         # its narrowest kernel, the edge hard shadows have.
-        pen = min(EDGE, math.hypot(pcss_taps / taps, pcss_texel / max(w, 1e-3)), EDGE * w / (w + hard_blur))
+        pen = min(EDGE, math.hypot(pcss_taps / taps, pcss_texel / max(w, 1e-3)), hard)
     share = min(1.0, share_k * w1024 / 1024.0 + share_floor)
     return math.sqrt(share * pen * pen + other * other)
 
@@ -215,7 +217,6 @@ def lookup_costs(work):
 def settle_frames(work):
     """How much slower than the steady state the frames after the programs' build run, over
     every fixed configuration of auto_budget.py's runs (what kAutoSettleFrames rests on)."""
-    import glob
     columns = [[] for _ in range(8)]
     for path in sorted(glob.glob(os.path.join(work, "*", "*", "stats.json"))):
         if os.path.basename(os.path.dirname(path)).startswith("auto"):

@@ -45,6 +45,15 @@ Result<Entity> chooseCamera(Scene& scene, std::optional<int> index, double time)
     return addDefaultCamera(scene);
 }
 
+void addRigFlags(CommandLine& app, DefaultRigChoice& rig) {
+    app.flag(
+        "--no-default-lights", [&rig] { rig.lights = false; },
+        "show a file without lights as it is (ambient light only) instead of under the default rig (a shadowed sun "
+        "placed from the model's bounds, a ground under the model, a camera framing both when the file has none)");
+    app.flag(
+        "--no-ground", [&rig] { rig.ground = false; }, "the default rig without its shadow-catcher ground");
+}
+
 Result<Entity> chooseCameraAndRig(Scene& scene, std::optional<int> index, double time, const DefaultRigChoice& rig,
                                   double imageAspect) {
     if (!rig.lights || !scene.lights.empty()) return chooseCamera(scene, index, time);

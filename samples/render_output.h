@@ -2,6 +2,8 @@
 // stats.json. Shared by shadow_render and the benchmarks.
 #pragma once
 
+#include "command_line.h"
+
 #include <shadow/renderer.h>
 #include <shadow/result.h>
 #include <shadow/scene.h>
@@ -40,11 +42,9 @@ struct DefaultRigChoice {
     bool lights = true;  ///< add the rig to a scene without lights
     bool ground = true;  ///< with its shadow-catcher ground
 };
-/// The help of `--no-default-lights` and `--no-ground`, the flags that clear `DefaultRigChoice`.
-inline constexpr const char* kNoDefaultLightsHelp =
-    "show a file without lights as it is (ambient light only) instead of under the default rig (a shadowed sun "
-    "placed from the model's bounds, a ground under the model, a camera framing both when the file has none)";
-inline constexpr const char* kNoGroundHelp = "the default rig without its shadow-catcher ground";
+/// Declares `--no-default-lights` and `--no-ground` on `app`, each clearing its field of `rig`
+/// (`rig` must outlive the parse).
+void addRigFlags(CommandLine& app, DefaultRigChoice& rig);
 
 /// `chooseCamera`, except for a scene without lights under `rig.lights`: the default rig
 /// (`addDefaultRig`) is added, seen through the camera of `--camera N` (an error when out of

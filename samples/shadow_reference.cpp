@@ -248,10 +248,7 @@ int main(int argc, char** argv) {
     app.add("--positions", o.positions, "shade the world positions of an engine position.exr");
     app.add("--threads", o.threads, "worker threads (0 = all cores)");
     app.add("--seed", o.seed, "seed of the sample patterns");
-    app.flag(
-        "--no-default-lights", [&o] { o.rig.lights = false; }, samples::kNoDefaultLightsHelp);
-    app.flag(
-        "--no-ground", [&o] { o.rig.ground = false; }, samples::kNoGroundHelp);
+    samples::addRigFlags(app, o.rig);
     if (const std::optional<int> exit = app.parse(argc, argv, "shadow_reference")) return *exit;
     o.sizeGiven = sizeOption.given();
     try {

@@ -324,10 +324,7 @@ int main(int argc, char** argv) {
     app.flag("--contact-shadows", o.contactShadows,
              "turn on every shadowed light's screen-space contact shadows (drawn by the screen-space "
              "visibility stage: with --screen-visibility off they are left out)");
-    app.flag(
-        "--no-default-lights", [&o] { o.rig.lights = false; }, samples::kNoDefaultLightsHelp);
-    app.flag(
-        "--no-ground", [&o] { o.rig.ground = false; }, samples::kNoGroundHelp);
+    samples::addRigFlags(app, o.rig);
     app.add("--shader-cache", o.shaderCache,
             "folder of linked program binaries, read and written (the driver's own cache aside)");
     if (const std::optional<int> exit = app.parse(argc, argv, "shadow_render")) return *exit;

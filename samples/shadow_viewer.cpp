@@ -410,10 +410,7 @@ int main(int argc, char** argv) {
     app.add("--debug", o.debug, "debug view: none|cascade|blocker|penumbra|visibility|steps|closest");
     app.add("--debug-light", o.debugLight, "scene light index the debug view shows");
     app.add("--screen-visibility", o.screenVisibility, samples::kScreenVisibilityHelp);
-    app.flag(
-        "--no-default-lights", [&o] { o.rig.lights = false; }, samples::kNoDefaultLightsHelp);
-    app.flag(
-        "--no-ground", [&o] { o.rig.ground = false; }, samples::kNoGroundHelp);
+    samples::addRigFlags(app, o.rig);
     auto script = app.add("--script", o.script, "run this script (docs/viewer.md) and exit");
     auto frames = app.add("--frames", o.frames, "render N frames from --time, then exit");
     app.add("--dt", o.dt, "time step between the frames of --frames (s)");

@@ -164,16 +164,17 @@ double autoPredictedRmse(const AutoLightInput& in, const AutoCandidate& c) {
     // the map's resolution.
     const double w1024 = std::max(in.penumbraTexels1024, 0.0) + kEdgeBand * 1024.0 / std::max(c.mapSize, 1);
     const double w = w1024 * c.mapSize / 1024.0;
+    const double hard = kEdge * w / (w + kHardBlur);
     double penumbra = 0.0;
     switch (c.technique) {
-        case ShadowTechnique::Hard: penumbra = kEdge * w / (w + kHardBlur); break;
+        case ShadowTechnique::Hard: penumbra = hard; break;
         case ShadowTechnique::Pcf: penumbra = kEdge * w / (w + kPcfBlur); break;
         default: {
             // Never more than hard's at the same map: with no penumbra to estimate, PCSS filters
             // over its narrowest kernel, the edge hard shadows have.
             const double taps = kPcssTaps / std::max(c.blockerSamples, 1);
             const double texel = kPcssTexel / std::max(w, 1e-3);
-            penumbra = std::min({kEdge, std::sqrt(taps * taps + texel * texel), kEdge * w / (w + kHardBlur)});
+            penumbra = std::min({kEdge, std::sqrt(taps * taps + texel * texel), hard});
         }
     }
     const double share = std::min(1.0, kPenumbraShare * w1024 / 1024.0 + kPenumbraShareFloor);
