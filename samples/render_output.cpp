@@ -215,6 +215,7 @@ nlohmann::json lightsJson(const Scene& scene, const FrameStats& last) {
             const LightShadowStats& ls = last.lights[i];
             j["shadow"] = {{"mapSize", ls.mapSize},
                            {"requestedMapSize", ls.requestedMapSize},
+                           {"pcfRadiusMetres", ls.pcfRadiusMetres},
                            {"pcfSamples", ls.pcfSamples},
                            {"blockerSamples", ls.blockerSamples},
                            {"layers", ls.layers},

@@ -261,10 +261,11 @@ sg_Receiver sg_makeReceiver(sg_GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 
     return r;
 }
 
-// The fixed filter radius (m) of PCF and VSM at the receiver: the light's `pcfRadius` in metres,
-// or, when automatic, in texel footprints (one of the two is 0), at most `maxFilterTexels` texels.
+// The fixed filter radius (m) of PCF and VSM at the receiver: the light's `pcfRadius` in metres
+// (set, or when automatic the penumbra of its emitter), at least `pcfRadiusTexels` texel
+// footprints (0 when set), at most `maxFilterTexels` texels.
 float sg_pcfRadius(sg_GpuLight L, sg_Receiver r) {
-    return min(L.pcfRadius + L.pcfRadiusTexels * r.texelMetres, L.maxFilterTexels * r.texelMetres);
+    return min(max(L.pcfRadius, L.pcfRadiusTexels * r.texelMetres), L.maxFilterTexels * r.texelMetres);
 }
 
 // The tap at lateral offset `offset` (m) from the receiver, on its tangent plane.

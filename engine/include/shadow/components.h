@@ -320,6 +320,12 @@ struct Light {
     float angularRadius = 0.0f;
 };
 
+/// The size of a light's emitter in its own unit: `Light::angularRadius` (rad) for a directional
+/// light, `Light::radius` (m) for the others.
+[[nodiscard]] inline float emitterSize(const Light& light) {
+    return light.type == LightType::Directional ? light.angularRadius : light.radius;
+}
+
 /// A light type's name as stats.json spells it ("directional", "spot", "point").
 [[nodiscard]] const char* lightTypeName(LightType t);
 
@@ -377,7 +383,7 @@ inline constexpr float kAutomatic = -1.0f;
 /// `Shadow::constantBias` when automatic: this fraction of the shadow texel's footprint (m) at
 /// the receiver (0.5 mm where a texel covers 1 cm).
 inline constexpr float kAutoConstantBiasTexels = 0.05f;
-/// `Shadow::pcfRadius` when automatic: this many shadow texels at the receiver.
+/// `Shadow::pcfRadius` when automatic: at least this many shadow texels at the receiver.
 inline constexpr float kAutoPcfRadiusTexels = 1.0f;
 /// `Shadow::sdfStartOffset` when automatic: this fraction of the median field voxel.
 inline constexpr float kAutoSdfStartOffsetVoxels = 0.125f;
@@ -423,10 +429,14 @@ struct Shadow {
     /// umbra next to a caster (on the bunny, half a texel took the sun's hard-shadow umbra leak
     /// from 2.6 to 6.0 %). The seeds' textbook PCSS adds one texel to it.
     float normalOffset = 0.0f;
-    /// PCF filter radius (m) at the receiver, [0, 10], or `kAutomatic` (the default):
-    /// `kAutoPcfRadiusTexels` shadow texels at the receiver, which holds at any scale of the scene
-    /// (a radius in metres blurs a centimetre-sized asset away and leaves a city block hard). VSM
-    /// filters the same radius.
+    /// PCF filter radius (m) at the receiver, [0, 10], or `kAutomatic` (the default): the
+    /// penumbra the light's emitter casts from a typical caster of its layers (each caster's
+    /// narrowest, across the gap to the receiver behind it; the median over the casters: a
+    /// floating caster's width, none for one resting on its receiver), at least
+    /// `kAutoPcfRadiusTexels` shadow texels at the receiver. Both hold at any scale of the scene
+    /// (a radius in metres blurs a centimetre-sized asset away and leaves a city block hard). A
+    /// light with `autoTechnique` keeps the texel. VSM filters the same radius. The radius taken
+    /// is `LightShadowStats::pcfRadiusMetres`.
     float pcfRadius = kAutomatic;
     /// VSM and VSSM light-bleeding reduction: Chebyshev bounds below this fraction read as shadow
     /// and the rest is stretched back to [0, 1], [0, 0.95]. Default 0. Higher removes more of the

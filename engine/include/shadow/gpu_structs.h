@@ -23,7 +23,7 @@ SG_INT layerCount;      // layers of this light's array: cascades, 1, or 6
 SG_FLOAT constantBias;  // m, plus constantBiasTexels texel footprints
 SG_FLOAT slopeBias;     // texels
 SG_FLOAT normalOffset;  // texels
-SG_FLOAT pcfRadius;     // m at the receiver, plus pcfRadiusTexels texel footprints
+SG_FLOAT pcfRadius;     // m at the receiver, at least pcfRadiusTexels texel footprints
 SG_INT pcfSamples;
 SG_INT blockerSamples;
 SG_FLOAT maxFilterTexels;
@@ -40,7 +40,7 @@ SG_FLOAT sdfMinStep;           // sdf: shortest step (m)
 SG_INT sdfClusterFirst;        // sdf: its first cluster of SG_SDF_CLUSTER field casters
 SG_INT regionTest;             // PCF, PCSS: 1 when the lookups read the min/max pyramid, 0 when it was not built
 SG_FLOAT constantBiasTexels;   // texel footprints added to constantBias (Shadow::constantBias automatic)
-SG_FLOAT pcfRadiusTexels;      // texel footprints added to pcfRadius (Shadow::pcfRadius automatic)
+SG_FLOAT pcfRadiusTexels;      // least radius in texel footprints (Shadow::pcfRadius automatic)
 SG_INT sdfMapCasters;          // sdf: 1 when some caster of its layers casts through the map (no field)
 SG_FLOAT reserved3;
 SG_END_STRUCT

@@ -113,6 +113,12 @@ struct ShadowLightPlan {
     /// An auto light's choice and its predictions; candidate -1 on its first frame (nothing is
     /// known of it yet: it takes PCSS at 1024 texels and 16 + 16 taps).
     AutoLightChoice autoChoice;
+    /// PCF and VSM: the filter radius (m at the receiver) the lookups take, at least
+    /// `kAutoPcfRadiusTexels` texels: `settings.pcfRadius`, or when that is automatic the penumbra
+    /// of the light's emitter from a typical caster of its layers (README, "Defaults that
+    /// follow the scene"), 0 for an auto light (its PCF is the one-texel filter)
+    /// and for the other techniques.
+    double pcfRadiusMetres = 0.0;
     /// Index of `fieldCasters[0]` among every light's field casters, in scene-light order:
     /// where the shader finds its instances (`ShadowMaps::fieldInstances`).
     int fieldFirst = 0;

@@ -49,6 +49,9 @@ struct LightShadowStats {
     /// for the others), in bytes.
     long long mapBytes = 0;
     long long filterChainBytes = 0;
+    /// PCF, VSM: the filter radius (m at the receiver) its lookups took, at least one texel's
+    /// footprint (`ShadowLightPlan::pcfRadiusMetres`; 0: the texel's alone).
+    double pcfRadiusMetres = 0.0;
     /// The taps it ran with.
     int pcfSamples = 0;
     int blockerSamples = 0;

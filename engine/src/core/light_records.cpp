@@ -26,12 +26,13 @@ void packShadow(const ShadowLightPlan& plan, const glm::dvec3& wsCamera, int fir
     const Shadow& s = plan.settings;
     g.technique = static_cast<int>(plan.technique());
     g.layerCount = static_cast<int>(plan.layers.size());
-    // Automatic lengths in texel footprints at the receiver: the shader adds both parts.
+    // Automatic lengths in texel footprints at the receiver: the shader adds the bias's parts and
+    // takes the larger of the radius's (sg_pcfRadius).
     g.constantBias = isAutomatic(s.constantBias) ? 0.0f : s.constantBias;
     g.constantBiasTexels = isAutomatic(s.constantBias) ? kAutoConstantBiasTexels : 0.0f;
     g.slopeBias = s.slopeBias;
     g.normalOffset = s.normalOffset;
-    g.pcfRadius = isAutomatic(s.pcfRadius) ? 0.0f : s.pcfRadius;
+    g.pcfRadius = static_cast<float>(plan.pcfRadiusMetres);
     g.pcfRadiusTexels = isAutomatic(s.pcfRadius) ? kAutoPcfRadiusTexels : 0.0f;
     g.pcfSamples = s.pcfSamples;
     g.blockerSamples = s.blockerSamples;
@@ -65,7 +66,7 @@ GpuLight packSlot(const ShadowLightPlan& plan, const glm::dvec3& wsCamera, int s
     g.type = lightTypeId(light.type);
     g.range = light.range;
     g.radiance = light.color * light.intensity;
-    g.emitterSize = light.type == LightType::Directional ? light.angularRadius : light.radius;
+    g.emitterSize = emitterSize(light);
     g.cosOuter = std::cos(light.outerConeAngle);
     g.cosInner = std::cos(light.innerConeAngle);
     g.technique = SG_TECH_NONE;

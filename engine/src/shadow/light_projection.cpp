@@ -640,7 +640,8 @@ void fitChainLevels(const LayerInputs& light, ShadowTechnique technique, FilterR
         const double perAxial = 2.0 / (layer.clipFromLight[0][0] * light.mapSize);  // texel per axial m
         const double widest =
             perAxial * (layer.orthographic ? 1.0 : std::min(farthest, static_cast<double>(layer.depthScale)));
-        const double texels = std::min(radius.metres / (widest * kTexelMargin) + radius.texels, maxFilterTexels);
+        const double texels =
+            std::min(std::max(radius.metres / (widest * kTexelMargin), radius.texels), maxFilterTexels);
         while (layer.chainFirstLevel + 1 < levels && std::exp2(layer.chainFirstLevel + 1) <= texels)
             ++layer.chainFirstLevel;
         // The frustum's corner: tangents 1 / P00 and 1 / P11 from the axis.
@@ -649,7 +650,7 @@ void fitChainLevels(const LayerInputs& light, ShadowTechnique technique, FilterR
                                : 1.0 / cornerSecant(1.0 / layer.clipFromLight[0][0], 1.0 / layer.clipFromLight[1][1]);
         const double narrowest = perAxial * (layer.orthographic ? 1.0 : nearest * cornerCos) / kTexelMargin;
         if (!(narrowest > 0.0)) continue;  // a receiver may stand at the light: every level
-        const double most = radius.metres / narrowest + radius.texels * kTexelMargin;
+        const double most = std::max(radius.metres / narrowest, radius.texels * kTexelMargin);
         const int floorLevel = most > 1.0 ? static_cast<int>(std::floor(std::log2(most))) : 0;
         layer.chainLastLevel = std::clamp(floorLevel + 1, layer.chainFirstLevel, levels - 1);
     }

@@ -83,8 +83,8 @@ struct LayerInputs {
 void planLayers(const LayerInputs& light, const CameraView& camera, const SceneGeometry& geometry, bool follow,
                 std::vector<ShadowLayerPlan>& layers);
 
-/// A fixed filter radius at the receiver: `metres` plus `texels` of the receiver's texel footprint
-/// (`Shadow::pcfRadius`, automatic or not: one of the two is 0).
+/// A fixed filter radius at the receiver: `metres`, at least `texels` of the receiver's texel
+/// footprint (`ShadowLightPlan::pcfRadiusMetres`; `texels` is 0 for a radius set in metres).
 struct FilterRadius {
     double metres = 0.0;
     double texels = 0.0;

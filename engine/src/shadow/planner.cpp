@@ -7,6 +7,7 @@
 #include "core/screen_bounds.h"
 #include "shadow/auto_planning.h"
 #include "shadow/frustum.h"
+#include "shadow/emitter_radius.h"
 #include "shadow/light_projection.h"
 #include "shadow/map_memory.h"
 
@@ -462,7 +463,8 @@ struct ShadowPlanner::Scratch {
     std::vector<PlannedFrom> planned;      ///< this frame's, by scene light
     std::vector<PlannedFrom> lastPlanned;  ///< the last frame's
     std::optional<CameraView> lastCamera;
-    std::vector<double> fieldVoxels;  ///< resolveFieldLengths' scratch
+    std::vector<double> fieldVoxels;      ///< resolveFieldLengths' scratch
+    std::vector<double> casterPenumbrae;  ///< emitterFilterRadius' scratch
 };
 
 ShadowPlanner::ShadowPlanner() : scratch_(std::make_unique<Scratch>()), auto_(std::make_unique<AutoPlanning>()) {}
@@ -539,9 +541,16 @@ void ShadowPlanner::planMap(const World& world, const CameraView& camera, Shadow
         resolveFieldLengths(world, frame_.distanceFieldVoxels, plan, scratch_->fieldVoxels);
     plan.regionTest = pyramidPays(plan, camera, frame_.wsGeometry, limits_.pyramidTexelsPerPixel);
     const ShadowTechnique technique = plan.technique();
-    const bool texelRadius = isAutomatic(plan.settings.pcfRadius);
-    fitChainLevels(planned.inputs, technique,
-                   {texelRadius ? 0.0 : plan.settings.pcfRadius, texelRadius ? kAutoPcfRadiusTexels : 0.0},
+    const bool automaticRadius = isAutomatic(plan.settings.pcfRadius);
+    // An auto light's PCF is the one-texel filter its error model was fitted on (its soft
+    // choice is PCSS); PCF and VSM lights set by hand follow their emitter.
+    const bool fixedWidth = technique == ShadowTechnique::Pcf || technique == ShadowTechnique::Vsm;
+    plan.pcfRadiusMetres = !automaticRadius ? plan.settings.pcfRadius
+                           : fixedWidth && !plan.automatic
+                               ? emitterFilterRadius(planned.inputs, emitterSize(plan.light), scratch_->geometry,
+                                                     plan.layers, scratch_->casterPenumbrae)
+                               : 0.0;
+    fitChainLevels(planned.inputs, technique, {plan.pcfRadiusMetres, automaticRadius ? kAutoPcfRadiusTexels : 0.0},
                    plan.settings.maxFilterTexels, chainLevels(technique, plan.mapSize, plan.settings.maxFilterTexels),
                    scratch_->geometry, plan.layers);
 }

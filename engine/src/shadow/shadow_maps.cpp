@@ -186,6 +186,7 @@ void describe(const ShadowLightPlan& plan, LightShadowStats& ls) {
     ls.affectsView = plan.affectsView;
     ls.regionTest = plan.regionTest;
     ls.automatic = plan.automatic;
+    ls.pcfRadiusMetres = plan.pcfRadiusMetres;
     ls.pcfSamples = plan.settings.pcfSamples;
     ls.blockerSamples = plan.settings.blockerSamples;
     ls.autoChoice = plan.autoChoice;
