@@ -1,5 +1,5 @@
 // Moment soft shadows (msm-soft): VSSM's blocker search and penumbra (shadow_soft_moments.glsl)
-// on the four-moment mip chain, one trilinear fetch for a narrow search and four for a wide one and the penumbra,
+// on the four-moment mip chain, one trilinear fetch for the search and four for the penumbra,
 // and the Hamburger 4MSM bound (shadow_hamburger.glsl) over the penumbra. The chain is made from
 // level 1 up: a fetch finer than level 1 takes its level-0 half from a gather of the depth map
 // (sg_chainMoments), as VSM's does, so no pass writes RGBA32F moments at the map's resolution.
@@ -14,11 +14,8 @@ sg_ReceiverPolicy sg_msmSoftPolicy() { return sg_planePolicy(); }
 // (half-width h = r sqrt(3) / 2) as four trilinear fetches at the centres of its quadrants, each
 // half a level finer than a quadrant's width (log2(h) - 1/2), instead of one fetch at log2(r),
 // whose box-and-tent has tails half again as long as the disk: the level and the positions of
-// least penumbra error against the ray-traced truth. The blocker search reads the same four over
-// regions of 16 texels of radius or more, one fetch below.
-// The search radius (texels) from which MSM-soft's blocker search reads four quadrant fetches.
-const float sg_kMsmSoftQuadrantSearchTexels = 16.0;
-
+// least penumbra error against the ray-traced truth. The blocker search keeps one fetch: it only
+// estimates the blockers' mean depth, and four there measured more error (docs/tuning.md).
 vec4 sg_quadrantMoments(int slot, sg_GpuLight L, sg_Receiver r, sg_Tap center, float radius) {
     float h = 0.8660254 * radius / max(r.texelMetres, 1e-30);
     float level = max(log2(max(h, 1e-30)) - 0.5, 0.0);
@@ -42,14 +39,7 @@ float sg_msmSoftVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
     float dBlocker = 0.0;
     if (size > 0.0) {
         float searchRadius = sg_softMomentsSearchRadius(L, r, dReceiver, size, maxRadius);
-        // A search region 32 texels wide or wider reads four quadrant fetches as the penumbra
-        // does: one fetch of a level that coarse is off the region's centre by up to half a
-        // level texel, 8 map texels or more, and reads a square of blockers beside the disk
-        // (builtin:plates-boxes' top box was missed altogether: penumbra RMSE 0.315 -> 0.049;
-        // narrower regions measured no better, the bunny's bulb worse, docs/tuning.md).
-        vec2 m = searchRadius > sg_kMsmSoftQuadrantSearchTexels * r.texelMetres
-                     ? sg_quadrantMoments(slot, L, r, center, searchRadius).xy
-                     : sg_chainMoments(slot, L, center.uv, center.layer, sg_regionLevel(r, searchRadius)).xy;
+        vec2 m = sg_chainMoments(slot, L, center.uv, center.layer, sg_regionLevel(r, searchRadius)).xy;
         penumbra = sg_softMomentsPenumbra(L, r, m, reference, sg_varianceFloor(r, m), searchRadius, dReceiver, size,
                                           maxRadius, dBlocker);
         if (penumbra < 0.0) return 1.0;  // no blocker: lit

@@ -4,7 +4,7 @@
 // (`msm-soft`, Hamburger 4MSM). The blocker search and the filter both read region moments whose
 // cost does not depend on the region's width: VSSM from the light's summed-area table
 // (shadow_summed_area.glsl, 16 fetches of exact integer sums), MSM-soft from its mip chain of
-// four moments (shadow_moments.frag.glsl: one trilinear fetch for a narrow search, four for a wide one and the
+// four moments (shadow_moments.frag.glsl: one trilinear fetch for the search, four for the
 // penumbra, sg_quadrantMoments).
 //   1. Moments of the blocker search region, the same cone as PCSS's.
 //   2. Chebyshev's bound gives the fraction p of the region at least as far as the receiver
