@@ -216,6 +216,7 @@ nlohmann::json lightsJson(const Scene& scene, const FrameStats& last) {
             j["shadow"] = {{"mapSize", ls.mapSize},
                            {"requestedMapSize", ls.requestedMapSize},
                            {"pcfRadiusMetres", ls.pcfRadiusMetres},
+                           {"maxFilterTexels", ls.maxFilterTexels},
                            {"pcfSamples", ls.pcfSamples},
                            {"blockerSamples", ls.blockerSamples},
                            {"layers", ls.layers},

@@ -1,6 +1,7 @@
-// The automatic filter radius of PCF and VSM (engine/src/shadow/emitter_radius.h): the penumbra
-// of the light's emitter from each caster's corner nearest its receiver, the median over the
-// casters, against similar triangles worked out by hand. No GL.
+// The automatic filter widths (engine/src/shadow/emitter_radius.h): PCF and VSM's radius, the
+// penumbra of the light's emitter from each caster's corner nearest its receiver, the median over
+// the casters, and the widest penumbra in texels, against similar triangles worked out by hand.
+// No GL.
 #include <gtest/gtest.h>
 #include <shadow/components.h>
 
@@ -108,6 +109,44 @@ TEST(EmitterRadius, TheMedianOverCastersAndTheSameAtEveryScale) {
     const double small = unit.radius(spotAt({0.2, 4.0, 0.1}), 0.4);
     EXPECT_GT(small, 0.0);
     EXPECT_NEAR(large.radius(spotAt({20.0, 400.0, 10.0}), 40.0), 100.0 * small, 1e-9 * 100.0 * small);
+}
+
+/// `layers[0]` of `c` made an orthographic layer `width` m across (a cascade), or the
+/// perspective layer of a light at `apex` looking straight down with P[0][0] = `p00`.
+void orthographic(Casters& c, double width) {
+    c.layers[0].orthographic = true;
+    c.layers[0].clipFromLight = glm::dmat4(1.0);
+    c.layers[0].clipFromLight[0][0] = 2.0 / width;
+}
+void perspectiveDown(Casters& c, const glm::dvec3& apex, double p00) {
+    c.layers[0].orthographic = false;
+    c.layers[0].clipFromLight = glm::dmat4(1.0);
+    c.layers[0].clipFromLight[0][0] = p00;
+    // Light space: -z along the light's axis (down), the light at the origin.
+    c.layers[0].lightFromWorld = glm::dmat4(glm::dvec4(1, 0, 0, 0), glm::dvec4(0, 0, 1, 0), glm::dvec4(0, 1, 0, 0),
+                                            glm::dvec4(-apex.x, -apex.z, -apex.y, 1));
+}
+
+TEST(EmitterRadius, TheWidestPenumbraInTexelsOfTheLayerWhereItFalls) {
+    // A sun straight down over a plate 2 m up and a box resting on the ground 1 m tall, a cascade
+    // of 1000 texels over 10 m (1 cm texels): the plate's penumbra tan(0.01) * 2 m = 2.0 texels
+    // is the widest (the box's top casts tan(0.01) * 1 m).
+    Casters sun({plate(-3.0, 2.0, 0.0, 0.5), DAabb{{1.0, 0.0, 0.0}, {2.0, 1.0, 1.0}}});
+    orthographic(sun, 10.0);
+    LayerInputs light = sunFrom({0.0, -1.0, 0.0});
+    light.mapSize = 1000;
+    EXPECT_NEAR(widestPenumbraTexels(light, 0.01, sun.geometry, sun.layers), 2.0 * std::tan(0.01) / 0.01, 1e-9);
+    // A spot 4 m up (P00 = 1: 2 mm of texel per metre of axial distance, 8 mm at the ground) and a
+    // tiny plate 1 m up on its axis: R / 3 = 0.1 m = 12.5 texels of the ground's.
+    Casters spot({plate(0.0, 1.0, 0.0, 1e-6)});
+    perspectiveDown(spot, {0.0, 4.0, 0.0}, 1.0);
+    LayerInputs s = spotAt({0.0, 4.0, 0.0});
+    s.mapSize = 1000;
+    EXPECT_NEAR(widestPenumbraTexels(s, 0.3, spot.geometry, spot.layers), 0.1 / 0.008, 1e-4);
+    // Without an emitter or a receiver behind the casters: 0.
+    EXPECT_EQ(widestPenumbraTexels(s, 0.0, spot.geometry, spot.layers), 0.0);
+    spot.geometry.receivers = DAabb{};
+    EXPECT_EQ(widestPenumbraTexels(s, 0.3, spot.geometry, spot.layers), 0.0);
 }
 
 }  // namespace

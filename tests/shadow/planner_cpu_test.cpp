@@ -475,7 +475,7 @@ TEST(Planner, AVsmCascadeStartsItsChainAtTheLevelOfItsFilterRadius) {
         int widest = 0;
         for (const ShadowLayerPlan& layer : plan.layers) {
             const double texel = 2.0 / (layer.clipFromLight[0][0] * plan.mapSize);
-            const double texels = std::min(0.2 / (1.05 * texel), static_cast<double>(plan.settings.maxFilterTexels));
+            const double texels = std::min(0.2 / (1.05 * texel), static_cast<double>(plan.maxFilterTexels));
             int expected = technique == ShadowTechnique::MsmSoft ? 1 : 0;
             if (technique == ShadowTechnique::Vsm)
                 expected = std::clamp(static_cast<int>(std::floor(std::log2(texels))), 1, levels - 1);

@@ -111,7 +111,8 @@ TEST(Stability, HugeEmitterKeepsTheFilterRadiusClamped) {
             FrameRunner runner;
             const test::RenderedFrame vis = render(runner, scene);
             const test::RenderedFrame penumbra = render(runner, scene, DebugView::Penumbra);
-            // The clamp: maxFilterTexels texels of the receiver's footprint, 2 / (P[0][0] mapSize)
+            // The clamp: the light's maxFilterTexels (automatic: the widest it can cast, here 256) texels
+            // of the receiver's footprint, 2 / (P[0][0] mapSize)
             // per metre of axial distance.
             const ShadowLayerPlan& layer = runner.shadows().frame().lights.at(0).layers.at(0);
             const double perMetre = 2.0 / (layer.clipFromLight[0][0] * kMapSize);
@@ -124,7 +125,7 @@ TEST(Stability, HugeEmitterKeepsTheFilterRadiusClamped) {
                     const glm::dvec3 p = test::positionAt(im, x, y);
                     const double axial = -(layer.lightFromWorld * glm::dvec4(p, 1.0)).z;
                     if (axial <= 0.0) continue;
-                    const double clamp = Shadow{}.maxFilterTexels * perMetre * axial;
+                    const double clamp = runner.shadows().frame().lights.at(0).maxFilterTexels * perMetre * axial;
                     worstRatio = std::max(worstRatio, im.color.at(x, y, 0) / clamp);
                     ++receivers;
                 }

@@ -396,6 +396,16 @@ inline constexpr float kAutoSdfMinStepVoxels = 0.25f;
 inline constexpr float kAutoContactLengthTexels = 4.0f;
 inline constexpr float kAutoContactLengthPixels = 32.0f;
 
+/// `Shadow::maxFilterTexels` when automatic: the widest penumbra times this (the casters' boxes
+/// bound their shapes, the penumbra estimates of the filters err), at least
+/// `kAutoLeastFilterTexels` (the fixed default before: narrower saves no tap, and VSSM's
+/// narrow regions darkened an open plane under a sun at 0.5 degrees), at most
+/// `kMostFilterTexels`.
+inline constexpr float kAutoFilterTexelsMargin = 1.25f;
+inline constexpr float kAutoLeastFilterTexels = 32.0f;
+/// The widest `Shadow::maxFilterTexels`.
+inline constexpr float kMostFilterTexels = 256.0f;
+
 /// Whether a length setting asks for the automatic value (`kAutomatic`).
 [[nodiscard]] inline bool isAutomatic(float setting) { return setting == kAutomatic; }
 
@@ -456,8 +466,15 @@ struct Shadow {
     /// Points of the PCSS blocker search disk, [1, 64]; it reads them in pairs, each pair as one
     /// gather of 2x2 depth texels (half the fetches, twice the depths). Default 16.
     int blockerSamples = 16;
-    /// Largest PCSS filter radius in texels (the clamp of the penumbra), [1, 256]. Default 32.
-    float maxFilterTexels = 32.0f;
+    /// Largest filter radius in texels at the receiver (the clamp of PCSS's penumbra and of every
+    /// filter's region), [1, 256], or `kAutomatic` (the default): the widest penumbra the light's
+    /// emitter can cast from the casters of its layers onto the receivers behind them (every
+    /// corner of every caster's box, in the texels of the layer where its ray meets the
+    /// receiver), times `kAutoFilterTexelsMargin`, within [`kAutoLeastFilterTexels`, 256]. So a
+    /// wide emitter's penumbra is not cut, and a narrow one's estimate cannot run wider than the
+    /// scene allows. The clamp taken is `LightShadowStats::maxFilterTexels`; the filter chains
+    /// are sized for 256.
+    float maxFilterTexels = kAutomatic;
     /// Directional: number of cascades, [1, 4]. Default 1.
     int cascades = 1;
     /// Directional: blend between uniform (0) and logarithmic (1) cascade splits, [0, 1].

@@ -119,6 +119,10 @@ struct ShadowLightPlan {
     /// follow the scene"), 0 for an auto light (its PCF is the one-texel filter)
     /// and for the other techniques.
     double pcfRadiusMetres = 0.0;
+    /// The widest filter radius (texels at the receiver) its lookups take:
+    /// `settings.maxFilterTexels`, or when that is automatic the widest penumbra of its casters
+    /// (README, "Defaults that follow the scene").
+    float maxFilterTexels = kMostFilterTexels;
     /// Index of `fieldCasters[0]` among every light's field casters, in scene-light order:
     /// where the shader finds its instances (`ShadowMaps::fieldInstances`).
     int fieldFirst = 0;

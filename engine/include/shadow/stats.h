@@ -52,6 +52,8 @@ struct LightShadowStats {
     /// PCF, VSM: the filter radius (m at the receiver) its lookups took, at least one texel's
     /// footprint (`ShadowLightPlan::pcfRadiusMetres`; 0: the texel's alone).
     double pcfRadiusMetres = 0.0;
+    /// The widest filter radius (texels) its lookups took (`ShadowLightPlan::maxFilterTexels`).
+    float maxFilterTexels = 0.0f;
     /// The taps it ran with.
     int pcfSamples = 0;
     int blockerSamples = 0;

@@ -36,7 +36,7 @@ void packShadow(const ShadowLightPlan& plan, const glm::dvec3& wsCamera, int fir
     g.pcfRadiusTexels = isAutomatic(s.pcfRadius) ? kAutoPcfRadiusTexels : 0.0f;
     g.pcfSamples = s.pcfSamples;
     g.blockerSamples = s.blockerSamples;
-    g.maxFilterTexels = s.maxFilterTexels;
+    g.maxFilterTexels = plan.maxFilterTexels;
     g.mapSize = static_cast<float>(plan.mapSize);
     g.firstLayer = firstLayer;
     g.cascadeBlend = s.cascadeBlend;

@@ -75,9 +75,10 @@ constexpr const char* kDepthModeKey = "depthMode";
 /// of them: the parser reads these, and the unknown-key check knows these.
 struct LightKnobs {
     std::array<Knob<int>, 5> ints;
-    std::array<Knob<float>, 10> floats;
-    /// Lengths whose default is derived from the scene: a number >= 0 or "auto" (`kAutomatic`).
-    std::array<Knob<float>, 5> lengths;
+    std::array<Knob<float>, 9> floats;
+    /// Lengths (and maxFilterTexels) whose default is derived from the scene: a number >= 0 or
+    /// "auto" (`kAutomatic`).
+    std::array<Knob<float>, 6> lengths;
     std::array<Knob<bool>, 1> bools;
 };
 
@@ -102,7 +103,6 @@ LightKnobs lightKnobs(LightShadowExtras& out) {
               {"slopeBias", &s.slopeBias},
               {"normalOffset", &s.normalOffset},
               {"lightBleedReduction", &s.lightBleedReduction},
-              {"maxFilterTexels", &s.maxFilterTexels},
               {"cascadeSplitLambda", &s.cascadeSplitLambda},
               {"cascadeBlend", &s.cascadeBlend},
               {"shadowDistance", &s.shadowDistance},
@@ -111,7 +111,8 @@ LightKnobs lightKnobs(LightShadowExtras& out) {
               {"pcfRadius", &s.pcfRadius},
               {"sdfStartOffset", &s.sdfStartOffset},
               {"sdfMinStep", &s.sdfMinStep},
-              {"contactLength", &s.contactLength}}},
+              {"contactLength", &s.contactLength},
+              {"maxFilterTexels", &s.maxFilterTexels}}},
             {{{"contactShadows", &s.contactShadows}}}};
 }
 

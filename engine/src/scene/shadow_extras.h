@@ -5,10 +5,11 @@
 //   technique        a name of the technique table (techniques.h)  (default "hard")
 //   kernel           "vogel" | "poisson" | "uniform"; depthMode "nearest" | "midpoint" | "second"
 //   mapSize, pcfSamples, blockerSamples, cascades, sdfSteps   positive integers
-//   radius, angularRadius, slopeBias, normalOffset, lightBleedReduction, maxFilterTexels,
+//   radius, angularRadius, slopeBias, normalOffset, lightBleedReduction,
 //   cascadeSplitLambda, shadowDistance, nearPlane             finite numbers >= 0
-//   constantBias, pcfRadius, sdfStartOffset, sdfMinStep       finite numbers >= 0 (m), or "auto"
-//                                                             (the default: derived from the scene)
+//   constantBias, pcfRadius, sdfStartOffset, sdfMinStep,      finite numbers >= 0 (m; maxFilterTexels
+//   contactLength, maxFilterTexels                            texels), or "auto" (the default:
+//                                                             derived from the scene)
 // Mesh node extras (`nodes[i].extras.shadow`):
 //   cast, receive                                             booleans (default true)
 //

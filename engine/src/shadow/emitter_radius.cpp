@@ -25,23 +25,52 @@ double exitDistance(const glm::dvec3& origin, const glm::dvec3& dir, const DAabb
     return enter <= exit ? exit : -1.0;
 }
 
-/// The half-width (m) of the penumbra cast from `point` onto the receiver behind it along the
-/// light's ray, or a negative value when the ray meets no receiver.
-double pointPenumbra(const LayerInputs& light, double emitterSize, const glm::dvec3& point, const DAabb& receivers) {
+/// The penumbra cast from `point` onto the receiver behind it along the light's ray: its
+/// half-width (m), negative when the ray meets no receiver, and the receiver's point.
+struct PointPenumbra {
+    double width = -1.0;
+    glm::dvec3 receiver{0.0};
+};
+
+PointPenumbra pointPenumbra(const LayerInputs& light, double emitterSize, const glm::dvec3& point,
+                            const DAabb& receivers) {
     const bool directional = light.type == LightType::Directional;
     const glm::dvec3 fromLight = point - light.pose.wsPosition;
     const double toBlocker = directional ? 0.0 : glm::length(fromLight);
-    if (!directional && !(toBlocker > 0.0)) return -1.0;
+    if (!directional && !(toBlocker > 0.0)) return {};
     const glm::dvec3 dir = directional ? light.pose.wsDirection : fromLight / toBlocker;
     const double gap = exitDistance(point, dir, receivers);
-    if (!(gap > 0.0)) return gap < 0.0 ? -1.0 : 0.0;  // (+0: the exit of a ray that starts on the bounds may be -0)
-    if (directional) return gap * std::tan(emitterSize);
+    if (gap < 0.0) return {};
+    const glm::dvec3 receiver = point + std::max(gap, 0.0) * dir;
+    if (!(gap > 0.0)) return {0.0, receiver};  // (+0: the exit of a ray that starts on the bounds may be -0)
+    if (directional) return {gap * std::tan(emitterSize), receiver};
     // A spot's disk seen from the receiver: its area's equivalent disk (sg_apparentEmitterSize).
-    const double size =
-        light.type == LightType::Spot
-            ? emitterSize * std::sqrt(std::clamp(glm::dot(dir, light.pose.wsDirection), 0.0, 1.0))
-            : emitterSize;
-    return gap * size / toBlocker;
+    const double size = light.type == LightType::Spot
+                            ? emitterSize * std::sqrt(std::clamp(glm::dot(dir, light.pose.wsDirection), 0.0, 1.0))
+                            : emitterSize;
+    return {gap * size / toBlocker, receiver};
+}
+
+/// Calls `visit(box)` with the world bounds of every caster of `layers` (`geometry.casters`), and
+/// `layer`, once per layer it is in.
+template <typename Visit>
+void forEachCaster(const SceneGeometry& geometry, std::span<const ShadowLayerPlan> layers, const Visit& visit) {
+    for (const ShadowLayerPlan& layer : layers) {
+        // Both lists are in entity order: one walk through the scene's casters per layer.
+        auto it = geometry.casters.begin();
+        for (const Entity e : layer.casters) {
+            it = std::lower_bound(it, geometry.casters.end(), e,
+                                  [](const BoundedEntity& b, Entity x) { return b.entity < x; });
+            if (it == geometry.casters.end()) break;
+            if (it->entity == e) visit(it->bounds, layer);
+        }
+    }
+}
+
+/// Corner `k` (0-7) of `box`.
+glm::dvec3 corner(const DAabb& box, int k) {
+    return {(k & 1) != 0 ? box.max.x : box.min.x, (k & 2) != 0 ? box.max.y : box.min.y,
+            (k & 4) != 0 ? box.max.z : box.min.z};
 }
 
 /// The narrowest penumbra (m) one caster's box casts: the least over its corners, or a negative
@@ -51,13 +80,19 @@ double casterPenumbra(const LayerInputs& light, double emitterSize, const DAabb&
     double narrowest = -1.0;
     double widest = 0.0;
     for (int k = 0; k < 8; ++k) {
-        const glm::dvec3 corner((k & 1) != 0 ? caster.max.x : caster.min.x, (k & 2) != 0 ? caster.max.y : caster.min.y,
-                                (k & 4) != 0 ? caster.max.z : caster.min.z);
-        const double w = pointPenumbra(light, emitterSize, corner, receivers);
+        const double w = pointPenumbra(light, emitterSize, corner(caster, k), receivers).width;
         if (w >= 0.0 && (narrowest < 0.0 || w < narrowest)) narrowest = w;
         widest = std::max(widest, w);
     }
     return widest > 0.0 ? narrowest : -1.0;
+}
+
+/// The footprint (m) of one texel of `layer` at `point`; 0 behind a perspective layer's light.
+double texelAt(const ShadowLayerPlan& layer, int mapSize, const glm::dvec3& point) {
+    const double perAxial = 2.0 / (layer.clipFromLight[0][0] * mapSize);
+    if (layer.orthographic) return perAxial;
+    const double axial = -(layer.lightFromWorld * glm::dvec4(point, 1.0)).z;
+    return axial > 0.0 ? perAxial * axial : 0.0;
 }
 
 }  // namespace
@@ -66,23 +101,29 @@ double emitterFilterRadius(const LayerInputs& light, double emitterSize, const S
                            std::span<const ShadowLayerPlan> layers, std::vector<double>& scratch) {
     scratch.clear();
     if (!(emitterSize > 0.0) || geometry.receivers.empty()) return 0.0;
-    for (const ShadowLayerPlan& layer : layers) {
-        // Both lists are in entity order: one walk through the scene's casters per layer.
-        auto it = geometry.casters.begin();
-        for (const Entity e : layer.casters) {
-            it = std::lower_bound(it, geometry.casters.end(), e,
-                                  [](const BoundedEntity& b, Entity x) { return b.entity < x; });
-            if (it == geometry.casters.end()) break;
-            if (it->entity != e) continue;
-            const double w = casterPenumbra(light, emitterSize, it->bounds, geometry.receivers);
-            if (w >= 0.0) scratch.push_back(w);
-        }
-    }
+    forEachCaster(geometry, layers, [&](const DAabb& box, const ShadowLayerPlan&) {
+        const double w = casterPenumbra(light, emitterSize, box, geometry.receivers);
+        if (w >= 0.0) scratch.push_back(w);
+    });
     if (scratch.empty()) return 0.0;
     const auto upper = scratch.begin() + static_cast<std::ptrdiff_t>(scratch.size() / 2);
     std::nth_element(scratch.begin(), upper, scratch.end());
     if (scratch.size() % 2 == 1) return *upper;
     return 0.5 * (*upper + *std::max_element(scratch.begin(), upper));  // the two middle ones' mean
+}
+
+double widestPenumbraTexels(const LayerInputs& light, double emitterSize, const SceneGeometry& geometry,
+                            std::span<const ShadowLayerPlan> layers) {
+    if (!(emitterSize > 0.0) || geometry.receivers.empty()) return 0.0;
+    double widest = 0.0;
+    forEachCaster(geometry, layers, [&](const DAabb& box, const ShadowLayerPlan& layer) {
+        for (int k = 0; k < 8; ++k) {
+            const PointPenumbra p = pointPenumbra(light, emitterSize, corner(box, k), geometry.receivers);
+            const double texel = texelAt(layer, light.mapSize, p.receiver);
+            if (p.width > 0.0 && texel > 0.0) widest = std::max(widest, p.width / texel);
+        }
+    });
+    return widest;
 }
 
 }  // namespace shadow

@@ -1,6 +1,8 @@
-// The automatic filter radius of PCF and VSM (`Shadow::pcfRadius` when automatic): the penumbra
-// the light's own emitter casts from a typical caster of its layers, so that a fixed-width filter
-// follows the light and the scene instead of a length in metres.
+// The automatic filter widths: PCF and VSM's radius (`Shadow::pcfRadius` when automatic), the
+// penumbra the light's own emitter casts from a typical caster of its layers, so that a
+// fixed-width filter follows the light and the scene instead of a length in metres; and every
+// filter's widest radius (`Shadow::maxFilterTexels` when automatic), the widest penumbra its
+// casters can cast.
 #pragma once
 
 #include "shadow/light_projection.h"
@@ -24,5 +26,14 @@ namespace shadow {
 /// (the one-texel minimum). `scratch` is reused storage.
 [[nodiscard]] double emitterFilterRadius(const LayerInputs& light, double emitterSize, const SceneGeometry& geometry,
                                          std::span<const ShadowLayerPlan> layers, std::vector<double>& scratch);
+
+/// The widest penumbra (half-width in texels of the receiver's layer) light `light` casts from
+/// the casters of `layers`: over every corner of every caster's box (in every layer it is in),
+/// the penumbra across the gap to the receiver behind it along the ray (as
+/// `emitterFilterRadius`), over the texel of that layer where the ray meets the receiver (a
+/// cascade's one size; a perspective layer's grows with the axial distance). 0 without an
+/// emitter, casters or receivers behind them.
+[[nodiscard]] double widestPenumbraTexels(const LayerInputs& light, double emitterSize, const SceneGeometry& geometry,
+                                          std::span<const ShadowLayerPlan> layers);
 
 }  // namespace shadow

@@ -53,6 +53,7 @@ int chainBaseSize(FilterChainKind kind, int mapSize) {
 }
 
 int chainLevels(ShadowTechnique t, int mapSize, float maxFilterTexels) {
+    if (isAutomatic(maxFilterTexels)) maxFilterTexels = kMostFilterTexels;  // sized for the widest it can take
     const FilterChainKind kind = filterChainOf(t).value_or(FilterChainKind::MinMax);
     if (kind == FilterChainKind::SummedMoments) return 1;
     int all = 0;

@@ -392,7 +392,7 @@ void clampShadowSettings(Shadow& s, Light& light, const ShadowLimits& limits, co
     clampField(s.lightBleedReduction, 0.0f, 0.95f, who, "lightBleedReduction", warnings);
     clampField(s.pcfSamples, 1, 64, who, "pcfSamples", warnings);
     clampField(s.blockerSamples, 1, 64, who, "blockerSamples", warnings);
-    clampField(s.maxFilterTexels, 1.0f, 256.0f, who, "maxFilterTexels", warnings);
+    clampLength(s.maxFilterTexels, 1.0f, kMostFilterTexels, who, "maxFilterTexels", warnings);
     clampField(s.cascades, 1, 4, who, "cascades", warnings);
     clampField(s.cascadeSplitLambda, 0.0f, 1.0f, who, "cascadeSplitLambda", warnings);
     clampField(s.cascadeBlend, 0.0f, 0.5f, who, "cascadeBlend", warnings);
@@ -550,8 +550,14 @@ void ShadowPlanner::planMap(const World& world, const CameraView& camera, Shadow
                                ? emitterFilterRadius(planned.inputs, emitterSize(plan.light), scratch_->geometry,
                                                      plan.layers, scratch_->casterPenumbrae)
                                : 0.0;
+    plan.maxFilterTexels = isAutomatic(plan.settings.maxFilterTexels)
+                               ? std::clamp(kAutoFilterTexelsMargin * static_cast<float>(widestPenumbraTexels(
+                                                                          planned.inputs, emitterSize(plan.light),
+                                                                          scratch_->geometry, plan.layers)),
+                                            kAutoLeastFilterTexels, kMostFilterTexels)
+                               : plan.settings.maxFilterTexels;
     fitChainLevels(planned.inputs, technique, {plan.pcfRadiusMetres, automaticRadius ? kAutoPcfRadiusTexels : 0.0},
-                   plan.settings.maxFilterTexels, chainLevels(technique, plan.mapSize, plan.settings.maxFilterTexels),
+                   plan.maxFilterTexels, chainLevels(technique, plan.mapSize, plan.settings.maxFilterTexels),
                    scratch_->geometry, plan.layers);
 }
 

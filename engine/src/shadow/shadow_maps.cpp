@@ -187,6 +187,7 @@ void describe(const ShadowLightPlan& plan, LightShadowStats& ls) {
     ls.regionTest = plan.regionTest;
     ls.automatic = plan.automatic;
     ls.pcfRadiusMetres = plan.pcfRadiusMetres;
+    ls.maxFilterTexels = plan.maxFilterTexels;
     ls.pcfSamples = plan.settings.pcfSamples;
     ls.blockerSamples = plan.settings.blockerSamples;
     ls.autoChoice = plan.autoChoice;
