@@ -211,6 +211,30 @@ TEST(AutoTechnique, OverBudgetMovesToACheaperCandidateWithoutWaitingForTheHold) 
     EXPECT_EQ(at, kAutoConfirmFrames) << "within the budget after the confirmation frames, not after the hold";
 }
 
+TEST(AutoTechnique, AChoicePredictedWithinTheToleranceOverTheBudgetIsKept) {
+    // A budget a few per cent under the held choice's predicted cost (prediction noise): kept for
+    // two seconds; one further under than the tolerance: moved within the confirmation frames.
+    const double dt = 1.0 / 60.0;
+    for (const double over : {0.5 * kAutoBudgetTolerance, 2.0 * kAutoBudgetTolerance}) {
+        AutoTechniqueState state;
+        AutoLightInput in;
+        const std::uint64_t id = 9;
+        std::vector<AutoLightChoice> out;
+        const double dear = startAtLeastError(state, in, id, out);
+        const int held = out[0].candidate;
+        int movedAt = -1;
+        for (int f = 1; f < 120 && movedAt < 0; ++f) {
+            state.choose({&id, 1}, {&in, 1}, dear / (1.0 + over), f * dt, out);
+            if (out[0].candidate != held) movedAt = f;
+        }
+        if (over < kAutoBudgetTolerance) {
+            EXPECT_EQ(movedAt, -1) << "predicted " << over << " over the budget: within the tolerance";
+        } else {
+            EXPECT_EQ(movedAt, kAutoConfirmFrames) << "predicted " << over << " over the budget";
+        }
+    }
+}
+
 TEST(AutoTechnique, AfterItsFirstSecondALightOverBudgetStillWaitsForTheHold) {
     AutoTechniqueState state;
     AutoLightInput in;

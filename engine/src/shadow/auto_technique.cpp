@@ -292,7 +292,8 @@ void AutoTechniqueState::choose(std::span<const std::uint64_t> ids, std::span<co
         for (const Held& k : held_) h = k.id == ids[i] ? &k : h;
         current += costs_.totalMs(inputs[i], at(h != nullptr && h->current >= 0 ? h->current : best[i]));
     }
-    const bool overBudget = budgetMs > 0.0 && std::isfinite(budgetMs) && current > budgetMs;
+    const bool overBudget =
+        budgetMs > 0.0 && std::isfinite(budgetMs) && current > (1.0 + kAutoBudgetTolerance) * budgetMs;
     for (Held& h : held_) h.seen = false;
     for (std::size_t i = 0; i < ids.size(); ++i) {
         Held& h = held(ids[i]);
