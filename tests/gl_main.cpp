@@ -9,7 +9,16 @@
 //   (compile_main.cpp): they measure what a user's first run costs.
 // - MESA_SHADER_CACHE_DIR: a cache of the tests' own in the build folder, so that unoptimised
 //   shaders never reach the cache the renderer and the benchmarks use.
+// And for the process itself: glibc's malloc keeps what is freed below 1 GiB for the next
+// allocation instead of giving it back to the system (M_MMAP_THRESHOLD, M_TRIM_THRESHOLD). The
+// tests allocate and free the same large buffers over and over (llvmpipe's textures and render
+// targets, shadow maps read back, images), which by default are mapped afresh each time: the
+// kernel clears every page again. Measured on two cores, the stability, cascade and
+// scale-invariance tests in one process, runs taken in turn: 47 s of CPU -> 45 (of it in the
+// kernel 4.4 s -> 1.9), the whole GL suite at the same peak memory (1.5 GB). A sanitizer build's
+// allocator ignores it.
 #include <gtest/gtest.h>
+#include <malloc.h>
 
 #include <cstdlib>
 
@@ -18,6 +27,8 @@
 #endif
 
 int main(int argc, char** argv) {
+    mallopt(M_MMAP_THRESHOLD, 1 << 30);
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);
     setenv("GALLIVM_PERF", "nopt", 0);
     setenv("MESA_SHADER_CACHE_DIR", SHADOW_TEST_SHADER_CACHE, 0);
     ::testing::InitGoogleTest(&argc, argv);
