@@ -1,11 +1,11 @@
 // main() of the test programs that render (shadow_gl_tests, shadow_alloc_tests). Before any GL
 // context exists (Mesa reads both variables when it makes one), and unless the caller set them:
-// - GALLIVM_PERF=nopt: llvmpipe compiles each shader without LLVM's optimisation passes. On a
-//   fresh machine the suite's GL time is mostly shader compilation (each test is a process of its
-//   own and builds the variants its lights need), and the tests' small images render about as
-//   fast unoptimised: measured on two cores, the fast tier took 124 s instead of 169 with an empty
-//   shader cache, 76 s instead of 73 with a full one. The programs the tests run (shadow_render
-//   and the other command-line tools) inherit it. Compile-time tests keep the optimisation
+// - GALLIVM_PERF=nopt: llvmpipe compiles each shader without LLVM's optimisation passes. On a fresh
+//   machine the suite's GL time is mostly shader compilation (each test file is a process of its
+//   own and builds the variants its lights need), and the tests' small images render about as fast
+//   unoptimised: measured on two cores, the fast tier took 124 s instead of 169 with an empty
+//   shader cache, 76 s instead of 73 with a full one. The programs the tests run (shadow_render and
+//   the other command-line tools) inherit it. Compile-time tests keep the optimisation
 //   (compile_main.cpp): they measure what a user's first run costs.
 // - MESA_SHADER_CACHE_DIR: a cache of the tests' own in the build folder, so that unoptimised
 //   shaders never reach the cache the renderer and the benchmarks use.
