@@ -1,6 +1,6 @@
 // What the glTF fuzzer does with one input: the importer from memory (strict and lenient),
-// the CPU half of a frame on whatever scene loads (animation, transforms, shadow planning,
-// with the planner's invariants checked), and the extras.shadow parsers on the input read as
+// the CPU half of a frame on whatever scene loads (animation, transforms and skin poses, shadow
+// planning, with the skins' and the planner's invariants checked), and the extras.shadow parsers on the input read as
 // JSON. Shared by tests/fuzz/gltf_fuzzer.cpp and the GoogleTest that replays
 // tests/fuzz/regressions/ and tests/fuzz/corpus/ in every ordinary build.
 //
@@ -28,7 +28,7 @@ namespace shadow::fuzz {
 /// Aborts (the fuzzer's crash) when a promise of the engine is broken.
 inline void check(bool ok, const char* what) {
     if (ok) return;
-    std::fprintf(stderr, "gltf fuzz target: broken invariant: %s\n", what);
+    std::fprintf(stderr, "fuzz target: broken invariant: %s\n", what);
     std::abort();
 }
 
@@ -70,7 +70,8 @@ inline bool finiteAsFloat(const glm::dmat4& m) {
     return true;
 }
 
-/// The CPU half of a few frames of `scene`, checking what the shadow planner promises: layer
+/// The CPU half of a few frames of `scene`, checking what the skins and the shadow planner
+/// promise: a posed skin's matrices finite as the floats the GPU gets; layer
 /// matrices finite even as the floats the GPU gets (made relative to the camera), finite
 /// positive depth ranges, sizes inside the limits and the memory budget.
 inline void runCpuFrames(Scene& scene) {
@@ -82,6 +83,14 @@ inline void runCpuFrames(Scene& scene) {
     for (double t : {0.0, 0.37, 1e7}) {
         animate(scene.world, t);
         (void)updateTransforms(scene.world);
+        scene.world.view<Skin>().each([](Entity, const Skin& skin) {
+            if (!skin.posed) return;
+            check(skin.frameFromMesh.size() == skin.joints.size(), "a posed skin has a matrix per joint");
+            check(finiteAsFloat(skin.worldFromFrame), "a posed skin's frame is finite");
+            for (const glm::mat4& m : skin.frameFromMesh) {
+                check(finiteAsFloat(glm::dmat4(m)), "a posed skin's joint matrices are finite floats");
+            }
+        });
         const CameraView view = makeCameraView(scene.world, camera, 16.0f / 9.0f);
         const glm::dmat4 worldFromCs = glm::translate(glm::dmat4(1.0), view.wsPosition);
         const ShadowFrame& frame = planner.prepare(scene.world, view, scene.lights);
