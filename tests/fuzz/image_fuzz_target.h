@@ -98,7 +98,8 @@ inline Result<Scene> runImageInput(const std::uint8_t* data, std::size_t size) {
         if (scene.ok()) {
             scene->world.view<Material>().each([](Entity, const Material& m) {
                 checkTexture(m.baseColorTexture);
-                for (const MaterialMap* map : {&m.metallicRoughnessMap, &m.normalMap, &m.occlusionMap, &m.emissiveMap}) {
+                for (const MaterialMap* map :
+                     {&m.metallicRoughnessMap, &m.normalMap, &m.occlusionMap, &m.emissiveMap}) {
                     checkTexture(map->texture);
                 }
             });

@@ -57,7 +57,8 @@ std::vector<Encoded> encodedImages() {
     for (int channels = 1; channels <= 4; ++channels) {
         Encoded e{"png" + std::to_string(channels), channels, {}, 0};
         const std::vector<unsigned char> p = pixels(channels);
-        EXPECT_NE(stbi_write_png_to_func(appendBytes, &e.bytes, kWidth, kHeight, channels, p.data(), kWidth * channels), 0);
+        EXPECT_NE(stbi_write_png_to_func(appendBytes, &e.bytes, kWidth, kHeight, channels, p.data(), kWidth * channels),
+                  0);
         images.push_back(std::move(e));
     }
     Encoded jpeg{"jpg3", 3, {}, 24};
@@ -100,7 +101,8 @@ TEST(ImageFuzz, EncodedImagesLoadAsTexturesHoldingTheirPixels) {
         for (int i = 0; i < kWidth * kHeight; ++i) {
             const std::array<int, 4> want = expectedRgba(p, e.channels, i);
             for (int c = 0; c < 4; ++c) {
-                worst = std::max(worst, std::abs(static_cast<int>(t.rgba[static_cast<std::size_t>(i * 4 + c)]) - want[c]));
+                worst =
+                    std::max(worst, std::abs(static_cast<int>(t.rgba[static_cast<std::size_t>(i * 4 + c)]) - want[c]));
             }
         }
         EXPECT_LE(worst, e.tolerance);
