@@ -2,13 +2,14 @@
 """Helper of benchmarks/run_real_assets.sh: wraps a third-party .glb into a scene the shadow
 techniques can be measured on, and turns the measurements into a Markdown table.
 
-    python3 benchmarks/real_assets.py wrap IN.glb OUT.gltf [--clip NAME]
+    python3 benchmarks/real_assets.py wrap IN.glb OUT.gltf [--clip NAME] [--ground-casts]
     python3 benchmarks/real_assets.py table WORK ASSET [ASSET ...]
 
 wrap: writes OUT.gltf (JSON) and OUT.bin next to it (the GLB's binary chunk, images in buffer
 views included, with the added geometry appended) and prints a JSON summary (triangles, bounds,
 animation time) on stdout. Added to the asset, whose own nodes stay as they are:
-  - a ground quad 4x the model's size, just below its bounds (receives, does not cast);
+  - a ground quad 4x the model's size, just below its bounds (receives, does not cast, as game
+    grounds often do not; --ground-casts makes it cast, so that it is in the shadow maps);
   - a directional sun (KHR_lights_punctual, extras.shadow: PCSS, 2048 map, angularRadius
     0.02 rad) tilted 45 degrees from vertical;
   - a camera framing the model and its shadow on the ground.
@@ -323,7 +324,7 @@ def append_accessor(gltf, view, component, count, type_, lo=None, hi=None):
     return len(gltf["accessors"]) - 1
 
 
-def wrap(src, dst, clip_name):
+def wrap(src, dst, clip_name, ground_casts=False):
     gltf, binary = read_glb(src)
     acc = Accessors(gltf, binary)
     clip = choose_clip(gltf, clip_name)
@@ -406,7 +407,7 @@ def wrap(src, dst, clip_name):
                   "translation": [centre[0], hi[1] + size, centre[2]],
                   "extensions": {"KHR_lights_punctual": {"light": len(lights) - 1}}})
     nodes.append({"name": "real_assets_ground", "mesh": len(gltf["meshes"]) - 1,
-                  "extras": {"shadow": {"cast": False, "receive": True}}})
+                  "extras": {"shadow": {"cast": ground_casts, "receive": True}}})
     roots = [first, first + 1, first + 2] + list(scene_roots(gltf))
     if gltf.get("scenes"):
         gltf["scenes"][gltf.get("scene", 0)]["nodes"] = roots
@@ -522,15 +523,17 @@ def table(work, assets):
 def main():
     args = sys.argv[1:]
     if len(args) >= 3 and args[0] == "wrap":
-        clip, rest = None, args[3:]
+        clip, ground_casts, rest = None, False, args[3:]
         while rest:
             if rest[0] == "--clip" and len(rest) > 1:
                 clip, rest = rest[1], rest[2:]
+            elif rest[0] == "--ground-casts":
+                ground_casts, rest = True, rest[1:]
             else:
                 fail(f"wrap: unknown argument {rest[0]}")
         if not args[2].endswith(".gltf"):
             fail("wrap: the output must be a .gltf path")
-        print(json.dumps(wrap(args[1], args[2], clip), indent=1))
+        print(json.dumps(wrap(args[1], args[2], clip, ground_casts), indent=1))
         return 0
     if len(args) >= 3 and args[0] == "table":
         notes = table(args[1], args[2:])
