@@ -3,38 +3,20 @@
 // must load or fail with an error, never crash or break an invariant.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
+#include "fuzz/fuzz_test_support.h"
 #include "fuzz/gltf_fuzz_target.h"
 
 namespace shadow {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// The inputs of `dir`; none when it is missing (the callers fail on an empty list).
-std::vector<fs::path> inputsIn(const fs::path& dir) {
-    std::vector<fs::path> files;
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec)) return files;
-    for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
-        const std::string name = e.path().filename().string();
-        if (e.is_regular_file() && name.front() != '.' && name != "README.md") files.push_back(e.path());
-    }
-    std::sort(files.begin(), files.end());
-    return files;
-}
-
-std::string bytesOf(const fs::path& path) {
-    std::string bytes(fs::file_size(path), '\0');
-    std::ifstream(path, std::ios::binary).read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    return bytes;
-}
+using fuzz_test::bytesOf;
+using fuzz_test::inputsIn;
 
 TEST(GltfFuzzRegressions, EveryRegressionInputLoadsOrFailsCleanly) {
     const std::vector<fs::path> inputs = inputsIn(SHADOW_FUZZ_DIR "/regressions");

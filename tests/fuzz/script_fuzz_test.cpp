@@ -4,14 +4,12 @@
 // back after each input, so that inputs do not depend on the ones before.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "fuzz/fuzz_test_support.h"
 #include "fuzz/script_fuzz_target.h"
 
 namespace shadow::script_fuzz_test {
@@ -20,19 +18,11 @@ namespace {
 namespace fs = std::filesystem;
 using Verb = viewer::ScriptCommand::Verb;
 
+/// The seed scripts' texts.
 std::vector<std::string> seedScripts() {
     std::vector<std::string> texts;
-    std::vector<fs::path> paths;
-    std::error_code ec;
-    for (const fs::directory_entry& e : fs::directory_iterator(SHADOW_FUZZ_DIR "/scripts", ec)) {
-        if (e.path().extension() == ".script") paths.push_back(e.path());
-    }
-    std::sort(paths.begin(), paths.end());
-    for (const fs::path& p : paths) {
-        std::ifstream in(p, std::ios::binary);
-        std::ostringstream text;
-        text << in.rdbuf();
-        texts.push_back(text.str());
+    for (const fs::path& p : fuzz_test::inputsIn(SHADOW_FUZZ_DIR "/scripts")) {
+        if (p.extension() == ".script") texts.push_back(fuzz_test::bytesOf(p));
     }
     return texts;
 }

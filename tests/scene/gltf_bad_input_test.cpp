@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "scene/gltf_import.h"
+#include "scene/glb_bytes.h"
 #include "scene/gltf_parse.h"
 #include "scene/gltf_test_support.h"
 
@@ -28,14 +29,6 @@ using namespace gltf_test;  // NOLINT(google-build-using-namespace): the files' 
 std::string deepGltf(int levels) {
     return R"({"asset": {"version": "2.0", "extras": )" + std::string(static_cast<std::size_t>(levels), '[') +
            std::string(static_cast<std::size_t>(levels), ']') + "}}";
-}
-
-/// A GLB holding `json` as its JSON chunk (padded with spaces) and no BIN chunk.
-std::string glbOf(std::string json) {
-    while (json.size() % 4 != 0) json += ' ';
-    const auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
-    const auto length = static_cast<std::uint32_t>(json.size());
-    return "glTF" + u32(2) + u32(12 + 8 + length) + u32(length) + "JSON" + json;
 }
 
 TEST(GltfBadInput, DeepJsonIsRefusedNamingTheFileAndDepth) {
