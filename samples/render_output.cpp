@@ -227,6 +227,7 @@ nlohmann::json lightsJson(const Scene& scene, const FrameStats& last) {
                            {"mapBytes", ls.mapBytes},
                            {"filterChainBytes", ls.filterChainBytes},
                            {"castersDrawn", ls.castersDrawn},
+                           {"backgroundsDrawn", ls.backgroundsDrawn},
                            {"castersCulled", ls.castersCulled},
                            {"pyramidTexelsRead", ls.pyramidTexelsRead},
                            {"affectsView", ls.affectsView},

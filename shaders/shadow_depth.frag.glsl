@@ -10,6 +10,11 @@
 // depth test keeps the right surface. Where no surface lies behind the first the layer keeps
 // its clear value, the far depth.
 //
+// With SG_DEPTH_BACKGROUND this draws a moment technique's backgrounds (the receivers that do
+// not cast, ShadowLayerPlan::backgrounds) into the scratch, tested GREATER against its clear
+// value 0, so that it keeps the farthest: only where the layer uCasters, drawn already, holds no
+// caster (the far depth). shadow_background.frag.glsl then copies them into the layer.
+//
 // With SG_ALPHA_TESTED (a cut-out caster, `Material::cutout`) its holes are left out, by the same
 // test as the main pass (alpha_test.glsl).
 #include "shadow_common.glsl"
@@ -39,6 +44,11 @@ const float SG_BEHIND_ULPS = 2.4e-7;
 const float SG_BEHIND_TEXEL_FRACTION = 1.0 / 128.0;
 #endif
 
+#ifdef SG_DEPTH_BACKGROUND
+layout(binding = SG_UNIT_MINMAX_SOURCE) uniform sampler2DArray uCasters;
+uniform int uLayer;
+#endif
+
 void main() {
     float depth = sg_lightSpaceDepth(vLsPosition, uOrthographic != 0) / uDepthScale;
 #ifdef SG_DEPTH_BEHIND_FIRST
@@ -55,6 +65,9 @@ void main() {
         depth = 0.5 * (nearest + depth);
 #endif
     }
+#endif
+#ifdef SG_DEPTH_BACKGROUND
+    if (texelFetch(uCasters, ivec3(ivec2(gl_FragCoord.xy), uLayer), 0).r < 1.0) discard;
 #endif
     gl_FragDepth = depth;
 }

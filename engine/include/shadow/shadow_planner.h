@@ -70,8 +70,16 @@ struct ShadowLayerPlan {
     /// Casters (meshes and `ShadowCasterDraw`s) whose world bounds meet this layer's frustum,
     /// in entity order.
     std::vector<Entity> casters;
-    /// Must be drawn this frame: matrices, caster set, a caster's transform or the allocation
-    /// changed (or caching is off).
+    /// A moment technique's layer with casters (VSM, VSSM, MSM, MSM-soft): the meshes that
+    /// receive but do not cast whose world bounds meet its frustum, in entity order. Where no
+    /// caster covers a texel, the layer holds the farthest of them instead of the far depth, so
+    /// that a filter region reaching past a shadow's outline averages the blockers with the
+    /// ground they stand on rather than with the far plane (which reads as lit well inside the
+    /// outline). They never hide a caster, nor shadow anything: no receiver lies behind the
+    /// farthest. Empty for the other techniques.
+    std::vector<Entity> backgrounds;
+    /// Must be drawn this frame: matrices, caster or background set, one's transform or the
+    /// allocation changed (or caching is off).
     bool dirty = true;
 };
 
@@ -259,6 +267,9 @@ private:
         /// Each caster's `WorldTransform::version` when the layer was drawn: what its validity is
         /// keyed on, however many transform updates ran between two frames.
         std::vector<std::uint64_t> versions;
+        /// Likewise of its backgrounds (ShadowLayerPlan::backgrounds).
+        std::vector<Entity> backgrounds;
+        std::vector<std::uint64_t> backgroundVersions;
     };
     struct LightMemory {
         int mapSize = 0;

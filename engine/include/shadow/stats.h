@@ -30,6 +30,8 @@ struct LightShadowStats {
     int layersReused = 0;   ///< unchanged since the last frame, not redrawn
     int layersCleared = 0;  ///< no caster in the layer's frustum: cleared, not drawn
     int castersDrawn = 0;   ///< draw calls into this light's layers
+    /// Draw calls of its moment layers' backgrounds (ShadowLayerPlan::backgrounds), besides.
+    int backgroundsDrawn = 0;
     /// Of `castersDrawn`: solid meshes (`MeshData::solid`) and game casters
     /// (`ShadowCasterDraw::solid`) drawn with their back faces culled, the nearest depths
     /// unchanged at about half the fragments.

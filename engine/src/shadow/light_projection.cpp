@@ -1,5 +1,7 @@
 #include "shadow/light_projection.h"
 
+#include "shadow/map_memory.h"
+
 #include <shadow/scene.h>
 #include <shadow/shared_constants.h>
 
@@ -101,23 +103,40 @@ bool followChangedCasters(const SceneGeometry& g, const Meets& meets, std::vecto
     return true;
 }
 
+/// Sets `layer.backgrounds` to the receivers of `g` that do not cast and whose bounds meet
+/// `meets`, in entity order; none when the layer has no casters (a layer without is lit).
+template <typename Meets>
+void backgroundsIn(const SceneGeometry& g, const Meets& meets, ShadowLayerPlan& layer) {
+    layer.backgrounds.clear();
+    if (layer.casters.empty()) return;
+    layer.backgrounds.reserve(g.backgrounds.size());
+    for (const BoundedEntity& b : g.backgrounds) {
+        if (meets(b.bounds)) layer.backgrounds.push_back(b.entity);
+    }
+}
+
 /// Sets `layer.casters` to the casters whose bounds meet the layer's frustum, in entity order,
 /// with room for every caster: one moving into the layer later costs no allocation. When
 /// `followed` holds the matrices the layer had when its list was last found, over the last
 /// gather's geometry, and the layer still has them, the list follows the changed casters
-/// (`followChangedCasters`) instead of being found anew. With `summedMoments` (a VSSM light)
-/// also `layer.momentScale` from the farthest of them, 0 when there is none
+/// (`followChangedCasters`) instead of being found anew. With `light.backgrounds` also
+/// `layer.backgrounds` (`backgroundsIn`). With `light.summedMoments` (a VSSM light) also
+/// `layer.momentScale` from the farthest of them and of its backgrounds, 0 without casters
 /// (ShadowLayerPlan::momentScale); other lights keep 1 and skip the corners. Call once the
 /// layer's matrices and depth scale are set.
-void castersIn(const SceneGeometry& g, bool summedMoments, const std::optional<LayerMatrices>& followed,
+void castersIn(const SceneGeometry& g, const LayerInputs& light, const std::optional<LayerMatrices>& followed,
                ShadowLayerPlan& layer) {
     const Frustum f = frustumOf(layer);
     const auto meets = [&f](const DAabb& box) { return f.intersects(box); };
     layer.casters.reserve(g.casters.size());
     const bool same = followed.has_value() && *followed == matricesOf(layer);
-    if (!summedMoments && same && followChangedCasters(g, meets, layer.casters)) return;
+    if (!light.summedMoments && same && followChangedCasters(g, meets, layer.casters)) {
+        if (light.backgrounds) backgroundsIn(g, meets, layer);
+        return;
+    }
     castersMeeting(g, meets, layer.casters);
-    if (!summedMoments) return;
+    if (light.backgrounds) backgroundsIn(g, meets, layer);
+    if (!light.summedMoments) return;
     if (layer.casters.empty()) {
         layer.momentScale = 0.0f;  // nothing to sum: no table, every lookup lit
         return;
@@ -125,8 +144,11 @@ void castersIn(const SceneGeometry& g, bool summedMoments, const std::optional<L
     double farthest = 0.0;
     forEachCaster(g, meets,
                   [&](const BoundedEntity& c) { farthest = std::max(farthest, farthestDepth(layer, c.bounds)); });
-    // The power of two putting the farthest caster's stored depth in (1/4, 1/2]; at most 2^40
-    // (a caster 10^-12 of the range away), at least 1.
+    for (const BoundedEntity& b : g.backgrounds) {
+        if (meets(b.bounds)) farthest = std::max(farthest, farthestDepth(layer, b.bounds));
+    }
+    // The power of two putting the farthest stored depth in (1/4, 1/2]; at most 2^40 (a caster
+    // 10^-12 of the range away), at least 1.
     const double stored = std::clamp(farthest / std::max(static_cast<double>(layer.depthScale), 1e-30), 1e-12, 1.0);
     layer.momentScale = static_cast<float>(std::clamp(std::exp2(std::floor(std::log2(0.5 / stored))), 1.0, 0x1p40));
 }
@@ -137,8 +159,10 @@ std::optional<LayerMatrices> resetLayer(ShadowLayerPlan& layer, bool follow) {
     std::optional<LayerMatrices> had;
     if (follow) had = matricesOf(layer);
     std::vector<Entity> casters = std::move(layer.casters);
+    std::vector<Entity> backgrounds = std::move(layer.backgrounds);
     layer = ShadowLayerPlan{};
     layer.casters = std::move(casters);
+    layer.backgrounds = std::move(backgrounds);
     return had;
 }
 
@@ -427,7 +451,7 @@ void planDirectional(const LayerInputs& s, const CameraView& cam, const SceneGeo
         // The nearest a blocker can be: the top of the highest caster in the column, below the
         // layer's top (which receivers and the rounding to steps may raise above it).
         layer.blockerNear = casterTop >= zBottom ? static_cast<float>(zTop - std::min(casterTop, zTop)) : 0.0f;
-        castersIn(g, s.summedMoments, had, layer);
+        castersIn(g, s, had, layer);
     }
 }
 
@@ -506,7 +530,7 @@ double perspectiveLayer(const LayerInputs& light, const glm::dvec3& direction, c
     // far-plane corner.
     layer.depthScale = static_cast<float>(far * cornerSecant(tanHalf, tanHalf));
     layer.depthNear = static_cast<float>(near);
-    castersIn(g, light.summedMoments, had, layer);
+    castersIn(g, light, had, layer);
     return nearest;
 }
 
@@ -584,6 +608,9 @@ LayerInputs layerInputs(const ShadowLightPlan& plan, const LightPose& pose, doub
     in.cascadeSplitLambda = plan.settings.cascadeSplitLambda;
     in.shadowDistance = plan.settings.shadowDistance;
     in.summedMoments = plan.settings.technique == ShadowTechnique::Vssm;
+    const std::optional<FilterChainKind> chain = filterChainOf(plan.settings.technique);
+    in.backgrounds =
+        chain.has_value() ? *chain != FilterChainKind::MinMax : plan.settings.technique == ShadowTechnique::Msm;
     return in;
 }
 
@@ -658,6 +685,8 @@ void fitChainLevels(const LayerInputs& light, ShadowTechnique technique, FilterR
 
 bool layersHold(const LayerInputs& light, bool cameraMoved, const SceneGeometry& geometry,
                 std::span<const ShadowLayerPlan> layers) {
+    // A moment technique's layers hold the receivers that do not cast too.
+    if (light.backgrounds && geometry.backgroundsChanged) return false;
     const bool geometryChanged = !geometry.changed.empty() || geometry.receiversChanged || geometry.everythingChanged;
     // A sun's cascades follow the camera and every receiver and caster of the scene.
     if (light.type == LightType::Directional) return !cameraMoved && !geometryChanged;

@@ -601,11 +601,16 @@ void ShadowPlanner::markDirty(const World& world, ShadowLightPlan& plan) {
         ShadowLayerPlan& layer = plan.layers[k];
         LayerMemory& last = mem.layers[k];
         bool dirty = !caching_ || reallocated || last.lightFromWorld != layer.lightFromWorld ||
-                     last.clipFromLight != layer.clipFromLight || last.casters != layer.casters;
+                     last.clipFromLight != layer.clipFromLight || last.casters != layer.casters ||
+                     last.backgrounds != layer.backgrounds;
         for (std::size_t c = 0; !dirty && c < layer.casters.size(); ++c) {
             const WorldTransform* wt = world.tryGet<WorldTransform>(layer.casters[c]);
             const ShadowCasterDraw* own = world.tryGet<ShadowCasterDraw>(layer.casters[c]);
             dirty = wt == nullptr || wt->version != last.versions[c] || (own != nullptr && own->changedThisFrame);
+        }
+        for (std::size_t c = 0; !dirty && c < layer.backgrounds.size(); ++c) {
+            const WorldTransform* wt = world.tryGet<WorldTransform>(layer.backgrounds[c]);
+            dirty = wt == nullptr || wt->version != last.backgroundVersions[c];
         }
         layer.dirty = dirty;
         if (dirty) {
@@ -620,6 +625,14 @@ void ShadowPlanner::markDirty(const World& world, ShadowLightPlan& plan) {
             for (Entity caster : layer.casters) {
                 const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
                 last.versions.push_back(wt != nullptr ? wt->version : 0);
+            }
+            last.backgrounds.reserve(layer.backgrounds.capacity());
+            last.backgrounds = layer.backgrounds;
+            last.backgroundVersions.reserve(layer.backgrounds.capacity());
+            last.backgroundVersions.clear();
+            for (Entity background : layer.backgrounds) {
+                const WorldTransform* wt = world.tryGet<WorldTransform>(background);
+                last.backgroundVersions.push_back(wt != nullptr ? wt->version : 0);
             }
         }
     }

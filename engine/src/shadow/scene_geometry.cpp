@@ -13,6 +13,16 @@ constexpr std::size_t kIndexedItems = 32;
 
 bool byEntity(const BoundedEntity& a, const BoundedEntity& b) { return a.entity < b.entity; }
 
+/// Sorts `items` by entity. A world that only ever created its meshes comes out of a view
+/// exactly reversed.
+void inEntityOrder(std::vector<BoundedEntity>& items) {
+    if (std::is_sorted(items.rbegin(), items.rend(), byEntity)) {
+        std::reverse(items.begin(), items.end());
+    } else if (!std::is_sorted(items.begin(), items.end(), byEntity)) {
+        std::sort(items.begin(), items.end(), byEntity);
+    }
+}
+
 /// How this gather's casters differ from the last one's.
 struct CasterDiff {
     bool sameEntities = true;  ///< the same casters in the same order: the tree's items stand
@@ -53,9 +63,11 @@ CasterDiff diffCasters(const std::vector<BoundedEntity>& last, const std::vector
 void gatherGeometry(const World& world, SceneGeometry& out) {
     std::swap(out.casters, out.lastCasters);
     std::swap(out.receiverBoxes, out.lastReceiverBoxes);
+    std::swap(out.backgrounds, out.lastBackgrounds);
     const DAabb lastEverything = out.everything;
     out.casters.clear();
     out.receiverBoxes.clear();
+    out.backgrounds.clear();
     out.visible.measured = false;
     out.receivers = DAabb{};
     out.everything = DAabb{};
@@ -68,6 +80,7 @@ void gatherGeometry(const World& world, SceneGeometry& out) {
             if (mesh.receiveShadows) {
                 out.receiverBoxes.push_back(wb.box);
                 out.receivers.extend(wb.box);
+                if (!mesh.castShadows) out.backgrounds.push_back({e, wb.box, false, wt.version});
             }
         });
     // The game's own casters: bounds from their object bounds, as updateTransforms does for meshes.
@@ -78,15 +91,16 @@ void gatherGeometry(const World& world, SceneGeometry& out) {
             out.everything.extend(box);
             out.casters.push_back({e, box, c.changedThisFrame, wt.version});
         });
-    // Views walk back to front; entity order keeps caster lists comparable frame to frame. A
-    // world that only ever created its casters comes out exactly reversed.
-    if (std::is_sorted(out.casters.rbegin(), out.casters.rend(), byEntity)) {
-        std::reverse(out.casters.begin(), out.casters.end());
-    } else if (!std::is_sorted(out.casters.begin(), out.casters.end(), byEntity)) {
-        std::sort(out.casters.begin(), out.casters.end(), byEntity);
-    }
+    // Views walk back to front; entity order keeps caster lists comparable frame to frame.
+    inEntityOrder(out.casters);
+    inEntityOrder(out.backgrounds);
 
     out.receiversChanged = out.receiverBoxes != out.lastReceiverBoxes;
+    out.backgroundsChanged =
+        !std::equal(out.backgrounds.begin(), out.backgrounds.end(), out.lastBackgrounds.begin(),
+                    out.lastBackgrounds.end(), [](const BoundedEntity& a, const BoundedEntity& b) {
+                        return a.entity == b.entity && a.bounds == b.bounds && a.version == b.version;
+                    });
     out.everythingChanged = !(out.everything == lastEverything);
     const CasterDiff diff = diffCasters(out.lastCasters, out.casters, out.changed);
     if (out.casters.size() < kIndexedItems) {

@@ -36,9 +36,12 @@ struct VisibleReceivers {
 struct SceneGeometry {
     std::vector<BoundedEntity> casters;  ///< finite meshes with castShadows and the game's casters, entity order
     std::vector<DAabb> receiverBoxes;    ///< finite meshes with receiveShadows, each
-    DAabb receivers;                     ///< union of `receiverBoxes`
-    DAabb everything;                    ///< union of all finite meshes and the game's casters
-    VisibleReceivers visible;            ///< `measureVisibleReceivers`, for directional lights
+    /// Finite meshes with receiveShadows but not castShadows, entity order: what a moment
+    /// technique's layer holds behind its casters (ShadowLayerPlan::backgrounds).
+    std::vector<BoundedEntity> backgrounds;
+    DAabb receivers;           ///< union of `receiverBoxes`
+    DAabb everything;          ///< union of all finite meshes and the game's casters
+    VisibleReceivers visible;  ///< `measureVisibleReceivers`, for directional lights
 
     /// `casters` indexed, built or refitted by `gatherGeometry` when there are more than a few.
     /// Without it (a few casters, or geometry filled in by hand) queries walk the list.
@@ -49,13 +52,16 @@ struct SceneGeometry {
     /// changed (`moved`) has its box twice. So a caster entered or left a fixed frustum exactly
     /// when an odd number of its entries meet it.
     std::vector<BoundedEntity> changed;
-    BoxTree changedTree;            ///< `changed` indexed, when more than a few
-    bool receiversChanged = true;   ///< `receiverBoxes` differ from the last gather's
+    BoxTree changedTree;           ///< `changed` indexed, when more than a few
+    bool receiversChanged = true;  ///< `receiverBoxes` differ from the last gather's
+    /// `backgrounds` differ from the last gather's: entities, bounds or transform versions.
+    bool backgroundsChanged = true;
     bool everythingChanged = true;  ///< `everything` differs from the last gather's
 
     /// The last gather's lists, compared with the next (kept for their storage).
     std::vector<BoundedEntity> lastCasters;
     std::vector<DAabb> lastReceiverBoxes;
+    std::vector<BoundedEntity> lastBackgrounds;
 };
 
 /// Collects casters and receivers from meshes with finite world transforms and triangles (and

@@ -10,6 +10,7 @@
 #include "gl/no_throw.h"
 #include "gl/objects.h"
 #include "gl/pass_timer.h"
+#include "core/screen_bounds.h"
 #include "gl/program.h"
 #include "shadow/distance_field_atlas.h"
 #include "shadow/filter_chain.h"
@@ -64,6 +65,7 @@ struct DepthProgram {
     gpu::DeformUniforms deform;
     GLint alpha = -1;        ///< the alpha-tested programs only
     GLint alphaCutoff = -1;  ///< likewise
+    GLint layerIndex = -1;   ///< the background programs only: the layer of uCasters
 
     DepthProgram(std::string label, std::vector<std::string> defines) {
         program = gpu::buildProgram(
@@ -76,6 +78,7 @@ struct DepthProgram {
         deform = gpu::DeformUniforms::of(program.get());
         alpha = gl.GetUniformLocation(program.get(), "uAlpha");
         alphaCutoff = gl.GetUniformLocation(program.get(), "uAlphaCutoff");
+        layerIndex = gl.GetUniformLocation(program.get(), "uLayer");
     }
 
     /// Sets the layer's uniforms and makes the program current; `first`: the first of a
@@ -201,6 +204,12 @@ struct ShadowMaps::Impl {
     /// and deformation (gpu::MeshDeformBits), built when a layer first needs one (the nearest,
     /// opaque, rigid one is `depth`).
     std::array<std::array<std::array<std::optional<DepthProgram>, gpu::kMeshDeforms>, 2>, 3> others;
+    /// The background programs (SG_DEPTH_BACKGROUND), likewise by alpha test and deformation.
+    std::array<std::array<std::optional<DepthProgram>, gpu::kMeshDeforms>, 2> backgroundPrograms;
+    /// Copies the backgrounds into a layer (shadow_background.frag.glsl), with the vertex array
+    /// its one triangle is drawn with; made when a layer first has backgrounds.
+    std::optional<gpu::Program> copyBackground;
+    gpu::VertexArray emptyVertexArray;
     NearestScratch scratch;
     /// The distance fields of the sdf lights' casters, made when a light first uses sdf.
     std::optional<gpu::DistanceFieldAtlas> fields;
@@ -224,6 +233,13 @@ struct ShadowMaps::Impl {
     /// The program of depth mode `mode` (the second pass's for Midpoint and Second), opaque or
     /// alpha-tested, for casters deformed as `deform` says, built on first use.
     const DepthProgram& program(DepthMode mode, bool cutout, unsigned deform = 0);
+    /// The background program for opaque or cut-out meshes deformed as `deform` says.
+    const DepthProgram& backgroundProgram(bool cutout, unsigned deform);
+    /// Fills the texels of layer `k` of `plan`'s map that hold no caster with the farthest of its
+    /// backgrounds (ShadowLayerPlan::backgrounds), within a lookup's reach of `casterTexels`,
+    /// those its casters can have drawn; called with the layer drawn and bound.
+    void drawBackgrounds(const World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k,
+                         const PixelRect& casterTexels, LightShadowStats& ls);
     /// Brings the filter chain of every layer of `plan` whose map changed up to date.
     void updateChains(const ShadowLightPlan& plan, LightShadowStats& ls);
 };
@@ -305,6 +321,22 @@ const DepthProgram& ShadowMaps::Impl::program(DepthMode mode, bool cutout, unsig
         if (mode != DepthMode::Nearest) defines.emplace_back("SG_DEPTH_BEHIND_FIRST");
         if (mode == DepthMode::Midpoint) defines.emplace_back("SG_DEPTH_MIDPOINT");
         if (mode != DepthMode::Nearest) label += mode == DepthMode::Midpoint ? "/midpoint" : "/second";
+        if (cutout) {
+            defines.emplace_back("SG_ALPHA_TESTED");
+            label += "/alpha";
+        }
+        label += gpu::deformLabel(deform);
+        gpu::appendDeformDefines(deform, defines);
+        p.emplace(std::move(label), std::move(defines));
+    }
+    return *p;
+}
+
+const DepthProgram& ShadowMaps::Impl::backgroundProgram(bool cutout, unsigned deform) {
+    std::optional<DepthProgram>& p = backgroundPrograms[cutout ? 1 : 0][deform];
+    if (!p) {
+        std::vector<std::string> defines{"SG_DEPTH_BACKGROUND"};
+        std::string label = "Shadow/Depth/background";
         if (cutout) {
             defines.emplace_back("SG_ALPHA_TESTED");
             label += "/alpha";
@@ -402,15 +434,15 @@ struct CasterPass {
     }
 };
 
-/// Draws every caster of `layer` into the bound framebuffer, with `opaque` (current, its layer
+/// Draws `casters` (a list of `layer`'s) into the bound framebuffer, with `opaque` (current, its layer
 /// uniforms set: the rigid, opaque program) or, for a cut-out or deformed caster,
 /// `programFor(cutout, deform)` (made current and set up here); `first`: the first pass of a
 /// second-depth mode. A skinned caster
 /// is drawn in its pose. `pass` says whether solids are culled and gathers what was drawn.
 /// Returns the draw calls made.
 template <typename ProgramFor>
-int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& layer, const DepthProgram& opaque,
-                ProgramFor&& programFor, bool first, CasterPass& pass) {
+int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& layer, const std::vector<Entity>& casters,
+                const DepthProgram& opaque, ProgramFor&& programFor, bool first, CasterPass& pass) {
     const CasterDrawContext context{layer.lightFromWorld,
                                     layer.clipFromLight,
                                     layer.depthScale,
@@ -424,7 +456,7 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
         current = &p;
     };
     int drawn = 0;
-    for (Entity caster : layer.casters) {
+    for (Entity caster : casters) {
         const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
         if (wt == nullptr || !wt->finite) continue;
         if (const Mesh* mesh = world.tryGet<Mesh>(caster); mesh != nullptr && mesh->data != nullptr) {
@@ -500,7 +532,7 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
         program.use(layer, true);
         CasterPass firstPass;
         firstPass.mapSize = map.mapSize;
-        ls.castersDrawn += drawCasters(world, meshes, layer, program, programFor, true, firstPass);
+        ls.castersDrawn += drawCasters(world, meshes, layer, layer.casters, program, programFor, true, firstPass);
     }
     const GLuint framebuffer = map.framebuffer.get();
     gl.NamedFramebufferTextureLayer(framebuffer, GL_DEPTH_ATTACHMENT, map.array.get(), 0, static_cast<GLint>(k));
@@ -515,13 +547,71 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
     // The second-depth modes need the far side of every caster: only a nearest layer culls.
     CasterPass pass;
     pass.cullSolids = mode == DepthMode::Nearest;
-    pass.gatherTexels = map.chain && map.chain->kind == FilterChainKind::MinMax;
+    const bool minMax = map.chain && map.chain->kind == FilterChainKind::MinMax;
+    pass.gatherTexels = minMax || !layer.backgrounds.empty();
     pass.mapSize = map.mapSize;
-    ls.castersDrawn += drawCasters(world, meshes, layer, program, programFor, false, pass);
+    ls.castersDrawn += drawCasters(world, meshes, layer, layer.casters, program, programFor, false, pass);
     ls.castersCulled += pass.culled;
-    map.drawnTexels[k] = pass.gatherTexels ? pass.texels : PixelRect{0, 0, map.mapSize, map.mapSize};
+    map.drawnTexels[k] = minMax ? pass.texels : PixelRect{0, 0, map.mapSize, map.mapSize};
     if (mode != DepthMode::Nearest) gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
+    if (!layer.backgrounds.empty()) drawBackgrounds(world, meshes, plan, k, pass.texels, ls);
     ++ls.layersDrawn;
+}
+
+void ShadowMaps::Impl::drawBackgrounds(const World& world, MeshCache& meshes, const ShadowLightPlan& plan,
+                                       std::size_t k, const PixelRect& casterTexels, LightShadowStats& ls) {
+    const ShadowLayerPlan& layer = plan.layers[k];
+    ShadowMapGpu& map = *maps[static_cast<std::size_t>(plan.sceneIndex)].second;
+    // Only a region that holds a caster texel reads anything but lit, and a receiver reads one
+    // only within its region's reach of it: for the trilinear fetch of the mip chains, a texel
+    // of the level above the radius and its bilinear neighbour, under 4 radii. Beyond twice
+    // that, and an edge texel, the layer may keep the far depth.
+    const int reach = 8 * static_cast<int>(std::ceil(std::max(plan.maxFilterTexels, 1.0f))) + 2;
+    const PixelRect near{std::max(casterTexels.x0 - reach, 0), std::max(casterTexels.y0 - reach, 0),
+                         std::min(casterTexels.x1 + reach, map.mapSize), std::min(casterTexels.y1 + reach, map.mapSize)};
+    if (near.empty()) return;
+    gl.Enable(GL_SCISSOR_TEST);
+    gl.Scissor(near.x0, near.y0, near.x1 - near.x0, near.y1 - near.y0);
+    // The farthest background into the scratch (cleared to 0, tested GREATER), where the layer
+    // holds no caster (the background programs read it).
+    scratch.reserve(map.mapSize);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, scratch.framebuffer.get());
+    const float nothing = 0.0f;
+    gl.ClearNamedFramebufferfv(scratch.framebuffer.get(), GL_DEPTH, 0, &nothing);
+    gl.DepthFunc(GL_GREATER);
+    gl.BindSampler(SG_UNIT_MINMAX_SOURCE, 0);  // the texture's own nearest filtering, no comparison
+    gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, map.array.get());
+    const auto programFor = [this, k](bool alphaTested, unsigned deform) -> const DepthProgram& {
+        const DepthProgram& p = backgroundProgram(alphaTested, deform);
+        gl.ProgramUniform1i(p.program.get(), p.layerIndex, static_cast<GLint>(k));
+        return p;
+    };
+    const DepthProgram& opaque = programFor(false, 0);
+    opaque.use(layer);
+    CasterPass pass;  // no culling: a background may be seen from either side
+    pass.gatherTexels = true;
+    pass.mapSize = map.mapSize;
+    ls.backgroundsDrawn += drawCasters(world, meshes, layer, layer.backgrounds, opaque, programFor, false, pass);
+    // Then into the layer, within the texels the backgrounds can have drawn.
+    const PixelRect copied{std::max(near.x0, pass.texels.x0), std::max(near.y0, pass.texels.y0),
+                           std::min(near.x1, pass.texels.x1), std::min(near.y1, pass.texels.y1)};
+    if (!copyBackground) {
+        copyBackground =
+            gpu::buildProgram({"Shadow/Background", "fullscreen.vert.glsl", "shadow_background.frag.glsl", {}});
+        GLuint vao = 0;
+        gl.CreateVertexArrays(1, &vao);
+        emptyVertexArray = gpu::VertexArray(vao);
+    }
+    gl.BindFramebuffer(GL_FRAMEBUFFER, map.framebuffer.get());
+    gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, scratch.texture.get());
+    gl.DepthFunc(GL_ALWAYS);
+    gl.Scissor(copied.x0, copied.y0, copied.x1 - copied.x0, copied.y1 - copied.y0);
+    gl.UseProgram(copyBackground->get());
+    gl.BindVertexArray(emptyVertexArray.get());
+    if (!copied.empty()) gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    gl.Disable(GL_SCISSOR_TEST);
+    gl.DepthFunc(GL_LESS);
+    gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
 }
 
 void CasterDrawContext::setWorldFromLocal(const glm::dmat4& worldFromLocal) const {
@@ -586,7 +676,7 @@ void ShadowMaps::render(const ShadowFrame& frame, const World& world, MeshCache&
         stats.shadowLayersDrawn += ls.layersDrawn;
         stats.shadowLayersReused += ls.layersReused;
         stats.shadowLayersCleared += ls.layersCleared;
-        stats.shadowDrawCalls += ls.castersDrawn;
+        stats.shadowDrawCalls += ls.castersDrawn + ls.backgroundsDrawn;
     }
     endDepthOnly();
     for (std::size_t i = 0; i < frame.lights.size(); ++i) {
