@@ -43,6 +43,17 @@ float sg_msmSoftVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
         penumbra = sg_softMomentsPenumbra(L, r, m, reference, sg_varianceFloor(r, m), searchRadius, dReceiver, size,
                                           maxRadius, dBlocker);
         if (penumbra < 0.0) return 1.0;  // no blocker: lit
+        if (sg_refinesSearch(penumbra, searchRadius)) {
+            // The search again over the cone to the blockers found (sg_refinesSearch).
+            vec2 m2 = sg_chainMoments(slot, L, center.uv, center.layer, sg_regionLevel(r, penumbra)).xy;
+            float dBlocker2;
+            float refined = sg_softMomentsPenumbra(L, r, m2, reference, sg_varianceFloor(r, m2), penumbra, dReceiver,
+                                                   size, maxRadius, dBlocker2);
+            if (sg_refinedPenumbra(penumbra, refined) != penumbra) {
+                penumbra = refined;
+                dBlocker = dBlocker2;
+            }
+        }
     }
     SG_DEBUG_STORE(sg_debugPenumbra, penumbra);
     vec4 b = sg_quadrantMoments(slot, L, r, center, penumbra);

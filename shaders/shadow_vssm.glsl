@@ -17,10 +17,11 @@ float sg_vssmVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
     float dReceiver = center.depth;
     float reference = sg_summedReference(L, r, center);
     float size = sg_apparentEmitterSize(L, r.toLight);
-    // The blocker search region, then the penumbra: one loop body reads both, so the table's
-    // 16 fetches are compiled once, and a SIMD group whose regions hold no blocker stops after
-    // the first read. Without an emitter the penumbra is 0 and only it is read.
-    int reads = size > 0.0 ? 2 : 1;
+    // The blocker search region, its refinement (sg_refinedPenumbra), then the penumbra: one
+    // loop body reads all three, so the table's 16 fetches are compiled once, and a SIMD group
+    // whose regions hold no blocker stops after the first read. Without an emitter the penumbra
+    // is 0 and only it is read.
+    int reads = size > 0.0 ? 3 : 1;
     float radius = size > 0.0 ? sg_softMomentsSearchRadius(L, r, dReceiver, size, maxRadius) : 0.0;
     float visibility = 1.0;
     SG_ISOLATED
@@ -29,8 +30,16 @@ float sg_vssmVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
         float minVariance = sg_summedVarianceFloor(L, r, center, m);
         if (k + 1 < reads) {
             float dBlocker;
-            radius = sg_softMomentsPenumbra(L, r, m, reference, minVariance, radius, dReceiver, size, maxRadius, dBlocker);
-            if (radius < 0.0) break;  // no blocker: lit
+            float penumbra =
+                sg_softMomentsPenumbra(L, r, m, reference, minVariance, radius, dReceiver, size, maxRadius, dBlocker);
+            if (k == 0) {
+                if (penumbra < 0.0) break;  // no blocker: lit
+                // A region hardly narrower than the search's is not searched again.
+                if (!sg_refinesSearch(penumbra, radius)) ++k;
+                radius = penumbra;
+            } else {
+                radius = sg_refinedPenumbra(radius, penumbra);
+            }
         } else {
             SG_DEBUG_STORE(sg_debugPenumbra, radius);
             visibility = sg_momentsVisibility(L, m, reference, minVariance, sg_planeVariance(r, radius));

@@ -568,7 +568,8 @@ void ShadowMaps::Impl::drawBackgrounds(const World& world, MeshCache& meshes, co
     // that, and an edge texel, the layer may keep the far depth.
     const int reach = 8 * static_cast<int>(std::ceil(std::max(plan.maxFilterTexels, 1.0f))) + 2;
     const PixelRect near{std::max(casterTexels.x0 - reach, 0), std::max(casterTexels.y0 - reach, 0),
-                         std::min(casterTexels.x1 + reach, map.mapSize), std::min(casterTexels.y1 + reach, map.mapSize)};
+                         std::min(casterTexels.x1 + reach, map.mapSize),
+                         std::min(casterTexels.y1 + reach, map.mapSize)};
     if (near.empty()) return;
     gl.Enable(GL_SCISSOR_TEST);
     gl.Scissor(near.x0, near.y0, near.x1 - near.x0, near.y1 - near.y0);
