@@ -576,6 +576,25 @@ bool ShadowPlanner::keepLayers(const World& world, ShadowLightPlan& plan, bool c
     return true;
 }
 
+namespace {
+
+/// Keeps `drawn` (a layer's casters or backgrounds) in `kept` and each one's transform version
+/// in `versions`, with the layer's room for every one (planLayers): one moving in later costs
+/// no allocation here either.
+void rememberDrawn(const World& world, const std::vector<Entity>& drawn, std::vector<Entity>& kept,
+                   std::vector<std::uint64_t>& versions) {
+    kept.reserve(drawn.capacity());
+    kept = drawn;
+    versions.reserve(drawn.capacity());
+    versions.clear();
+    for (Entity e : drawn) {
+        const WorldTransform* wt = world.tryGet<WorldTransform>(e);
+        versions.push_back(wt != nullptr ? wt->version : 0);
+    }
+}
+
+}  // namespace
+
 void ShadowPlanner::markDirty(const World& world, ShadowLightPlan& plan) {
     auto it = std::find_if(memory_.begin(), memory_.end(), [&](const auto& m) { return m.first == plan.entity; });
     if (it == memory_.end()) {
@@ -616,24 +635,8 @@ void ShadowPlanner::markDirty(const World& world, ShadowLightPlan& plan) {
         if (dirty) {
             last.lightFromWorld = layer.lightFromWorld;
             last.clipFromLight = layer.clipFromLight;
-            // With the layer's room for every caster (planLayers): a caster moving in later
-            // costs no allocation here either.
-            last.casters.reserve(layer.casters.capacity());
-            last.casters = layer.casters;
-            last.versions.reserve(layer.casters.capacity());
-            last.versions.clear();
-            for (Entity caster : layer.casters) {
-                const WorldTransform* wt = world.tryGet<WorldTransform>(caster);
-                last.versions.push_back(wt != nullptr ? wt->version : 0);
-            }
-            last.backgrounds.reserve(layer.backgrounds.capacity());
-            last.backgrounds = layer.backgrounds;
-            last.backgroundVersions.reserve(layer.backgrounds.capacity());
-            last.backgroundVersions.clear();
-            for (Entity background : layer.backgrounds) {
-                const WorldTransform* wt = world.tryGet<WorldTransform>(background);
-                last.backgroundVersions.push_back(wt != nullptr ? wt->version : 0);
-            }
+            rememberDrawn(world, layer.casters, last.casters, last.versions);
+            rememberDrawn(world, layer.backgrounds, last.backgrounds, last.backgroundVersions);
         }
     }
 }

@@ -117,6 +117,19 @@ struct NearestScratch {
     [[nodiscard]] long long bytes() const { return depthArrayBytes(size, size > 0 ? 1 : 0); }
 };
 
+/// Builds into `p` the depth program `label` with `defines`, for cut-out casters (`cutout`) and
+/// casters deformed as `deform` says (gpu::MeshDeformBits) too.
+void makeDepthProgram(std::optional<DepthProgram>& p, std::string label, std::vector<std::string> defines, bool cutout,
+                      unsigned deform) {
+    if (cutout) {
+        defines.emplace_back("SG_ALPHA_TESTED");
+        label += "/alpha";
+    }
+    label += gpu::deformLabel(deform);
+    gpu::appendDeformDefines(deform, defines);
+    p.emplace(std::move(label), std::move(defines));
+}
+
 std::unique_ptr<ShadowMapGpu> allocate(const ShadowLightPlan& plan) {
     auto map = std::make_unique<ShadowMapGpu>();
     const std::string label = "Shadow/" + plan.name;
@@ -321,30 +334,14 @@ const DepthProgram& ShadowMaps::Impl::program(DepthMode mode, bool cutout, unsig
         if (mode != DepthMode::Nearest) defines.emplace_back("SG_DEPTH_BEHIND_FIRST");
         if (mode == DepthMode::Midpoint) defines.emplace_back("SG_DEPTH_MIDPOINT");
         if (mode != DepthMode::Nearest) label += mode == DepthMode::Midpoint ? "/midpoint" : "/second";
-        if (cutout) {
-            defines.emplace_back("SG_ALPHA_TESTED");
-            label += "/alpha";
-        }
-        label += gpu::deformLabel(deform);
-        gpu::appendDeformDefines(deform, defines);
-        p.emplace(std::move(label), std::move(defines));
+        makeDepthProgram(p, std::move(label), std::move(defines), cutout, deform);
     }
     return *p;
 }
 
 const DepthProgram& ShadowMaps::Impl::backgroundProgram(bool cutout, unsigned deform) {
     std::optional<DepthProgram>& p = backgroundPrograms[cutout ? 1 : 0][deform];
-    if (!p) {
-        std::vector<std::string> defines{"SG_DEPTH_BACKGROUND"};
-        std::string label = "Shadow/Depth/background";
-        if (cutout) {
-            defines.emplace_back("SG_ALPHA_TESTED");
-            label += "/alpha";
-        }
-        label += gpu::deformLabel(deform);
-        gpu::appendDeformDefines(deform, defines);
-        p.emplace(std::move(label), std::move(defines));
-    }
+    if (!p) makeDepthProgram(p, "Shadow/Depth/background", {"SG_DEPTH_BACKGROUND"}, cutout, deform);
     return *p;
 }
 
