@@ -289,7 +289,9 @@ void checkCall(const HostObjects& host, const std::string& name, const std::func
 /// A scene with more lights than one pass takes (blending adds the later passes) and a light of
 /// every technique: the three of `threeLightScene` and seven local spots; and a textured box, so
 /// that the first frame uploads a texture from client memory (a 3x2 image: rows of 12 bytes,
-/// which an unpack alignment of 8 or a row length would misread).
+/// which an unpack alignment of 8 or a row length would misread); and a mat that receives but
+/// does not cast, which the moment lights draw behind their casters (their backgrounds: a
+/// scissored pass and a copy).
 Scene hostileScene() {
     Scene scene = test::threeLightScene();
     auto image = std::make_shared<Texture>();
@@ -301,6 +303,8 @@ Scene hostileScene() {
     Material textured;
     textured.baseColorTexture = image;
     addMeshInstance(scene.world, "textured box", makeBoxMesh(glm::vec3(0.2f)), test::placed({1.2, 0.2, 1.0}), textured);
+    const Entity mat = addMeshInstance(scene.world, "mat", makePlaneMesh(1.5f, 2), test::placed({0.0, 0.01, 0.5}));
+    scene.world.get<Mesh>(mat).castShadows = false;
     const ShadowTechnique techniques[] = {ShadowTechnique::Vsm,     ShadowTechnique::Vssm,         ShadowTechnique::Msm,
                                           ShadowTechnique::MsmSoft, ShadowTechnique::PcssTextbook, ShadowTechnique::Pcf,
                                           ShadowTechnique::Hard};
@@ -327,7 +331,10 @@ RenderOptions options64x48() {
 TEST_F(HostStateTest, EveryPublicCallLeavesTheHostStateAsItFoundIt) {
     Scene scene = hostileScene();
     FrameRunner runner;
-    test::renderFrame(runner, scene, 64, 48);  // first frame: programs built, maps allocated
+    const test::RenderedFrame first = test::renderFrame(runner, scene, 64, 48);  // programs built, maps allocated
+    int backgrounds = 0;
+    for (const LightShadowStats& l : first.stats.lights) backgrounds += l.backgroundsDrawn;
+    ASSERT_GE(backgrounds, 4) << "the moment lights drew no backgrounds";
     HostObjects host;
     const RenderOptions options = options64x48();
     ShadowSystem& shadows = runner.shadows();
