@@ -17,11 +17,13 @@ mkdir -p "$results"
 PCSS spends taps where the penumbra is (one tap per texel of its disk's area, up to
 `pcfSamples`, none where the min/max pyramid shows the region lit or in umbra); VSM reads one
 mip level of the moments for its fixed `pcfRadius`; VSSM reads two squares (search cone and
-penumbra) of its summed-area table, 16 fetches each whatever the width; MSM-soft one trilinear
-fetch of its four-moment mip chain for the search and four for the penumbra. The moment
+penumbra) of its summed-area table, 16 fetches each whatever the width, and a third where the
+search found a penumbra under half its cone (the search again over the narrower cone); MSM-soft
+one trilinear fetch of its four-moment mip chain for the search (two where it searches again)
+and four for the penumbra. The moment
 techniques pay for their chain every time the layer is redrawn (here every frame: caching off):
-a full-resolution mip chain (RG32F, RGBA32F for four moments; level 0 written by the depth pass,
-the levels above by a full-screen draw each) or VSSM's table (RGBA32F, one level, a compute pass
+a mip chain of the moments (RG32F, RGBA32F for four moments; a full-screen draw per level from
+level 1 up, the first from the depth map, which the lookups gather as level 0) or VSSM's table (RGBA32F, one level, a compute pass
 along the rows and one along the columns). That is most of
 their frame at a 2048² map on this CPU rasteriser, and it does not depend on the width (VSM's
 frame, whose filter is fixed, varies as much from run to run). `sdf` draws no caster into its
