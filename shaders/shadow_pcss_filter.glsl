@@ -28,29 +28,51 @@ float sg_pcssFilter(int slot, sg_GpuLight L, sg_Receiver receiver) {
     int gathers = (L.blockerSamples + 1) / 2;
     sg_DiskWalk disk = sg_beginDisk(sg_pixelRotation(), gathers);
     int searchGathers = known >= 0.0 || pointEmitter ? 0 : gathers;
-    float blockerSum = 0.0;
-    float blockers = 0.0;
+    // Twice at most: the second search, over the cone to the blockers the first found, where
+    // that is under half the first region (sg_refinesSearch, as VSSM's and MSM-soft's), with half
+    // the gathers (a region that narrow holds a few texels: all the gathers measured the same).
+    float radius = searchRadius;
+    float penumbra = 0.0;
+    float dBlocker = 0.0;
+    bool found = false;
     SG_ISOLATED
-    for (int i = 0; i < searchGathers; ++i) {
-        sg_Tap t = sg_lateralTap(L, r, sg_nextDiskSample(L.kernel, disk, i) * searchRadius);
-        float scale = t.layer == r.layer ? r.depthScale : sg_layers[L.firstLayer + t.layer].depthScale;
-        vec2 f, quadUv;
-        vec4 references = sg_quadReferences(L, r, t, f, quadUv) * scale;
-        vec4 stored = textureGather(sg_shadowDepth[slot], vec3(quadUv, float(t.layer))) * scale;
-        vec4 blocks = vec4(lessThan(stored, references));
-        // Blocker depth carried to the receiver's own ray, so that neither a sloped receiver nor
-        // a perspective light's rays bias it. An orthographic light's depth is axial: the tap's
-        // shift along the tangent plane is removed. A perspective light's depth is a distance,
-        // which grows off the axis as 1/cos for the receiver and the blocker alike: the ratio
-        // of the two along the tap's ray is what similar triangles keep, so the depth is scaled
-        // (a shift would move blockers off axis by the receiver's growth, not their own).
-        vec4 carried = r.orthographic ? stored + (dReceiver - t.depth) : stored * (dReceiver / max(t.depth, 1e-30));
-        blockerSum += dot(blocks, carried);
-        blockers += dot(blocks, vec4(1.0));
+    for (int pass = 0; pass < 2 && searchGathers > 0; ++pass) {
+        float blockerSum = 0.0;
+        float blockers = 0.0;
+        SG_ISOLATED
+        for (int i = 0; i < searchGathers; ++i) {
+            sg_Tap t = sg_lateralTap(L, r, sg_nextDiskSample(L.kernel, disk, i) * radius);
+            float scale = t.layer == r.layer ? r.depthScale : sg_layers[L.firstLayer + t.layer].depthScale;
+            vec2 f, quadUv;
+            vec4 references = sg_quadReferences(L, r, t, f, quadUv) * scale;
+            vec4 stored = textureGather(sg_shadowDepth[slot], vec3(quadUv, float(t.layer))) * scale;
+            vec4 blocks = vec4(lessThan(stored, references));
+            // Blocker depth carried to the receiver's own ray, so that neither a sloped receiver
+            // nor a perspective light's rays bias it. An orthographic light's depth is axial: the
+            // tap's shift along the tangent plane is removed. A perspective light's depth is a
+            // distance, which grows off the axis as 1/cos for the receiver and the blocker
+            // alike: the ratio of the two along the tap's ray is what similar triangles keep, so
+            // the depth is scaled (a shift would move blockers off axis by the receiver's
+            // growth, not their own).
+            vec4 carried =
+                r.orthographic ? stored + (dReceiver - t.depth) : stored * (dReceiver / max(t.depth, 1e-30));
+            blockerSum += dot(blocks, carried);
+            blockers += dot(blocks, vec4(1.0));
+        }
+        if (blockers <= 0.0) break;  // none (in the narrower cone: the first estimate stands)
+        float d = clamp(blockerSum / blockers, 0.0, dReceiver);
+        // Penumbra half-width at the receiver (m), by similar triangles.
+        float p = min(sg_penumbraRadius(L, dReceiver, d, size), maxRadius);
+        if (!found || p < penumbra) {
+            penumbra = p;
+            dBlocker = d;
+        }
+        found = true;
+        if (!sg_refinesSearch(penumbra, radius)) break;
+        radius = penumbra;
+        searchGathers = max(searchGathers / 2, 1);
     }
-    float dBlocker = clamp(blockerSum / max(blockers, 1.0), 0.0, dReceiver);
-    // Penumbra half-width at the receiver (m), by similar triangles.
-    float penumbra = blockers > 0.0 ? min(sg_penumbraRadius(L, dReceiver, dBlocker, size), maxRadius) : 0.0;
+    float blockers = found ? 1.0 : 0.0;
     int taps = pointEmitter ? 1 : (blockers > 0.0 ? sg_tapsFor(penumbra / r.texelMetres, L.pcfSamples) : 0);
     float filtered = sg_pcfTaps(slot, L, r, penumbra, taps, false);
     SG_DEBUG_STORE(sg_debugBlockerDepth, blockers > 0.0 ? dBlocker : 0.0);
