@@ -26,7 +26,7 @@ float sg_pcssFilter(int slot, sg_GpuLight L, sg_Receiver receiver) {
     // GL 4.0): twice the depths of single taps for half the fetches, at the same error (fewer
     // points cluster; docs/tuning.md).
     int gathers = (L.blockerSamples + 1) / 2;
-    sg_DiskWalk disk = sg_beginDisk(sg_pixelRotation(), gathers);
+    vec2 rotation = sg_pixelRotation();
     int searchGathers = known >= 0.0 || pointEmitter ? 0 : gathers;
     // Twice at most: the second search, over the cone to the blockers the first found, where
     // that is under half the first region (sg_refinesSearch, as VSSM's and MSM-soft's), with half
@@ -37,6 +37,7 @@ float sg_pcssFilter(int slot, sg_GpuLight L, sg_Receiver receiver) {
     bool found = false;
     SG_ISOLATED
     for (int pass = 0; pass < 2 && searchGathers > 0; ++pass) {
+        sg_DiskWalk disk = sg_beginDisk(rotation, searchGathers);  // the whole disk at this count
         float blockerSum = 0.0;
         float blockers = 0.0;
         SG_ISOLATED
@@ -72,10 +73,9 @@ float sg_pcssFilter(int slot, sg_GpuLight L, sg_Receiver receiver) {
         radius = penumbra;
         searchGathers = max(searchGathers / 2, 1);
     }
-    float blockers = found ? 1.0 : 0.0;
-    int taps = pointEmitter ? 1 : (blockers > 0.0 ? sg_tapsFor(penumbra / r.texelMetres, L.pcfSamples) : 0);
+    int taps = pointEmitter ? 1 : (found ? sg_tapsFor(penumbra / r.texelMetres, L.pcfSamples) : 0);
     float filtered = sg_pcfTaps(slot, L, r, penumbra, taps, false);
-    SG_DEBUG_STORE(sg_debugBlockerDepth, blockers > 0.0 ? dBlocker : 0.0);
+    SG_DEBUG_STORE(sg_debugBlockerDepth, found ? dBlocker : 0.0);
     SG_DEBUG_STORE(sg_debugPenumbra, penumbra);
     if (known >= 0.0) return known;
     return taps > 0 ? filtered : 1.0;

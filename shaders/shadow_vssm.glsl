@@ -34,7 +34,7 @@ float sg_vssmVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
                 sg_softMomentsPenumbra(L, r, m, reference, minVariance, radius, dReceiver, size, maxRadius, dBlocker);
             if (k == 0) {
                 if (penumbra < 0.0) break;  // no blocker: lit
-                // A region hardly narrower than the search's is not searched again.
+                // Searched again only where under half the first region (sg_refinesSearch).
                 if (!sg_refinesSearch(penumbra, radius)) ++k;
                 radius = penumbra;
             } else {

@@ -70,7 +70,8 @@ struct ShadowLayerPlan {
     /// Casters (meshes and `ShadowCasterDraw`s) whose world bounds meet this layer's frustum,
     /// in entity order.
     std::vector<Entity> casters;
-    /// A moment technique's layer with casters (VSM, VSSM, MSM, MSM-soft): the meshes that
+    /// A layer with casters of a technique whose map carries a moment chain (VSM, VSSM,
+    /// MSM-soft; MSM's one-texel region gained nothing from them, measured): the meshes that
     /// receive but do not cast whose world bounds meet its frustum, in entity order. Where no
     /// caster covers a texel, the layer holds the farthest of them instead of the far depth, so
     /// that a filter region reaching past a shadow's outline averages the blockers with the

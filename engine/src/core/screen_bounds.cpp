@@ -43,4 +43,12 @@ PixelRect unite(const PixelRect& a, const PixelRect& b) {
     return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
 }
 
+PixelRect intersect(const PixelRect& a, const PixelRect& b) {
+    return {std::max(a.x0, b.x0), std::max(a.y0, b.y0), std::min(a.x1, b.x1), std::min(a.y1, b.y1)};
+}
+
+PixelRect grownWithin(const PixelRect& r, int by, int width, int height) {
+    return intersect({r.x0 - by, r.y0 - by, r.x1 + by, r.y1 + by}, {0, 0, width, height});
+}
+
 }  // namespace shadow

@@ -22,6 +22,12 @@ struct PixelRect {
 /// The smallest rectangle holding `a` and `b` (an empty one adds nothing).
 PixelRect unite(const PixelRect& a, const PixelRect& b);
 
+/// The rectangle `a` and `b` share (empty when they share none).
+PixelRect intersect(const PixelRect& a, const PixelRect& b);
+
+/// `r` grown by `by` pixels on every side, within a `width` x `height` target.
+PixelRect grownWithin(const PixelRect& r, int by, int width, int height);
+
 /// The pixels of a `width` x `height` target that the box `box` covers through `clipFromWorld`:
 /// the rectangle of its eight corners' projections, pixels whose centre it may hold rounded out;
 /// the whole target where a corner lies at or behind the eye plane (w <= 0: no bounded image).

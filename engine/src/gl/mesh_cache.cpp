@@ -279,10 +279,8 @@ int MeshCache::bindInPass(const std::shared_ptr<const MeshData>& meshPtr) {
         g.indices =
             gpu::makeBuffer(label + "/indices", static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
                             mesh.indices.data(), 0);
-        GLuint vao = 0;
-        gl.CreateVertexArrays(1, &vao);
-        g.vao = gpu::VertexArray(vao);
-        g.vao.label(label);
+        g.vao = gpu::makeVertexArray(label);
+        const GLuint vao = g.vao.get();
         gl.VertexArrayVertexBuffer(vao, 0, g.vertices.get(), 0, sizeof(GpuVertex));
         gl.VertexArrayElementBuffer(vao, g.indices.get());
         gl.EnableVertexArrayAttrib(vao, 0);

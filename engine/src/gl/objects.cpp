@@ -63,6 +63,14 @@ Framebuffer makeFramebuffer(std::string_view label) {
     return f;
 }
 
+VertexArray makeVertexArray(std::string_view label) {
+    GLuint name = 0;
+    gl.CreateVertexArrays(1, &name);
+    VertexArray v(name);
+    v.label(label);
+    return v;
+}
+
 const char* glErrorName(GLenum e) {
     switch (e) {
         case GL_INVALID_ENUM: return "GL_INVALID_ENUM";

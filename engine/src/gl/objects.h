@@ -102,6 +102,9 @@ Buffer makeBuffer(std::string_view label, GLsizeiptr bytes, const void* data, GL
 Texture makeTexture(std::string_view label, GLenum target);
 /// Makes a framebuffer, labelled.
 Framebuffer makeFramebuffer(std::string_view label);
+/// Makes a vertex array, labelled: with no attribute, what a full-screen triangle made from
+/// gl_VertexID is drawn with.
+VertexArray makeVertexArray(std::string_view label);
 
 /// The name of GL error code `e` ("GL_INVALID_ENUM", ...).
 [[nodiscard]] const char* glErrorName(GLenum e);

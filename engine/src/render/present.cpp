@@ -24,9 +24,7 @@ Presenter::Presenter()
                                              {"SG_METER_TILE " + std::to_string(kMeterTile)})),
       bins_(gpu::makeBuffer("Present/exposureBins", sizeof(LuminanceHistogram), nullptr, GL_DYNAMIC_STORAGE_BIT)) {
     exposureLocation_ = gl.GetUniformLocation(toneMapProgram_.get(), "sg_exposure");
-    GLuint vao = 0;
-    gl.CreateVertexArrays(1, &vao);
-    empty_ = gpu::VertexArray(vao);
+    empty_ = gpu::makeVertexArray("Present/empty vertex array");
 }
 
 LuminanceHistogram Presenter::meter(GLuint color, int width, int height) {

@@ -94,11 +94,7 @@ bool screenStagePays(ScreenVisibility setting, const ShadowFrame& frame, const s
     return wideEnough && filtered >= 2;
 }
 
-ScreenStage::ScreenStage() {
-    GLuint vao = 0;
-    gl.CreateVertexArrays(1, &vao);
-    empty_ = gpu::VertexArray(vao);
-}
+ScreenStage::ScreenStage() { empty_ = gpu::makeVertexArray("Screen/empty vertex array"); }
 
 std::int64_t ScreenStage::bytesFor(int width, int height, bool materialTargets) {
     const std::int64_t pixels = std::int64_t{width} * height;

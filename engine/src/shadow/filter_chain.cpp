@@ -209,9 +209,7 @@ const FilterChainBuilder::MomentsPrograms& FilterChainBuilder::momentsPrograms()
     }
     if (!momentsFramebuffer_) {
         momentsFramebuffer_ = gpu::makeFramebuffer("Shadow/moments framebuffer");
-        GLuint vao = 0;
-        gl.CreateVertexArrays(1, &vao);
-        emptyVertexArray_ = gpu::VertexArray(vao);
+        emptyVertexArray_ = gpu::makeVertexArray("Shadow/moments vertex array");
     }
     return *p;
 }

@@ -104,15 +104,20 @@ bool followChangedCasters(const SceneGeometry& g, const Meets& meets, std::vecto
 }
 
 /// Sets `layer.backgrounds` to the receivers of `g` that do not cast and whose bounds meet
-/// `meets`, in entity order; none when the layer has no casters (a layer without is lit).
+/// `meets`, in entity order, and returns the farthest stored depth (`farthestDepth`) of their
+/// boxes when `farthest` (else 0); none when the layer has no casters (a layer without is lit).
 template <typename Meets>
-void backgroundsIn(const SceneGeometry& g, const Meets& meets, ShadowLayerPlan& layer) {
+double backgroundsIn(const SceneGeometry& g, const Meets& meets, bool farthest, ShadowLayerPlan& layer) {
     layer.backgrounds.clear();
-    if (layer.casters.empty()) return;
+    if (layer.casters.empty()) return 0.0;
     layer.backgrounds.reserve(g.backgrounds.size());
+    double depth = 0.0;
     for (const BoundedEntity& b : g.backgrounds) {
-        if (meets(b.bounds)) layer.backgrounds.push_back(b.entity);
+        if (!meets(b.bounds)) continue;
+        layer.backgrounds.push_back(b.entity);
+        if (farthest) depth = std::max(depth, farthestDepth(layer, b.bounds));
     }
+    return depth;
 }
 
 /// Sets `layer.casters` to the casters whose bounds meet the layer's frustum, in entity order,
@@ -131,22 +136,19 @@ void castersIn(const SceneGeometry& g, const LayerInputs& light, const std::opti
     layer.casters.reserve(g.casters.size());
     const bool same = followed.has_value() && *followed == matricesOf(layer);
     if (!light.summedMoments && same && followChangedCasters(g, meets, layer.casters)) {
-        if (light.backgrounds) backgroundsIn(g, meets, layer);
+        if (light.backgrounds) backgroundsIn(g, meets, false, layer);
         return;
     }
     castersMeeting(g, meets, layer.casters);
-    if (light.backgrounds) backgroundsIn(g, meets, layer);
+    const double farthestBackground = light.backgrounds ? backgroundsIn(g, meets, light.summedMoments, layer) : 0.0;
     if (!light.summedMoments) return;
     if (layer.casters.empty()) {
         layer.momentScale = 0.0f;  // nothing to sum: no table, every lookup lit
         return;
     }
-    double farthest = 0.0;
+    double farthest = farthestBackground;
     forEachCaster(g, meets,
                   [&](const BoundedEntity& c) { farthest = std::max(farthest, farthestDepth(layer, c.bounds)); });
-    for (const BoundedEntity& b : g.backgrounds) {
-        if (meets(b.bounds)) farthest = std::max(farthest, farthestDepth(layer, b.bounds));
-    }
     // The power of two putting the farthest stored depth in (1/4, 1/2]; at most 2^40 (a caster
     // 10^-12 of the range away), at least 1.
     const double stored = std::clamp(farthest / std::max(static_cast<double>(layer.depthScale), 1e-30), 1e-12, 1.0);
@@ -609,8 +611,7 @@ LayerInputs layerInputs(const ShadowLightPlan& plan, const LightPose& pose, doub
     in.shadowDistance = plan.settings.shadowDistance;
     in.summedMoments = plan.settings.technique == ShadowTechnique::Vssm;
     const std::optional<FilterChainKind> chain = filterChainOf(plan.settings.technique);
-    in.backgrounds =
-        chain.has_value() ? *chain != FilterChainKind::MinMax : plan.settings.technique == ShadowTechnique::Msm;
+    in.backgrounds = chain.has_value() && *chain != FilterChainKind::MinMax;
     return in;
 }
 

@@ -62,8 +62,8 @@ struct LayerInputs {
     /// VSSM (FilterChainKind::SummedMoments in filter_chain.h): the layers' `momentScale` is
     /// fitted to their casters. (plan.technique() is None until the layers exist.)
     bool summedMoments = false;
-    /// A moment technique (VSM, VSSM, MSM, MSM-soft): each layer also lists the receivers that
-    /// do not cast (`ShadowLayerPlan::backgrounds`), drawn behind its casters.
+    /// A technique whose map carries a moment chain (VSM, VSSM, MSM-soft): each layer also lists
+    /// the receivers that do not cast (`ShadowLayerPlan::backgrounds`), drawn behind its casters.
     bool backgrounds = false;
     /// A length the scene defines and keeps (the camera's far plane): the layers' extents, depth
     /// ranges and far planes are rounded (for stability while things move) to power-of-two

@@ -5,12 +5,12 @@
 #include <shadow/shadow_maps.h>
 #include <shadow/shared_constants.h>
 
+#include "core/screen_bounds.h"
 #include "gl/gl_state.h"
 #include "gl/mesh_cache_access.h"
 #include "gl/no_throw.h"
 #include "gl/objects.h"
 #include "gl/pass_timer.h"
-#include "core/screen_bounds.h"
 #include "gl/program.h"
 #include "shadow/distance_field_atlas.h"
 #include "shadow/filter_chain.h"
@@ -381,8 +381,8 @@ GLenum solidCulledFaces(const ShadowLayerPlan& layer, const glm::dmat4& worldFro
 PixelRect casterTexels(const ShadowLayerPlan& layer, int mapSize, const DAabb* box) {
     if (box == nullptr) return {0, 0, mapSize, mapSize};
     if (box->empty()) return {};
-    const PixelRect r = projectedBounds(layer.clipFromLight * layer.lightFromWorld, *box, mapSize, mapSize);
-    return {std::max(r.x0 - 1, 0), std::max(r.y0 - 1, 0), std::min(r.x1 + 1, mapSize), std::min(r.y1 + 1, mapSize)};
+    return grownWithin(projectedBounds(layer.clipFromLight * layer.lightFromWorld, *box, mapSize, mapSize), 1, mapSize,
+                       mapSize);
 }
 
 /// The faces culled in a depth pass, set only when they change (0: none, as beginDepthOnly
@@ -564,10 +564,8 @@ void ShadowMaps::Impl::drawBackgrounds(const World& world, MeshCache& meshes, co
     // of the level above the radius and its bilinear neighbour, under 4 radii. Beyond twice
     // that, and an edge texel, the layer may keep the far depth.
     const int reach = 8 * static_cast<int>(std::ceil(std::max(plan.maxFilterTexels, 1.0f))) + 2;
-    const PixelRect near{std::max(casterTexels.x0 - reach, 0), std::max(casterTexels.y0 - reach, 0),
-                         std::min(casterTexels.x1 + reach, map.mapSize),
-                         std::min(casterTexels.y1 + reach, map.mapSize)};
-    if (near.empty()) return;
+    if (casterTexels.empty()) return;
+    const PixelRect near = grownWithin(casterTexels, reach, map.mapSize, map.mapSize);
     gl.Enable(GL_SCISSOR_TEST);
     gl.Scissor(near.x0, near.y0, near.x1 - near.x0, near.y1 - near.y0);
     // The farthest background into the scratch (cleared to 0, tested GREATER), where the layer
@@ -591,14 +589,11 @@ void ShadowMaps::Impl::drawBackgrounds(const World& world, MeshCache& meshes, co
     pass.mapSize = map.mapSize;
     ls.backgroundsDrawn += drawCasters(world, meshes, layer, layer.backgrounds, opaque, programFor, false, pass);
     // Then into the layer, within the texels the backgrounds can have drawn.
-    const PixelRect copied{std::max(near.x0, pass.texels.x0), std::max(near.y0, pass.texels.y0),
-                           std::min(near.x1, pass.texels.x1), std::min(near.y1, pass.texels.y1)};
+    const PixelRect copied = intersect(near, pass.texels);
     if (!copyBackground) {
         copyBackground =
             gpu::buildProgram({"Shadow/Background", "fullscreen.vert.glsl", "shadow_background.frag.glsl", {}});
-        GLuint vao = 0;
-        gl.CreateVertexArrays(1, &vao);
-        emptyVertexArray = gpu::VertexArray(vao);
+        emptyVertexArray = gpu::makeVertexArray("Shadow/background vertex array");
     }
     gl.BindFramebuffer(GL_FRAMEBUFFER, map.framebuffer.get());
     gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, scratch.texture.get());

@@ -148,9 +148,7 @@ struct ShadowMask::Impl {
 };
 
 ShadowMask::Impl::Impl() {
-    GLuint vao = 0;
-    gl.CreateVertexArrays(1, &vao);
-    empty = gpu::VertexArray(vao);
+    empty = gpu::makeVertexArray("Shadow/Mask/empty vertex array");
     framebuffer = gpu::makeFramebuffer("Shadow/Mask/framebuffer");
     GLuint s = 0;
     gl.CreateSamplers(1, &s);
