@@ -47,28 +47,30 @@ Buffer makeBuffer(std::string_view label, GLsizeiptr bytes, const void* data, GL
     return b;
 }
 
-Texture makeTexture(std::string_view label, GLenum target) {
+namespace {
+
+/// A new object of kind `Object`, its name from `create(&name)`, labelled `label`.
+template <typename Object, typename Create>
+Object makeLabelled(std::string_view label, Create create) {
     GLuint name = 0;
-    gl.CreateTextures(target, 1, &name);
-    Texture t(name);
-    t.label(label);
-    return t;
+    create(&name);
+    Object o(name);
+    o.label(label);
+    return o;
+}
+
+}  // namespace
+
+Texture makeTexture(std::string_view label, GLenum target) {
+    return makeLabelled<Texture>(label, [target](GLuint* n) { gl.CreateTextures(target, 1, n); });
 }
 
 Framebuffer makeFramebuffer(std::string_view label) {
-    GLuint name = 0;
-    gl.CreateFramebuffers(1, &name);
-    Framebuffer f(name);
-    f.label(label);
-    return f;
+    return makeLabelled<Framebuffer>(label, [](GLuint* n) { gl.CreateFramebuffers(1, n); });
 }
 
 VertexArray makeVertexArray(std::string_view label) {
-    GLuint name = 0;
-    gl.CreateVertexArrays(1, &name);
-    VertexArray v(name);
-    v.label(label);
-    return v;
+    return makeLabelled<VertexArray>(label, [](GLuint* n) { gl.CreateVertexArrays(1, n); });
 }
 
 const char* glErrorName(GLenum e) {
