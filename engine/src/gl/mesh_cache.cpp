@@ -276,9 +276,11 @@ int MeshCache::bindInPass(const std::shared_ptr<const MeshData>& meshPtr) {
         const std::string label = "Mesh/" + mesh.name;
         g.vertices = gpu::makeBuffer(label + "/vertices", static_cast<GLsizeiptr>(vertices.size() * sizeof(GpuVertex)),
                                      vertices.data(), 0);
-        g.indices =
-            gpu::makeBuffer(label + "/indices", static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
-                            mesh.indices.data(), 0);
+        // Drawn in an order that reuses transformed vertices: every pass pays the vertex stage
+        // again, and a CPU rasteriser shades each vertex once per batch it appears in.
+        const std::vector<std::uint32_t> ordered = vertexCacheOrder(mesh.indices, mesh.positions.size());
+        g.indices = gpu::makeBuffer(label + "/indices", static_cast<GLsizeiptr>(ordered.size() * sizeof(std::uint32_t)),
+                                    ordered.data(), 0);
         g.vao = gpu::makeVertexArray(label);
         const GLuint vao = g.vao.get();
         gl.VertexArrayVertexBuffer(vao, 0, g.vertices.get(), 0, sizeof(GpuVertex));
