@@ -7,7 +7,7 @@
 # Installs what is missing (Debian: openscenegraph, xvfb, ...), builds the OSG program
 # (benchmarks/peers, into build-peers/; never part of the main build) and ours (.ci/setup), then
 # runs ROUNDS interleaved rounds of, per scene: OSG none/sm/vdsm/soft under Xvfb and ours
-# none/hard/pcf/pcss headless. Writes benchmarks/results/peers.md, a crop per scene
+# none/hard/pcf/pcss/sdf headless (sdf, which OSG has no counterpart of, after the four pairs). Writes benchmarks/results/peers.md, a crop per scene
 # (benchmarks/results/peers_crop.png, peers_crop_wide.png), and the section between
 # <!-- peers:begin --> and <!-- peers:end --> of BENCHMARKS.md.
 #
@@ -35,6 +35,8 @@ results=benchmarks/results
 work=$results/tmp/peers
 osg_modes=(none sm vdsm soft)
 our_techniques=(none hard pcf pcss)
+# Ours alone: no OSG mode of their kind (compared with vdsm in the table).
+our_extra=(sdf)
 
 as_root() {
   if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
@@ -127,6 +129,10 @@ for ((r = 1; r <= rounds; r++)); do
       run_osg "$s" "${osg_modes[k]}" "$r"
       run_ours "$s" "${our_techniques[k]}" "$r"
     done
+    for t in "${our_extra[@]}"; do
+      echo "peers: round $r/$rounds, ${scenes[s]}: ours $t"
+      run_ours "$s" "$t" "$r"
+    done
   done
 done
 elapsed=$(($(date +%s) - start))
@@ -148,8 +154,8 @@ work, rounds, frames, warmup, size, cpu, cores, elapsed, command, scenes, softne
 rounds, frames, warmup, cores, elapsed = int(rounds), int(frames), int(warmup), int(cores), int(elapsed)
 scenes, softness = scenes.split(), softness.split()
 osg_modes = ["none", "sm", "vdsm", "soft"]
-ours_modes = ["none", "hard", "pcf", "pcss"]
-pairs = [("none", "none"), ("hard", "sm"), ("pcf", "vdsm"), ("pcss", "vdsm"), ("pcss", "soft")]
+ours_modes = ["none", "hard", "pcf", "pcss", "sdf"]
+pairs = [("none", "none"), ("hard", "sm"), ("pcf", "vdsm"), ("pcss", "vdsm"), ("pcss", "soft"), ("sdf", "vdsm")]
 emitter = {"bunny-spot": "0.08 m", "bunny-spot-wide": "0.15 m"}
 crops = {"bunny-spot": "peers_crop.png", "bunny-spot-wide": "peers_crop_wide.png"}
 med = statistics.median
@@ -207,7 +213,10 @@ out.append(f"- **{osg_info['engine']}**: `build-peers/osg_bunny` (benchmarks/pee
            "shadowed means unlit as in ours (OSG's default (0.5, 0.5) leaves shadows half lit); `soft` is OSG's "
            "fixed-width jittered filter (up to 64 taps), its width in proportion to the emitter "
            f"({' and '.join(softness)} of the map); `sm` and `vdsm` have no emitter and compare with GL_LINEAR "
-           "(2×2 hardware PCF). Our shading is Lambert + GGX per pixel; OSG's fixed-function Blinn-Phong.")
+           "(2×2 hardware PCF). Our shading is Lambert + GGX per pixel; OSG's fixed-function Blinn-Phong. Our "
+           "`sdf` (soft shadows marched through the bunny's distance field, no map) has no OSG counterpart: its row "
+           "is set against `vdsm`, as PCF's and PCSS's are. `shadow_render`'s default screen-space visibility is "
+           "`auto`: at 1280×720, `pcss` and `sdf` run the stage at quarter resolution, the others forward.")
 out.append(f"- CPU: {cpu}, {cores} cores, shared with other work while measured: compare rows of one run. Both "
            "processes keep up to 512 MiB of freed heap (`GLIBC_TUNABLES=glibc.malloc.trim_threshold=536870912`, "
            "what shadow_render sets for itself): with glibc's default, llvmpipe's per-draw vertex buffers went "

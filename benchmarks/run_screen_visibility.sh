@@ -2,7 +2,7 @@
 # The renderer's screen-space visibility stage against its forward passes, in one run: frame
 # time at 1280x720 on the two bunny spot scenes (one technique at a time) and the five sample
 # scenes (their own lights), and error against the ray-traced truth on the bunny spots at
-# 640x360, for `--screen-visibility off` (forward), `auto` (what the CLIs run by default) and the
+# 1280x720, for `--screen-visibility off` (forward), `auto` (what the CLIs run by default) and the
 # stage forced at full, half and quarter resolution.
 #   bash benchmarks/run_screen_visibility.sh
 # Times: ROUNDS interleaved rounds (every configuration once per round), each a shadow_render
@@ -64,11 +64,11 @@ mkdir -p "$work/error"
 for scene in "${spot_scenes[@]}"; do
   ref=$work/error/${scene#builtin:}_reference
   echo "screen_visibility: reference of $scene"
-  $bin/shadow_reference "$scene" --size 640x360 --samples "$samples" --out "$ref" > "$ref.log" 2>&1
+  $bin/shadow_reference "$scene" --size 1280x720 --samples "$samples" --out "$ref" > "$ref.log" 2>&1
   for t in "${spot_techniques[@]}"; do
     for m in "${modes[@]}"; do
       out=$work/error/${scene#builtin:}_${t}_$m
-      $bin/shadow_render "$scene" --technique "$t" --size 640x360 --frames 2 --screen-visibility "$m" \
+      $bin/shadow_render "$scene" --technique "$t" --size 1280x720 --frames 2 --screen-visibility "$m" \
         --aov color,visibility,position --out "$out" > "$out.log" 2>&1
       $bin/shadow_compare "$out" "$ref" --mask "$ref/lit_0.exr" --out "$out" > "$out.json"
     done

@@ -85,13 +85,13 @@ def main():
     out.append(
         "The renderer's screen-space visibility stage (`--screen-visibility`, `RenderOptions::screenVisibility`) "
         "against its forward passes (`off`), measured in one run. `auto` is what the CLIs run by default: the "
-        "stage (filtered shadows at half resolution) for a `pcss` or `sdf` light, two or more filtered lights or "
-        "contact shadows, in images of 360 rows or more; forward otherwise (the table marks where it ran the "
+        "stage (filtered shadows at half resolution, at quarter from 720 rows) for a `pcss` or `sdf` light, two "
+        "or more filtered lights or contact shadows, in images of 360 rows or more; forward otherwise (the table marks where it ran the "
         "stage with *s*; where it did not, auto and forward ran the same passes, and their ratio shows the run's "
         "noise). `full`, `half`, `quarter` force the stage at that resolution for every light. Time: 1280x720, every map redrawn each frame (`--no-cache`), median over "
         f"{int(frames) - 1} frames of shadow + main passes, median of {rounds} interleaved rounds; ratio = the "
         "mode's time over forward's (below 1: faster). Error: RMSE of the light's visibility against "
-        f"`shadow_reference --samples {samples}` at 640x360 over its lit mask (`shadow_compare --mask "
+        f"`shadow_reference --samples {samples}` at 1280x720 (the timed size) over its lit mask (`shadow_compare --mask "
         "lit_0.exr`), one frame after a warm-up. Renderer "
         f"`{renderer}`; the whole run took {seconds} s."
     )

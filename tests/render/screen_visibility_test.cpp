@@ -261,9 +261,10 @@ TEST(ScreenVisibility, AutoRunsTheStageWhereItMeasuredFaster) {
     EXPECT_EQ(render::contactLengthUniform(contact.lights[0]), 0.25f);
     contact.lights[0].settings.contactShadows = false;
     EXPECT_FALSE(render::screenStagePays(ScreenVisibility::Auto, contact, oneHard, 240));
-    // Auto's resolution: full for hard edges, half for filtered ones.
+    // Auto's resolution: full for hard edges; for filtered ones half, quarter from 720 rows.
     EXPECT_EQ(render::visibilityDivisor(ScreenVisibility::Auto, twoSoft[0].variant, 1, 1, 720), 1);
-    EXPECT_EQ(render::visibilityDivisor(ScreenVisibility::Auto, twoSoft[0].variant, 0, 3, 720), 2);
+    EXPECT_EQ(render::visibilityDivisor(ScreenVisibility::Auto, twoSoft[0].variant, 0, 3, 719), 2);
+    EXPECT_EQ(render::visibilityDivisor(ScreenVisibility::Auto, twoSoft[0].variant, 0, 3, 720), 4);
     EXPECT_EQ(render::visibilityDivisor(ScreenVisibility::Quarter, hard[0].variant, 0, 3, 90), 4);
     EXPECT_EQ(render::visibilityDivisor(ScreenVisibility::Auto, twoSoft[0].variant, 0, 3, 240), 1);
 }

@@ -46,8 +46,9 @@ enum class ScreenVisibility {
     /// technique pcss or sdf, or two or more lights that filter their shadows) and when a light
     /// asks for contact shadows; forward otherwise. The stage: the scene drawn once into
     /// surface targets; each group of four lights' visibility computed over the screen, at full
-    /// resolution for hard-edged shadows and at half resolution for filtered ones (a penumbra is
-    /// low-frequency); brought back to full resolution by an upsample that never blends a sample
+    /// resolution for hard-edged shadows and at half resolution for filtered ones, quarter in
+    /// images of 720 rows or more (a penumbra is low-frequency, and as many samples wide as at
+    /// half resolution in 360 rows); brought back to full resolution by an upsample that never blends a sample
     /// of another surface, and recomputed at full resolution where the samples kept disagree (an
     /// edge sharper than the samples); then the lights shaded by one full-screen pass per group
     /// of eight. Debug views render forward. Measured on llvmpipe (BENCHMARKS.md, screen-space

@@ -65,7 +65,7 @@ int visibilityDivisor(ScreenVisibility setting, const LitVariant& variant, int f
     if (height < kMinAutoStageHeight) return 1;
     for (int i = firstSlot; i < firstSlot + slots; ++i) {
         const int t = variant.technique[static_cast<std::size_t>(i)];
-        if (t != SG_TECH_NONE && t != SG_TECH_HARD) return 2;
+        if (t != SG_TECH_NONE && t != SG_TECH_HARD) return height >= kMinAutoQuarterHeight ? 4 : 2;
     }
     return 1;
 }

@@ -30,11 +30,17 @@ namespace shadow::render {
 /// on builtin:default at 320x240 the upsample added 11 % (PCSS) and 33 % (sdf) to the error; at
 /// 640x360 within 1.5 % per light, and on the bunny spots none.
 inline constexpr int kMinAutoStageHeight = 360;
+/// Rows from which Auto computes filtered shadows at quarter resolution: a penumbra is as many
+/// stage samples wide there as at half resolution in an image of `kMinAutoStageHeight` rows, the
+/// spacing measured to keep the error (BENCHMARKS.md, screen-space visibility: at 1280x720 the
+/// quarter-resolution stage against forward).
+inline constexpr int kMinAutoQuarterHeight = 2 * kMinAutoStageHeight;
 
 /// The divisor of the screen resolution at which a group of lights' visibility is computed:
 /// `setting` when it forces one (Full, Half, Quarter); for Auto 1 when every shadowed light of
 /// the group has hard-edged shadows (technique hard, or none) or the image has fewer than
-/// `kMinAutoStageHeight` rows (`height`), else 2. Pure CPU.
+/// `kMinAutoStageHeight` rows (`height`), else 2, or 4 from `kMinAutoQuarterHeight` rows. Pure
+/// CPU.
 [[nodiscard]] int visibilityDivisor(ScreenVisibility setting, const LitVariant& variant, int firstSlot, int slots,
                                     int height);
 
