@@ -13,8 +13,7 @@
 #include <random>
 #include <vector>
 
-namespace shadow {
-namespace vertex_cache_order_test {
+namespace shadow::vertex_cache_order_test {
 
 using Triangles = std::vector<std::array<std::uint32_t, 3>>;
 
@@ -54,7 +53,7 @@ double fifoShadedPerTriangle(const std::vector<std::uint32_t>& indices, std::siz
         fifo.push_back(i);
         if (fifo.size() > size) fifo.pop_front();
     }
-    return static_cast<double>(shaded) / static_cast<double>(indices.size() / 3);
+    return static_cast<double>(shaded) / (static_cast<double>(indices.size()) / 3.0);
 }
 
 /// Vertices shaded per triangle by llvmpipe's draw module as Mesa 22 builds it: batches of 1023
@@ -71,7 +70,7 @@ double batchShadedPerTriangle(const std::vector<std::uint32_t>& indices) {
             ++shaded;
         }
     }
-    return static_cast<double>(shaded) / static_cast<double>(indices.size() / 3);
+    return static_cast<double>(shaded) / (static_cast<double>(indices.size()) / 3.0);
 }
 
 // Measured: 48^2 quads shuffled shade 2.98 (FIFO 16) and 2.80 (batches) vertices a triangle;
@@ -118,5 +117,4 @@ TEST(VertexCacheOrder, ReturnsInputThatIsNotWholeTrianglesInRangeAsItIs) {
     EXPECT_TRUE(vertexCacheOrder({}, 0).empty());
 }
 
-}  // namespace vertex_cache_order_test
-}  // namespace shadow
+}  // namespace shadow::vertex_cache_order_test
