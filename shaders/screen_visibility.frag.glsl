@@ -16,6 +16,7 @@
 // SG_GROUP<g>_*).
 #include "shadow_visibility.glsl"
 #include "screen_gbuffer.glsl"
+#include "screen_resolve.glsl"
 
 uniform vec3 uCameraForward;  // unit, world space
 uniform float uPixelAngle;    // 2 tan(fov / 2) / height: a pixel's footprint per metre of depth
@@ -34,10 +35,6 @@ uniform mat4 uClipFromCs;  // camera-relative world -> clip
 // The stage's visibility (a layer per group) and its samples' depths along the view, with
 // clamp-to-edge addressing for gathers.
 layout(binding = SG_UNIT_SCREEN_VISIBILITY) uniform sampler2DArray uStageVisibility;
-// Kept samples differing by more than this send a pixel to the refine pass (0.25 let the
-// upsample add 5-7 % to sdf's and PCSS's error on builtin:default at 320x240; 0.1 costs the
-// refine 0.4 ms more on the bunny spot at 1280x720).
-#define SG_VIS_REFINE_SPREAD 0.1
 layout(binding = SG_UNIT_SCREEN_DEPTH) uniform sampler2D uStageDepth;
 uniform int uStageLayer;
 layout(location = 0) out vec4 outVisibility;
@@ -184,22 +181,19 @@ void main() {
     float tolerance = 1.5 * float(SG_VIS_DIVISOR) * footprint;
     float planeOffset = dot(position, geoNormal);
     vec2 stageSize = vec2(textureSize(uStageDepth, 0));
-    // Samples sit at block centres q * d + d / 2: the four around p, p's place between them, and
-    // their 2x2 gathered at the corner they share (texels (base + 1) / size; gather order
-    // (0,1), (1,1), (1,0), (0,0)).
-    ivec2 base = ivec2(floor((vec2(p) - float(SG_VIS_DIVISOR / 2)) / float(SG_VIS_DIVISOR)));
-    vec2 t = (vec2(p) - vec2(base * SG_VIS_DIVISOR + SG_VIS_DIVISOR / 2)) / float(SG_VIS_DIVISOR);
+    // The four samples around p and p's place between them (screen_resolve.glsl), their 2x2
+    // gathered at the corner they share (texels (base + 1) / size).
+    vec2 t;
+    ivec2 base = sg_stageBase(p, SG_VIS_DIVISOR, t);
     vec2 corner = vec2(base + 1) / stageSize;
     vec4 depths = textureGather(uStageDepth, corner, 0);
-    const ivec2 offsets[4] = ivec2[](ivec2(0, 1), ivec2(1, 1), ivec2(1, 0), ivec2(0, 0));
     vec4 weights;
     for (int k = 0; k < 4; ++k) {
         // The sample's point from its depth along its pixel's ray; kept when on p's plane.
-        ivec2 src = stageSource(clamp(base + offsets[k], ivec2(0), ivec2(stageSize) - 1));
+        ivec2 src = stageSource(clamp(base + sg_kStageQuad[k], ivec2(0), ivec2(stageSize) - 1));
         vec3 ray = uRay00 + (float(src.x) + 0.5) * uRayDx + (float(src.y) + 0.5) * uRayDy;
         bool same = depths[k] > 0.0 && abs(depths[k] * dot(ray, geoNormal) - planeOffset) <= tolerance;
-        float w = (offsets[k].x == 1 ? t.x : 1.0 - t.x) * (offsets[k].y == 1 ? t.y : 1.0 - t.y);
-        weights[k] = same ? max(w, 1e-4) : 0.0;
+        weights[k] = same ? max(sg_stageWeight(k, t), 1e-4) : 0.0;
     }
     float weight = weights.x + weights.y + weights.z + weights.w;
     vec4 v = vec4(1.0);
@@ -207,13 +201,7 @@ void main() {
     bvec4 kept = greaterThan(weights, vec4(0.0));
     float spread = 0.0;  // the largest disagreement of the kept samples, over the lights
     vec3 at = vec3(corner, float(uStageLayer));
-#define SG_VIS_CHANNEL(c)                                                                     \
-    {                                                                                         \
-        vec4 g = textureGather(uStageVisibility, at, c);                                      \
-        vec4 hi = mix(vec4(0.0), g, kept), lo = mix(vec4(1.0), g, kept);                      \
-        v[c] = dot(w, g);                                                                     \
-        spread = max(spread, max(max(hi.x, hi.y), max(hi.z, hi.w)) - min(min(lo.x, lo.y), min(lo.z, lo.w))); \
-    }
+#define SG_VIS_CHANNEL(c) v[c] = sg_blendKept(textureGather(uStageVisibility, at, c), w, kept, spread);
     SG_VIS_CHANNEL(0)
 #if SG_VIS_LIGHTS > 1
     SG_VIS_CHANNEL(1)

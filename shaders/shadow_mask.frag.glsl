@@ -8,7 +8,25 @@
 // game's normal texture when it gives one (SG_MASK_NORMALS) and the curvature from its change.
 // Slots are specialised and grouped like the lit passes' (SG_MASK_LIGHTS, SG_PASS_GROUPS,
 // SG_GROUP<g>_*).
+//
+// At reduced resolution (ShadowMaskRequest::resolution) three programs, as the renderer's
+// screen-space stage runs (screen_resolve.glsl):
+// - the samples (SG_MASK_DIVISOR d > 1): one pixel per d x d block, the visibility at the block's
+//   centre pixel, and that receiver's camera-relative position (w 1; 0 without geometry);
+// - the resolve (SG_MASK_RESOLVE, with SG_MASK_DIVISOR d): each pixel blends the four samples
+//   around it that lie on its own surface (within 1.5 blocks' footprint of its plane), and marks
+//   in depth the pixels with none or with disagreeing ones;
+// - the refine: this program at full resolution, depth-tested so that only marked pixels run.
+#ifndef SG_MASK_DIVISOR
+#define SG_MASK_DIVISOR 1
+#endif
+// (Includes may not stand under a condition: each file is expanded once, where first named.)
 #include "shadow_visibility.glsl"
+#include "screen_resolve.glsl"
+#ifdef SG_MASK_RESOLVE
+layout(binding = SG_UNIT_MASK_STAGE) uniform sampler2D uStageMask;
+layout(binding = SG_UNIT_MASK_STAGE_POSITION) uniform sampler2D uStagePosition;
+#endif
 
 layout(binding = SG_UNIT_MASK_DEPTH) uniform sampler2D uSceneDepth;
 #ifdef SG_MASK_NORMALS
@@ -20,6 +38,9 @@ uniform int uZeroToOne;        // 1: window depth is NDC z (glClipControl ZERO_T
 uniform float uBackgroundDepth;
 
 layout(location = 0) out vec4 outMask;
+#if SG_MASK_DIVISOR > 1 && !defined(SG_MASK_RESOLVE)
+layout(location = 1) out vec4 outPosition;  // the sample's receiver, camera-relative; w: covered
+#endif
 
 // Camera-relative position of pixel `p` at window depth `d`.
 vec3 csAt(ivec2 p, float d) {
@@ -44,6 +65,48 @@ vec3 surfaceStep(ivec2 p, vec3 c, ivec2 axis, out ivec2 q) {
     return useAhead ? a - c : c - b;
 }
 
+#ifdef SG_MASK_RESOLVE
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    float d = texelFetch(uSceneDepth, p, 0).r;
+    vec4 mask = vec4(1.0);
+    bool marked = false;
+    if (d != uBackgroundDepth) {
+        vec3 c = csAt(p, d);
+        ivec2 qx, qy;
+        vec3 dx = surfaceStep(p, c, ivec2(1, 0), qx);
+        vec3 dy = surfaceStep(p, c, ivec2(0, 1), qy);
+        vec3 geoNormal = sg_safeNormalize(cross(dx, dy), normalize(-c));
+        // A sample of the same surface lies up to 1.5 blocks away, and a curved surface leaves
+        // its tangent plane by about that much.
+        float tolerance = 1.5 * float(SG_MASK_DIVISOR) * max(length(dx), length(dy));
+        ivec2 last = textureSize(uStageMask, 0) - 1;
+        vec2 t;
+        ivec2 base = sg_stageBase(p, SG_MASK_DIVISOR, t);
+        vec4 weights;
+        vec4 samples[4];
+        for (int k = 0; k < 4; ++k) {
+            ivec2 q = clamp(base + sg_kStageQuad[k], ivec2(0), last);
+            vec4 at = texelFetch(uStagePosition, q, 0);
+            samples[k] = texelFetch(uStageMask, q, 0);
+            bool same = at.w > 0.5 && abs(dot(at.xyz - c, geoNormal)) <= tolerance;
+            weights[k] = same ? max(sg_stageWeight(k, t), 1e-4) : 0.0;
+        }
+        float weight = weights.x + weights.y + weights.z + weights.w;
+        vec4 w = weights / max(weight, 1e-30);
+        bvec4 kept = greaterThan(weights, vec4(0.0));
+        float spread = 0.0;
+        for (int l = 0; l < SG_MASK_LIGHTS; ++l) {
+            vec4 g = vec4(samples[0][l], samples[1][l], samples[2][l], samples[3][l]);
+            mask[l] = sg_blendKept(g, w, kept, spread);
+        }
+        marked = weight == 0.0 || spread > SG_VIS_REFINE_SPREAD;
+    }
+    // Depth 0 marks the pixel for the refine pass, whose depth test skips the blocks without one.
+    gl_FragDepth = marked ? 0.0 : 1.0;
+    outMask = mask;
+}
+#else
 // Light `slot` of the mask, of group g (as lit.frag.glsl's SG_SHADE_LIGHT).
 #define SG_MASK_LIGHT(g, slot)                                                                      \
     {                                                                                               \
@@ -60,11 +123,14 @@ vec3 surfaceStep(ivec2 p, vec3 c, ivec2 axis, out ivec2 q) {
     }
 
 void main() {
-    ivec2 p = ivec2(gl_FragCoord.xy);
+    // A sample stands for its block's centre pixel (the pixel itself at full resolution).
+    ivec2 p = min(ivec2(gl_FragCoord.xy) * SG_MASK_DIVISOR + SG_MASK_DIVISOR / 2, textureSize(uSceneDepth, 0) - 1);
     float d = texelFetch(uSceneDepth, p, 0).r;
     vec4 mask = vec4(1.0);
+    vec4 position = vec4(0.0);
     if (d != uBackgroundDepth) {
         vec3 c = csAt(p, d);
+        position = vec4(c, 1.0);
         vec3 toViewer = normalize(-c);
         ivec2 qx, qy;
         vec3 dx = surfaceStep(p, c, ivec2(1, 0), qx);
@@ -103,4 +169,8 @@ void main() {
 #endif
     }
     outMask = mask;
+#if SG_MASK_DIVISOR > 1
+    outPosition = position;
+#endif
 }
+#endif

@@ -485,6 +485,15 @@ TEST_F(HostStateTest, EveryPublicCallLeavesTheHostStateAsItFoundIt) {
             shadows.renderMask(lights, request, stats);
         },
         frameWarnings);
+    // At reduced resolution: two more passes, targets and units of the mask's own.
+    request.resolution = MaskResolution::Half;
+    checkCall(
+        host, "ShadowSystem::renderMask",
+        [&] {
+            stats.reset();
+            shadows.renderMask(lights, request, stats);
+        },
+        frameWarnings);
     gl.DeleteTextures(1, &depth);
     gl.DeleteTextures(1, &mask);
 
@@ -548,14 +557,19 @@ Pictures drawEverything(Scene& scene, const HostObjects* hostile, const std::vec
     request.height = 48;
     request.camera = runner.lastCamera();
     const std::array<int, 4> lights{0, 1, 2, 3};
-    hostState();
-    runner.shadows().renderMask(lights, request, stats);
-    gpu::restoreGlState(saved);
-    p.mask.resize(std::size_t{64} * 48 * 4);
-    gpu::setReadbackDefaults();
-    gl.GetTextureSubImage(target, 0, 0, 0, 0, 64, 48, 1, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(p.mask.size()),
-                          p.mask.data());
-    gpu::restoreGlState(saved);
+    // At full resolution, then at half (its resolve and refine passes): both images kept.
+    for (const MaskResolution resolution : {MaskResolution::Full, MaskResolution::Half}) {
+        request.resolution = resolution;
+        hostState();
+        runner.shadows().renderMask(lights, request, stats);
+        gpu::restoreGlState(saved);
+        std::vector<std::uint8_t> pixels(std::size_t{64} * 48 * 4);
+        gpu::setReadbackDefaults();
+        gl.GetTextureSubImage(target, 0, 0, 0, 0, 64, 48, 1, GL_RGBA, GL_UNSIGNED_BYTE,
+                              static_cast<GLsizei>(pixels.size()), pixels.data());
+        gpu::restoreGlState(saved);
+        p.mask.insert(p.mask.end(), pixels.begin(), pixels.end());
+    }
     gl.DeleteTextures(1, &depth);
     gl.DeleteTextures(1, &target);
     EXPECT_EQ(gl.GetError(), static_cast<GLenum>(GL_NO_ERROR));

@@ -17,6 +17,23 @@
 
 namespace shadow {
 
+/// Where the mask's visibility is computed (`ShadowMaskRequest::resolution`), as the renderer's
+/// screen-space stage computes it (`ScreenVisibility`).
+enum class MaskResolution {
+    /// Every pixel runs its lights' techniques.
+    Full,
+    /// One sample per 2x2 (Half) or 4x4 (Quarter) block runs them; each pixel then blends the
+    /// samples around it that lie on its own surface (never across a geometric edge), and the
+    /// pixels without one, or whose samples disagree by more than 0.1 (a hard edge, a contact),
+    /// run at full resolution. Three passes instead of one, and two targets of the mask's own.
+    Half,
+    Quarter,
+    /// Half or Quarter where a light of the mask filters its shadows (any technique but hard)
+    /// and the image has 360 rows or more (Quarter from 720), Full otherwise: the renderer's
+    /// rule (README, "Screen-space visibility").
+    Auto,
+};
+
 /// What `ShadowMask::render` draws from and into. The receiver is rebuilt from depth (and the
 /// normals when given), so the mask matches the module's forward visibility on surfaces and can
 /// differ at silhouettes, where depth has no plane.
@@ -43,6 +60,9 @@ struct ShadowMaskRequest {
     /// Evaluate each light only within its screen bounds (its range); the rest of the target is
     /// written 1 by a clear. Off: every pixel runs every light.
     bool scissorToLights = true;
+    /// Where the visibility is computed. Full (the default): what the module's forward passes
+    /// compute, pixel for pixel.
+    MaskResolution resolution = MaskResolution::Full;
 };
 
 /// The mask pass: its programs (one per light configuration, compiled on first use), and the

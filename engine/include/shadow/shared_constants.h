@@ -95,6 +95,10 @@
 #define SG_UNIT_MASK_NORMAL 25
 // Lights one shadow mask holds: one per channel.
 #define SG_MAX_MASK_LIGHTS 4
+// A mask at reduced resolution (ShadowMaskRequest::resolution): its samples' visibility and
+// camera-relative positions, read by its resolve (units no technique's code reads).
+#define SG_UNIT_MASK_STAGE 31
+#define SG_UNIT_MASK_STAGE_POSITION 29
 
 // The renderer's screen-space visibility stage (RenderOptions::screenVisibility): units of its
 // surface targets (shaders/screen_gbuffer.glsl: the surface's depth, coverage and normals; its

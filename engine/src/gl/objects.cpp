@@ -65,6 +65,18 @@ Texture makeTexture(std::string_view label, GLenum target) {
     return makeLabelled<Texture>(label, [target](GLuint* n) { gl.CreateTextures(target, 1, n); });
 }
 
+Texture makeScreenTarget(std::string_view label, GLenum format, int w, int h, int layers) {
+    Texture t = makeTexture(label, layers > 0 ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D);
+    if (layers > 0) {
+        gl.TextureStorage3D(t.get(), 1, format, w, h, layers);
+    } else {
+        gl.TextureStorage2D(t.get(), 1, format, w, h);
+    }
+    gl.TextureParameteri(t.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TextureParameteri(t.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
+}
+
 Framebuffer makeFramebuffer(std::string_view label) {
     return makeLabelled<Framebuffer>(label, [](GLuint* n) { gl.CreateFramebuffers(1, n); });
 }

@@ -100,6 +100,10 @@ using Sampler = Object<SamplerKind>;
 Buffer makeBuffer(std::string_view label, GLsizeiptr bytes, const void* data, GLbitfield flags);
 /// Makes a texture of `target` with immutable storage left to the caller, labelled.
 Texture makeTexture(std::string_view label, GLenum target);
+/// Makes a screen-space target: a 2D texture (a 2D array of `layers` when > 0) of one level of
+/// `format`, `w` x `h`, read texel by texel (nearest filters: an integer texture is incomplete,
+/// and reads 0, with a linear one), labelled.
+Texture makeScreenTarget(std::string_view label, GLenum format, int w, int h, int layers = 0);
 /// Makes a framebuffer, labelled.
 Framebuffer makeFramebuffer(std::string_view label);
 /// Makes a vertex array, labelled: with no attribute, what a full-screen triangle made from

@@ -17,19 +17,6 @@
 namespace shadow::render {
 namespace {
 
-gpu::Texture makeStageTarget(const std::string& label, GLenum format, int w, int h, int layers = 0) {
-    gpu::Texture t = gpu::makeTexture(label, layers > 0 ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D);
-    if (layers > 0) {
-        gl.TextureStorage3D(t.get(), 1, format, w, h, layers);
-    } else {
-        gl.TextureStorage2D(t.get(), 1, format, w, h);
-    }
-    // Read texel by texel; an integer texture is incomplete (reads 0) with any linear filter.
-    gl.TextureParameteri(t.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl.TextureParameteri(t.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    return t;
-}
-
 /// Points the contact march projects onto the screen.
 constexpr int kContactSteps = 12;
 
@@ -62,12 +49,12 @@ int visibilityDivisor(ScreenVisibility setting, const LitVariant& variant, int f
         case ScreenVisibility::Off:
         case ScreenVisibility::Auto: break;
     }
-    if (height < kMinAutoStageHeight) return 1;
+    bool filtered = false;
     for (int i = firstSlot; i < firstSlot + slots; ++i) {
         const int t = variant.technique[static_cast<std::size_t>(i)];
-        if (t != SG_TECH_NONE && t != SG_TECH_HARD) return height >= kMinAutoQuarterHeight ? 4 : 2;
+        filtered = filtered || (t != SG_TECH_NONE && t != SG_TECH_HARD);
     }
-    return 1;
+    return stageDivisor(filtered, height);
 }
 
 float contactLengthUniform(const ShadowLightPlan& light) {
@@ -111,7 +98,7 @@ void ScreenStage::ensure(int width, int height, GLuint depthBuffer, bool materia
     depthBuffer_ = depthBuffer;
     gl.NamedFramebufferTexture(surfaces_.get(), GL_DEPTH_ATTACHMENT, depthBuffer, 0);
     if (materialTargets && !extra_) {
-        extra_ = makeStageTarget("Main/Surfaces/extra", GL_RGBA32UI, width, height);
+        extra_ = gpu::makeScreenTarget("Main/Surfaces/extra", GL_RGBA32UI, width, height);
         gl.NamedFramebufferTexture(surfaces_.get(), GL_COLOR_ATTACHMENT2, extra_.get(), 0);
     }
 }
@@ -127,10 +114,10 @@ void ScreenStage::makeTargets(int width, int height) {
     // Packed (shaders/screen_gbuffer.glsl): each pass reads what it needs in one or two fetches.
     // The depth and the triangle's normal keep full floats: the shadow lookups compare depths on
     // the receiver's plane, which half floats would move by more than the automatic bias.
-    surface_ = makeStageTarget("Main/Surfaces/surface", GL_RGBA32UI, width, height);
-    material_ = makeStageTarget("Main/Surfaces/material", GL_RGBA32UI, width, height);
-    full_ = makeStageTarget("Main/ScreenVisibility/full", GL_RGBA8, width, height, 2);
-    refine_ = makeStageTarget("Main/ScreenVisibility/refine", GL_DEPTH_COMPONENT32F, width, height);
+    surface_ = gpu::makeScreenTarget("Main/Surfaces/surface", GL_RGBA32UI, width, height);
+    material_ = gpu::makeScreenTarget("Main/Surfaces/material", GL_RGBA32UI, width, height);
+    full_ = gpu::makeScreenTarget("Main/ScreenVisibility/full", GL_RGBA8, width, height, 2);
+    refine_ = gpu::makeScreenTarget("Main/ScreenVisibility/refine", GL_DEPTH_COMPONENT32F, width, height);
     extra_ = {};
     const GLuint fb = surfaces_.get();
     gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, surface_.get(), 0);
@@ -141,10 +128,10 @@ void ScreenStage::ensureStageTarget(int divisor) {
     const auto i = static_cast<std::size_t>(divisorIndex(divisor));
     if (stage_[i]) return;
     const int w = reduced(width_, divisor), h = reduced(height_, divisor);
-    stage_[i] = makeStageTarget("Main/ScreenVisibility/stage" + std::to_string(divisor), GL_RGBA8, w, h, 2);
-    stageDepth_[i] = makeStageTarget("Main/ScreenVisibility/stageDepth" + std::to_string(divisor), GL_R32F, w, h);
+    stage_[i] = gpu::makeScreenTarget("Main/ScreenVisibility/stage" + std::to_string(divisor), GL_RGBA8, w, h, 2);
+    stageDepth_[i] = gpu::makeScreenTarget("Main/ScreenVisibility/stageDepth" + std::to_string(divisor), GL_R32F, w, h);
     coverage_[i] =
-        makeStageTarget("Main/ScreenVisibility/coverage" + std::to_string(divisor), GL_DEPTH_COMPONENT32F, w, h);
+        gpu::makeScreenTarget("Main/ScreenVisibility/coverage" + std::to_string(divisor), GL_DEPTH_COMPONENT32F, w, h);
     // The resolve gathers 2x2 samples: clamped at the border, never filtered.
     for (const GLuint t : {stage_[i].get(), stageDepth_[i].get()}) {
         gl.TextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

@@ -10,6 +10,7 @@
 // covered blocks: twice a full-screen pass's cost per pixel, BENCHMARKS.md fragment costs).
 #pragma once
 
+#include "core/stage_resolution.h"
 #include "gl/objects.h"
 #include "gl/pass_timer.h"
 #include "render/light_packing.h"
@@ -25,22 +26,13 @@
 
 namespace shadow::render {
 
-/// Rows below which Auto renders forward: there penumbrae are too few pixels wide for half
-/// resolution. Measured against the truth (BENCHMARKS.md, error against time, rows screen-half):
-/// on builtin:default at 320x240 the upsample added 11 % (PCSS) and 33 % (sdf) to the error; at
-/// 640x360 within 1.5 % per light, and on the bunny spots none.
-inline constexpr int kMinAutoStageHeight = 360;
-/// Rows from which Auto computes filtered shadows at quarter resolution: a penumbra is as many
-/// stage samples wide there as at half resolution in an image of `kMinAutoStageHeight` rows, the
-/// spacing measured to keep the error (BENCHMARKS.md, screen-space visibility: at 1280x720 the
-/// quarter-resolution stage against forward).
-inline constexpr int kMinAutoQuarterHeight = 2 * kMinAutoStageHeight;
+/// Rows below which Auto renders forward (core/stage_resolution.h says why).
+inline constexpr int kMinAutoStageHeight = kMinStageHeight;
 
 /// The divisor of the screen resolution at which a group of lights' visibility is computed:
 /// `setting` when it forces one (Full, Half, Quarter); for Auto 1 when every shadowed light of
 /// the group has hard-edged shadows (technique hard, or none) or the image has fewer than
-/// `kMinAutoStageHeight` rows (`height`), else 2, or 4 from `kMinAutoQuarterHeight` rows. Pure
-/// CPU.
+/// `kMinAutoStageHeight` rows (`height`), else `stageDivisor`'s 2 or 4. Pure CPU.
 [[nodiscard]] int visibilityDivisor(ScreenVisibility setting, const LitVariant& variant, int firstSlot, int slots,
                                     int height);
 

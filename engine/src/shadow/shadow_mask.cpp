@@ -6,6 +6,7 @@
 #include "core/light_records.h"
 #include "core/screen_bounds.h"
 #include "core/shader_resources.h"
+#include "core/stage_resolution.h"
 #include "gl/gl_state.h"
 #include "gl/no_throw.h"
 #include "gl/objects.h"
@@ -27,9 +28,13 @@ namespace shadow {
 
 namespace {
 
-/// What a mask program is specialised for: the lights in use, the normal texture, and per slot
-/// the light's type, technique and kernel.
-using MaskKey = std::array<std::uint8_t, 2 + 3 * SG_MAX_MASK_LIGHTS>;
+/// What a mask program is specialised for: the lights in use, the normal texture, the divisor of
+/// its resolution (the resolve: 0x80 | divisor, no light configuration), and per slot the
+/// light's type, technique and kernel.
+using MaskKey = std::array<std::uint8_t, 3 + 3 * SG_MAX_MASK_LIGHTS>;
+
+/// Key bit of the resolve program.
+constexpr std::uint8_t kResolveKey = 0x80;
 
 /// One specialisation of the mask pass and its uniform locations.
 struct MaskProgram {
@@ -40,19 +45,43 @@ struct MaskProgram {
     GLint backgroundDepth = -1;
 };
 
-MaskKey maskKey(const ShadowShaderInputs& in, bool normals) {
+MaskKey maskKey(const ShadowShaderInputs& in, bool normals, int divisor) {
     MaskKey key{};
     key[0] = static_cast<std::uint8_t>(in.lights);
     key[1] = normals ? 1 : 0;
+    key[2] = static_cast<std::uint8_t>(divisor);
     for (std::size_t i = 0; i < SG_MAX_MASK_LIGHTS; ++i) {
-        key[2 + 3 * i] = static_cast<std::uint8_t>(in.type[i]);
-        key[3 + 3 * i] = static_cast<std::uint8_t>(in.technique[i]);
-        key[4 + 3 * i] = static_cast<std::uint8_t>(in.kernel[i]);
+        key[3 + 3 * i] = static_cast<std::uint8_t>(in.type[i]);
+        key[4 + 3 * i] = static_cast<std::uint8_t>(in.technique[i]);
+        key[5 + 3 * i] = static_cast<std::uint8_t>(in.kernel[i]);
     }
     return key;
 }
 
-MaskProgram buildMask(const ShadowShaderInputs& in, bool normals) {
+/// The uniform locations every mask program has.
+void findMaskUniforms(MaskProgram& p) {
+    const GLuint id = p.program.get();
+    p.csFromClip = gl.GetUniformLocation(id, "uCsFromClip");
+    p.cameraForward = gl.GetUniformLocation(id, "uCameraForward");
+    p.zeroToOne = gl.GetUniformLocation(id, "uZeroToOne");
+    p.backgroundDepth = gl.GetUniformLocation(id, "uBackgroundDepth");
+}
+
+/// The resolve of a mask of `lights` lights computed at 1 / `divisor` resolution: no technique.
+MaskProgram buildResolve(int lights, int divisor) {
+    MaskProgram p;
+    p.program = gpu::buildProgram(
+        {"Shadow/Mask/resolve" + std::to_string(divisor),
+         "fullscreen.vert.glsl",
+         "shadow_mask.frag.glsl",
+         {"SG_MASK_LIGHTS " + std::to_string(lights), "SG_MASK_RESOLVE", "SG_MASK_DIVISOR " + std::to_string(divisor)},
+         0});
+    findMaskUniforms(p);
+    return p;
+}
+
+/// The mask's program of `in`'s lights: at full resolution, or (`divisor` > 1) its samples.
+MaskProgram buildMask(const ShadowShaderInputs& in, bool normals, int divisor) {
     std::vector<std::string> defines{"SG_MASK_LIGHTS " + std::to_string(in.lights)};
     std::string label;
     std::array<gpu::SlotConfig, SG_MAX_MASK_LIGHTS> slots{};
@@ -66,28 +95,29 @@ MaskProgram buildMask(const ShadowShaderInputs& in, bool normals) {
                                 defines);
     gpu::appendTechniqueDefines(in.techniques, defines);
     if (normals) defines.emplace_back("SG_MASK_NORMALS");
+    if (divisor > 1) defines.emplace_back("SG_MASK_DIVISOR " + std::to_string(divisor));
     MaskProgram p;
-    p.program = gpu::buildProgram({"Shadow/Mask[" + label + (normals ? ",normals]" : "]"), "fullscreen.vert.glsl",
+    const std::string suffix = (normals ? ",normals" : "") + (divisor > 1 ? ",1/" + std::to_string(divisor) : "");
+    p.program = gpu::buildProgram({"Shadow/Mask[" + label + suffix + "]", "fullscreen.vert.glsl",
                                    "shadow_mask.frag.glsl", defines, in.techniques});
-    const GLuint id = p.program.get();
-    p.csFromClip = gl.GetUniformLocation(id, "uCsFromClip");
-    p.cameraForward = gl.GetUniformLocation(id, "uCameraForward");
-    p.zeroToOne = gl.GetUniformLocation(id, "uZeroToOne");
-    p.backgroundDepth = gl.GetUniformLocation(id, "uBackgroundDepth");
+    findMaskUniforms(p);
     return p;
 }
 
 /// Texture units the mask pass binds (the three shadow arrays, depth, normals) and the uniform
 /// binding points: what its guard puts back.
-/// Units 0 to SG_UNIT_MASK_NORMAL and the distance-field technique's two.
-constexpr std::array<GLint, SG_UNIT_MASK_NORMAL + 3> maskUnits() {
-    std::array<GLint, SG_UNIT_MASK_NORMAL + 3> units{};
-    std::iota(units.begin(), units.end() - 2, 0);
-    units[units.size() - 2] = SG_UNIT_SDF_ATLAS;
-    units[units.size() - 1] = SG_UNIT_SDF_INSTANCES;
+/// Units 0 to SG_UNIT_MASK_NORMAL, the distance-field technique's two and the reduced
+/// resolution's two.
+constexpr std::array<GLint, SG_UNIT_MASK_NORMAL + 5> maskUnits() {
+    std::array<GLint, SG_UNIT_MASK_NORMAL + 5> units{};
+    std::iota(units.begin(), units.end() - 4, 0);
+    units[units.size() - 4] = SG_UNIT_SDF_ATLAS;
+    units[units.size() - 3] = SG_UNIT_SDF_INSTANCES;
+    units[units.size() - 2] = SG_UNIT_MASK_STAGE;
+    units[units.size() - 1] = SG_UNIT_MASK_STAGE_POSITION;
     return units;
 }
-constexpr std::array<GLint, SG_UNIT_MASK_NORMAL + 3> kMaskUnits = maskUnits();
+constexpr std::array<GLint, SG_UNIT_MASK_NORMAL + 5> kMaskUnits = maskUnits();
 constexpr std::array<GLint, 3> kMaskBindings{SG_BINDING_LIGHTS, SG_BINDING_LAYERS, SG_BINDING_KERNELS};
 static_assert(SG_UNIT_MASK_DEPTH >= SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS);
 
@@ -101,6 +131,27 @@ void validateMask(std::span<const int> sceneLights, const ShadowMaskRequest& r) 
     if (r.width < 1 || r.height < 1) {
         throw std::invalid_argument("renderMask: size " + std::to_string(r.width) + " x " + std::to_string(r.height));
     }
+    const auto resolution = static_cast<int>(r.resolution);
+    if (resolution < static_cast<int>(MaskResolution::Full) || resolution > static_cast<int>(MaskResolution::Auto)) {
+        throw std::invalid_argument("renderMask: resolution " + std::to_string(resolution) +
+                                    " is not a MaskResolution (Full, Half, Quarter, Auto)");
+    }
+}
+
+/// The divisor of the request's resolution for lights `in`.
+int maskDivisor(const ShadowMaskRequest& r, const ShadowShaderInputs& in) {
+    switch (r.resolution) {
+        case MaskResolution::Full: return 1;
+        case MaskResolution::Half: return 2;
+        case MaskResolution::Quarter: return 4;
+        case MaskResolution::Auto: break;
+    }
+    bool filtered = false;
+    for (int i = 0; i < in.lights; ++i) {
+        const int t = in.technique[static_cast<std::size_t>(i)];
+        filtered = filtered || (t != SG_TECH_NONE && t != SG_TECH_HARD);
+    }
+    return stageDivisor(filtered, r.height);
 }
 
 /// The projection the request's depth was drawn with.
@@ -143,8 +194,23 @@ struct ShadowMask::Impl {
     gpu::Framebuffer framebuffer;
     gpu::Sampler point;            ///< nearest, no comparison: the game's textures read as values
     std::vector<Warning> pending;  ///< host errors the constructor found, for the next render
+    /// Reduced resolution: the samples' visibility and positions and their framebuffer, and the
+    /// refine's marks at full resolution; made on first use, again when the sizes change.
+    gpu::Texture stageMask, stagePosition, marks;
+    gpu::Framebuffer stageFramebuffer;
+    int stageWidth = 0, stageHeight = 0, marksWidth = 0, marksHeight = 0;
 
     Impl();
+    /// The program of `key`, built by `build` on first use.
+    template <class Build>
+    const MaskProgram& program(const MaskKey& key, Build&& build);
+    /// Makes the reduced resolution's targets fit a `width` x `height` mask at 1 / `divisor`.
+    void ensureStage(int width, int height, int divisor);
+    /// The samples of `in`'s lights at 1 / `divisor` resolution over `bounds`, then their resolve
+    /// into the target, which leaves the framebuffer's depth test passing only the pixels the
+    /// refine (the full-resolution program, drawn next) must recompute.
+    void drawReduced(const ShadowShaderInputs& in, bool normals, int divisor, const ShadowMaskRequest& r,
+                     const glm::dmat4& projection, const PixelRect& bounds);
 };
 
 ShadowMask::Impl::Impl() {
@@ -158,6 +224,84 @@ ShadowMask::Impl::Impl() {
     gl.SamplerParameteri(s, GL_TEXTURE_COMPARE_MODE, GL_NONE);
     point.label("Shadow/Mask/pointSampler");
     gpu::checkGlError("creating the shadow mask");
+}
+
+template <class Build>
+const MaskProgram& ShadowMask::Impl::program(const MaskKey& key, Build&& build) {
+    auto it = programs.find(key);
+    if (it == programs.end()) it = programs.emplace(key, build()).first;
+    return it->second;
+}
+
+void ShadowMask::Impl::ensureStage(int width, int height, int divisor) {
+    const int w = (width + divisor - 1) / divisor, h = (height + divisor - 1) / divisor;
+    if (!stageFramebuffer) {
+        stageFramebuffer = gpu::makeFramebuffer("Shadow/Mask/stage framebuffer");
+        const std::array<GLenum, 2> buffers{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        gl.NamedFramebufferDrawBuffers(stageFramebuffer.get(), 2, buffers.data());
+    }
+    if (w != stageWidth || h != stageHeight) {
+        // Float visibility: a game's float target gets what full resolution would write.
+        stageMask = gpu::makeScreenTarget("Shadow/Mask/stage", GL_RGBA16F, w, h);
+        stagePosition = gpu::makeScreenTarget("Shadow/Mask/stage positions", GL_RGBA32F, w, h);
+        gl.NamedFramebufferTexture(stageFramebuffer.get(), GL_COLOR_ATTACHMENT0, stageMask.get(), 0);
+        gl.NamedFramebufferTexture(stageFramebuffer.get(), GL_COLOR_ATTACHMENT1, stagePosition.get(), 0);
+        stageWidth = w;
+        stageHeight = h;
+    }
+    if (width != marksWidth || height != marksHeight) {
+        marks = gpu::makeScreenTarget("Shadow/Mask/refine marks", GL_DEPTH_COMPONENT32F, width, height);
+        marksWidth = width;
+        marksHeight = height;
+    }
+}
+
+void ShadowMask::Impl::drawReduced(const ShadowShaderInputs& in, bool normals, int divisor, const ShadowMaskRequest& r,
+                                   const glm::dmat4& projection, const PixelRect& bounds) {
+    ensureStage(r.width, r.height, divisor);
+    // The samples: the blocks of the lights' bounds and one ring more, the resolve's neighbours.
+    const MaskProgram& samples =
+        program(maskKey(in, normals, divisor), [&] { return buildMask(in, normals, divisor); });
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, stageFramebuffer.get());
+    gl.Viewport(0, 0, stageWidth, stageHeight);
+    gl.Disable(GL_SCISSOR_TEST);
+    const std::array<float, 4> lit{1.0f, 1.0f, 1.0f, 1.0f}, nothing{0.0f, 0.0f, 0.0f, 0.0f};
+    gl.ClearNamedFramebufferfv(stageFramebuffer.get(), GL_COLOR, 0, lit.data());
+    gl.ClearNamedFramebufferfv(stageFramebuffer.get(), GL_COLOR, 1, nothing.data());
+    const PixelRect blocks =
+        grownWithin(PixelRect{bounds.x0 / divisor, bounds.y0 / divisor, (bounds.x1 + divisor - 1) / divisor,
+                              (bounds.y1 + divisor - 1) / divisor},
+                    1, stageWidth, stageHeight);
+    gl.Enable(GL_SCISSOR_TEST);
+    gl.Scissor(blocks.x0, blocks.y0, blocks.x1 - blocks.x0, blocks.y1 - blocks.y0);
+    setMaskUniforms(samples, r, projection);
+    gl.UseProgram(samples.program.get());
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+
+    // The resolve into the target; depth 0 marks a pixel for the refine.
+    MaskKey resolveKey{};
+    resolveKey[0] = static_cast<std::uint8_t>(in.lights);
+    resolveKey[2] = static_cast<std::uint8_t>(kResolveKey | divisor);
+    const MaskProgram& resolve = program(resolveKey, [&] { return buildResolve(in.lights, divisor); });
+    gl.NamedFramebufferTexture(framebuffer.get(), GL_DEPTH_ATTACHMENT, marks.get(), 0);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer.get());
+    gl.Viewport(0, 0, r.width, r.height);
+    gl.Scissor(bounds.x0, bounds.y0, bounds.x1 - bounds.x0, bounds.y1 - bounds.y0);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_ALWAYS);
+    gl.DepthMask(GL_TRUE);
+    const float unmarked = 1.0f;
+    gl.ClearNamedFramebufferfv(framebuffer.get(), GL_DEPTH, 0, &unmarked);
+    gl.BindTextureUnit(SG_UNIT_MASK_STAGE, stageMask.get());
+    gl.BindSampler(SG_UNIT_MASK_STAGE, point.get());
+    gl.BindTextureUnit(SG_UNIT_MASK_STAGE_POSITION, stagePosition.get());
+    gl.BindSampler(SG_UNIT_MASK_STAGE_POSITION, point.get());
+    setMaskUniforms(resolve, r, projection);
+    gl.UseProgram(resolve.program.get());
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    // The refine's triangle lies at window depth 0.5: over the marks (0) only.
+    gl.DepthFunc(GL_GREATER);
+    gl.DepthMask(GL_FALSE);
 }
 
 ShadowMask::ShadowMask() {
@@ -205,23 +349,24 @@ void ShadowMask::render(const ShadowFrame& frame, const ShadowMaps& maps, std::s
     const PixelRect bounds = maskBounds(frame, sceneLights, r, projection);
     if (!bounds.empty() && in.techniques != 0) {
         const bool normals = static_cast<bool>(r.normalTexture);
-        const MaskKey key = maskKey(in, normals);
-        auto it = m.programs.find(key);
-        if (it == m.programs.end()) it = m.programs.emplace(key, buildMask(in, normals)).first;
-        const MaskProgram& p = it->second;
-        const GLuint id = p.program.get();
-        setMaskUniforms(p, r, projection);
         gl.BindTextureUnit(SG_UNIT_MASK_DEPTH, r.depthTexture.name);
         gl.BindSampler(SG_UNIT_MASK_DEPTH, m.point.get());
         gl.BindTextureUnit(SG_UNIT_MASK_NORMAL, r.normalTexture.name);
         gl.BindSampler(SG_UNIT_MASK_NORMAL, m.point.get());
+        gl.BindVertexArray(m.empty.get());
+        // At reduced resolution the samples and the resolve come first; the full-resolution
+        // program then runs only where the resolve marked a pixel (the refine).
+        const int divisor = maskDivisor(r, in);
+        if (divisor > 1) m.drawReduced(in, normals, divisor, r, projection, bounds);
+        const MaskProgram& p = m.program(maskKey(in, normals, 1), [&] { return buildMask(in, normals, 1); });
+        setMaskUniforms(p, r, projection);
         gl.Enable(GL_SCISSOR_TEST);
         gl.Scissor(bounds.x0, bounds.y0, bounds.x1 - bounds.x0, bounds.y1 - bounds.y0);
-        gl.UseProgram(id);
-        gl.BindVertexArray(m.empty.get());
+        gl.UseProgram(p.program.get());
         gl.DrawArrays(GL_TRIANGLES, 0, 3);
     }
     gl.NamedFramebufferTexture(m.framebuffer.get(), GL_COLOR_ATTACHMENT0, 0, 0);
+    gl.NamedFramebufferTexture(m.framebuffer.get(), GL_DEPTH_ATTACHMENT, 0, 0);
     gpu::checkGlError("renderMask");
 }
 

@@ -1,0 +1,27 @@
+// The resolution at which screen-space visibility is computed for filtered shadows: one rule for
+// the renderer's screen-space stage (render/screen_visibility.h) and the game-facing mask
+// (shadow_mask.h). Pure CPU.
+#pragma once
+
+namespace shadow {
+
+/// Rows below which filtered shadows are computed at full resolution: there penumbrae are too
+/// few pixels wide for half resolution. Measured against the truth (BENCHMARKS.md, error against
+/// time, rows screen-half): on builtin:default at 320x240 the upsample added 11 % (PCSS) and
+/// 33 % (sdf) to the error; at 640x360 within 1.5 % per light, and on the bunny spots none.
+inline constexpr int kMinStageHeight = 360;
+/// Rows from which filtered shadows are computed at quarter resolution: a penumbra is as many
+/// samples wide there as at half resolution in an image of `kMinStageHeight` rows, the spacing
+/// measured to keep the error (BENCHMARKS.md, screen-space visibility: at 1280x720 the
+/// quarter-resolution stage against forward).
+inline constexpr int kMinQuarterStageHeight = 2 * kMinStageHeight;
+
+/// The divisor of the screen resolution for visibility in an image of `height` rows: 1 when no
+/// light of the group filters its shadows (`filtered` false: hard edges need every pixel) or
+/// under `kMinStageHeight` rows, 4 from `kMinQuarterStageHeight` rows, else 2.
+[[nodiscard]] constexpr int stageDivisor(bool filtered, int height) {
+    if (!filtered || height < kMinStageHeight) return 1;
+    return height >= kMinQuarterStageHeight ? 4 : 2;
+}
+
+}  // namespace shadow
