@@ -478,22 +478,17 @@ TEST_F(HostStateTest, EveryPublicCallLeavesTheHostStateAsItFoundIt) {
     request.width = 64;
     request.height = 48;
     request.camera = runner.lastCamera();
-    checkCall(
-        host, "ShadowSystem::renderMask",
-        [&] {
-            stats.reset();
-            shadows.renderMask(lights, request, stats);
-        },
-        frameWarnings);
-    // At reduced resolution: two more passes, targets and units of the mask's own.
-    request.resolution = MaskResolution::Half;
-    checkCall(
-        host, "ShadowSystem::renderMask",
-        [&] {
-            stats.reset();
-            shadows.renderMask(lights, request, stats);
-        },
-        frameWarnings);
+    // At full resolution, then at half: two more passes, targets and units of the mask's own.
+    for (const MaskResolution resolution : {MaskResolution::Full, MaskResolution::Half}) {
+        request.resolution = resolution;
+        checkCall(
+            host, "ShadowSystem::renderMask",
+            [&] {
+                stats.reset();
+                shadows.renderMask(lights, request, stats);
+            },
+            frameWarnings);
+    }
     gl.DeleteTextures(1, &depth);
     gl.DeleteTextures(1, &mask);
 
