@@ -43,7 +43,7 @@ work, samples, size = sys.argv[1], sys.argv[2], sys.argv[3]
 names = ["sun (directional)", "spot", "bulb (point)"]
 print(f"`builtin:bunny` at {size}, reference {samples} rays per pixel and light. Leak: pixels of the "
       "true umbra (truth 0) whose visibility is above 0.5 (leak > 0.5) or above 0.1 (leak > 0.1, "
-      "the performance issue's measure), as a fraction of the umbra; interior leak: the same above 0.1 "
+      "the faint leak), as a fraction of the umbra; interior leak: the same above 0.1 "
       "over the interior umbra only (umbra pixels 2 pixels or more from any other, "
       "`kInteriorUmbraMargin`): light a technique lets into a full shadow, apart from the map's texel "
       "grid placing a hard edge a fraction of a texel off; false shadow "

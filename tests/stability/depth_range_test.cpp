@@ -15,7 +15,7 @@ namespace shadow::depth_range_test {
 namespace {
 
 /// Edge band half-width in shadow texels and the largest mismatch allowed beyond it, as a
-/// fraction of the analytically shadowed area (the bound: 1 %).
+/// fraction of the analytically shadowed area (the bound: 1 %).
 constexpr double kBandTexels = 2.0;
 constexpr double kMaxMismatchOfShadow = 0.01;
 

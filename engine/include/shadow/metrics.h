@@ -39,7 +39,7 @@ inline constexpr double kLargeVisibilityError = 0.1;
 /// whose estimate is above it leaks light.
 inline constexpr double kWrongSideVisibility = 0.5;
 /// A truly umbral pixel whose estimate is above this shows light where there is none to see
-/// (the performance issue's leak measure: visibility > 0.1 in the true umbra).
+/// (the faint-leak measure: visibility > 0.1 in the true umbra).
 inline constexpr double kFaintLeakVisibility = 0.1;
 /// An umbra pixel whose every neighbour within this many pixels (a square) is a receiver in the
 /// true umbra too is *interior*: light there is a leak of the technique, not the map's texel
