@@ -9,17 +9,16 @@
 // Slots are specialised and grouped like the lit passes' (SG_MASK_LIGHTS, SG_PASS_GROUPS,
 // SG_GROUP<g>_*).
 //
-// At reduced resolution (ShadowMaskRequest::resolution) three programs, as the renderer's
+// At reduced resolution (ShadowMaskRequest::resolution) three passes, as the renderer's
 // screen-space stage runs (screen_resolve.glsl):
-// - the samples (SG_MASK_DIVISOR d > 1): one pixel per d x d block, the visibility at the block's
-//   centre pixel, and that receiver's camera-relative position (w 1; 0 without geometry);
+// - the samples (uDivisor d > 1): one pixel per d x d block, the visibility at the block's centre
+//   pixel, and that receiver's camera-relative position (w 1; 0 without geometry);
 // - the resolve (SG_MASK_RESOLVE, with SG_MASK_DIVISOR d): each pixel blends the four samples
 //   around it that lie on its own surface (within 1.5 blocks' footprint of its plane), and marks
 //   in depth the pixels with none or with disagreeing ones;
-// - the refine: this program at full resolution, depth-tested so that only marked pixels run.
-#ifndef SG_MASK_DIVISOR
-#define SG_MASK_DIVISOR 1
-#endif
+// - the refine: the samples' program at full resolution (uDivisor 1), depth-tested so that only
+//   marked pixels run. One program of the lights' techniques serves every resolution: a mask's
+//   lights compile their techniques once.
 // (Includes may not stand under a condition: each file is expanded once, where first named.)
 #include "shadow_visibility.glsl"
 #include "screen_resolve.glsl"
@@ -38,8 +37,10 @@ uniform int uZeroToOne;        // 1: window depth is NDC z (glClipControl ZERO_T
 uniform float uBackgroundDepth;
 
 layout(location = 0) out vec4 outMask;
-#if SG_MASK_DIVISOR > 1 && !defined(SG_MASK_RESOLVE)
-layout(location = 1) out vec4 outPosition;  // the sample's receiver, camera-relative; w: covered
+#ifndef SG_MASK_RESOLVE
+// The sample's receiver, camera-relative, w: covered (at full resolution no buffer takes it).
+layout(location = 1) out vec4 outPosition;
+uniform int uDivisor;  // the blocks a sample stands for: 1 at full resolution
 #endif
 
 // Camera-relative position of pixel `p` at window depth `d`.
@@ -124,7 +125,7 @@ void main() {
 
 void main() {
     // A sample stands for its block's centre pixel (the pixel itself at full resolution).
-    ivec2 p = min(ivec2(gl_FragCoord.xy) * SG_MASK_DIVISOR + SG_MASK_DIVISOR / 2, textureSize(uSceneDepth, 0) - 1);
+    ivec2 p = min(ivec2(gl_FragCoord.xy) * uDivisor + uDivisor / 2, textureSize(uSceneDepth, 0) - 1);
     float d = texelFetch(uSceneDepth, p, 0).r;
     vec4 mask = vec4(1.0);
     vec4 position = vec4(0.0);
@@ -169,8 +170,6 @@ void main() {
 #endif
     }
     outMask = mask;
-#if SG_MASK_DIVISOR > 1
     outPosition = position;
-#endif
 }
 #endif

@@ -28,9 +28,9 @@ namespace shadow {
 
 namespace {
 
-/// What a mask program is specialised for: the lights in use, the normal texture, the divisor of
-/// its resolution (the resolve: 0x80 | divisor, no light configuration), and per slot the
-/// light's type, technique and kernel.
+/// What a mask program is specialised for: the lights in use, the normal texture, the resolve's
+/// divisor (0x80 | divisor; 0 for the program of the lights' techniques, which serves every
+/// resolution), and per slot the light's type, technique and kernel.
 using MaskKey = std::array<std::uint8_t, 3 + 3 * SG_MAX_MASK_LIGHTS>;
 
 /// Key bit of the resolve program.
@@ -43,13 +43,13 @@ struct MaskProgram {
     GLint cameraForward = -1;
     GLint zeroToOne = -1;
     GLint backgroundDepth = -1;
+    GLint divisor = -1;  ///< the techniques' program: the blocks a sample stands for
 };
 
-MaskKey maskKey(const ShadowShaderInputs& in, bool normals, int divisor) {
+MaskKey maskKey(const ShadowShaderInputs& in, bool normals) {
     MaskKey key{};
     key[0] = static_cast<std::uint8_t>(in.lights);
     key[1] = normals ? 1 : 0;
-    key[2] = static_cast<std::uint8_t>(divisor);
     for (std::size_t i = 0; i < SG_MAX_MASK_LIGHTS; ++i) {
         key[3 + 3 * i] = static_cast<std::uint8_t>(in.type[i]);
         key[4 + 3 * i] = static_cast<std::uint8_t>(in.technique[i]);
@@ -65,6 +65,7 @@ void findMaskUniforms(MaskProgram& p) {
     p.cameraForward = gl.GetUniformLocation(id, "uCameraForward");
     p.zeroToOne = gl.GetUniformLocation(id, "uZeroToOne");
     p.backgroundDepth = gl.GetUniformLocation(id, "uBackgroundDepth");
+    p.divisor = gl.GetUniformLocation(id, "uDivisor");
 }
 
 /// The resolve of a mask of `lights` lights computed at 1 / `divisor` resolution: no technique.
@@ -80,8 +81,8 @@ MaskProgram buildResolve(int lights, int divisor) {
     return p;
 }
 
-/// The mask's program of `in`'s lights: at full resolution, or (`divisor` > 1) its samples.
-MaskProgram buildMask(const ShadowShaderInputs& in, bool normals, int divisor) {
+/// The mask's program of `in`'s lights: at full resolution, the samples and the refine.
+MaskProgram buildMask(const ShadowShaderInputs& in, bool normals) {
     std::vector<std::string> defines{"SG_MASK_LIGHTS " + std::to_string(in.lights)};
     std::string label;
     std::array<gpu::SlotConfig, SG_MAX_MASK_LIGHTS> slots{};
@@ -95,10 +96,8 @@ MaskProgram buildMask(const ShadowShaderInputs& in, bool normals, int divisor) {
                                 defines);
     gpu::appendTechniqueDefines(in.techniques, defines);
     if (normals) defines.emplace_back("SG_MASK_NORMALS");
-    if (divisor > 1) defines.emplace_back("SG_MASK_DIVISOR " + std::to_string(divisor));
     MaskProgram p;
-    const std::string suffix = (normals ? ",normals" : "") + (divisor > 1 ? ",1/" + std::to_string(divisor) : "");
-    p.program = gpu::buildProgram({"Shadow/Mask[" + label + suffix + "]", "fullscreen.vert.glsl",
+    p.program = gpu::buildProgram({"Shadow/Mask[" + label + (normals ? ",normals]" : "]"), "fullscreen.vert.glsl",
                                    "shadow_mask.frag.glsl", defines, in.techniques});
     findMaskUniforms(p);
     return p;
@@ -172,8 +171,9 @@ PixelRect maskBounds(const ShadowFrame& frame, std::span<const int> sceneLights,
     return bounds;
 }
 
-void setMaskUniforms(const MaskProgram& p, const ShadowMaskRequest& r, const glm::dmat4& projection) {
+void setMaskUniforms(const MaskProgram& p, const ShadowMaskRequest& r, const glm::dmat4& projection, int divisor = 1) {
     const GLuint id = p.program.get();
+    gl.ProgramUniform1i(id, p.divisor, divisor);
     const glm::dmat4 clipFromCs = cameraClipFromCs(r.camera, projection);
     const glm::vec3 forward = cameraForward(r.camera);
     gl.ProgramUniformMatrix4fv(id, p.csFromClip, 1, GL_FALSE, glm::value_ptr(glm::mat4(glm::inverse(clipFromCs))));
@@ -260,8 +260,7 @@ void ShadowMask::Impl::drawReduced(const ShadowShaderInputs& in, bool normals, i
                                    const glm::dmat4& projection, const PixelRect& bounds) {
     ensureStage(r.width, r.height, divisor);
     // The samples: the blocks of the lights' bounds and one ring more, the resolve's neighbours.
-    const MaskProgram& samples =
-        program(maskKey(in, normals, divisor), [&] { return buildMask(in, normals, divisor); });
+    const MaskProgram& samples = program(maskKey(in, normals), [&] { return buildMask(in, normals); });
     gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, stageFramebuffer.get());
     gl.Viewport(0, 0, stageWidth, stageHeight);
     gl.Disable(GL_SCISSOR_TEST);
@@ -274,7 +273,7 @@ void ShadowMask::Impl::drawReduced(const ShadowShaderInputs& in, bool normals, i
                     1, stageWidth, stageHeight);
     gl.Enable(GL_SCISSOR_TEST);
     gl.Scissor(blocks.x0, blocks.y0, blocks.x1 - blocks.x0, blocks.y1 - blocks.y0);
-    setMaskUniforms(samples, r, projection);
+    setMaskUniforms(samples, r, projection, divisor);
     gl.UseProgram(samples.program.get());
     gl.DrawArrays(GL_TRIANGLES, 0, 3);
 
@@ -358,7 +357,7 @@ void ShadowMask::render(const ShadowFrame& frame, const ShadowMaps& maps, std::s
         // program then runs only where the resolve marked a pixel (the refine).
         const int divisor = maskDivisor(r, in);
         if (divisor > 1) m.drawReduced(in, normals, divisor, r, projection, bounds);
-        const MaskProgram& p = m.program(maskKey(in, normals, 1), [&] { return buildMask(in, normals, 1); });
+        const MaskProgram& p = m.program(maskKey(in, normals), [&] { return buildMask(in, normals); });
         setMaskUniforms(p, r, projection);
         gl.Enable(GL_SCISSOR_TEST);
         gl.Scissor(bounds.x0, bounds.y0, bounds.x1 - bounds.x0, bounds.y1 - bounds.y0);
