@@ -75,6 +75,17 @@ for scene in "${spot_scenes[@]}"; do
   done
 done
 
+# The sample scene with a truth, at the timed size, forward and auto.
+ref=$work/error/contact_reference
+echo "screen_visibility: reference of contact"
+$bin/shadow_reference contact --size 1280x720 --samples "$samples" --out "$ref" > "$ref.log" 2>&1
+for m in off auto; do
+  out=$work/error/contact_$m
+  $bin/shadow_render contact --size 1280x720 --frames 2 --screen-visibility "$m" --aov color,visibility,position \
+    --out "$out" > "$out.log" 2>&1
+  $bin/shadow_compare "$out" "$ref" --mask lit --out "$out" > "$out.json"
+done
+
 python3 benchmarks/screen_visibility.py "$work" "$rounds" "$frames" "$samples" $((SECONDS - start)) \
   > benchmarks/results/screen_visibility.md
 cat benchmarks/results/screen_visibility.md
