@@ -216,7 +216,7 @@ out.append(f"- **{osg_info['engine']}**: `build-peers/osg_bunny` (benchmarks/pee
            "(2×2 hardware PCF). Our shading is Lambert + GGX per pixel; OSG's fixed-function Blinn-Phong. Our "
            "`sdf` (soft shadows marched through the bunny's distance field, no map) has no OSG counterpart: its row "
            "is set against `vdsm`, as PCF's and PCSS's are. `shadow_render`'s default screen-space visibility is "
-           "`auto`: at 1280×720, `pcss` and `sdf` run the stage at quarter resolution, the others forward.")
+           "`auto`: at 1280×720, `pcf`, `pcss` and `sdf` run the stage at quarter resolution, `hard` forward.")
 out.append(f"- CPU: {cpu}, {cores} cores, shared with other work while measured: compare rows of one run. Both "
            "processes keep up to 512 MiB of freed heap (`GLIBC_TUNABLES=glibc.malloc.trim_threshold=536870912`, "
            "what shadow_render sets for itself): with glibc's default, llvmpipe's per-draw vertex buffers went "

@@ -88,7 +88,8 @@ struct Spread {
 /// `--screen-visibility`'s help text, and its value parsed (error names the value).
 inline constexpr const char* kScreenVisibilityHelp =
     "where lights' visibility is computed: auto (the default: the screen-space stage for a pcss or sdf light, two "
-    "or more filtered lights, or contact shadows; filtered shadows at half resolution, upsampled along surfaces), "
+    "or more filtered lights, any filtered light from 720 rows, or contact shadows; filtered shadows at half "
+    "resolution, quarter from 720 rows, upsampled along surfaces), "
     "off (forward: every lit fragment runs its lights' filters), or the stage forced at full, half or quarter "
     "resolution";
 [[nodiscard]] Result<ScreenVisibility> parseScreenVisibilitySetting(const std::string& name);

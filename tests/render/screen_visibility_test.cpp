@@ -238,7 +238,9 @@ TEST(ScreenVisibility, AutoRunsTheStageWhereItMeasuredFaster) {
     const std::vector<PassLights> hard{passWith({SG_TECH_HARD, SG_TECH_HARD, SG_TECH_HARD})};
     const ShadowFrame frame;
     EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Auto, frame, onePcss, 720));
-    EXPECT_FALSE(render::screenStagePays(ScreenVisibility::Auto, frame, onePcf, 720));
+    // One PCF light: forward below 720 rows, the stage at quarter resolution from them.
+    EXPECT_FALSE(render::screenStagePays(ScreenVisibility::Auto, frame, onePcf, 719));
+    EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Auto, frame, onePcf, 720));
     EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Auto, frame, twoSoft, 720));
     EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Auto, frame, sdf, 720));
     EXPECT_FALSE(render::screenStagePays(ScreenVisibility::Auto, frame, hard, 720));

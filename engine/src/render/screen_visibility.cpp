@@ -76,6 +76,7 @@ bool screenStagePays(ScreenVisibility setting, const ShadowFrame& frame, const s
             const int t = pass.variant.technique[static_cast<std::size_t>(i)];
             if (wideEnough && (t == SG_TECH_PCSS || t == SG_TECH_SDF)) return true;
             if (t != SG_TECH_NONE && t != SG_TECH_HARD) ++filtered;
+            if (filtered > 0 && height >= kMinQuarterStageHeight) return true;
         }
     }
     return wideEnough && filtered >= 2;
