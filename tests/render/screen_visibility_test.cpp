@@ -245,7 +245,7 @@ TEST(ScreenVisibility, AutoRunsTheStageWhereItMeasuredFaster) {
     EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Auto, frame, sdf, 720));
     EXPECT_FALSE(render::screenStagePays(ScreenVisibility::Auto, frame, hard, 720));
     // Small images stay forward: their penumbrae are too few pixels wide for half resolution.
-    EXPECT_FALSE(render::screenStagePays(ScreenVisibility::Auto, frame, sdf, render::kMinAutoStageHeight - 1));
+    EXPECT_FALSE(render::screenStagePays(ScreenVisibility::Auto, frame, sdf, kMinStageHeight - 1));
     EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Half, frame, sdf, 90));
     EXPECT_FALSE(render::screenStagePays(ScreenVisibility::Off, frame, sdf, 720));
     EXPECT_TRUE(render::screenStagePays(ScreenVisibility::Half, frame, onePcss, 720));

@@ -3,7 +3,13 @@
 // (shadow_mask.h). Pure CPU.
 #pragma once
 
+#include <shadow/shared_constants.h>
+
 namespace shadow {
+
+/// Whether technique `t` (SG_TECH_*) filters its shadows: any but none and hard, whose edges need
+/// every pixel.
+[[nodiscard]] constexpr bool filtersShadows(int t) { return t != SG_TECH_NONE && t != SG_TECH_HARD; }
 
 /// Rows below which filtered shadows are computed at full resolution: there penumbrae are too
 /// few pixels wide for half resolution. Measured against the truth (BENCHMARKS.md, error against
@@ -17,7 +23,7 @@ inline constexpr int kMinStageHeight = 360;
 inline constexpr int kMinQuarterStageHeight = 2 * kMinStageHeight;
 
 /// The divisor of the screen resolution for visibility in an image of `height` rows: 1 when no
-/// light of the group filters its shadows (`filtered` false: hard edges need every pixel) or
+/// light of the group filters its shadows (`filtered` false: see `filtersShadows`) or
 /// under `kMinStageHeight` rows, 4 from `kMinQuarterStageHeight` rows, else 2.
 [[nodiscard]] constexpr int stageDivisor(bool filtered, int height) {
     if (!filtered || height < kMinStageHeight) return 1;

@@ -49,12 +49,8 @@ int visibilityDivisor(ScreenVisibility setting, const LitVariant& variant, int f
         case ScreenVisibility::Off:
         case ScreenVisibility::Auto: break;
     }
-    bool filtered = false;
-    for (int i = firstSlot; i < firstSlot + slots; ++i) {
-        const int t = variant.technique[static_cast<std::size_t>(i)];
-        filtered = filtered || (t != SG_TECH_NONE && t != SG_TECH_HARD);
-    }
-    return stageDivisor(filtered, height);
+    const auto* const first = variant.technique.begin() + firstSlot;
+    return stageDivisor(std::any_of(first, first + slots, [](int t) { return filtersShadows(t); }), height);
 }
 
 float contactLengthUniform(const ShadowLightPlan& light) {
@@ -67,7 +63,7 @@ bool screenStagePays(ScreenVisibility setting, const ShadowFrame& frame, const s
                      int height) {
     if (setting == ScreenVisibility::Off) return false;
     if (setting != ScreenVisibility::Auto) return true;
-    const bool wideEnough = height >= kMinAutoStageHeight;
+    const bool wideEnough = height >= kMinStageHeight;
     int filtered = 0;
     for (const PassLights& pass : passes) {
         for (int i = 0; i < pass.variant.lights; ++i) {
@@ -75,7 +71,7 @@ bool screenStagePays(ScreenVisibility setting, const ShadowFrame& frame, const s
             if (light >= 0 && contactLengthUniform(frame.lights[static_cast<std::size_t>(light)]) != 0.0f) return true;
             const int t = pass.variant.technique[static_cast<std::size_t>(i)];
             if (wideEnough && (t == SG_TECH_PCSS || t == SG_TECH_SDF)) return true;
-            if (t != SG_TECH_NONE && t != SG_TECH_HARD) ++filtered;
+            if (filtersShadows(t)) ++filtered;
             if (filtered > 0 && height >= kMinQuarterStageHeight) return true;
         }
     }

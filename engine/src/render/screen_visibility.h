@@ -26,13 +26,10 @@
 
 namespace shadow::render {
 
-/// Rows below which Auto renders forward (core/stage_resolution.h says why).
-inline constexpr int kMinAutoStageHeight = kMinStageHeight;
-
 /// The divisor of the screen resolution at which a group of lights' visibility is computed:
 /// `setting` when it forces one (Full, Half, Quarter); for Auto 1 when every shadowed light of
 /// the group has hard-edged shadows (technique hard, or none) or the image has fewer than
-/// `kMinAutoStageHeight` rows (`height`), else `stageDivisor`'s 2 or 4. Pure CPU.
+/// `kMinStageHeight` rows (`height`), else `stageDivisor`'s 2 or 4. Pure CPU.
 [[nodiscard]] int visibilityDivisor(ScreenVisibility setting, const LitVariant& variant, int firstSlot, int slots,
                                     int height);
 
@@ -48,7 +45,7 @@ inline constexpr int kMinAutoStageHeight = kMinStageHeight;
 /// half resolution, bunny spots at 1280x720: 0.81-1.07 of forward's frame); from those rows the
 /// stage runs it at quarter resolution, measured 0.94-1.02 of forward (PCF), 0.84-0.89 (VSSM)
 /// and 0.67-0.76 (MSM-soft), at an error against the truth equal or lower. Hard shadows stay forward, and so does an image
-/// under `kMinAutoStageHeight` rows, contact shadows aside.
+/// under `kMinStageHeight` rows, contact shadows aside.
 [[nodiscard]] bool screenStagePays(ScreenVisibility setting, const ShadowFrame& frame,
                                    const std::vector<PassLights>& passes, int height);
 

@@ -28,21 +28,31 @@ constexpr float kValenceBoostScale = 2.0f;
 constexpr float kValenceBoostPower = 0.5f;
 constexpr int kValenceTable = 64;  // valences past it score as it
 
-/// The score of a vertex at `position` of the cache (-1: not in it) with `remaining` triangles
-/// left to draw (0: none, it scores nothing).
-float vertexScore(int position, std::uint32_t remaining) {
-    if (remaining == 0) return -1.0f;
-    float score = 0.0f;
-    if (position >= 0) {
-        if (position < 3) {
-            score = kLastTriangleScore;
-        } else {
-            const float scaler = 1.0f / static_cast<float>(kCacheSize - 3);
-            score = std::pow(1.0f - static_cast<float>(position - 3) * scaler, kCacheDecayPower);
+/// The two parts of a vertex's score, tabulated once (each update would otherwise take two
+/// powers): by its place in the cache, and by the triangles it has left (up to kValenceTable).
+struct ScoreTables {
+    std::array<float, kCacheSize> cache{};
+    std::array<float, kValenceTable + 1> valence{};
+
+    ScoreTables() {
+        const float scaler = 1.0f / static_cast<float>(kCacheSize - 3);
+        for (int k = 0; k < kCacheSize; ++k) {
+            cache[static_cast<std::size_t>(k)] =
+                k < 3 ? kLastTriangleScore : std::pow(1.0f - static_cast<float>(k - 3) * scaler, kCacheDecayPower);
+        }
+        for (int n = 1; n <= kValenceTable; ++n) {
+            valence[static_cast<std::size_t>(n)] =
+                kValenceBoostScale * std::pow(static_cast<float>(n), -kValenceBoostPower);
         }
     }
-    const auto valence = static_cast<float>(std::min<std::uint32_t>(remaining, kValenceTable));
-    return score + kValenceBoostScale * std::pow(valence, -kValenceBoostPower);
+};
+
+/// The score of a vertex at `position` of the cache (-1: not in it) with `remaining` triangles
+/// left to draw (0: none, it scores nothing).
+float vertexScore(const ScoreTables& tables, int position, std::uint32_t remaining) {
+    if (remaining == 0) return -1.0f;
+    const float cached = position >= 0 ? tables.cache[static_cast<std::size_t>(position)] : 0.0f;
+    return cached + tables.valence[std::min<std::uint32_t>(remaining, kValenceTable)];
 }
 
 /// Each vertex's triangles not yet drawn: `triangles[first[v], first[v] + live[v])`.
@@ -93,7 +103,7 @@ public:
           cachePosition_(vertexCount, -1),
           score_(vertexCount),
           triangleScore_(indices.size() / 3, 0.0f) {
-        for (std::size_t v = 0; v < vertexCount; ++v) score_[v] = vertexScore(-1, adjacency_.live[v]);
+        for (std::size_t v = 0; v < vertexCount; ++v) score_[v] = vertexScore(tables_, -1, adjacency_.live[v]);
         Adjacency::forEachCorner(indices, indices.size() / 3,
                                  [this](std::uint32_t v, std::size_t t) { triangleScore_[t] += score_[v]; });
     }
@@ -115,7 +125,7 @@ public:
         for (int k = 0; k < count; ++k) {
             const std::uint32_t v = next_[k];
             if (k < kCacheSize) cachePosition_[v] = k;
-            const float updated = vertexScore(cachePosition_[v], adjacency_.live[v]);
+            const float updated = vertexScore(tables_, cachePosition_[v], adjacency_.live[v]);
             const float delta = updated - score_[v];
             score_[v] = updated;
             forEachLive(v, [this, delta](std::uint32_t j) { triangleScore_[j] += delta; });
@@ -147,6 +157,7 @@ private:
     }
 
     const std::vector<std::uint32_t>& indices_;
+    const ScoreTables tables_;
     Adjacency adjacency_;
     std::vector<int> cachePosition_;
     std::vector<float> score_;

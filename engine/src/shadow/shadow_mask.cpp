@@ -16,6 +16,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <map>
@@ -145,12 +146,8 @@ int maskDivisor(const ShadowMaskRequest& r, const ShadowShaderInputs& in) {
         case MaskResolution::Quarter: return 4;
         case MaskResolution::Auto: break;
     }
-    bool filtered = false;
-    for (int i = 0; i < in.lights; ++i) {
-        const int t = in.technique[static_cast<std::size_t>(i)];
-        filtered = filtered || (t != SG_TECH_NONE && t != SG_TECH_HARD);
-    }
-    return stageDivisor(filtered, r.height);
+    const auto* const first = in.technique.begin();
+    return stageDivisor(std::any_of(first, first + in.lights, [](int t) { return filtersShadows(t); }), r.height);
 }
 
 /// The projection the request's depth was drawn with.
