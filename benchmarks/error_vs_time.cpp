@@ -171,6 +171,7 @@ struct Options {
     std::string out = "benchmarks/results";
     std::string size = "320x240";
     int frames = 5;
+    std::string only;  ///< when set, only the configurations whose label contains it
 };
 
 Result<Row> measure(const std::string& spec, const Config& config, const Options& o, int width, int height) {
@@ -452,6 +453,7 @@ int run(const Options& o) {
     const std::vector<Config> configs = sweep();
     for (const std::string& spec : o.scenes) {
         for (const Config& c : configs) {
+            if (!o.only.empty() && c.label().find(o.only) == std::string::npos) continue;
             Result<Row> row = measure(spec, c, o, width, height);
             if (!row) {
                 std::cerr << "error_vs_time: " << spec << ", " << c.label() << ": " << row.error().message << "\n";
@@ -490,6 +492,7 @@ int main(int argc, char** argv) {
     app.add("--out", o.out, "results folder");
     app.add("--size", o.size, "image size WxH");
     app.add("--frames", o.frames, "timed frames per configuration").range(1, 1000);
+    app.add("--only", o.only, "only the configurations whose label contains this text (e.g. 'sdf field128')");
     if (const std::optional<int> exit = app.parse(argc, argv, "error_vs_time")) return *exit;
     try {
         return run(o);

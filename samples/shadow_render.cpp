@@ -3,7 +3,7 @@
 //   shadow_render SCENE [--out DIR] [--size WxH] [--camera N] [--time T] [--frames N --dt S]
 //                 [--technique NAME|auto] [--shadow-budget-ms MS] [--depth-mode MODE] [--aov color,visibility,position,depth]
 //                 [--debug NAME] [--debug-light I] [--frame-images] [--no-cache] [--exposure E]
-//                 [--shader-cache DIR] [--field-voxels N] [--sdf-start-offset M] [--max-filter-texels N]
+//                 [--shader-cache DIR] [--field-voxels N] [--sdf-steps N] [--sdf-start-offset M] [--max-filter-texels N]
 //                 [--map-size N] [--pcf-samples N] [--blocker-samples N]
 //                 [--animation NAME|INDEX|all] [--no-default-lights] [--no-ground]
 //
@@ -59,6 +59,7 @@ struct Options {
     std::optional<int> mapSize;            ///< absent: each light keeps its own
     std::optional<int> pcfSamples;         ///< absent: each light keeps its own
     std::optional<int> blockerSamples;     ///< absent: each light keeps its own
+    std::optional<int> sdfSteps;           ///< absent: each light keeps its own
     std::string shaderCache;
     std::string screenVisibility = "auto";
     bool contactShadows = false;    ///< turn every shadowed light's contact shadows on
@@ -83,6 +84,7 @@ void overrideShadow(Shadow& s, const Options& o, std::optional<ShadowTechnique> 
     if (o.mapSize) s.mapSize = *o.mapSize;
     if (o.pcfSamples) s.pcfSamples = *o.pcfSamples;
     if (o.blockerSamples) s.blockerSamples = *o.blockerSamples;
+    if (o.sdfSteps) s.sdfSteps = *o.sdfSteps;
 }
 
 /// The first of the integer overrides outside its range, as the message to fail with; empty
@@ -95,7 +97,8 @@ std::string checkCountOverrides(const Options& o) {
     };
     const Count counts[] = {{"--map-size", o.mapSize, 1, 16384},
                             {"--pcf-samples", o.pcfSamples, 1, 64},
-                            {"--blocker-samples", o.blockerSamples, 1, 64}};
+                            {"--blocker-samples", o.blockerSamples, 1, 64},
+                            {"--sdf-steps", o.sdfSteps, 4, 256}};
     for (const Count& c : counts) {
         if (c.value && (*c.value < c.lo || *c.value > c.hi)) {
             return std::string(c.option) + ": must be in [" + std::to_string(c.lo) + ", " + std::to_string(c.hi) + "]";
@@ -311,6 +314,7 @@ int main(int argc, char** argv) {
     app.flag("--no-cache", o.noCache, "redraw every shadow layer every frame");
     app.add("--field-voxels", o.fieldVoxels,
             "technique sdf: voxels along the edge of each mesh's distance field, [16, 256] (default 64: 64^3 voxels)");
+    app.add("--sdf-steps", o.sdfSteps, "technique sdf: override every light's sdfSteps (most march steps), [4, 256]");
     app.add("--sdf-start-offset", o.sdfStartOffset, "technique sdf: override every light's sdfStartOffset (m), [0, 1]");
     app.add("--max-filter-texels", o.maxFilterTexels,
             "override every light's maxFilterTexels (the widest filter, texels), [1, 256]");

@@ -197,12 +197,12 @@ float sg_sdfCrossing(int kind, int instance, vec3 p, vec3 dir, float d, float ra
         float h = kind == SG_SDF_SHEET ? 0.25 * radius + 1e-4 : max(0.5 * voxel, 1e-4);
         vec3 before = vec3(0.0);
         vec3 after = vec3(0.0);
-        for (int j = 0; j < (kind == SG_SDF_THIN ? 2 : 1) + sg_runtimeZero(); ++j) {
+        for (int j = 0; j < 2 + sg_runtimeZero(); ++j) {
             vec3 g = sg_sdfGradient(instance, p + dir * (j == 0 ? -2.0 * h : 2.0 * h), h);
             if (j == 0) before = g;
             else after = g;
         }
-        if (kind == SG_SDF_THIN && dot(before, after) >= 0.0) return 1.0;
+        if (dot(before, after) >= 0.0) return 1.0;
         axis = sg_safeNormalize(before, dir);
     }
     return sg_sdfEdgesAround(instance, p, axis, radius);
@@ -265,6 +265,9 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
     float lastLastD = -1.0;
     int lastNear = -1;  // the caster nearest the last sample (outside it), or -1
     float step = 1.0;
+    // The march's budget sets how finely it follows a caster's surface: 24 steps a half of the
+    // cone's radius, 48 a quarter, 96 an eighth (see the shortest step below).
+    float coneShare = 12.0 / float(max(L.sdfSteps, 1));
     int steps = 0;
     for (; steps < L.sdfSteps && t < tStop && count > 0; ++steps) {
         vec3 p = origin + dir * t;
@@ -277,17 +280,28 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
                 nearest = k;
             }
         }
+        // The shortest step: sdfMinStep, and nearer a caster (or inside it) than the cone's
+        // share (coneStep) that share, up to one voxel of the caster's field. The cone's radius is
+        // the scale of what the visibility can tell apart there (u = d / (t tan e)); finer steps
+        // beside a surface the ray runs along or through a caster's edge spent the budget short
+        // of the casters beyond, which then let light through (builtin:default at 24 steps,
+        // RMSE 0.041 -> 0.018). One voxel at most: a closed caster two voxels thick is not
+        // stepped over. A sheet is crossed where the ray comes within the shortest step.
+        float coneStep = coneShare * t * tanE;
+        float shortest = L.sdfMinStep;
+        if (d < coneStep) shortest = max(shortest, min(coneStep, sg_sdfVoxelMetres(near[nearest])));
         float u = 1.0;
         int kind = -1;  // a crossing at this step (SG_SDF_*), or none
         int crossing = near[nearest];
         vec3 at = p;
         float tAt = t;
         float voxel = 0.0;
-        if (d >= 0.0 && d < L.sdfMinStep && d <= lastD && sg_sdfRecord(near[nearest], 5).w > 0.5) {  // a sheet
+        if (d >= 0.0 && d < shortest && d <= lastD && sg_sdfRecord(near[nearest], 5).w > 0.5) {  // a sheet
             kind = SG_SDF_SHEET;
         } else if (d < 0.0) {
             kind = SG_SDF_INSIDE;
-        } else {
+        }
+        if (d >= 0.0) {
             u = d / (t * tanE);
             // The closest approach between this sample and the last: where the spheres free of
             // casters around both (radii lastD and d, `step` apart) meet, y back along the ray.
@@ -310,13 +324,18 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
                 at = origin + dir * tAt;
             }
         }
-        if (kind >= 0) crossed = min(crossed, sg_sdfCrossing(kind, crossing, at, dir, d, tAt * tanE, voxel));
+        if (kind >= 0) {
+            float fraction = sg_sdfCrossing(kind, crossing, at, dir, d, tAt * tanE, voxel);
+            crossed = min(crossed, fraction);
+            // At a sheet the ray crosses, its fraction stands for the clearance (~0 there).
+            if (kind == SG_SDF_SHEET && fraction < 1.0) u = 1.0;
+        }
         lowest = min(lowest, u);
         if (crossed <= 0.0) break;
         lastLastD = lastD;
         lastD = d;
         lastNear = d >= 0.0 ? near[nearest] : -1;
-        step = max(abs(d), L.sdfMinStep);
+        step = max(abs(d), shortest);
         t += step;
     }
     SG_DEBUG_STORE(sg_debugMarchSteps, float(steps));
