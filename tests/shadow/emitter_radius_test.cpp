@@ -58,5 +58,30 @@ TEST(EmitterRadius, TheWidestFilterAtItsDefaultDoesNotCutAWidePenumbra) {
     }
 }
 
+// VSSM's and MSM-soft's widest filter at its default has no margin over the widest penumbra
+// (kAutoMomentFilterTexelsMargin): their regions reach past their radius, and with PCSS's margin
+// MSM-soft's blocker estimate ran wide on both plates scenes. Its automatic clamp against the
+// same scene with PCSS's margin put back by hand.
+TEST(EmitterRadius, TheMomentTechniquesWidestFilterKeepsNoMargin) {
+    for (const std::string name : {"plates", "plates-boxes"}) {
+        Result<Scene> scene = makeBuiltinScene(name);
+        ASSERT_TRUE(scene) << scene.error().message;
+        const std::vector<ShadowTechnique> techniques{ShadowTechnique::MsmSoft, ShadowTechnique::Pcss};
+        const std::vector<AgainstTruth> automatic = renderAgainstTruth(*scene, 160, 120, 64, techniques);
+        const float clamp = automatic.at(0).maxFilterTexels;
+        EXPECT_NEAR(clamp * kAutoFilterTexelsMargin, automatic.at(1).maxFilterTexels, 0.01f * clamp) << name;
+        scene->world.view<Shadow>().each(
+            [&](Entity, Shadow& s) { s.maxFilterTexels = clamp * kAutoFilterTexelsMargin; });
+        const std::vector<AgainstTruth> wider = renderAgainstTruth(*scene, 160, 120, 64, {ShadowTechnique::MsmSoft});
+        const double a = automatic.at(0).errors.rmse;
+        const double w = wider.at(0).errors.rmse;
+        std::printf(
+            "[ measured ] %s, msm-soft: RMSE %.4f at its automatic widest filter (%.1f texels), %.4f at "
+            "PCSS's margin (%.1f)\n",
+            name.c_str(), a, clamp, w, clamp * kAutoFilterTexelsMargin);
+        EXPECT_LE(a, 0.85 * w) << name;
+    }
+}
+
 }  // namespace
 }  // namespace shadow::test::emitter_radius_test

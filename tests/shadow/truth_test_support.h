@@ -20,6 +20,7 @@ namespace shadow::test {
 struct AgainstTruth {
     VisibilityErrors errors;
     std::vector<Warning> warnings;
+    float maxFilterTexels = 0.0f;  ///< light 0's widest filter as planned (LightShadowStats)
 };
 
 /// The ray-traced truth at the pixels of `images` (their world positions, seen by `camera`),
@@ -95,6 +96,7 @@ inline std::vector<AgainstTruth> renderAgainstTruth(Scene& scene, int width, int
         if (out.empty()) truth = truthAt(scene, runner.lastCamera(), frame.images, samples);
         AgainstTruth& a = out.emplace_back();
         a.warnings = frame.stats.warnings;
+        if (!frame.stats.lights.empty()) a.maxFilterTexels = frame.stats.lights.front().maxFilterTexels;
         if (truth) a.errors = light0Errors(frame.images, *truth);
     }
     return out;

@@ -414,6 +414,11 @@ inline constexpr float kAutoContactLengthPixels = 32.0f;
 /// narrow regions darkened an open plane under a sun at 0.5 degrees), at most
 /// `kMostFilterTexels`.
 inline constexpr float kAutoFilterTexelsMargin = 1.25f;
+/// The margin of VSSM and MSM-soft: none. Their regions (a summed-area square of half-width
+/// r sqrt(3) / 2, mip fetches whose tents reach past r) already span beyond the radius, and their
+/// blocker estimates run wide where the clamp lets them (MSM-soft on builtin:plates-boxes 0.0421
+/// -> 0.0240 of RMSE against the ray-traced truth, docs/tuning.md).
+inline constexpr float kAutoMomentFilterTexelsMargin = 1.0f;
 inline constexpr float kAutoLeastFilterTexels = 32.0f;
 /// The widest `Shadow::maxFilterTexels`.
 inline constexpr float kMostFilterTexels = 256.0f;
@@ -482,7 +487,8 @@ struct Shadow {
     /// filter's region), [1, 256], or `kAutomatic` (the default): the widest penumbra the light's
     /// emitter can cast from the casters of its layers onto the receivers behind them (every
     /// corner of every caster's box, in the texels of the layer where its ray meets the
-    /// receiver), times `kAutoFilterTexelsMargin`, within [`kAutoLeastFilterTexels`, 256]. So a
+    /// receiver), times `kAutoFilterTexelsMargin` (VSSM and MSM-soft:
+    /// `kAutoMomentFilterTexelsMargin`), within [`kAutoLeastFilterTexels`, 256]. So a
     /// wide emitter's penumbra is not cut, and a narrow one's estimate cannot run wider than the
     /// scene allows. The clamp taken is `LightShadowStats::maxFilterTexels`; the filter chains
     /// are sized for 256.

@@ -550,12 +550,14 @@ void ShadowPlanner::planMap(const World& world, const CameraView& camera, Shadow
                                ? emitterFilterRadius(planned.inputs, emitterSize(plan.light), scratch_->geometry,
                                                      plan.layers, scratch_->casterPenumbrae)
                                : 0.0;
-    plan.maxFilterTexels = isAutomatic(plan.settings.maxFilterTexels)
-                               ? std::clamp(kAutoFilterTexelsMargin * static_cast<float>(widestPenumbraTexels(
-                                                                          planned.inputs, emitterSize(plan.light),
+    const bool momentRegions = technique == ShadowTechnique::MsmSoft || technique == ShadowTechnique::Vssm;
+    const float margin = momentRegions ? kAutoMomentFilterTexelsMargin : kAutoFilterTexelsMargin;
+    plan.maxFilterTexels =
+        isAutomatic(plan.settings.maxFilterTexels)
+            ? std::clamp(margin * static_cast<float>(widestPenumbraTexels(planned.inputs, emitterSize(plan.light),
                                                                           scratch_->geometry, plan.layers)),
-                                            kAutoLeastFilterTexels, kMostFilterTexels)
-                               : plan.settings.maxFilterTexels;
+                         kAutoLeastFilterTexels, kMostFilterTexels)
+            : plan.settings.maxFilterTexels;
     fitChainLevels(planned.inputs, technique, {plan.pcfRadiusMetres, automaticRadius ? kAutoPcfRadiusTexels : 0.0},
                    plan.maxFilterTexels, chainLevels(technique, plan.mapSize, plan.settings.maxFilterTexels),
                    scratch_->geometry, plan.layers);
