@@ -14,7 +14,8 @@ namespace shadow {
 /// Rows below which filtered shadows are computed at full resolution: there penumbrae are too
 /// few pixels wide for half resolution. Measured against the truth (BENCHMARKS.md, error against
 /// time, rows screen-half): on builtin:default at 320x240 the upsample added 11 % (PCSS) and
-/// 33 % (sdf) to the error; at 640x360 within 1.5 % per light, and on the bunny spots none.
+/// 33 % (sdf) to the error; at 640x360 up to 7 % (PCSS) and 10 % (sdf) on its spot, within 2 %
+/// on its other lights, and on the bunny spots none.
 inline constexpr int kMinStageHeight = 360;
 /// Rows from which filtered shadows are computed at quarter resolution: a penumbra is as many
 /// samples wide there as at half resolution in an image of `kMinStageHeight` rows, the spacing
