@@ -173,14 +173,15 @@ vec3 sg_sdfGradient(int instance, vec3 p, float h) {
 }
 
 // Kinds of a crossing of the ray through a caster (sg_sdfCrossing).
-const int SG_SDF_SHEET = 0;   // within sdfMinStep of a sheet (an open caster, an unsigned field)
+const int SG_SDF_SHEET = 0;   // within the shortest step of a sheet (an open caster, an unsigned field)
 const int SG_SDF_INSIDE = 1;  // inside a closed caster (its field negative)
 const int SG_SDF_THIN = 2;    // the distance at a minimum within a voxel of a caster
 
 // The emitter's visible fraction where the ray crosses caster `instance` at `p` (the cone's
 // radius there `radius`), 1 when it turns out not to cross:
 //  - a sheet: the edges around `p` in the sheet's plane, whose normal is the field's gradient a
-//    little before the crossing;
+//    little before the crossing, where the gradient turns over as below (a ray that only runs
+//    beside the sheet within the shortest step does not cross it);
 //  - inside a closed caster: the field's magnitude there is the way to the nearest face, not to
 //    the silhouette's edge (a plate 2 cm thick would put every ray through it within 1 cm of
 //    lit, and the umbra side of every penumbra would be too light), so the edges around `p`
