@@ -512,6 +512,9 @@ struct Shadow {
     DepthMode depthMode = DepthMode::Nearest;
     /// Technique sdf: most steps of the march toward the light, [4, 256]. Default 48. A march
     /// ends earlier when it leaves every field caster's bounds, reaches the light or is hit.
+    /// Fewer steps also step coarser beside a caster: no step there is shorter than 12 /
+    /// sdfSteps of the emitter's cone radius (up to one voxel of the caster's field), so a small
+    /// budget still reaches the casters beyond.
     int sdfSteps = 48;
     /// Technique sdf: how far (m) the march starts from the receiver, along its normal and
     /// along the ray, [0, 1], or `kAutomatic` (the default): `kAutoSdfStartOffsetVoxels` of the
@@ -526,7 +529,8 @@ struct Shadow {
     float sdfStartOffset = kAutomatic;
     /// Technique sdf: the shortest step (m), [1e-4, 1], or `kAutomatic` (the default):
     /// `kAutoSdfMinStepVoxels` of the median voxel of the light's field casters. Smaller follows
-    /// thin gaps closer, at more steps.
+    /// thin gaps closer, at more steps. Beside a caster the cone's share (`sdfSteps`) may
+    /// lengthen it.
     float sdfMinStep = kAutomatic;
     /// Screen-space contact shadows: a short march from each receiver toward the light through
     /// the surfaces on screen, multiplied into the light's visibility, for detail the map's texels
