@@ -5,6 +5,8 @@
 
 #include <shadow/shared_constants.h>
 
+#include <algorithm>
+
 namespace shadow {
 
 /// Whether technique `t` (SG_TECH_*) filters its shadows: any but none and hard, whose edges need
@@ -23,11 +25,15 @@ inline constexpr int kMinStageHeight = 360;
 /// quarter-resolution stage against forward).
 inline constexpr int kMinQuarterStageHeight = 2 * kMinStageHeight;
 
-/// The divisor of the screen resolution for visibility in an image of `height` rows: 1 when no
-/// light of the group filters its shadows (`filtered` false: see `filtersShadows`) or
-/// under `kMinStageHeight` rows, 4 from `kMinQuarterStageHeight` rows, else 2.
-[[nodiscard]] constexpr int stageDivisor(bool filtered, int height) {
-    if (!filtered || height < kMinStageHeight) return 1;
+/// The divisor of the screen resolution for the visibility of a group of lights of
+/// `techniques` (SG_TECH_*) in an image of `height` rows: 1 when none of them filters its
+/// shadows (`filtersShadows`) or under `kMinStageHeight` rows, 4 from `kMinQuarterStageHeight`
+/// rows, else 2. (`Techniques`: a span of the slots' constants, as the lit passes or the mask
+/// store them.)
+template <typename Techniques>
+[[nodiscard]] constexpr int stageDivisor(Techniques techniques, int height) {
+    const auto filters = [](int t) { return filtersShadows(t); };
+    if (height < kMinStageHeight || std::none_of(techniques.begin(), techniques.end(), filters)) return 1;
     return height >= kMinQuarterStageHeight ? 4 : 2;
 }
 

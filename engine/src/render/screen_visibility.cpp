@@ -49,8 +49,9 @@ int visibilityDivisor(ScreenVisibility setting, const LitVariant& variant, int f
         case ScreenVisibility::Off:
         case ScreenVisibility::Auto: break;
     }
-    const auto* const first = variant.technique.begin() + firstSlot;
-    return stageDivisor(std::any_of(first, first + slots, [](int t) { return filtersShadows(t); }), height);
+    return stageDivisor(
+        std::span(variant.technique).subspan(static_cast<std::size_t>(firstSlot), static_cast<std::size_t>(slots)),
+        height);
 }
 
 float contactLengthUniform(const ShadowLightPlan& light) {

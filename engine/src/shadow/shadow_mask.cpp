@@ -146,8 +146,7 @@ int maskDivisor(const ShadowMaskRequest& r, const ShadowShaderInputs& in) {
         case MaskResolution::Quarter: return 4;
         case MaskResolution::Auto: break;
     }
-    const auto* const first = in.technique.begin();
-    return stageDivisor(std::any_of(first, first + in.lights, [](int t) { return filtersShadows(t); }), r.height);
+    return stageDivisor(std::span(in.technique).first(static_cast<std::size_t>(in.lights)), r.height);
 }
 
 /// The projection the request's depth was drawn with.
