@@ -115,6 +115,7 @@ def save(scene, res, budget):
     """results.json in the scene's folder: what benchmarks/fit_auto_error.py --auto-work reads (each
     fixed configuration's per-light RMSE, each auto light's inputs)."""
     inputs = {l["index"]: {"node": l["node"], "penumbraTexels1024": l["auto"]["penumbraTexels1024"],
+                           "edgeShare1024": l["auto"]["edgeShare1024"], "penumbraShare": l["auto"]["penumbraShare"],
                            "pixels": l["auto"]["pixels"]} for l in res["autoB"]["lights"] if "auto" in l}
     runs = {k: {"folder": folder(k), "frame": r["frame"], "cost": r["cost"], "rmse": r.get("rmse"),
                 "lightRmse": r.get("lightRmse")} for k, r in res.items()}

@@ -3,7 +3,7 @@
 
     python3 benchmarks/fit_auto_error.py --auto-work DIR [--fit plates,bunny,default]
     python3 benchmarks/fit_auto_error.py --auto-work DIR --settle
-    python3 benchmarks/fit_auto_error.py --auto-work DIR --edge-share [--bin build/bin]
+    python3 benchmarks/fit_auto_error.py --auto-work DIR --counts [--fit plates,bunny,default]
     python3 benchmarks/fit_auto_error.py [--bin build/bin] [--csv benchmarks/results/error_vs_time.csv]
 
 With --auto-work: the per-light rows of benchmarks/auto_budget.py's runs (DIR/<scene>/results.json:
@@ -11,10 +11,10 @@ every light of every fixed configuration, its RMSE over its own lit mask, and it
 planner saw them); the scenes named by --fit are fitted, the others only predicted (the check on
 scenes the model did not see). Without it, the older pooled fit to the error-against-time sweep:
 
-With --edge-share: the same per-light fit with one input the planner does not have, each light's
-share of its lit pixels at a shadow edge in the truth (its penumbra, and the umbra pixels at the
-umbra's border: shadow_compare's counts of the truth against itself), in place of the share the
-width predicts; what the error model would gain if the renderer measured that share.
+With --counts: the model of each light's edge counts (engine/src/shadow/auto_technique.cpp,
+countedRmse): the share of its pixels within one texel of a shadow edge in a 1024-texel map and the
+share in its penumbra beyond it, as the lit passes counted them while auto ran it (its inputs in
+results.json); seven constants, printed in the order of the C++ file.
 
 Each light's penumbra width (texels of a 1024 map) and screen pixels come from the planner itself:
 `shadow_render builtin:SCENE --technique auto` reports them in stats.json (lights.auto). The sweep
@@ -48,10 +48,8 @@ def features(binary, scene, size):
     return [(l["auto"]["penumbraTexels1024"], l["auto"]["pixels"]) for l in stats["lights"] if "auto" in l]
 
 
-def light_rmse(p, technique, size, taps, w1024, edge=None):
-    """A light's predicted RMSE in one candidate. `edge`, when given, is its measured share of
-    pixels at a shadow edge (--edge-share): the share is then edge x share_k, widened by
-    share_floor map texels of the candidate (share_k and share_floor fitted anew)."""
+def light_rmse(p, technique, size, taps, w1024):
+    """A light's predicted RMSE in one candidate, from its widest penumbra's width."""
     hard_blur, pcf_blur, pcss_taps, pcss_texel, share_k, share_floor, other = p[:7]
     band = p[7] if len(p) > 7 else 0.0
     # The map's own step: every edge is drawn within `band` texels of the candidate's map, so a
@@ -67,10 +65,7 @@ def light_rmse(p, technique, size, taps, w1024, edge=None):
         # Never more than hard's at the same map: with no penumbra to estimate, PCSS filters over
         # its narrowest kernel, the edge hard shadows have.
         pen = min(EDGE, math.hypot(pcss_taps / taps, pcss_texel / max(w, 1e-3)), hard)
-    if edge is None:
-        share = min(1.0, share_k * w1024 / 1024.0 + share_floor)
-    else:
-        share = min(1.0, share_k * edge * (1.0 + share_floor * 1024.0 / size))
+    share = min(1.0, share_k * w1024 / 1024.0 + share_floor)
     return math.sqrt(share * pen * pen + other * other)
 
 
@@ -134,43 +129,53 @@ def sweep_rows(path):
     return rows
 
 
-def edge_shares(work, scene, compare):
-    """Each light's share of its lit pixels at a shadow edge in the scene's truth: penumbra pixels
-    and umbra pixels with a non-umbra pixel within two (shadow_compare of the truth against
-    itself), by light index."""
-    truth = os.path.join(work, scene, "truth")
-    out = subprocess.run([compare, truth, truth, "--mask", "lit"], check=True, capture_output=True, text=True)
-    shares = {}
-    for light in json.loads(out.stdout)["lights"]:
-        c = light["counts"]
-        shares[str(light["index"])] = (c["penumbra"] + c["umbra"] - c["interiorUmbra"]) / max(c["valid"], 1)
-    return shares
+OTHER = 0.007252  # kOtherError, the width model's floor, kept by the counts' model
 
 
-def light_rows(work, scenes, compare=None):
+def counted_rmse(p, technique, size, taps, edge, penumbra):
+    """countedRmse of auto_technique.cpp: the band within one texel of an edge and the penumbra
+    beyond it, each times the squared error within it."""
+    band_error = {"hard": p[0], "pcf": p[1], "pcss": p[2]}[technique]
+    if technique == "pcss":
+        within = p[5] * (16.0 / max(taps, 1)) ** p[6]
+    else:
+        within = p[3] if technique == "hard" else p[4]
+    band = min(1.0, edge * 1024.0 / size)
+    return math.sqrt(min(1.0, band_error * band + within * min(1.0, penumbra)) + OTHER * OTHER)
+
+
+def predict(p, r):
+    if r["edge"] is not None:
+        return counted_rmse(p, r["technique"], r["size"], r["taps"], r["edge"], r["penumbra"])
+    return light_rmse(p, r["technique"], r["size"], r["taps"], r["w"])
+
+
+def light_rows(work, scenes, counts=False):
     """Per-light rows of auto_budget.py's fixed configurations, for the scenes given; with
-    `compare` (shadow_compare's path), each row's measured edge share as well."""
+    `counts`, each light's counted shares as auto measured them (its inputs)."""
     rows = []
     for scene in scenes:
         path = os.path.join(work, scene, "results.json")
         if not os.path.exists(path):
             sys.exit(f"fit_auto_error: {path}: missing (run benchmarks/auto_budget.py first)")
         r = json.load(open(path))
-        edges = edge_shares(work, scene, compare) if compare else {}
         for name, (technique, size, _pcf, blocker) in r["fixed"].items():
             measured = r["runs"][name]["lightRmse"]
             for index, inp in r["inputs"].items():
                 if index in measured and measured[index] > 0:
                     rows.append({"scene": scene, "config": f"{name} {inp['node']}", "technique": technique,
                                  "size": size, "taps": blocker, "rmse": measured[index],
-                                 "w": inp["penumbraTexels1024"], "edge": edges.get(index)})
+                                 "w": inp["penumbraTexels1024"], "edge": inp.get("edgeShare1024") if counts else None,
+                                 "penumbra": inp.get("penumbraShare")})
+                    if counts and not (rows[-1]["edge"] is not None and rows[-1]["edge"] >= 0):
+                        sys.exit(f"fit_auto_error: {path}: no edge counts for {inp['node']} (rerun the benchmark)")
     return rows
 
 
 def light_loss(p, rows):
     if min(p) <= 0:
         return 1e9
-    errs = [math.log(light_rmse(p, r["technique"], r["size"], r["taps"], r["w"], r["edge"]) / r["rmse"]) for r in rows]
+    errs = [math.log(predict(p, r) / r["rmse"]) for r in rows]
     return math.sqrt(sum(e * e for e in errs) / len(errs))
 
 
@@ -180,7 +185,7 @@ def concordance(p, rows):
     by_light = {}
     for r in rows:
         by_light.setdefault((r["scene"], r["config"].split(" ", 2)[-1]), []).append(
-            (light_rmse(p, r["technique"], r["size"], r["taps"], r["w"], r["edge"]), r["rmse"]))
+            (predict(p, r), r["rmse"]))
     same = total = 0
     for values in by_light.values():
         for i, (p1, m1) in enumerate(values):
@@ -194,31 +199,27 @@ def concordance(p, rows):
 def fit_lights(a):
     scenes = sorted({d for d in os.listdir(a.auto_work) if os.path.exists(os.path.join(a.auto_work, d, "results.json"))})
     fitted = a.fit.split(",")
-    compare = os.path.join(a.bin, "shadow_compare") if a.edge_share else None
-    rows = light_rows(a.auto_work, [s for s in scenes if s in fitted], compare)
-    held = light_rows(a.auto_work, [s for s in scenes if s not in fitted], compare)
-    if a.edge_share:
-        print("| scene | light | edge share |\n|---|---|---:|")
-        for r in rows + held:
-            if r["config"].startswith("hard 512 "):
-                print(f"| {r['scene']} | {r['config'][len('hard 512 '):]} | {r['edge']:.4f} |")
-        print()
-    start = [1.0, 3.2, 0.6, 2.8, 1.0, 0.5, 0.007, 1.0] if a.edge_share else [1.0, 3.2, 0.6, 2.8, 0.84, 0.01, 0.007, 1.0]
-    p = a.constants or nelder_mead(lambda q: light_loss(q, rows), start)
-    names = NAMES[:4] + ["kEdgeShareScale", "kEdgeShareTexels"] + NAMES[6:] if a.edge_share else NAMES
-    for name, value in zip(names, p):
-        print(f"constexpr double {name} = {value:.4g};")
+    rows = light_rows(a.auto_work, [s for s in scenes if s in fitted], a.counts)
+    held = light_rows(a.auto_work, [s for s in scenes if s not in fitted], a.counts)
+    start = [0.05, 0.08, 0.05, 0.06, 0.02, 4e-4, 3.0] if a.counts else [1.0, 3.2, 0.6, 2.8, 0.84, 0.01, 0.007, 1.0]
+    p = a.constants or nelder_mead(lambda q: light_loss(q, rows), start, steps=8000)
+    if a.counts:
+        print(f"constexpr std::array<double, 3> kBandError{{{p[0]:.4g}, {p[1]:.4g}, {p[2]:.4g}}};  // hard, PCF, PCSS")
+        print(f"constexpr std::array<double, 2> kPenumbraError{{{p[3]:.4g}, {p[4]:.4g}}};  // hard, PCF")
+        print(f"constexpr double kPcssPenumbra16 = {p[5]:.4g};\nconstexpr double kPcssPenumbraPower = {p[6]:.4g};")
+    else:
+        for name, value in zip(NAMES, p):
+            print(f"constexpr double {name} = {value:.4g};")
     print("\n| scene | config, light | measured RMSE | predicted | ratio |\n|---|---|---:|---:|---:|")
     for r in rows + held:
-        pr = light_rmse(p, r["technique"], r["size"], r["taps"], r["w"], r["edge"])
+        pr = predict(p, r)
         print(f"| {r['scene']} | {r['config']} | {r['rmse']:.4f} | {pr:.4f} | {pr / r['rmse']:.2f} |")
     print(f"\nfit error: RMS of log(predicted / measured) = {light_loss(p, rows):.3f} over {len(rows)} rows of "
           f"{', '.join(s for s in scenes if s in fitted)}")
     print(f"within each light, pairs of candidates measured more than 5 % apart that the model orders the same "
           f"way: {concordance(p, rows + held)}")
     if held:
-        within = sum(abs(light_rmse(p, r["technique"], r["size"], r["taps"], r["w"], r["edge"]) / r["rmse"] - 1) <= 0.3
-                     for r in held)
+        within = sum(abs(predict(p, r) / r["rmse"] - 1) <= 0.3 for r in held)
         print(f"scenes not fitted ({', '.join(s for s in scenes if s not in fitted)}): RMS of log = "
               f"{light_loss(p, held):.3f} over {len(held)} rows, {within} of them within 30 %")
 
@@ -278,9 +279,9 @@ def main():
     ap.add_argument("--auto-work", help="benchmarks/auto_budget.py's work folder: fit its per-light rows")
     ap.add_argument("--fit", default="plates,bunny,default", help="with --auto-work: the scenes fitted")
     ap.add_argument("--constants", type=lambda t: [float(v) for v in t.split(",")],
-                    help="with --auto-work: evaluate these seven constants, or eight with the edge band (in the order printed), instead of fitting")
-    ap.add_argument("--edge-share", action="store_true",
-                    help="with --auto-work: fit with each light's measured share of pixels at a shadow edge")
+                    help="with --auto-work: evaluate these constants (eight, or seven with --counts, in the order printed) instead of fitting")
+    ap.add_argument("--counts", action="store_true",
+                    help="with --auto-work: the model of the lit passes' edge counts")
     ap.add_argument("--bin", default="build/bin")
     ap.add_argument("--csv", default="benchmarks/results/error_vs_time.csv")
     ap.add_argument("--size", default="320x240")

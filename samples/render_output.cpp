@@ -190,6 +190,8 @@ nlohmann::json autoJson(const LightShadowStats& ls, const FrameStats& last) {
             {"predictedLookupMs", a.predictedLookupMs},
             {"predictedRmse", a.predictedRmse},
             {"penumbraTexels1024", a.input.penumbraTexels1024},
+            {"edgeShare1024", a.input.edgeShare1024},
+            {"penumbraShare", a.input.penumbraShare},
             {"pixels", a.input.pixels},
             {"measuredShadowPassMs", last.passMs("Shadow/" + ls.name + "/")}};
 }

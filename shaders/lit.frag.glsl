@@ -98,6 +98,7 @@ vec3 debugColor = vec3(0.0);
         SG_LIGHT_VISIBILITY(g, slot)                                                              \
         color += v * shading;                                                                     \
         SG_STORE_VISIBILITY(slot, v)                                                              \
+        SG_COUNT_EDGES_OF(g, slot, v, shading)                                                    \
         SG_DEBUG_CAPTURE(slot, v)                                                                 \
     }
 
@@ -128,6 +129,38 @@ vec3 debugColor = vec3(0.0);
 #define SG_STORE_VISIBILITY(slot, v) visibility[slot] = v;
 #else
 #define SG_STORE_VISIBILITY(slot, v)
+#endif
+
+#if defined(SG_COUNT_EDGES) && defined(SG_DEFERRED)
+#error "the edge counts are the forward passes' (the stage's lit pass runs no lookup)"
+#endif
+#ifdef SG_COUNT_EDGES
+// Technique auto's edge counts (docs/auto_technique.md, "Edge counts"): on the frames the
+// planner asks (bit `slot` of uCountSlots), at one pixel in each 2x2 block where the light's
+// lookup ran, three counters of the slot: the pixels counted, those whose hard lookup (one
+// bilinear comparison: within a texel of a shadow edge) is neither 0 nor 1, and those whose
+// technique's visibility is neither (its penumbra and that band). The early tests keep the
+// counts to the surfaces that pass the depth test when drawn, as without the buffer writes.
+layout(early_fragment_tests) in;
+layout(std430, binding = SG_BINDING_EDGE_COUNTS) buffer sg_EdgeCountBlock {
+    uint sg_edgeCounts[];
+};
+uniform int uCountSlots;  // bit s: count pass slot s this frame
+uniform int uCountBase;   // this pass's first counter
+// Neither lit nor umbra, as the error metrics class a pixel (kVisibilityClassEpsilon).
+uint sg_mixed(float v) { return uint(v > 1e-3 && v < 1.0 - 1e-3); }
+#define SG_COUNT_EDGES_OF(g, slot, v, shading)                                                    \
+    for (int c = 0; c < int(countsHere && ((uCountSlots >> (slot)) & 1) != 0 && shadowWanted(SG_GROUP##g##_TECH, shading)); ++c) { \
+        float hardV = SG_GROUP##g##_TECH == SG_TECH_HARD                                          \
+                          ? v                                                                     \
+                          : sg_hardLightVisibility(slot, L, s.csPosition, shadowNormal, s.geoNormal, s.curvature, viewDistance); \
+        uint at = uint(uCountBase + 3 * (slot));                                                  \
+        atomicAdd(sg_edgeCounts[at], 1u);                                                         \
+        atomicAdd(sg_edgeCounts[at + 1u], sg_mixed(hardV));                                       \
+        atomicAdd(sg_edgeCounts[at + 2u], sg_mixed(v));                                           \
+    }
+#else
+#define SG_COUNT_EDGES_OF(g, slot, v, shading)
 #endif
 
 void main() {
@@ -190,6 +223,9 @@ void main() {
 #endif
 
     float viewDistance = dot(vCsPosition, uCameraForward);
+#ifdef SG_COUNT_EDGES
+    bool countsHere = all(equal(ivec2(gl_FragCoord.xy) & 1, ivec2(0)));
+#endif
     vec3 color = vec3(0.0);
     for (int i = 0; i < uFirstPass; ++i) color = ambientShading(s, uAmbientSky, uAmbientGround, occlusion) + emission;
 #ifdef SG_WRITE_AOVS

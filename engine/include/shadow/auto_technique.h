@@ -45,6 +45,18 @@ struct AutoCandidate {
 /// affords it for every light.
 inline constexpr int kAutoDefaultCandidate = 10;
 
+/// What the lit passes counted of one auto light on a counting frame (shaders/lit.frag.glsl,
+/// SG_COUNT_EDGES): the pixels sampled where its lookup ran, those within one texel of a shadow
+/// edge (a hard lookup neither 0 nor 1), and those its technique left neither 0 nor 1 (its
+/// penumbra and that band); with the map size and technique they were counted in.
+struct AutoEdgeCounts {
+    std::uint32_t sampled = 0;
+    std::uint32_t edge = 0;
+    std::uint32_t soft = 0;
+    int mapSize = 0;
+    ShadowTechnique technique = ShadowTechnique::None;
+};
+
 /// What the planner knows of one auto light, from its last planned frame.
 struct AutoLightInput {
     /// Screen pixels the light can reach (its screen rectangle), >= 0.
@@ -61,6 +73,12 @@ struct AutoLightInput {
     /// This light's own measured / predicted shadow passes beyond the model's common scale (its
     /// casters' culling and overdraw, which the triangle count does not see); 1 until measured.
     double passScale = 1.0;
+    /// Measured by the lit passes' edge counts (`AutoEdgeCounts`), -1 until then: the share of
+    /// its pixels within one texel of a shadow edge in a 1024-texel map (the share counted in
+    /// the map it had, times its size / 1024: the band narrows with finer maps), and the share
+    /// in its penumbra beyond that band (counted while it ran PCSS; -1 before).
+    double edgeShare1024 = -1.0;
+    double penumbraShare = -1.0;
 };
 
 /// The parts of the lit pass the calibration scales apart: every shaded light's shading, and
@@ -172,6 +190,17 @@ inline constexpr int kAutoWarmUpFramesUntimed = 10;
 /// price the defaults 1.5-2x too high on a quiet machine, and a budget equal to their measured
 /// cost bought hard shadows.
 inline constexpr int kAutoSettleFrames = 1;
+/// The lit passes count an auto light's edges (`AutoEdgeCounts`) on its first planned frame and
+/// one frame in this many after it; the planner learns no timing from those frames (each
+/// counted pixel of every SIMD group runs the count's hard lookup and atomic additions).
+inline constexpr int kAutoCountEvery = 8;
+/// Weight of the newest count in the measured shares' moving average.
+inline constexpr double kAutoEdgeRate = 0.5;
+/// Updates `in`'s measured shares (`edgeShare1024`, `penumbraShare`) from one frame's counts:
+/// nothing when none were sampled; the penumbra share only from counts taken while it ran PCSS
+/// (hard's and PCF's visibility tell nothing of the emitter's penumbra).
+void absorbEdgeCounts(const AutoEdgeCounts& counts, AutoLightInput& in);
+
 /// Share of a budget below the defaults' cost the chooser leaves unspent, so that choices
 /// predicted a little under the budget still fit it when measured.
 inline constexpr double kAutoBudgetHeadroom = 0.1;

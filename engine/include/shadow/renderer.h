@@ -115,7 +115,7 @@ struct FrameImages {
 /// The forward renderer. Requires a current OpenGL 4.5 context with `loadGl` done.
 /// `render`, `readback` and the present calls put back the GL state they change (as `ShadowSystem::render` does;
 /// here also every texture target of units 0-31 it binds (0-28, and the screen-space stage's 29-31) with their samplers, uniform-buffer
-/// bindings 0-2 and the joint matrices' storage binding 3) and report an error the host left pending as a `HostGlError` warning instead of throwing
+/// bindings 0-2, and the storage bindings 3-5: joint matrices, morph displacements, technique auto's edge counts) and report an error the host left pending as a `HostGlError` warning instead of throwing
 /// it; the constructor, `present` and `readPresented`, which have no `FrameStats`, keep theirs in `warnings()`.
 class Renderer {
 public:

@@ -80,6 +80,8 @@
 // A morphed mesh's target displacements (shaders/mesh_vertex.glsl), and the most targets one draw
 // blends (kMaxMorphInfluences).
 #define SG_BINDING_MORPH_DELTAS 4
+// Technique auto's edge counts (shaders/lit.frag.glsl, SG_COUNT_EDGES): three per pass slot.
+#define SG_BINDING_EDGE_COUNTS 5
 #define SG_MAX_MORPH_INFLUENCES 16
 // A material's other maps (shaders/material.glsl). Only the forward lit pass and the stage's
 // surface pass read them, and neither reads the stage's targets nor the mask's inputs: they

@@ -64,6 +64,9 @@ struct LightShadowStats {
     /// -1 and all 0 while nothing is known of the light yet).
     bool automatic = false;
     AutoLightChoice autoChoice;
+    /// Technique auto, the frames its edges were counted (`ShadowLightPlan::countEdges`): the
+    /// renderer's lit passes' counts at one pixel in each 2x2 block its lookup reached.
+    AutoEdgeCounts edgeCounts;
 };
 
 /// Everything measured in one frame. Timings are milliseconds.

@@ -168,6 +168,7 @@ GlState captureGlState(std::span<const GLint> units, std::span<const GLint> unif
     gl.GetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &s.storageBuffer);
     s.meshStorage[0].index = SG_BINDING_JOINTS;
     s.meshStorage[1].index = SG_BINDING_MORPH_DELTAS;
+    s.meshStorage[2].index = SG_BINDING_EDGE_COUNTS;
     for (GlState::UniformBinding& b : s.meshStorage) {
         const auto index = static_cast<GLuint>(b.index);
         gl.GetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, index, &b.buffer);

@@ -177,9 +177,9 @@ struct GlState {
     std::array<UniformBinding, 4> uniformBindings{};
     std::size_t uniformBindingCount = 0;
     /// The shader-storage bindings the mesh programs read (SG_BINDING_JOINTS, the joint matrices;
-    /// SG_BINDING_MORPH_DELTAS, morph displacements), always captured, and the generic
-    /// GL_SHADER_STORAGE_BUFFER binding.
-    std::array<UniformBinding, 2> meshStorage{};
+    /// SG_BINDING_MORPH_DELTAS, morph displacements; SG_BINDING_EDGE_COUNTS, the lit passes'
+    /// edge counts), always captured, and the generic GL_SHADER_STORAGE_BUFFER binding.
+    std::array<UniformBinding, 3> meshStorage{};
     GLint storageBuffer = 0;
     struct ImageBinding {
         GLint unit = 0;

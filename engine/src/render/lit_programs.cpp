@@ -86,6 +86,8 @@ LitProgram buildLit(const LitVariant& variant) {
     p.ray00 = gl.GetUniformLocation(id, "uRay00");
     p.rayDx = gl.GetUniformLocation(id, "uRayDx");
     p.rayDy = gl.GetUniformLocation(id, "uRayDy");
+    p.countSlots = gl.GetUniformLocation(id, "uCountSlots");
+    p.countBase = gl.GetUniformLocation(id, "uCountBase");
     return p;
 }
 
@@ -125,6 +127,7 @@ std::string variantLabel(const LitVariant& v) {
     if (v.aovs) name += name.empty() ? "AOV" : ",AOV";
     if (v.deferred) name += name.empty() ? "deferred" : ",deferred";
     if (v.materialMaps) name += name.empty() ? "maps" : ",maps";
+    if (v.countEdges) name += name.empty() ? "edges" : ",edges";
     if (v.debugView != SG_DEBUG_NONE) name += ",debug" + std::to_string(v.debugView);
     return "Main/Lit[" + name + "]" + gpu::deformLabel(v.deform);
 }
@@ -132,6 +135,7 @@ std::string variantLabel(const LitVariant& v) {
 unsigned variantTechniques(const LitVariant& v) {
     unsigned used = 0;
     for (int i = 0; i < v.lights; ++i) used |= 1u << static_cast<unsigned>(v.technique[static_cast<std::size_t>(i)]);
+    if (v.countEdges) used |= techniqueBit(ShadowTechnique::Hard);  // the count's own hard lookup
     return used;
 }
 
@@ -155,6 +159,7 @@ std::vector<std::string> variantDefines(const LitVariant& v) {
     }
     if (v.materialMaps) defines.emplace_back(v.deferred ? "SG_GBUFFER_MATERIAL" : "SG_MATERIAL_MAPS");
     if (v.aovs) defines.emplace_back("SG_WRITE_AOVS");
+    if (v.countEdges && !v.deferred) defines.emplace_back("SG_COUNT_EDGES");
     gpu::appendDeformDefines(v.deform, defines);
     if (v.debugView != SG_DEBUG_NONE) {
         defines.emplace_back("SG_DEBUG_VIEWS");

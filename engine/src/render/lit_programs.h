@@ -44,6 +44,7 @@ struct LitProgram {
     MaterialUniforms material;
     GLint firstPass = -1, ambientSky = -1, ambientGround = -1, cameraForward = -1;
     GLint ray00 = -1, rayDx = -1, rayDy = -1;  ///< deferred: the pixels' rays (ScreenRays)
+    GLint countSlots = -1, countBase = -1;     ///< SG_COUNT_EDGES: the slots counted, their first counter
 };
 
 /// A depth pre-pass program: the lit vertex shader and no fragment work, or (alpha-tested, for

@@ -94,10 +94,12 @@ void AutoPlanning::choose(std::vector<ShadowLightPlan>& lights, const ShadowLimi
     plans_.clear();
     bool any = false;
     const bool warm = learnedFrames_ >= kAutoWarmUpFrames || plannedFrames_ >= kAutoWarmUpFramesUntimed;
+    counting_ = plannedFrames_ % kAutoCountEvery == 0;
     for (ShadowLightPlan& plan : lights) {
         if (!plan.settings.autoTechnique || plan.settings.technique == ShadowTechnique::None) continue;
         any = true;
         plan.automatic = true;
+        plan.countEdges = counting_;
         const Known* k = known(plan.entity);
         if (k != nullptr && warm) {
             ids_.push_back(plan.entity.bits());
@@ -109,6 +111,7 @@ void AutoPlanning::choose(std::vector<ShadowLightPlan>& lights, const ShadowLimi
     }
     if (!any) {
         learnedFrames_ = plannedFrames_ = 0;  // the next auto lights warm up again
+        counting_ = false;
         return;
     }
     ++plannedFrames_;
@@ -134,6 +137,8 @@ void AutoPlanning::learn(const World& world, const CameraView& camera, const Sha
         known_.clear();
         return;
     }
+    sceneLights_.clear();
+    for (const ShadowLightPlan& plan : frame.lights) sceneLights_.push_back(plan.entity);
     const bool sized = camera.pixelWidth > 0 && camera.pixelHeight > 0;
     const ScreenView view{cameraClipFromWorld(camera), sized ? camera.pixelWidth : 640,
                           sized ? camera.pixelHeight : 360, frame.wsGeometry};
@@ -159,10 +164,12 @@ void AutoPlanning::learn(const World& world, const CameraView& camera, const Sha
         }
         if (!plan.automatic) continue;
         Known* k = known(plan.entity);
-        const double share = k != nullptr ? k->input.redrawShare : in.redrawShare;
         if (k == nullptr) k = &known_.emplace_back(Known{plan.entity, in, false});
+        const AutoLightInput before = k->input;
         k->input = in;
-        k->input.redrawShare = share + kAutoCalibrationRate * (in.redrawShare - share);
+        k->input.redrawShare = before.redrawShare + kAutoCalibrationRate * (in.redrawShare - before.redrawShare);
+        k->input.edgeShare1024 = before.edgeShare1024;
+        k->input.penumbraShare = before.penumbraShare;
         k->seen = true;
     }
     std::erase_if(known_, [](const Known& k) { return !k.seen; });
@@ -170,12 +177,21 @@ void AutoPlanning::learn(const World& world, const CameraView& camera, const Sha
 
 void AutoPlanning::observe(const FrameStats& stats) {
     if (!anyAuto_) return;
+    // The edge counts, where the lit passes took them: the stats list the frame's scene lights last.
+    if (stats.lights.size() >= sceneLights_.size()) {
+        const std::size_t first = stats.lights.size() - sceneLights_.size();
+        for (std::size_t i = 0; i < sceneLights_.size(); ++i) {
+            if (Known* k = known(sceneLights_[i]); k != nullptr)
+                absorbEdgeCounts(stats.lights[first + i].edgeCounts, k->input);
+        }
+    }
     // A frame that built programs timed their compile too, and the frames right after it are
     // slower than the steady state (kAutoSettleFrames): nothing to learn of the passes.
     if (stats.programsCompiled > 0) {
         settling_ = kAutoSettleFrames;
         return;
     }
+    if (counting_) return;  // the count's own work is in this frame's lit passes
     if (settling_ > 0) {
         --settling_;
         return;

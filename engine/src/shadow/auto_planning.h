@@ -31,7 +31,7 @@ public:
 private:
     struct Known {
         Entity entity;
-        AutoLightInput input;
+        AutoLightInput input;  ///< with the measured shares `observe` keeps across frames
         bool seen = false;
     };
     Known* known(Entity e);
@@ -46,7 +46,10 @@ private:
     /// Timed frames still to pass unlearnt after a frame that built programs
     /// (`kAutoSettleFrames`).
     int settling_ = 0;
-    bool anyAuto_ = false;  ///< the frame `learn` saw had an auto light
+    bool anyAuto_ = false;   ///< the frame `learn` saw had an auto light
+    bool counting_ = false;  ///< the frame planned last counts its auto lights' edges
+    /// The entity of each scene light of the frame `learn` saw (the stats' order).
+    std::vector<Entity> sceneLights_;
     // Predictions of the frame learn saw, for observe.
     /// Names of the lights whose passes were predicted, into the prepared frame's plans (valid
     /// until the next `prepare`, which `observe` precedes): no copy a frame.

@@ -80,7 +80,53 @@ constexpr double kOtherError = 0.007252;
 // every size, and its PCSS better than its hard shadow, which it equals).
 constexpr double kEdgeBand = 1.0;
 
+// The model from the lit passes' edge counts (AutoLightInput::edgeShare1024, penumbraShare), fitted
+// by benchmarks/fit_auto_error.py --auto-work to the per-light rows of bash
+// benchmarks/run_auto_budget.sh (docs/auto_technique.md, "Edge counts"). A light's mean squared
+// error over its pixels is the sum of two areas times the squared error within each:
+//   the band within one texel of the candidate's map of a shadow edge, share edgeShare1024 x
+//   1024 / mapSize (a finer map draws its edges nearer where they are), times kBandError[family];
+//   its penumbra beyond that band, share penumbraShare, times kPenumbraError[family] (hard: a step
+//   for a ramp; PCSS: its blocker search's sampling, kPcssPenumbra16 at 16 + 16 taps, growing as
+//   (16 / taps)^kPcssPenumbraPower with fewer).
+constexpr std::array<double, 3> kBandError{0.04092, 0.06483, 0.04755};  // hard, PCF, PCSS
+constexpr std::array<double, 2> kPenumbraError{0.06222, 0.02282};       // hard, PCF
+constexpr double kPcssPenumbra16 = 2.132e-4;
+constexpr double kPcssPenumbraPower = 4.266;
+// Before a light has run PCSS its penumbra share is guessed from its widest penumbra: the
+// counted shares were 0.012-0.34 of edgeShare1024 x penumbraTexels1024 on the five scenes of
+// the benchmark (the widest penumbra is wider than the typical one), about 0.07 in the middle.
+constexpr double kPenumbraOfWidest = 0.07;
+
+/// The counts' model (above) of candidate `c`, for a light whose edges were counted.
+double countedRmse(const AutoLightInput& in, const AutoCandidate& c) {
+    const double band = std::min(1.0, in.edgeShare1024 * 1024.0 / std::max(c.mapSize, 1));
+    const double penumbra =
+        in.penumbraShare >= 0.0
+            ? in.penumbraShare
+            : std::min(1.0, kPenumbraOfWidest * in.edgeShare1024 * std::max(in.penumbraTexels1024, 0.0));
+    const auto family = static_cast<std::size_t>(AutoCostModel::termOf(c)) - 1;
+    const double within = c.technique == ShadowTechnique::Pcss
+                              ? kPcssPenumbra16 * std::pow(16.0 / std::max(c.blockerSamples, 1), kPcssPenumbraPower)
+                              : kPenumbraError[family];
+    // kOtherError, as the width model's: what no candidate removes, and no light is predicted
+    // free of error because its counts found no edge.
+    return std::sqrt(std::min(1.0, kBandError[family] * band + within * std::min(1.0, penumbra)) +
+                     kOtherError * kOtherError);
+}
+
 }  // namespace
+
+void absorbEdgeCounts(const AutoEdgeCounts& counts, AutoLightInput& in) {
+    if (counts.sampled == 0 || counts.mapSize <= 0) return;
+    const double sampled = counts.sampled;
+    const double edge = std::min(1.0, counts.edge / sampled) * counts.mapSize / 1024.0;
+    auto blend = [](double& kept, double now) { kept = kept < 0.0 ? now : kept + kAutoEdgeRate * (now - kept); };
+    blend(in.edgeShare1024, edge);
+    if (counts.technique == ShadowTechnique::Pcss) {
+        blend(in.penumbraShare, std::clamp((static_cast<double>(counts.soft) - counts.edge) / sampled, 0.0, 1.0));
+    }
+}
 
 std::span<const AutoCandidate> autoCandidates() { return kCandidates; }
 
@@ -159,6 +205,7 @@ void AutoCostModel::observeLitPass(std::span<const double, kAutoLitTerms> predic
 }
 
 double autoPredictedRmse(const AutoLightInput& in, const AutoCandidate& c) {
+    if (in.edgeShare1024 >= 0.0) return countedRmse(in, c);
     // The map's own step widens every edge by kEdgeBand of the candidate's texels: a penumbra
     // narrower than that (a point-sized light's, 0) still leaves an edge whose error shrinks with
     // the map's resolution.
