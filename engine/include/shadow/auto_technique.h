@@ -4,8 +4,9 @@
 //   `AutoCostModel`    predicted milliseconds of a light's shadow passes and lookups, from what the
 //                      planner knows (layers, caster triangles, map texels, screen pixels), its
 //                      coefficients scaled to the measured pass timings as the module runs;
-//   `autoPredictedRmse` predicted visibility RMSE over the light's lit pixels, a fit of the
-//                      error-against-time sweep against the penumbra's width in map texels;
+//   `autoPredictedRmse` predicted visibility RMSE over the light's lit pixels: from the shares
+//                      of its pixels at a shadow edge and in its penumbra that the lit passes
+//                      counted (`absorbEdgeCounts`), else from its penumbra's width in texels;
 //   `chooseAutoCandidates` the candidates of every auto light that minimise the predicted
 //                      screen-weighted error within a budget;
 //   `AutoTechniqueState` the choice kept from frame to frame (hysteresis) and the calibration.
@@ -148,8 +149,10 @@ inline constexpr std::array<double, kAutoLitTerms> kAutoLitPrior{0.1, 0.01, 0.01
 /// Weight of the newest frame in the calibration's moving averages.
 inline constexpr double kAutoCalibrationRate = 0.3;
 
-/// Predicted visibility RMSE of a light over its lit pixels in candidate `c`, from its penumbra's
-/// width in texels of `c`'s map (docs/auto_technique.md states the fit and its error).
+/// Predicted visibility RMSE of a light over its lit pixels in candidate `c`: from its counted
+/// shares (`edgeShare1024`, `penumbraShare`) once the lit passes counted it, else from its
+/// penumbra's width in texels of `c`'s map (docs/auto_technique.md states both fits and their
+/// errors).
 [[nodiscard]] double autoPredictedRmse(const AutoLightInput& in, const AutoCandidate& c);
 
 /// The candidate (index into `autoCandidates()`) per light that minimises the pixel-weighted sum
