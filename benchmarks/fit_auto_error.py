@@ -167,7 +167,8 @@ def light_rows(work, scenes, counts=False):
                                  "size": size, "taps": blocker, "rmse": measured[index],
                                  "w": inp["penumbraTexels1024"], "edge": inp.get("edgeShare1024") if counts else None,
                                  "penumbra": inp.get("penumbraShare")})
-                    if counts and not (rows[-1]["edge"] is not None and rows[-1]["edge"] >= 0):
+                    if counts and not (rows[-1]["edge"] is not None and rows[-1]["edge"] >= 0
+                                       and rows[-1]["penumbra"] is not None and rows[-1]["penumbra"] >= 0):
                         sys.exit(f"fit_auto_error: {path}: no edge counts for {inp['node']} (rerun the benchmark)")
     return rows
 

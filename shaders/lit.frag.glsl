@@ -148,7 +148,7 @@ layout(std430, binding = SG_BINDING_EDGE_COUNTS) buffer sg_EdgeCountBlock {
 uniform int uCountSlots;  // bit s: count pass slot s this frame
 uniform int uCountBase;   // this pass's first counter
 // Neither lit nor umbra, as the error metrics class a pixel (kVisibilityClassEpsilon).
-uint sg_mixed(float v) { return uint(v > 1e-3 && v < 1.0 - 1e-3); }
+uint sg_mixed(float v) { return uint(v > SG_VISIBILITY_CLASS_EPSILON && v < 1.0 - SG_VISIBILITY_CLASS_EPSILON); }
 #define SG_COUNT_EDGES_OF(g, slot, v, shading)                                                    \
     for (int c = 0; c < int(countsHere && ((uCountSlots >> (slot)) & 1) != 0 && shadowWanted(SG_GROUP##g##_TECH, shading)); ++c) { \
         float hardV = SG_GROUP##g##_TECH == SG_TECH_HARD                                          \

@@ -44,20 +44,26 @@ struct RenderedFrame {
     FrameStats stats;
 };
 
-/// Runs one frame of `scene` at time `t` through `runner` with AOVs at `width` x `height` and reads
-/// it back. The camera is the scene's first unless `camera` names another.
-inline RenderedFrame renderFrame(FrameRunner& runner, Scene& scene, int width, int height, double t = 0.0,
+/// Runs one frame of `scene` at time `t` through `runner` with `options` and AOVs, and reads it
+/// back. The camera is the scene's first unless `camera` names another.
+inline RenderedFrame renderFrame(FrameRunner& runner, Scene& scene, RenderOptions options, double t = 0.0,
                                  Entity camera = Entity::null()) {
     glContext();
     if (camera.isNull()) camera = scene.cameras.at(0);
-    RenderOptions options;
-    options.width = width;
-    options.height = height;
     options.aovs = true;
     RenderedFrame out;
     out.stats = runner.runFrame(scene, t, camera, options);
     out.images = runner.renderer().readback(runner.lastCamera(), out.stats);
     return out;
+}
+
+/// `renderFrame` at `width` x `height` with the default options.
+inline RenderedFrame renderFrame(FrameRunner& runner, Scene& scene, int width, int height, double t = 0.0,
+                                 Entity camera = Entity::null()) {
+    RenderOptions options;
+    options.width = width;
+    options.height = height;
+    return renderFrame(runner, scene, options, t, camera);
 }
 
 /// `renderFrame` with a fresh runner (a first frame: everything compiled and drawn).

@@ -19,22 +19,14 @@
 namespace shadow::screen_visibility_test {
 namespace {
 
-struct Rendered {
-    FrameImages images;
-    FrameStats stats;
-};
+using Rendered = test::RenderedFrame;
 
 Rendered renderWith(Scene& scene, ScreenVisibility setting, int width, int height, FrameRunner& runner) {
-    test::glContext();
     RenderOptions options;
     options.width = width;
     options.height = height;
-    options.aovs = true;
     options.screenVisibility = setting;
-    Rendered out;
-    out.stats = runner.runFrame(scene, 0.0, scene.cameras.at(0), options);
-    out.images = runner.renderer().readback(runner.lastCamera(), out.stats);
-    return out;
+    return test::renderFrame(runner, scene, options);
 }
 
 Scene builtin(const char* name, ShadowTechnique technique) {

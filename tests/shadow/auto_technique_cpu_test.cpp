@@ -121,11 +121,12 @@ TEST(AutoTechnique, EdgeCountsBecomeSharesOfA1024MapAndThePenumbraOnlyFromPcss) 
     EXPECT_EQ(l.penumbraShare, -1.0);
     // 2 % of the pixels within a texel of an edge in a 2048 map: 4 % in a 1024 map, whose texels
     // are twice as wide; PCSS's 12 % of soft pixels less that band is its penumbra.
-    absorbEdgeCounts({1000, 20, 120, 2048, ShadowTechnique::Pcss}, l);
+    absorbEdgeCounts({.sampled = 1000, .edge = 20, .soft = 120, .mapSize = 2048, .technique = ShadowTechnique::Pcss},
+                     l);
     EXPECT_DOUBLE_EQ(l.edgeShare1024, 0.04);
     EXPECT_DOUBLE_EQ(l.penumbraShare, 0.10);
     // Hard's soft pixels are its band alone: the penumbra stays; the band moves by kAutoEdgeRate.
-    absorbEdgeCounts({1000, 10, 10, 1024, ShadowTechnique::Hard}, l);
+    absorbEdgeCounts({.sampled = 1000, .edge = 10, .soft = 10, .mapSize = 1024, .technique = ShadowTechnique::Hard}, l);
     EXPECT_DOUBLE_EQ(l.edgeShare1024, 0.04 + kAutoEdgeRate * (0.01 - 0.04));
     EXPECT_DOUBLE_EQ(l.penumbraShare, 0.10);
 }

@@ -51,6 +51,7 @@ inline constexpr int kAutoDefaultCandidate = 10;
 /// edge (a hard lookup neither 0 nor 1), and those its technique left neither 0 nor 1 (its
 /// penumbra and that band); with the map size and technique they were counted in.
 struct AutoEdgeCounts {
+    std::uint32_t light = 0;  ///< the light's entity (`Entity::bits`)
     std::uint32_t sampled = 0;
     std::uint32_t edge = 0;
     std::uint32_t soft = 0;
@@ -150,7 +151,7 @@ inline constexpr std::array<double, kAutoLitTerms> kAutoLitPrior{0.1, 0.01, 0.01
 inline constexpr double kAutoCalibrationRate = 0.3;
 
 /// Predicted visibility RMSE of a light over its lit pixels in candidate `c`: from its counted
-/// shares (`edgeShare1024`, `penumbraShare`) once the lit passes counted it, else from its
+/// shares (`edgeShare1024`, `penumbraShare`) once the lit passes counted both, else from its
 /// penumbra's width in texels of `c`'s map (docs/auto_technique.md states both fits and their
 /// errors).
 [[nodiscard]] double autoPredictedRmse(const AutoLightInput& in, const AutoCandidate& c);

@@ -23,6 +23,7 @@
 
 #include <shadow/image_io.h>
 #include <shadow/result.h>
+#include <shadow/shared_constants.h>
 
 #include <array>
 #include <cstdint>
@@ -32,7 +33,7 @@
 namespace shadow {
 
 /// Width of the lit and umbra classes at the ends of [0, 1] (see the file comment).
-inline constexpr double kVisibilityClassEpsilon = 1e-3;
+inline constexpr double kVisibilityClassEpsilon = SG_VISIBILITY_CLASS_EPSILON;
 /// |e| above which a pixel counts in `fractionOver0_1`.
 inline constexpr double kLargeVisibilityError = 0.1;
 /// A truly lit pixel whose estimate is below this is false shadow (acne); a truly umbral pixel

@@ -122,8 +122,9 @@ struct ShadowLightPlan {
     /// An auto light's choice and its predictions; candidate -1 on its first frame (nothing is
     /// known of it yet: it takes PCSS at 1024 texels and 16 + 16 taps).
     AutoLightChoice autoChoice;
-    /// An auto light whose edges the renderer's lit passes count this frame (one frame in
-    /// `kAutoCountEvery`): `LightShadowStats::edgeCounts`, what the error model reads.
+    /// An auto light whose edges the renderer's lit passes count this frame (its first, then one
+    /// frame in `kAutoCountEvery`): `FrameStats::edgeCounts` of a later frame, once the GPU is
+    /// done, what the error model reads.
     bool countEdges = false;
     /// PCF and VSM: the filter radius (m at the receiver) the lookups take, at least
     /// `kAutoPcfRadiusTexels` texels: `settings.pcfRadius`, or when that is automatic the penumbra

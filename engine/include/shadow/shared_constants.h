@@ -82,6 +82,9 @@
 #define SG_BINDING_MORPH_DELTAS 4
 // Technique auto's edge counts (shaders/lit.frag.glsl, SG_COUNT_EDGES): three per pass slot.
 #define SG_BINDING_EDGE_COUNTS 5
+// Width of the lit and umbra classes at the ends of [0, 1]: the error metrics' classes
+// (kVisibilityClassEpsilon, shadow/metrics.h) and the edge counts' "neither 0 nor 1".
+#define SG_VISIBILITY_CLASS_EPSILON 1e-3
 #define SG_MAX_MORPH_INFLUENCES 16
 // A material's other maps (shaders/material.glsl). Only the forward lit pass and the stage's
 // surface pass read them, and neither reads the stage's targets nor the mask's inputs: they

@@ -64,9 +64,6 @@ struct LightShadowStats {
     /// -1 and all 0 while nothing is known of the light yet).
     bool automatic = false;
     AutoLightChoice autoChoice;
-    /// Technique auto, the frames its edges were counted (`ShadowLightPlan::countEdges`): the
-    /// renderer's lit passes' counts at one pixel in each 2x2 block its lookup reached.
-    AutoEdgeCounts edgeCounts;
 };
 
 /// Everything measured in one frame. Timings are milliseconds.
@@ -111,6 +108,10 @@ struct FrameStats {
     /// Entities whose world matrix (or an ancestor's) is not finite, skipped by every pass
     /// (`TransformStats::nonFinite`); each is also a `NonFiniteTransform` warning.
     int entitiesSkippedNonFinite = 0;
+    /// Technique auto: the lit passes' edge counts of its lights (`ShadowLightPlan::countEdges`)
+    /// that the GPU finished since the last frame, read back without waiting for it: usually
+    /// those of the frame before, counted at one pixel in each 2x2 block.
+    std::vector<AutoEdgeCounts> edgeCounts;
     /// The frame's warnings: non-finite transforms first, then the shadow planner's
     /// (`ShadowFrame::warnings`: clamped settings, the memory budget's decisions).
     std::vector<Warning> warnings;
@@ -138,6 +139,8 @@ struct FrameStats {
         next.lights = std::move(lights);
         next.spareLights_ = std::move(spareLights_);
         setAside(next.lights, next.spareLights_);
+        next.edgeCounts = std::move(edgeCounts);
+        next.edgeCounts.clear();
         next.warnings = std::move(warnings);
         next.warnings.clear();
         *this = std::move(next);

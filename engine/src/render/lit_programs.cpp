@@ -159,7 +159,7 @@ std::vector<std::string> variantDefines(const LitVariant& v) {
     }
     if (v.materialMaps) defines.emplace_back(v.deferred ? "SG_GBUFFER_MATERIAL" : "SG_MATERIAL_MAPS");
     if (v.aovs) defines.emplace_back("SG_WRITE_AOVS");
-    if (v.countEdges && !v.deferred) defines.emplace_back("SG_COUNT_EDGES");
+    if (v.countEdges) defines.emplace_back("SG_COUNT_EDGES");
     gpu::appendDeformDefines(v.deform, defines);
     if (v.debugView != SG_DEBUG_NONE) {
         defines.emplace_back("SG_DEBUG_VIEWS");

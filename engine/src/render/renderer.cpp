@@ -11,6 +11,7 @@
 #include "gl/mesh_cache_access.h"
 #include "gl/objects.h"
 #include "gl/pass_timer.h"
+#include "render/edge_counts.h"
 #include "render/light_packing.h"
 #include "render/lit_programs.h"
 #include "render/present.h"
@@ -177,26 +178,17 @@ struct Renderer::Impl {
     bool prepassRan = false;     ///< this frame: asked for, or needed by a cut-out material
     bool deferred = false;       ///< this frame runs the screen-space visibility stage
     bool softwareRenderer = false;
-    /// Technique auto's edge counts (SG_COUNT_EDGES): three counters per slot of every pass, the
-    /// slots each pass counts this frame (bits), and the counters read back.
-    gpu::Buffer edgeCounts;
-    std::size_t edgeCountBytes = 0;
-    std::vector<int> countSlots;
-    std::vector<std::uint32_t> edgeCountsRead;
-    gpu::PassTimer timer;          ///< the main passes'
-    std::vector<Warning> pending;  ///< host errors found by calls without a FrameStats
+    render::EdgeCounts edgeCounts;  ///< technique auto's (SG_COUNT_EDGES)
+    gpu::PassTimer timer;           ///< the main passes'
+    std::vector<Warning> pending;   ///< host errors found by calls without a FrameStats
 
     Impl();
-    /// Adds what the options ask of every pass's program (AOVs, debug view) to its variant and
+    /// Adds what the options and the frame ask of every pass's program (AOVs, debug view, an auto
+    /// light's edge counts) to its variant and
     /// builds the programs before any pass draws. Measured on llvmpipe (bunny-spot, hard, 1280x720):
     /// building the program between the passes of the first frame instead left the shadow pass of
     /// every later frame at 29-39 ms instead of 24-26.
     void preparePrograms(const ShadowFrame& frame, const RenderOptions& options, FrameStats& stats);
-    /// The slots whose edges the lit passes count this frame (`ShadowLightPlan::countEdges`), their
-    /// counters zeroed and bound; false when none.
-    bool prepareEdgeCounts(const ShadowFrame& frame);
-    /// The counts of the lit passes just drawn, into each counted light's `edgeCounts`.
-    void readEdgeCounts(const ShadowFrame& frame, FrameStats& stats);
     void uploadPasses();
     /// Draws every visible mesh (those whose bounds meet `reach`, unless it is null), a skinned
     /// one in its pose; `perMesh(mesh, material, deform)` sets the material's uniforms and
@@ -238,10 +230,11 @@ void Renderer::Impl::preparePrograms(const ShadowFrame& frame, const RenderOptio
         render::LitVariant& v = pass.variant;
         v.aovs = options.aovs;
         v.deferred = deferred;
-        v.countEdges = !deferred && std::any_of(pass.sceneLight.begin(), pass.sceneLight.end(), [&frame](int light) {
-            return light >= 0 && static_cast<std::size_t>(light) < frame.lights.size() &&
-                   frame.lights[static_cast<std::size_t>(light)].automatic;
-        });
+        v.countEdges = false;
+        for (std::size_t slot = 0; slot < pass.sceneLight.size() && !deferred; ++slot) {
+            const ShadowLightPlan* plan = render::slotPlan(frame, pass, slot);
+            v.countEdges = v.countEdges || (plan != nullptr && plan->automatic);
+        }
         // Deferred: one program reads the surfaces whatever their materials; forward: a second
         // program for the materials with maps.
         v.materialMaps = deferred && materials.materialTargets;
@@ -260,51 +253,6 @@ void Renderer::Impl::preparePrograms(const ShadowFrame& frame, const RenderOptio
             kind.deform = static_cast<unsigned>(k % gpu::kMeshDeforms);
             if ((kind.materialMaps && !materials.maps) || (materials.deforms & (1u << kind.deform)) == 0) continue;
             chosen[k] = &programs.get(kind, stats.programsCompiled);
-        }
-    }
-}
-
-bool Renderer::Impl::prepareEdgeCounts(const ShadowFrame& frame) {
-    countSlots.assign(passes.size(), 0);
-    bool any = false;
-    for (std::size_t p = 0; p < passes.size(); ++p) {
-        if (!passes[p].variant.countEdges) continue;
-        for (std::size_t slot = 0; slot < passes[p].sceneLight.size(); ++slot) {
-            const int light = passes[p].sceneLight[slot];
-            if (light >= 0 && static_cast<std::size_t>(light) < frame.lights.size() &&
-                frame.lights[static_cast<std::size_t>(light)].countEdges) {
-                countSlots[p] |= 1 << slot;
-                any = true;
-            }
-        }
-    }
-    if (!any) return false;
-    edgeCountsRead.assign(passes.size() * SG_MAX_LIGHTS_PER_PASS * 3, 0u);
-    const std::size_t bytes = edgeCountsRead.size() * sizeof(std::uint32_t);
-    if (bytes > edgeCountBytes) {
-        edgeCounts =
-            gpu::makeBuffer("Main/edgeCounts", static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
-        edgeCountBytes = bytes;
-    }
-    gl.NamedBufferSubData(edgeCounts.get(), 0, static_cast<GLsizeiptr>(bytes), edgeCountsRead.data());
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SG_BINDING_EDGE_COUNTS, edgeCounts.get());
-    return true;
-}
-
-void Renderer::Impl::readEdgeCounts(const ShadowFrame& frame, FrameStats& stats) {
-    gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    const std::size_t bytes = edgeCountsRead.size() * sizeof(std::uint32_t);
-    gl.GetNamedBufferSubData(edgeCounts.get(), 0, static_cast<GLsizeiptr>(bytes), edgeCountsRead.data());
-    // The shadow maps' stats list every scene light of the frame, last.
-    if (stats.lights.size() < frame.lights.size()) return;
-    const std::size_t first = stats.lights.size() - frame.lights.size();
-    for (std::size_t p = 0; p < passes.size(); ++p) {
-        for (std::size_t slot = 0; slot < SG_MAX_LIGHTS_PER_PASS; ++slot) {
-            if ((countSlots[p] & (1 << slot)) == 0) continue;
-            const auto light = static_cast<std::size_t>(passes[p].sceneLight[slot]);
-            const ShadowLightPlan& plan = frame.lights[light];
-            const std::uint32_t* c = &edgeCountsRead[(p * SG_MAX_LIGHTS_PER_PASS + slot) * 3];
-            stats.lights[first + light].edgeCounts = {c[0], c[1], c[2], plan.mapSize, plan.settings.technique};
         }
     }
 }
@@ -537,7 +485,7 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
         gl.Enable(GL_SCISSOR_TEST);
         gl.Scissor(pass.bounds.x0, pass.bounds.y0, pass.bounds.x1 - pass.bounds.x0, pass.bounds.y1 - pass.bounds.y0);
     }
-    const int counted = index < countSlots.size() ? countSlots[index] : 0;
+    const int counted = edgeCounts.slots(index);
     for (const render::LitProgram* program : chosen) {
         if (program == nullptr) continue;
         const GLuint id = program->program.get();
@@ -545,7 +493,7 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
         setPassUniforms(*program, mc, index, options);
         if (program->countSlots >= 0) {
             gl.ProgramUniform1i(id, program->countSlots, counted);
-            gl.ProgramUniform1i(id, program->countBase, static_cast<GLint>(index * SG_MAX_LIGHTS_PER_PASS * 3));
+            gl.ProgramUniform1i(id, program->countBase, static_cast<GLint>(render::EdgeCounts::firstCounter(index)));
         }
     }
     drawMeshes(
@@ -632,8 +580,9 @@ void Renderer::render(const World& world, const CameraView& camera, const Shadow
     r.materials = frameMaterials(world);
     r.deferred = options.debugView == DebugView::None &&
                  render::screenStagePays(options.screenVisibility, frame, r.passes, options.height);
+    r.edgeCounts.collect(stats.edgeCounts, false);  // an earlier frame's, if the GPU is done with them
     r.preparePrograms(frame, options, stats);
-    const bool countsEdges = r.prepareEdgeCounts(frame);
+    const bool countsEdges = r.edgeCounts.prepare(frame, r.passes, stats.edgeCounts);
     r.uploadPasses();
     r.targets.ensure(options.width, options.height, options.aovs, static_cast<int>(r.passes.size()));
     if (r.deferred) r.prepareScreenStage(options);
@@ -650,7 +599,7 @@ void Renderer::render(const World& world, const CameraView& camera, const Shadow
     } else {
         r.renderForward(world, camera, mc, maps, options, stats);
     }
-    if (countsEdges) r.readEdgeCounts(frame, stats);
+    if (countsEdges) r.edgeCounts.submitted();
     stats.mainPasses += static_cast<int>(r.passes.size());
     gl.DepthMask(GL_TRUE);
     gl.DepthFunc(GL_LESS);

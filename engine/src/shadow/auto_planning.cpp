@@ -94,13 +94,16 @@ void AutoPlanning::choose(std::vector<ShadowLightPlan>& lights, const ShadowLimi
     plans_.clear();
     bool any = false;
     const bool warm = learnedFrames_ >= kAutoWarmUpFrames || plannedFrames_ >= kAutoWarmUpFramesUntimed;
-    counting_ = plannedFrames_ % kAutoCountEvery == 0;
+    const bool cadence = plannedFrames_ % kAutoCountEvery == 0;
+    counting_ = false;
     for (ShadowLightPlan& plan : lights) {
         if (!plan.settings.autoTechnique || plan.settings.technique == ShadowTechnique::None) continue;
         any = true;
         plan.automatic = true;
-        plan.countEdges = counting_;
         const Known* k = known(plan.entity);
+        // A new light is counted on its first frame, at the defaults (PCSS: its penumbra too).
+        plan.countEdges = cadence || k == nullptr;
+        counting_ = counting_ || plan.countEdges;
         if (k != nullptr && warm) {
             ids_.push_back(plan.entity.bits());
             inputs_.push_back(k->input);
@@ -111,7 +114,6 @@ void AutoPlanning::choose(std::vector<ShadowLightPlan>& lights, const ShadowLimi
     }
     if (!any) {
         learnedFrames_ = plannedFrames_ = 0;  // the next auto lights warm up again
-        counting_ = false;
         return;
     }
     ++plannedFrames_;
@@ -137,8 +139,6 @@ void AutoPlanning::learn(const World& world, const CameraView& camera, const Sha
         known_.clear();
         return;
     }
-    sceneLights_.clear();
-    for (const ShadowLightPlan& plan : frame.lights) sceneLights_.push_back(plan.entity);
     const bool sized = camera.pixelWidth > 0 && camera.pixelHeight > 0;
     const ScreenView view{cameraClipFromWorld(camera), sized ? camera.pixelWidth : 640,
                           sized ? camera.pixelHeight : 360, frame.wsGeometry};
@@ -177,12 +177,10 @@ void AutoPlanning::learn(const World& world, const CameraView& camera, const Sha
 
 void AutoPlanning::observe(const FrameStats& stats) {
     if (!anyAuto_) return;
-    // The edge counts, where the lit passes took them: the stats list the frame's scene lights last.
-    if (stats.lights.size() >= sceneLights_.size()) {
-        const std::size_t first = stats.lights.size() - sceneLights_.size();
-        for (std::size_t i = 0; i < sceneLights_.size(); ++i) {
-            if (Known* k = known(sceneLights_[i]); k != nullptr)
-                absorbEdgeCounts(stats.lights[first + i].edgeCounts, k->input);
+    // The edge counts the GPU finished (a frame or more old): a light gone since has none kept.
+    for (const AutoEdgeCounts& counts : stats.edgeCounts) {
+        for (Known& k : known_) {
+            if (k.entity.bits() == counts.light) absorbEdgeCounts(counts, k.input);
         }
     }
     // A frame that built programs timed their compile too, and the frames right after it are

@@ -47,9 +47,7 @@ private:
     /// (`kAutoSettleFrames`).
     int settling_ = 0;
     bool anyAuto_ = false;   ///< the frame `learn` saw had an auto light
-    bool counting_ = false;  ///< the frame planned last counts its auto lights' edges
-    /// The entity of each scene light of the frame `learn` saw (the stats' order).
-    std::vector<Entity> sceneLights_;
+    bool counting_ = false;  ///< the frame planned last counts some auto light's edges
     // Predictions of the frame learn saw, for observe.
     /// Names of the lights whose passes were predicted, into the prepared frame's plans (valid
     /// until the next `prepare`, which `observe` precedes): no copy a frame.

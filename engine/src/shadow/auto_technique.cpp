@@ -93,26 +93,17 @@ constexpr std::array<double, 3> kBandError{0.04092, 0.06483, 0.04755};  // hard,
 constexpr std::array<double, 2> kPenumbraError{0.06222, 0.02282};       // hard, PCF
 constexpr double kPcssPenumbra16 = 2.132e-4;
 constexpr double kPcssPenumbraPower = 4.266;
-// Before a light has run PCSS its penumbra share is guessed from its widest penumbra: the
-// counted shares were 0.012-0.34 of edgeShare1024 x penumbraTexels1024 on the five scenes of
-// the benchmark (the widest penumbra is wider than the typical one), about 0.07 in the middle.
-constexpr double kPenumbraOfWidest = 0.07;
-
-/// The counts' model (above) of candidate `c`, for a light whose edges were counted.
+/// The counts' model (above) of candidate `c`, for a light whose edges and penumbra were counted.
 double countedRmse(const AutoLightInput& in, const AutoCandidate& c) {
     const double band = std::min(1.0, in.edgeShare1024 * 1024.0 / std::max(c.mapSize, 1));
-    const double penumbra =
-        in.penumbraShare >= 0.0
-            ? in.penumbraShare
-            : std::min(1.0, kPenumbraOfWidest * in.edgeShare1024 * std::max(in.penumbraTexels1024, 0.0));
+    const double penumbra = std::clamp(in.penumbraShare, 0.0, 1.0);
     const auto family = static_cast<std::size_t>(AutoCostModel::termOf(c)) - 1;
     const double within = c.technique == ShadowTechnique::Pcss
                               ? kPcssPenumbra16 * std::pow(16.0 / std::max(c.blockerSamples, 1), kPcssPenumbraPower)
                               : kPenumbraError[family];
     // kOtherError, as the width model's: what no candidate removes, and no light is predicted
     // free of error because its counts found no edge.
-    return std::sqrt(std::min(1.0, kBandError[family] * band + within * std::min(1.0, penumbra)) +
-                     kOtherError * kOtherError);
+    return std::sqrt(std::min(1.0, kBandError[family] * band + within * penumbra) + kOtherError * kOtherError);
 }
 
 }  // namespace
@@ -205,7 +196,7 @@ void AutoCostModel::observeLitPass(std::span<const double, kAutoLitTerms> predic
 }
 
 double autoPredictedRmse(const AutoLightInput& in, const AutoCandidate& c) {
-    if (in.edgeShare1024 >= 0.0) return countedRmse(in, c);
+    if (in.edgeShare1024 >= 0.0 && in.penumbraShare >= 0.0) return countedRmse(in, c);
     // The map's own step widens every edge by kEdgeBand of the candidate's texels: a penumbra
     // narrower than that (a point-sized light's, 0) still leaves an edge whose error shrinks with
     // the map's resolution.
