@@ -31,8 +31,8 @@ struct LitVariant {
     int debugSlot = -1;             ///< slot the debug view shows, -1 none
     /// Forward: the deformation of the meshes it draws (gpu::MeshDeformBits); 0 deferred.
     unsigned deform = 0;
-    /// Forward: a slot holds an auto light, whose edges the pass counts on the frames the planner
-    /// asks (SG_COUNT_EDGES; the hard lookup compiled in for the count).
+    /// Forward, a frame that counts a slot's auto light's edges (`ShadowLightPlan::countEdges`):
+    /// the counting program (SG_COUNT_EDGES; the hard lookup compiled in for the count).
     bool countEdges = false;
 
     auto operator<=>(const LitVariant&) const = default;

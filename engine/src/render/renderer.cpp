@@ -230,10 +230,13 @@ void Renderer::Impl::preparePrograms(const ShadowFrame& frame, const RenderOptio
         render::LitVariant& v = pass.variant;
         v.aovs = options.aovs;
         v.deferred = deferred;
+        // The counting program on the frames that count only: its counting costs each lookup
+        // even when no slot counts (the PCSS lit pass of builtin:plates 7.13 -> 8.00 ms, always
+        // on, measured by bash benchmarks/run_auto_budget.sh).
         v.countEdges = false;
         for (std::size_t slot = 0; slot < pass.sceneLight.size() && !deferred; ++slot) {
             const ShadowLightPlan* plan = render::slotPlan(frame, pass, slot);
-            v.countEdges = v.countEdges || (plan != nullptr && plan->automatic);
+            v.countEdges = v.countEdges || (plan != nullptr && plan->countEdges);
         }
         // Deferred: one program reads the surfaces whatever their materials; forward: a second
         // program for the materials with maps.
