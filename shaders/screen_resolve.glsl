@@ -2,15 +2,70 @@
 // screen-space stage (screen_visibility.frag.glsl) and the game-facing mask
 // (shadow_mask.frag.glsl): one sample per d x d block of the screen, at the block's centre pixel
 // q * d + d / 2; each full-resolution pixel blends the four samples around it with bilinear
-// weights, keeping only those on its own surface, and is sent to a refine pass (its visibility
-// recomputed at full resolution) when none is kept or the kept ones disagree.
+// weights, keeping only those on its own surface (on its triangle's plane and facing as it
+// does), and is sent to a refine pass (its visibility recomputed at full resolution) when none
+// is kept, when the kept ones disagree, or when the kept sample nearest it holds a feature
+// narrower than its block: each light's technique reports at the samples the narrowest feature
+// its visibility may have nearby (SG_STAGE_FEATURE, shadow_common.glsl: PCSS's and the moment
+// methods' penumbra where their search found blockers and texels that do not block, sdf's
+// penumbra at a caster its cone passed within a block of, PCF's radius where a search of the
+// block finds both), since a shadow that narrow can fall between the samples, which then agree.
+// A thin shadow between two samples is near both, so refining the pixels nearest each covers
+// it (tests/render/screen_visibility_test.cpp: of thin posts' shadows at quarter resolution,
+// 22-29 % of the pixels read lit without the reports and the normals, under 1 % with them for
+// PCSS, PCF and sdf).
 #ifndef SG_SCREEN_RESOLVE
 #define SG_SCREEN_RESOLVE
+#include "screen_gbuffer.glsl"
 
 // Kept samples differing by more than this send a pixel to the refine pass (0.25 let the
 // upsample add 5-7 % to sdf's and PCSS's error on builtin:default at 320x240; 0.1 costs the
 // refine 0.4 ms more on the bunny spot at 1280x720).
 #define SG_VIS_REFINE_SPREAD 0.1
+
+// A sample whose lights' narrowest feature (a radius) is under this many of its blocks sends the
+// pixels nearest it to the refine pass (a radius of a quarter block: a shadow half a block wide).
+#define SG_VIS_FEATURE_BLOCKS 0.25
+
+#ifdef SG_STAGE_FEATURES
+// The stage's samples, before the lights are evaluated: the block around the sample, `divisor`
+// pixels of `pixelMetres` each on its surface (a lateral width across the light is at most
+// that), for the filters' searches (sg_stageBlock, shadow_common.glsl).
+void sg_beginStageSample(float pixelMetres, int divisor) {
+    sg_stageBlock = float(divisor) * pixelMetres;
+}
+// After: whether the sample holds a feature narrower than SG_VIS_FEATURE_BLOCKS of its block.
+bool sg_stageSharp() { return sg_stageFeature < SG_VIS_FEATURE_BLOCKS * sg_stageBlock; }
+#endif
+
+// A kept sample's triangle faces about as the pixel's: their normals' octahedral coordinates
+// (sg_octEncode) differ by at most this on each axis (about 30-45 degrees; a pixel whose
+// normal lies across the octahedron's seam from its samples' goes to the refine pass). A sample
+// on the extension of the pixel's plane but on another surface (the ground at the foot of a
+// post, seen at a silhouette) is not blended in.
+#define SG_VIS_SAME_NORMAL 0.5
+
+// A sample's code, 15 bits: its triangle's normal (octahedral, 7 bits a coordinate, bits 0-13)
+// and whether it holds a feature narrower than its block (bit 14).
+uint sg_stageCode(vec3 geoNormal, bool sharp) {
+    uvec2 q = uvec2(round((sg_octEncode(geoNormal) * 0.5 + 0.5) * 127.0));
+    return q.x | (q.y << 7) | (sharp ? 1u << 14 : 0u);
+}
+bool sg_stageCodeSharp(uint code) { return (code & (1u << 14)) != 0u; }
+// Whether the sample of `code` faces as the pixel whose triangle's normal has the octahedral
+// coordinates `octNormal`: compared in those coordinates, with no decode.
+bool sg_stageCodeFaces(uint code, vec2 octNormal) {
+    vec2 p = vec2(uvec2(code, code >> 7) & 127u) * (2.0 / 127.0) - 1.0;
+    vec2 d = abs(p - octNormal);
+    return max(d.x, d.y) <= SG_VIS_SAME_NORMAL;
+}
+
+// The renderer's stage keeps a sample in one 32-bit texel: its depth along the view as a half
+// float (bits 0-15; 0: no receiver; 2^-11 of the depth, a twentieth of the resolve's
+// tolerance at quarter resolution in 720 rows) and its code (bits 16-30).
+uint sg_packStageSample(float depth, uint code) { return (packHalf2x16(vec2(depth, 0.0)) & 0xffffu) | (code << 16); }
+float sg_stageSampleDepth(uint texel) { return unpackHalf2x16(texel).x; }
+uint sg_stageSampleCode(uint texel) { return texel >> 16; }
 
 // The four samples around a pixel in textureGather's order: (0,1), (1,1), (1,0), (0,0) from the
 // lower-left one.
@@ -27,6 +82,16 @@ ivec2 sg_stageBase(ivec2 p, int d, out vec2 t) {
 // Bilinear weight of sample `k` (sg_kStageQuad order) at place `t`.
 float sg_stageWeight(int k, vec2 t) {
     return (sg_kStageQuad[k].x == 1 ? t.x : 1.0 - t.x) * (sg_kStageQuad[k].y == 1 ? t.y : 1.0 - t.y);
+}
+
+// Whether the kept sample nearest a pixel (the largest of `weights`, 0 where not kept) is
+// `sharp`: holds a feature narrower than its block. A shadow that thin between two samples
+// marks both (each found the caster near), so refining the pixels nearest each covers the gap.
+bool sg_nearestSharp(bvec4 sharp, vec4 weights) {
+    float most = max(max(weights.x, weights.y), max(weights.z, weights.w));
+    bool nearest = false;
+    for (int k = 0; k < 4; ++k) nearest = nearest || (sharp[k] && weights[k] == most);
+    return most > 0.0 && nearest;
 }
 
 // The blend of one light's four samples `g` with the normalised weights `w` of those `kept`;

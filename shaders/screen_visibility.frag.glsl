@@ -35,12 +35,14 @@ uniform mat4 uClipFromCs;  // camera-relative world -> clip
 // The stage's visibility (a layer per group) and its samples' depths along the view, with
 // clamp-to-edge addressing for gathers.
 layout(binding = SG_UNIT_SCREEN_VISIBILITY) uniform sampler2DArray uStageVisibility;
-layout(binding = SG_UNIT_SCREEN_DEPTH) uniform sampler2D uStageDepth;
+// Each sample's depth along the view and code (sg_packStageSample).
+layout(binding = SG_UNIT_SCREEN_DEPTH) uniform usampler2D uStageDepth;
 uniform int uStageLayer;
 layout(location = 0) out vec4 outVisibility;
 #else
 layout(location = 0) out vec4 outVisibility;
-layout(location = 1) out float outDepth;  // the sample's depth along the view (0: no receiver)
+// The sample's depth along the view and its code (sg_packStageSample).
+layout(location = 1) out uint outSample;
 #endif
 
 // Light `slot` of the group, of group g (as lit.frag.glsl's SG_SHADE_LIGHT), at pass slot
@@ -164,9 +166,24 @@ void main() {
     // Depth-tested (SG_FULLSCREEN_FAR, GREATER) against the scene's depth at full resolution, or
     // against the coverage at this one (screen_coverage.frag.glsl): blocks without a surface
     // are skipped before they run, the others run straight-line.
+    float depth = receives ? sg_gbufferDepth(surface) : 0.0;
+    vec3 geoNormal = sg_gbufferGeoNormal(surface);
+#ifdef SG_STAGE_FEATURES
+    // The block's footprint for the lights' reports: a pixel's width across the view at this
+    // depth, stretched as the surface turns from it.
+    vec3 cs = sg_gbufferPosition(src, surface);
+    float facing = abs(dot(geoNormal, cs)) / max(length(cs), 1e-30);
+    sg_beginStageSample(depth * uPixelAngle / max(facing, 0.05), SG_VIS_DIVISOR);
+#endif
     vec4 v = receives ? visibilityAt(src, surface) : vec4(1.0);
     outVisibility = v;
-    outDepth = receives ? sg_gbufferDepth(surface) : 0.0;
+    bool sharp = false;
+#ifdef SG_STAGE_FEATURES
+    // Whether the lights' visibility may hold a feature narrower than the block: the resolve
+    // refines the pixels nearest the sample (screen_resolve.glsl).
+    sharp = sg_stageSharp();
+#endif
+    outSample = sg_packStageSample(depth, sg_stageCode(geoNormal, sharp));
 }
 #else
 void main() {
@@ -186,14 +203,21 @@ void main() {
     vec2 t;
     ivec2 base = sg_stageBase(p, SG_VIS_DIVISOR, t);
     vec2 corner = vec2(base + 1) / stageSize;
-    vec4 depths = textureGather(uStageDepth, corner, 0);
+    uvec4 samples = textureGather(uStageDepth, corner, 0);
+    vec2 octNormal = sg_octEncode(geoNormal);
     vec4 weights;
+    bvec4 sharp;
     for (int k = 0; k < 4; ++k) {
-        // The sample's point from its depth along its pixel's ray; kept when on p's plane.
+        // The sample's point from its depth along its pixel's ray; kept when on p's plane and
+        // facing as p's triangle does.
         ivec2 src = stageSource(clamp(base + sg_kStageQuad[k], ivec2(0), ivec2(stageSize) - 1));
         vec3 ray = uRay00 + (float(src.x) + 0.5) * uRayDx + (float(src.y) + 0.5) * uRayDy;
-        bool same = depths[k] > 0.0 && abs(depths[k] * dot(ray, geoNormal) - planeOffset) <= tolerance;
+        float depth = sg_stageSampleDepth(samples[k]);
+        uint code = sg_stageSampleCode(samples[k]);
+        bool same = depth > 0.0 && abs(depth * dot(ray, geoNormal) - planeOffset) <= tolerance &&
+                    sg_stageCodeFaces(code, octNormal);
         weights[k] = same ? max(sg_stageWeight(k, t), 1e-4) : 0.0;
+        sharp[k] = sg_stageCodeSharp(code);
     }
     float weight = weights.x + weights.y + weights.z + weights.w;
     vec4 v = vec4(1.0);
@@ -216,7 +240,8 @@ void main() {
     // stage's blocks: a contact shadow, a hard shadow's edge), the refine pass recomputes the
     // pixel at full resolution: depth 0 marks it for that pass's depth test, which skips whole
     // blocks without one (the filters' code then costs nothing where it does not run).
-    gl_FragDepth = receives && (weight == 0.0 || spread > SG_VIS_REFINE_SPREAD) ? 0.0 : 1.0;
+    gl_FragDepth =
+        receives && (weight == 0.0 || spread > SG_VIS_REFINE_SPREAD || sg_nearestSharp(sharp, weights)) ? 0.0 : 1.0;
     outVisibility = receives ? v : vec4(1.0);
 }
 #endif

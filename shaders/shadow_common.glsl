@@ -32,4 +32,14 @@ void sg_perpendicularBasis(vec3 axis, out vec3 t1, out vec3 t2) {
     t2 = cross(axis, t1);
 }
 
+// The screen-space stage's samples (SG_STAGE_FEATURES, screen_resolve.glsl explains): each
+// technique lowers sg_stageFeature to the narrowest feature (m) its visibility may have nearby.
+#ifdef SG_STAGE_FEATURES
+float sg_stageBlock = 0.0;  // the sample's block at its receiver (m), set by the stage
+float sg_stageFeature = 3.0e38;
+#define SG_STAGE_FEATURE(radius) sg_stageFeature = min(sg_stageFeature, (radius))
+#else
+#define SG_STAGE_FEATURE(radius)
+#endif
+
 #endif

@@ -36,4 +36,22 @@ float sg_pcfTaps(int slot, sg_GpuLight L, sg_Receiver r, float radius, int taps,
     return sum / float(max(fetches, 1));
 }
 
+#ifdef SG_STAGE_FEATURES
+// The stage's samples, for a filter without a blocker search (PCF): a blocker and a texel that
+// does not block within the sample's block report the filter's radius as its feature.
+const int sg_kStageBlockGathers = 4;
+void sg_stageBlockSearch(int slot, sg_GpuLight L, sg_Receiver r, float radius) {
+    sg_DiskWalk disk = sg_beginDisk(sg_pixelRotation(), sg_kStageBlockGathers);
+    float blocked = 0.0;
+    for (int i = 0; i < sg_kStageBlockGathers; ++i) {
+        sg_Tap t = sg_lateralTap(L, r, sg_nextDiskSample(L.kernel, disk, i) * max(sg_stageBlock, radius));
+        blocked += dot(vec4(1.0) - sg_compareQuad(slot, L, r, t).lit, vec4(1.0));
+    }
+    if (blocked > 0.0 && blocked < 4.0 * float(sg_kStageBlockGathers)) SG_STAGE_FEATURE(radius);
+}
+#define SG_STAGE_BLOCK_SEARCH(slot, L, r, radius) sg_stageBlockSearch(slot, L, r, radius)
+#else
+#define SG_STAGE_BLOCK_SEARCH(slot, L, r, radius)
+#endif
+
 #endif

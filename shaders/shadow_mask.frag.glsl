@@ -38,7 +38,8 @@ uniform float uBackgroundDepth;
 
 layout(location = 0) out vec4 outMask;
 #ifndef SG_MASK_RESOLVE
-// The sample's receiver, camera-relative, w: covered (at full resolution no buffer takes it).
+// The sample's receiver, camera-relative, w: 0 without geometry, else 1 + its code
+// (sg_stageCode: an integer below 2^24, exact in a float; at full resolution no buffer takes it).
 layout(location = 1) out vec4 outPosition;
 uniform int uDivisor;  // the blocks a sample stands for: 1 at full resolution
 #endif
@@ -84,14 +85,18 @@ void main() {
         ivec2 last = textureSize(uStageMask, 0) - 1;
         vec2 t;
         ivec2 base = sg_stageBase(p, SG_MASK_DIVISOR, t);
+        vec2 octNormal = sg_octEncode(geoNormal);
         vec4 weights;
+        bvec4 sharp;
         vec4 samples[4];
         for (int k = 0; k < 4; ++k) {
             ivec2 q = clamp(base + sg_kStageQuad[k], ivec2(0), last);
             vec4 at = texelFetch(uStagePosition, q, 0);
             samples[k] = texelFetch(uStageMask, q, 0);
-            bool same = at.w > 0.5 && abs(dot(at.xyz - c, geoNormal)) <= tolerance;
+            uint code = uint(max(at.w - 1.0, 0.0));
+            bool same = at.w > 0.5 && abs(dot(at.xyz - c, geoNormal)) <= tolerance && sg_stageCodeFaces(code, octNormal);
             weights[k] = same ? max(sg_stageWeight(k, t), 1e-4) : 0.0;
+            sharp[k] = sg_stageCodeSharp(code);
         }
         float weight = weights.x + weights.y + weights.z + weights.w;
         vec4 w = weights / max(weight, 1e-30);
@@ -101,7 +106,7 @@ void main() {
             vec4 g = vec4(samples[0][l], samples[1][l], samples[2][l], samples[3][l]);
             mask[l] = sg_blendKept(g, w, kept, spread);
         }
-        marked = weight == 0.0 || spread > SG_VIS_REFINE_SPREAD;
+        marked = weight == 0.0 || spread > SG_VIS_REFINE_SPREAD || sg_nearestSharp(sharp, weights);
     }
     // Depth 0 marks the pixel for the refine pass, whose depth test skips the blocks without one.
     gl_FragDepth = marked ? 0.0 : 1.0;
@@ -148,6 +153,9 @@ void main() {
 #endif
         vec3 normal = dot(n, toViewer) < 0.0 ? -n : n;
         float viewDistance = dot(c, uCameraForward);
+        // The block's footprint for the lights' reports (screen_resolve.glsl): a pixel's on the
+        // surface is the longer step to its neighbours.
+        sg_beginStageSample(max(length(dx), length(dy)), uDivisor);
 #if SG_GROUP0_COUNT == 1
         SG_MASK_ONE(0)
 #else
@@ -168,6 +176,9 @@ void main() {
 #else
         SG_MASK_MANY(3)
 #endif
+        // Whether it holds a feature narrower than its block.
+        bool sharp = uDivisor > 1 && sg_stageSharp();
+        position.w = 1.0 + float(sg_stageCode(geoNormal, sharp));
     }
     outMask = mask;
     outPosition = position;

@@ -30,6 +30,7 @@ float sg_pcfVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
     // Bilinear taps, not gathers of 2x2 box comparisons: at a one-texel radius the boxes' steps
     // are the filter's whole width (sun RMSE 0.0403 with gathers, 0.0382 without).
     float filtered = sg_pcfTaps(slot, L, r, radius, taps, false);
+    SG_STAGE_BLOCK_SEARCH(slot, L, r, radius);
     return known >= 0.0 ? known : filtered;
 }
 

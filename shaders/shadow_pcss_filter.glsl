@@ -35,6 +35,7 @@ float sg_pcssFilter(int slot, sg_GpuLight L, sg_Receiver receiver) {
     float penumbra = 0.0;
     float dBlocker = 0.0;
     bool found = false;
+    bool mixed = false;  // the first search found blockers and texels that do not
     SG_ISOLATED
     for (int pass = 0; pass < 2 && searchGathers > 0; ++pass) {
         sg_DiskWalk disk = sg_beginDisk(rotation, searchGathers);  // the whole disk at this count
@@ -61,6 +62,7 @@ float sg_pcssFilter(int slot, sg_GpuLight L, sg_Receiver receiver) {
             blockers += dot(blocks, vec4(1.0));
         }
         if (blockers <= 0.0) break;  // none (in the narrower cone: the first estimate stands)
+        mixed = mixed || (!found && blockers < 4.0 * float(searchGathers));
         float d = clamp(blockerSum / blockers, 0.0, dReceiver);
         // Penumbra half-width at the receiver (m), by similar triangles.
         float p = min(sg_penumbraRadius(L, dReceiver, d, size), maxRadius);
@@ -77,6 +79,8 @@ float sg_pcssFilter(int slot, sg_GpuLight L, sg_Receiver receiver) {
     float filtered = sg_pcfTaps(slot, L, r, penumbra, taps, false);
     SG_DEBUG_STORE(sg_debugBlockerDepth, found ? dBlocker : 0.0);
     SG_DEBUG_STORE(sg_debugPenumbra, penumbra);
+    // Where mixed, the visibility changes over the penumbra (a point emitter's: a texel).
+    SG_STAGE_FEATURE(pointEmitter ? r.texelMetres : (mixed ? penumbra : 3.0e38));
     if (known >= 0.0) return known;
     return taps > 0 ? filtered : 1.0;
 }

@@ -209,6 +209,14 @@ float sg_sdfCrossing(int kind, int instance, vec3 p, vec3 dir, float d, float ra
     return sg_sdfEdgesAround(instance, p, axis, radius);
 }
 
+#ifdef SG_STAGE_FEATURES
+// The stage's samples: a caster the cone (radius `cone`) missed by under a block may shadow a
+// neighbour, over a penumbra as wide as the cone (the narrowest is the feature).
+void sg_sdfNearMiss(inout float nearMiss, float cone, float distance) {
+    if (distance - cone < sg_stageBlock) nearMiss = min(nearMiss, cone);
+}
+#endif
+
 float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
     if (L.sdfCount <= 0) return 1.0;
     // Start off the surface, on the side that faces the light.
@@ -259,6 +267,14 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
     }
     tStop = min(tStop, tEnd);
 
+    float nearMiss = 3.0e38;
+#ifdef SG_STAGE_FEATURES
+    // Near misses at the start, but of the receiver's own surface (a box at whose foot it lies).
+    for (int k = 0; k < count; ++k) {
+        if (abs(sg_sdfDistance(near[k], r.csPosition)) > 0.5 * sg_sdfVoxelMetres(near[k]))
+            sg_sdfNearMiss(nearMiss, L.sdfStartOffset * tanE, sg_sdfDistance(near[k], origin));
+    }
+#endif
     float t = L.sdfStartOffset;
     float lowest = 1.0;   // smallest u seen outside the casters (>= 0)
     float crossed = 1.0;  // smallest visible fraction where the ray crossed a caster
@@ -332,6 +348,10 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
             if (kind == SG_SDF_SHEET && fraction < 1.0) u = 1.0;
         }
         lowest = min(lowest, u);
+#ifdef SG_STAGE_FEATURES
+        // Near misses: a minimum of the distance at the last sample.
+        if (d > lastD && lastD >= 0.0 && lastD <= lastLastD) sg_sdfNearMiss(nearMiss, (t - step) * tanE, lastD);
+#endif
         if (crossed <= 0.0) break;
         lastLastD = lastD;
         lastD = d;
@@ -341,6 +361,8 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
     }
     SG_DEBUG_STORE(sg_debugMarchSteps, float(steps));
     float visible = min(sg_sdfVisibleFraction(lowest), crossed);
+    // Outside the umbra the visibility may change over that width nearby.
+    SG_STAGE_FEATURE(visible > 0.0 ? nearMiss : 3.0e38);
     // The debug view's clearance: u outside, and a crossing's fraction mapped onto [-1, 1].
     SG_DEBUG_STORE(sg_debugClosest, min(min(lowest, 1.0), 2.0 * crossed - 1.0));
     return visible;

@@ -45,7 +45,10 @@ float sg_softMomentsPenumbra(sg_GpuLight L, sg_Receiver r, vec2 m, float referen
     float zBlocker = (m.x - lit * reference) / (1.0 - lit);
     dBlocker = clamp(zBlocker * r.depthScale, 0.0, dReceiver);
     SG_DEBUG_STORE(sg_debugBlockerDepth, dBlocker);
-    return min(sg_penumbraRadius(L, dReceiver, dBlocker, size), maxRadius);
+    float penumbra = min(sg_penumbraRadius(L, dReceiver, dBlocker, size), maxRadius);
+    // A mixed region: the visibility changes over the penumbra nearby (the stage's samples).
+    SG_STAGE_FEATURE(lit > sg_kVssmLeastBlockers ? penumbra : 3.0e38);
+    return penumbra;
 }
 
 // The blocker search region's radius (m): the cone from the receiver to the emitter, at least a

@@ -169,7 +169,8 @@ void main() {
 }
 
 // What a game's shader gets is the code of the techniques it asks for: a few tens of kilobytes
-// for one, not every technique's.
+// for one, not every technique's. (Every technique's text holds the screen-space stage's feature
+// reports too, 2 kB under #ifdef SG_STAGE_FEATURES, which a game's shader compiles out.)
 TEST(TechniqueGlsl, GameShaderTextGrowsWithTheTechniquesAskedFor) {
     const std::size_t hard = shadowShaderSource({}, techniqueBit(ShadowTechnique::Hard)).size();
     const std::size_t all = shadowShaderSource({}, kAllShadowTechniques).size();
@@ -180,7 +181,7 @@ TEST(TechniqueGlsl, GameShaderTextGrowsWithTheTechniquesAskedFor) {
         EXPECT_LT(text.size(), all) << techniqueName(t);
         EXPECT_NE(text.find(gpu::slotVisibilityFunction(t)), std::string::npos) << techniqueName(t);
     }
-    EXPECT_LT(all, 64u * 1024u);
+    EXPECT_LT(all, 68u * 1024u);
 }
 
 }  // namespace

@@ -85,7 +85,7 @@ std::int64_t ScreenStage::bytesFor(int width, int height, bool materialTargets) 
     const std::int64_t pixels = std::int64_t{width} * height;
     // Full size: the surface and material targets (RGBA32UI each), two RGBA8 visibility layers,
     // the refine marks (32F); the extra target RGBA32UI. Half and quarter size (each made on
-    // first use): two RGBA8 layers, the samples' depths (R32F) and the coverage (32F).
+    // first use): two RGBA8 layers, the samples' depths and codes (R32UI) and the coverage (32F).
     const std::int64_t full = 16 + 16 + 2 * 4 + 4 + (materialTargets ? 16 : 0);
     const std::int64_t reduced = 2 * 4 + 4 + 4;
     return pixels * full + (pixels / 4 + pixels / 16) * reduced;
@@ -127,7 +127,8 @@ void ScreenStage::ensureStageTarget(int divisor) {
     if (stage_[i]) return;
     const int w = reduced(width_, divisor), h = reduced(height_, divisor);
     stage_[i] = gpu::makeScreenTarget("Main/ScreenVisibility/stage" + std::to_string(divisor), GL_RGBA8, w, h, 2);
-    stageDepth_[i] = gpu::makeScreenTarget("Main/ScreenVisibility/stageDepth" + std::to_string(divisor), GL_R32F, w, h);
+    stageDepth_[i] =
+        gpu::makeScreenTarget("Main/ScreenVisibility/stageDepth" + std::to_string(divisor), GL_R32UI, w, h);
     coverage_[i] =
         gpu::makeScreenTarget("Main/ScreenVisibility/coverage" + std::to_string(divisor), GL_DEPTH_COMPONENT32F, w, h);
     // The resolve gathers 2x2 samples: clamped at the border, never filtered.
@@ -193,6 +194,7 @@ ScreenStage::Program& ScreenStage::program(const LitVariant& group, int firstSlo
     std::vector<std::string> defines{"SG_SLOT_BASE " + std::to_string(firstSlot),
                                      "SG_VIS_DIVISOR " + std::to_string(divisor), "SG_READS_GBUFFER"};
     if (resolve) defines.emplace_back("SG_VIS_RESOLVE");
+    if (!resolve && divisor > 1) defines.emplace_back("SG_STAGE_FEATURES");
     // The stage (at any resolution, and the refine after a resolve) runs depth-tested.
     if (!resolve) defines.emplace_back("SG_FULLSCREEN_FAR");
     if (contact) {
@@ -330,9 +332,9 @@ void ScreenStage::reducedStage(const Group& g, const ScreenRays& rays, FrameStat
     gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, depth, 0);
     const std::array<GLenum, 2> both{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     gl.NamedFramebufferDrawBuffers(fb, 2, both.data());
-    // Samples the depth test skips read as off every surface in the resolve.
-    const std::array<float, 4> none{0.0f, 0.0f, 0.0f, 0.0f};
-    gl.ClearNamedFramebufferfv(fb, GL_COLOR, 1, none.data());
+    // Samples the depth test skips read as off every surface in the resolve (depth 0).
+    const std::array<GLuint, 4> none{0, 0, 0, 0};
+    gl.ClearNamedFramebufferuiv(fb, GL_COLOR, 1, none.data());
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_GREATER);
     draw(program(g.variant, g.first, d, false, g.contact, stats), g, d, rays);

@@ -130,7 +130,7 @@ private:
     gpu::Texture full_;                       ///< RGBA8 array: slots 0-3, 4-7 of the pass
     gpu::Texture refine_;                     ///< depth 0 marks the pixels the refine pass recomputes
     std::array<gpu::Texture, 3> stage_;       ///< reduced-resolution arrays by divisor 2, 4 (index 1, 2)
-    std::array<gpu::Texture, 3> stageDepth_;  ///< their samples' depths along the view (R32F)
+    std::array<gpu::Texture, 3> stageDepth_;  ///< their samples' depths and codes (R32UI, screen_resolve.glsl)
     std::array<gpu::Texture, 3> coverage_;    ///< their depth buffers: 0 where a sample receives
     std::array<gpu::Program, 3> coveragePrograms_;
     unsigned coverageDrawn_ = 0;  ///< bit per divisor index: its coverage is this frame's

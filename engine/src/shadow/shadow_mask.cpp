@@ -84,7 +84,8 @@ MaskProgram buildResolve(int lights, int divisor) {
 
 /// The mask's program of `in`'s lights: at full resolution, the samples and the refine.
 MaskProgram buildMask(const ShadowShaderInputs& in, bool normals) {
-    std::vector<std::string> defines{"SG_MASK_LIGHTS " + std::to_string(in.lights)};
+    // The samples' program serves every resolution: it reports each sample's narrowest feature.
+    std::vector<std::string> defines{"SG_MASK_LIGHTS " + std::to_string(in.lights), "SG_STAGE_FEATURES"};
     std::string label;
     std::array<gpu::SlotConfig, SG_MAX_MASK_LIGHTS> slots{};
     for (int i = 0; i < in.lights; ++i) {
