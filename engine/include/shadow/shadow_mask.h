@@ -23,9 +23,11 @@ enum class MaskResolution {
     /// Every pixel runs its lights' techniques.
     Full,
     /// One sample per 2x2 (Half) or 4x4 (Quarter) block runs them; each pixel then blends the
-    /// samples around it that lie on its own surface (never across a geometric edge), and the
-    /// pixels without one, or whose samples disagree by more than 0.1 (a hard edge, a contact),
-    /// run at full resolution. Three passes instead of one, and two targets of the mask's own.
+    /// samples around it that lie on its own surface and face as it does (never across a
+    /// geometric edge), and the pixels without one, whose samples disagree by more than 0.1 (a
+    /// hard edge, a contact) or whose nearest sample found a shadow narrower than its block
+    /// nearby, run at full resolution. Three passes instead of one, and two targets of the
+    /// mask's own.
     Half,
     Quarter,
     /// Half or Quarter where a light of the mask filters its shadows (any technique but hard)
