@@ -11,11 +11,12 @@ SCENE: builtin:NAME, a sample scene's name or a glTF file (what shadow_render ta
   the median shadow passes + the median main passes over the frames after the first, its shadow
   cost that minus the frame time of the same scene with every shadow off (--technique none);
 - PCSS at the module's defaults (1024 texels, 16 + 16 taps) for every light: the budget B is its
-  shadow cost;
+  shadow cost, measured once before the rounds;
 - each of auto's 12 candidates as a fixed configuration for every light;
-- --technique auto at budget B and B/2.
+- --technique auto at budget B and B/2, in the same rounds as the others.
 Errors: every light's visibility over the truth's lit_<i>.exr, pooled (shadow_compare --mask lit).
-With --rounds R every run is made R times, interleaved, and each figure is the median.
+With --rounds R every run is made R times, interleaved, and each figure is the median (auto's errors
+and choices are those of its run of median frame time).
 Prints a Markdown report (the checks of docs/auto_technique.md "Measured") and writes it to
 --markdown when given.
 """
@@ -85,26 +86,32 @@ def fixed_args(c):
 
 
 def median_runs(runs):
-    """One run whose frame time is the median of `runs` (the errors are deterministic: the first's)."""
-    out = dict(runs[0])
+    """The run of median frame time among `runs` (the lower middle one of an even count), with the
+    median frame time: a fixed configuration's errors are the same in every run, auto's belong to
+    the choices of the run that stands for it."""
+    out = dict(sorted(runs, key=lambda r: r["frame"])[(len(runs) - 1) // 2])
     out["frame"] = statistics.median(r["frame"] for r in runs)
     return out
 
 
 def measure(scene, rounds):
+    """Every run of the scene, round by round. Auto's two runs take their place in each round
+    with the others, so that a drift of the machine's speed (2 shared cores here) falls on them
+    as on the fixed configurations they are compared with; their budgets come from a first run
+    of the defaults and of no shadows before the rounds (B, as auto is given it)."""
     scene.reference()
     keys = {"none": ["--technique", "none"], "pcss": fixed_args(PCSS_DEFAULT)}
     keys.update({label(c): fixed_args(c) for c in CANDIDATES})
+    first = {k: scene.render(folder(k), keys[k]) for k in ("none", "pcss")}
+    budget = first["pcss"]["frame"] - first["none"]["frame"]
+    for share, key in ((1.0, "autoB"), (0.5, "autoHalf")):
+        keys[key] = ["--technique", "auto", "--shadow-budget-ms", f"{budget * share:.4f}"]
     runs = {k: [] for k in keys}
     for _ in range(rounds):
         for k, extra in keys.items():
             runs[k].append(scene.render(folder(k), extra))
     res = {k: median_runs(v) for k, v in runs.items()}
     base = res["none"]["frame"]
-    budget = res["pcss"]["frame"] - base
-    for share, key in ((1.0, "autoB"), (0.5, "autoHalf")):
-        extra = ["--technique", "auto", "--shadow-budget-ms", f"{budget * share:.4f}"]
-        res[key] = median_runs([scene.render(key, extra) for _ in range(rounds)])
     for r in res.values():
         r["cost"] = r["frame"] - base
     save(scene, res, budget)
@@ -151,7 +158,7 @@ def report(results, args, fitted):
     renderer = results[0][1][0]["pcss"]["renderer"] if results else "?"
     lines = [f"Renderer `{renderer}`. Size {args.size}, {args.frames} frames 1/30 s apart, every layer redrawn each frame, forward lookups; "
              f"{args.rounds} interleaved round(s), median. Cost = frame (shadow + main passes, median) minus the frame "
-             "with every shadow off. B = PCSS's cost at the module's defaults (1024 texels, 16 + 16 taps). "
+             "with every shadow off. B = PCSS's cost at the module's defaults (1024 texels, 16 + 16 taps), measured before the rounds (the budget auto is given); auto's runs are interleaved with the others in each round. "
              "RMSE: every light over the truth's lit mask, pooled (shadow_compare --mask lit), "
              f"truth shadow_reference --samples {args.samples} at the last frame's time.", "",
              "| scene | fitted on | PCSS default ms / RMSE | B ms | auto at B: cost (predicted) / RMSE | auto at B/2: cost "

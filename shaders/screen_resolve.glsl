@@ -6,8 +6,9 @@
 // does), and is sent to a refine pass (its visibility recomputed at full resolution) when none
 // is kept, when the kept ones disagree, or when the kept sample nearest it holds a feature
 // narrower than its block: each light's technique reports at the samples the narrowest feature
-// its visibility may have nearby (SG_STAGE_FEATURE, shadow_common.glsl: PCSS's and the moment
-// methods' penumbra where their search found blockers and texels that do not block, sdf's
+// its visibility may have nearby (SG_STAGE_FEATURE, shadow_common.glsl: PCSS's penumbra where its
+// search found blockers within a block and texels that do not block, the moment methods' where
+// their search region holds both, sdf's
 // penumbra at a caster its cone passed within a block of, PCF's radius where a search of the
 // block finds both), since a shadow that narrow can fall between the samples, which then agree.
 // A thin shadow between two samples is near both, so refining the pixels nearest each covers

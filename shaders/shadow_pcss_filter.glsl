@@ -36,6 +36,7 @@ float sg_pcssFilter(int slot, sg_GpuLight L, sg_Receiver receiver) {
     float dBlocker = 0.0;
     bool found = false;
     bool mixed = false;  // the first search found blockers and texels that do not
+    float nearestBlocker = 3.0e38;  // lateral m from the receiver to the nearest tap that found one
     SG_ISOLATED
     for (int pass = 0; pass < 2 && searchGathers > 0; ++pass) {
         sg_DiskWalk disk = sg_beginDisk(rotation, searchGathers);  // the whole disk at this count
@@ -43,7 +44,8 @@ float sg_pcssFilter(int slot, sg_GpuLight L, sg_Receiver receiver) {
         float blockers = 0.0;
         SG_ISOLATED
         for (int i = 0; i < searchGathers; ++i) {
-            sg_Tap t = sg_lateralTap(L, r, sg_nextDiskSample(L.kernel, disk, i) * radius);
+            vec2 offset = sg_nextDiskSample(L.kernel, disk, i) * radius;
+            sg_Tap t = sg_lateralTap(L, r, offset);
             float scale = t.layer == r.layer ? r.depthScale : sg_layers[L.firstLayer + t.layer].depthScale;
             vec2 f, quadUv;
             vec4 references = sg_quadReferences(L, r, t, f, quadUv) * scale;
@@ -60,6 +62,9 @@ float sg_pcssFilter(int slot, sg_GpuLight L, sg_Receiver receiver) {
                 r.orthographic ? stored + (dReceiver - t.depth) : stored * (dReceiver / max(t.depth, 1e-30));
             blockerSum += dot(blocks, carried);
             blockers += dot(blocks, vec4(1.0));
+#ifdef SG_STAGE_FEATURES
+            if (pass == 0 && any(greaterThan(blocks, vec4(0.0)))) nearestBlocker = min(nearestBlocker, length(offset));
+#endif
         }
         if (blockers <= 0.0) break;  // none (in the narrower cone: the first estimate stands)
         mixed = mixed || (!found && blockers < 4.0 * float(searchGathers));
@@ -79,8 +84,11 @@ float sg_pcssFilter(int slot, sg_GpuLight L, sg_Receiver receiver) {
     float filtered = sg_pcfTaps(slot, L, r, penumbra, taps, false);
     SG_DEBUG_STORE(sg_debugBlockerDepth, found ? dBlocker : 0.0);
     SG_DEBUG_STORE(sg_debugPenumbra, penumbra);
-    // Where mixed, the visibility changes over the penumbra (a point emitter's: a texel).
-    SG_STAGE_FEATURE(pointEmitter ? r.texelMetres : (mixed ? penumbra : 3.0e38));
+#ifdef SG_STAGE_FEATURES
+    // Where mixed, the visibility changes over the penumbra near the blockers found: within a
+    // block of them (the search region can be far wider). A point emitter's: over a texel.
+    SG_STAGE_FEATURE(pointEmitter ? r.texelMetres : (mixed && nearestBlocker < sg_stageBlock + penumbra ? penumbra : 3.0e38));
+#endif
     if (known >= 0.0) return known;
     return taps > 0 ? filtered : 1.0;
 }
