@@ -51,7 +51,9 @@ uvec4 sg_packExtra(vec3 emission, vec3 lightingNormal) {
 float sg_gbufferDepth(uvec4 surface) { return uintBitsToFloat(surface.x); }
 bool sg_gbufferCovered(uvec4 surface) { return sg_gbufferDepth(surface) != 0.0; }
 bool sg_gbufferReceives(uvec4 surface) { return sg_gbufferDepth(surface) > 0.0; }
-vec3 sg_gbufferGeoNormal(uvec4 surface) { return sg_octDecode(vec2(uintBitsToFloat(surface.y), uintBitsToFloat(surface.z))); }
+// The triangle's normal as stored, octahedral (sg_octEncode), and decoded.
+vec2 sg_gbufferGeoOct(uvec4 surface) { return vec2(uintBitsToFloat(surface.y), uintBitsToFloat(surface.z)); }
+vec3 sg_gbufferGeoNormal(uvec4 surface) { return sg_octDecode(sg_gbufferGeoOct(surface)); }
 vec3 sg_gbufferNormal(uvec4 surface) { return sg_octDecode(unpackSnorm2x16(surface.w)); }
 
 #ifdef SG_READS_GBUFFER

@@ -48,8 +48,9 @@ bool sg_stageSharp() { return sg_stageFeature < SG_VIS_FEATURE_BLOCKS * sg_stage
 
 // A sample's code, 15 bits: its triangle's normal (octahedral, 7 bits a coordinate, bits 0-13)
 // and whether it holds a feature narrower than its block (bit 14).
-uint sg_stageCode(vec3 geoNormal, bool sharp) {
-    uvec2 q = uvec2(round((sg_octEncode(geoNormal) * 0.5 + 0.5) * 127.0));
+// `octNormal`: the normal's octahedral coordinates (sg_octEncode).
+uint sg_stageCode(vec2 octNormal, bool sharp) {
+    uvec2 q = uvec2(round((octNormal * 0.5 + 0.5) * 127.0));
     return q.x | (q.y << 7) | (sharp ? 1u << 14 : 0u);
 }
 bool sg_stageCodeSharp(uint code) { return (code & (1u << 14)) != 0u; }

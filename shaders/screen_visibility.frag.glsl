@@ -167,12 +167,11 @@ void main() {
     // against the coverage at this one (screen_coverage.frag.glsl): blocks without a surface
     // are skipped before they run, the others run straight-line.
     float depth = receives ? sg_gbufferDepth(surface) : 0.0;
-    vec3 geoNormal = sg_gbufferGeoNormal(surface);
 #ifdef SG_STAGE_FEATURES
     // The block's footprint for the lights' reports: a pixel's width across the view at this
     // depth, stretched as the surface turns from it.
     vec3 cs = sg_gbufferPosition(src, surface);
-    float facing = abs(dot(geoNormal, cs)) / max(length(cs), 1e-30);
+    float facing = abs(dot(sg_gbufferGeoNormal(surface), cs)) / max(length(cs), 1e-30);
     sg_beginStageSample(depth * uPixelAngle / max(facing, 0.05), SG_VIS_DIVISOR);
 #endif
     vec4 v = receives ? visibilityAt(src, surface) : vec4(1.0);
@@ -183,7 +182,7 @@ void main() {
     // refines the pixels nearest the sample (screen_resolve.glsl).
     sharp = sg_stageSharp();
 #endif
-    outSample = sg_packStageSample(depth, sg_stageCode(geoNormal, sharp));
+    outSample = sg_packStageSample(depth, sg_stageCode(sg_gbufferGeoOct(surface), sharp));
 }
 #else
 void main() {
@@ -204,7 +203,7 @@ void main() {
     ivec2 base = sg_stageBase(p, SG_VIS_DIVISOR, t);
     vec2 corner = vec2(base + 1) / stageSize;
     uvec4 samples = textureGather(uStageDepth, corner, 0);
-    vec2 octNormal = sg_octEncode(geoNormal);
+    vec2 octNormal = sg_gbufferGeoOct(surface);  // as stored: no encode of the decoded normal
     vec4 weights;
     bvec4 sharp;
     for (int k = 0; k < 4; ++k) {

@@ -178,7 +178,7 @@ void main() {
 #endif
         // Whether it holds a feature narrower than its block.
         bool sharp = uDivisor > 1 && sg_stageSharp();
-        position.w = 1.0 + float(sg_stageCode(geoNormal, sharp));
+        position.w = 1.0 + float(sg_stageCode(sg_octEncode(geoNormal), sharp));
     }
     outMask = mask;
     outPosition = position;

@@ -35,8 +35,10 @@ float sg_pcssFilter(int slot, sg_GpuLight L, sg_Receiver receiver) {
     float penumbra = 0.0;
     float dBlocker = 0.0;
     bool found = false;
+#ifdef SG_STAGE_FEATURES
     bool mixed = false;  // the first search found blockers and texels that do not
     float nearestBlocker = 3.0e38;  // lateral m from the receiver to the nearest tap that found one
+#endif
     SG_ISOLATED
     for (int pass = 0; pass < 2 && searchGathers > 0; ++pass) {
         sg_DiskWalk disk = sg_beginDisk(rotation, searchGathers);  // the whole disk at this count
@@ -67,7 +69,9 @@ float sg_pcssFilter(int slot, sg_GpuLight L, sg_Receiver receiver) {
 #endif
         }
         if (blockers <= 0.0) break;  // none (in the narrower cone: the first estimate stands)
+#ifdef SG_STAGE_FEATURES
         mixed = mixed || (!found && blockers < 4.0 * float(searchGathers));
+#endif
         float d = clamp(blockerSum / blockers, 0.0, dReceiver);
         // Penumbra half-width at the receiver (m), by similar triangles.
         float p = min(sg_penumbraRadius(L, dReceiver, d, size), maxRadius);

@@ -267,8 +267,8 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
     }
     tStop = min(tStop, tEnd);
 
-    float nearMiss = 3.0e38;
 #ifdef SG_STAGE_FEATURES
+    float nearMiss = 3.0e38;
     // Near misses at the start, but of the receiver's own surface (a box at whose foot it lies).
     for (int k = 0; k < count; ++k) {
         if (abs(sg_sdfDistance(near[k], r.csPosition)) > 0.5 * sg_sdfVoxelMetres(near[k]))
@@ -362,7 +362,9 @@ float sg_sdfMarch(sg_GpuLight L, sg_Receiver r) {
     SG_DEBUG_STORE(sg_debugMarchSteps, float(steps));
     float visible = min(sg_sdfVisibleFraction(lowest), crossed);
     // Outside the umbra the visibility may change over that width nearby.
+#ifdef SG_STAGE_FEATURES
     SG_STAGE_FEATURE(visible > 0.0 ? nearMiss : 3.0e38);
+#endif
     // The debug view's clearance: u outside, and a crossing's fraction mapped onto [-1, 1].
     SG_DEBUG_STORE(sg_debugClosest, min(min(lowest, 1.0), 2.0 * crossed - 1.0));
     return visible;
