@@ -3,14 +3,14 @@
 // (shadow_mask.frag.glsl): one sample per d x d block of the screen, at the block's centre pixel
 // q * d + d / 2; each full-resolution pixel blends the four samples around it with bilinear
 // weights, keeping only those on its own surface (on its triangle's plane and facing as it
-// does), and is sent to a refine pass (its visibility recomputed at full resolution) when none
-// is kept, when the kept ones disagree, or when the kept sample nearest it holds a feature
-// narrower than its block: each light's technique reports at the samples the narrowest feature
-// its visibility may have nearby (SG_STAGE_FEATURE, shadow_common.glsl: PCSS's penumbra where its
-// search found blockers within a block and texels that do not block, the moment methods' where
-// their search region holds both, sdf's
-// penumbra at a caster its cone passed within a block of, PCF's radius where a search of the
-// block finds both), since a shadow that narrow can fall between the samples, which then agree.
+// does), and is sent to a refine pass (its visibility recomputed at full resolution) for every
+// light when none is kept, and for a light whose kept samples disagree, or whose kept sample
+// nearest it holds a feature narrower than its block: each light's technique reports at the
+// samples the narrowest feature its visibility may have nearby (SG_STAGE_FEATURE,
+// shadow_common.glsl: PCSS's penumbra where its search found blockers within a block and texels
+// that do not block, the moment methods' where their search region holds both, sdf's penumbra
+// at a caster its cone passed within a block of, PCF's radius where a search of the block finds
+// both), since a shadow that narrow can fall between the samples, which then agree.
 // A thin shadow between two samples is near both, so refining the pixels nearest each covers
 // it (tests/render/screen_visibility_test.cpp: of thin posts' shadows at quarter resolution,
 // 22-29 % of the pixels read lit without the reports and the normals, under 1 % with them for
@@ -35,8 +35,13 @@
 void sg_beginStageSample(float pixelMetres, int divisor) {
     sg_stageBlock = float(divisor) * pixelMetres;
 }
-// After: whether the sample holds a feature narrower than SG_VIS_FEATURE_BLOCKS of its block.
-bool sg_stageSharp() { return sg_stageFeature < SG_VIS_FEATURE_BLOCKS * sg_stageBlock; }
+// After each light: its bit of the sample's code (1 << `channel`) when its visibility may hold a
+// feature narrower than SG_VIS_FEATURE_BLOCKS of the block, and the report cleared for the next.
+uint sg_stageLightSharp(int channel) {
+    bool sharp = sg_stageFeature < SG_VIS_FEATURE_BLOCKS * sg_stageBlock;
+    sg_stageFeature = 3.0e38;
+    return sharp ? 1u << uint(channel) : 0u;
+}
 #endif
 
 // A kept sample's triangle faces about as the pixel's: their normals' octahedral coordinates
@@ -46,25 +51,26 @@ bool sg_stageSharp() { return sg_stageFeature < SG_VIS_FEATURE_BLOCKS * sg_stage
 // post, seen at a silhouette) is not blended in.
 #define SG_VIS_SAME_NORMAL 0.5
 
-// A sample's code, 15 bits: its triangle's normal (octahedral, 7 bits a coordinate, bits 0-13)
-// and whether it holds a feature narrower than its block (bit 14).
-// `octNormal`: the normal's octahedral coordinates (sg_octEncode).
-uint sg_stageCode(vec2 octNormal, bool sharp) {
-    uvec2 q = uvec2(round((octNormal * 0.5 + 0.5) * 127.0));
-    return q.x | (q.y << 7) | (sharp ? 1u << 14 : 0u);
+// A sample's code, 16 bits: its triangle's normal (octahedral, 6 bits a coordinate, bits 0-11:
+// steps of 0.03, a sixteenth of SG_VIS_SAME_NORMAL) and, per light of its group (bits 12-15),
+// whether that light's visibility holds a feature narrower than its block.
+// `octNormal`: the normal's octahedral coordinates (sg_octEncode); `sharpLights`: a bit per light.
+uint sg_stageCode(vec2 octNormal, uint sharpLights) {
+    uvec2 q = uvec2(round((octNormal * 0.5 + 0.5) * 63.0));
+    return q.x | (q.y << 6) | ((sharpLights & 15u) << 12);
 }
-bool sg_stageCodeSharp(uint code) { return (code & (1u << 14)) != 0u; }
+uint sg_stageCodeSharp(uint code) { return (code >> 12) & 15u; }
 // Whether the sample of `code` faces as the pixel whose triangle's normal has the octahedral
 // coordinates `octNormal`: compared in those coordinates, with no decode.
 bool sg_stageCodeFaces(uint code, vec2 octNormal) {
-    vec2 p = vec2(uvec2(code, code >> 7) & 127u) * (2.0 / 127.0) - 1.0;
+    vec2 p = vec2(uvec2(code, code >> 6) & 63u) * (2.0 / 63.0) - 1.0;
     vec2 d = abs(p - octNormal);
     return max(d.x, d.y) <= SG_VIS_SAME_NORMAL;
 }
 
 // The renderer's stage keeps a sample in one 32-bit texel: its depth along the view as a half
 // float (bits 0-15; 0: no receiver; 2^-11 of the depth, a twentieth of the resolve's
-// tolerance at quarter resolution in 720 rows) and its code (bits 16-30).
+// tolerance at quarter resolution in 720 rows) and its code (bits 16-31).
 uint sg_packStageSample(float depth, uint code) { return (packHalf2x16(vec2(depth, 0.0)) & 0xffffu) | (code << 16); }
 float sg_stageSampleDepth(uint texel) { return unpackHalf2x16(texel).x; }
 uint sg_stageSampleCode(uint texel) { return texel >> 16; }
@@ -86,22 +92,35 @@ float sg_stageWeight(int k, vec2 t) {
     return (sg_kStageQuad[k].x == 1 ? t.x : 1.0 - t.x) * (sg_kStageQuad[k].y == 1 ? t.y : 1.0 - t.y);
 }
 
-// Whether the kept sample nearest a pixel (the largest of `weights`, 0 where not kept) is
-// `sharp`: holds a feature narrower than its block. A shadow that thin between two samples
-// marks both (each found the caster near), so refining the pixels nearest each covers the gap.
-bool sg_nearestSharp(bvec4 sharp, vec4 weights) {
+// The lights a pixel must refine for features narrower than the blocks: those the kept sample
+// nearest it (the largest of `weights`, 0 where not kept) marks sharp (`sharp`: each sample's
+// sg_stageCodeSharp). A shadow that thin between two samples marks both (each found the caster
+// near), so refining the pixels nearest each covers the gap.
+uint sg_nearestSharp(uvec4 sharp, vec4 weights) {
     float most = max(max(weights.x, weights.y), max(weights.z, weights.w));
-    bool nearest = false;
-    for (int k = 0; k < 4; ++k) nearest = nearest || (sharp[k] && weights[k] == most);
-    return most > 0.0 && nearest;
+    uint lights = 0u;
+    for (int k = 0; k < 4; ++k) lights |= weights[k] == most ? sharp[k] : 0u;
+    return most > 0.0 ? lights : 0u;
 }
 
 // The blend of one light's four samples `g` with the normalised weights `w` of those `kept`;
-// `spread` grows to the kept samples' largest disagreement.
-float sg_blendKept(vec4 g, vec4 w, bvec4 kept, inout float spread) {
+// `refine` gets the light's bit (`bit`) when the kept samples differ by more than
+// SG_VIS_REFINE_SPREAD (an edge sharper than the blocks: a contact shadow, a hard shadow's edge).
+float sg_blendKept(vec4 g, vec4 w, bvec4 kept, uint bit, inout uint refine) {
     vec4 hi = mix(vec4(0.0), g, kept), lo = mix(vec4(1.0), g, kept);
-    spread = max(spread, max(max(hi.x, hi.y), max(hi.z, hi.w)) - min(min(lo.x, lo.y), min(lo.z, lo.w)));
+    float spread = max(max(hi.x, hi.y), max(hi.z, hi.w)) - min(min(lo.x, lo.y), min(lo.z, lo.w));
+    refine |= spread > SG_VIS_REFINE_SPREAD ? bit : 0u;
     return dot(w, g);
 }
+
+// The refine's input at a pixel the resolve could not upsample for every light: the resolved
+// visibility `v` of the lights it keeps, -1 for those (`refine`, a bit per light) the refine
+// recomputes. The refine runs only those (sg_refinesLight), at full resolution.
+vec4 sg_refinePrior(vec4 v, uint refine) {
+    bvec4 again = notEqual(uvec4(refine) & uvec4(1u, 2u, 4u, 8u), uvec4(0u));
+    return mix(v, vec4(-1.0), again);
+}
+// Whether the refine recomputes light `channel`, of the resolve's `prior` (sg_refinePrior).
+bool sg_refinesLight(vec4 prior, int channel) { return prior[channel] < 0.0; }
 
 #endif

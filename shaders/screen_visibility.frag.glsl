@@ -9,9 +9,12 @@
 //   blends the four nearest samples of the stage with bilinear weights, keeping only samples that
 //   lie on its own surface (within 1.5 blocks' footprint of its triangle's plane), so a penumbra
 //   is never blurred across a geometric edge. A pixel with no such sample (silhouettes, thin
-//   parts), or whose kept samples disagree (an edge sharper than the blocks), is marked in depth
-//   for the refine pass: the stage at full resolution, depth-tested so that only marked pixels
-//   run.
+//   parts), or with a light whose kept samples disagree (an edge sharper than the blocks) or
+//   report a feature narrower than them, is marked in depth for the refine pass.
+// - the refine: the stage at full resolution, depth-tested so that only marked pixels run. With
+//   two or more shadowed lights in the group (SG_VIS_REFINE, and SG_VIS_REFINE_PER_LIGHT in the
+//   resolve), the resolve also writes a prior (sg_refinePrior) and the refine recomputes only
+//   the lights it marks, keeping the resolve's value for the others.
 // Slots are specialised and grouped like the lit passes' (SG_VIS_LIGHTS, SG_PASS_GROUPS,
 // SG_GROUP<g>_*).
 #include "shadow_visibility.glsl"
@@ -39,21 +42,44 @@ layout(binding = SG_UNIT_SCREEN_VISIBILITY) uniform sampler2DArray uStageVisibil
 layout(binding = SG_UNIT_SCREEN_DEPTH) uniform usampler2D uStageDepth;
 uniform int uStageLayer;
 layout(location = 0) out vec4 outVisibility;
+#ifdef SG_VIS_REFINE_PER_LIGHT
+// The refine's input (sg_refinePrior): what the resolve kept, -1 for the lights to recompute.
+layout(location = 1) out vec4 outPrior;
+#endif
 #else
 layout(location = 0) out vec4 outVisibility;
 // The sample's depth along the view and its code (sg_packStageSample).
 layout(location = 1) out uint outSample;
 #endif
+#ifdef SG_VIS_REFINE
+// The resolve's output for the refine (sg_refinePrior), at full resolution.
+layout(binding = SG_UNIT_SCREEN_VISIBILITY) uniform sampler2D uRefinePrior;
+vec4 sg_visPrior = vec4(1.0);  // this pixel's
+// The refine computes a light only where the resolve left it: in a loop of one trip or none,
+// which a CPU rasteriser skips for a block of pixels where no pixel runs it (an `if` would run
+// it under a mask).
+#define SG_VIS_ONLY_WHERE_LEFT(slot) for (int once = 0; once < int(sg_refinesLight(sg_visPrior, slot)); ++once)
+#else
+#define SG_VIS_ONLY_WHERE_LEFT(slot)
+#endif
+#ifdef SG_STAGE_FEATURES
+uint sg_visSharpLights = 0u;  // the sample's lights with a feature narrower than its block
+#define SG_VIS_REPORT(slot) sg_visSharpLights |= sg_stageLightSharp(slot);
+#else
+#define SG_VIS_REPORT(slot)
+#endif
 
 // Light `slot` of the group, of group g (as lit.frag.glsl's SG_SHADE_LIGHT), at pass slot
-// SG_SLOT_BASE + slot.
+// SG_SLOT_BASE + slot; the stage's samples note whether it reported a feature narrower than
+// their block.
 #define SG_VIS_LIGHT(g, slot)                                                                          \
-    {                                                                                                  \
+    SG_VIS_ONLY_WHERE_LEFT(slot) {                                                                     \
         sg_GpuLight L = sg_slotLight(SG_SLOT_BASE + slot, SG_GROUP##g##_TYPE, SG_GROUP##g##_TECH,       \
                                      SG_GROUP##g##_KERNEL);                                            \
         if (SG_GROUP##g##_TECH != SG_TECH_NONE)                                                        \
             mask[slot] = SG_GROUP##g##_VISIBILITY(SG_SLOT_BASE + slot, L, cs, normal, geoNormal,       \
                                                   curvature, viewDistance);                            \
+        SG_VIS_REPORT(slot)                                                                            \
     }
 #define SG_VIS_ONE(g) \
     if (g < SG_PASS_GROUPS) SG_VIS_LIGHT(g, SG_GROUP##g##_FIRST)
@@ -113,7 +139,12 @@ vec4 visibilityAt(ivec2 p, uvec4 surface) {
     vec3 normal = sg_gbufferNormal(surface);
     vec3 geoNormal = sg_gbufferGeoNormal(surface);
     float viewDistance = dot(cs, uCameraForward);
+#ifdef SG_VIS_REFINE
+    // The lights the resolve kept keep its visibility; the others are computed below.
+    vec4 mask = mix(sg_visPrior, vec4(1.0), lessThan(sg_visPrior, vec4(0.0)));
+#else
     vec4 mask = vec4(1.0);
+#endif
 #if SG_GROUP0_COUNT == 1
     SG_VIS_ONE(0)
 #else
@@ -136,8 +167,13 @@ vec4 visibilityAt(ivec2 p, uvec4 surface) {
 #endif
 #ifdef SG_VIS_CONTACT
     for (int c = 0; c < SG_VIS_LIGHTS; ++c) {
-        // A loop of one trip or none: a light without contact shadows runs no march.
-        for (int i = 0; i < int(uContactLength[c] != 0.0); ++i) {
+        // A loop of one trip or none: a light without contact shadows runs no march, nor does
+        // the refine's for a light the resolve kept.
+        bool runs = uContactLength[c] != 0.0;
+#ifdef SG_VIS_REFINE
+        runs = runs && sg_refinesLight(sg_visPrior, c);
+#endif
+        for (int i = 0; i < int(runs); ++i) {
             sg_GpuLight L = sg_lights[SG_SLOT_BASE + c];
             vec3 toLight = L.type == SG_LIGHT_DIRECTIONAL ? -L.wsDirection : normalize(L.csPosition - cs);
             // Automatic: the shorter of SG_CONTACT_AUTO_TEXELS of the map's texels here (what its
@@ -174,13 +210,16 @@ void main() {
     float facing = abs(dot(sg_gbufferGeoNormal(surface), cs)) / max(length(cs), 1e-30);
     sg_beginStageSample(depth * uPixelAngle / max(facing, 0.05), SG_VIS_DIVISOR);
 #endif
+#ifdef SG_VIS_REFINE
+    sg_visPrior = texelFetch(uRefinePrior, src, 0);
+#endif
     vec4 v = receives ? visibilityAt(src, surface) : vec4(1.0);
     outVisibility = v;
-    bool sharp = false;
+    uint sharp = 0u;
 #ifdef SG_STAGE_FEATURES
-    // Whether the lights' visibility may hold a feature narrower than the block: the resolve
-    // refines the pixels nearest the sample (screen_resolve.glsl).
-    sharp = sg_stageSharp();
+    // The lights whose visibility may hold a feature narrower than the block: the resolve
+    // refines them at the pixels nearest the sample (screen_resolve.glsl).
+    sharp = sg_visSharpLights;
 #endif
     outSample = sg_packStageSample(depth, sg_stageCode(sg_gbufferGeoOct(surface), sharp));
 }
@@ -205,7 +244,7 @@ void main() {
     uvec4 samples = textureGather(uStageDepth, corner, 0);
     vec2 octNormal = sg_gbufferGeoOct(surface);  // as stored: no encode of the decoded normal
     vec4 weights;
-    bvec4 sharp;
+    uvec4 sharp;
     for (int k = 0; k < 4; ++k) {
         // The sample's point from its depth along its pixel's ray; kept when on p's plane and
         // facing as p's triangle does.
@@ -222,9 +261,11 @@ void main() {
     vec4 v = vec4(1.0);
     vec4 w = weights / max(weight, 1e-30);
     bvec4 kept = greaterThan(weights, vec4(0.0));
-    float spread = 0.0;  // the largest disagreement of the kept samples, over the lights
+    // The lights the refine recomputes (a bit each): those with a feature narrower than the
+    // blocks at the nearest kept sample, and those whose kept samples disagree.
+    uint refine = sg_nearestSharp(sharp, weights);
     vec3 at = vec3(corner, float(uStageLayer));
-#define SG_VIS_CHANNEL(c) v[c] = sg_blendKept(textureGather(uStageVisibility, at, c), w, kept, spread);
+#define SG_VIS_CHANNEL(c) v[c] = sg_blendKept(textureGather(uStageVisibility, at, c), w, kept, 1u << c, refine);
     SG_VIS_CHANNEL(0)
 #if SG_VIS_LIGHTS > 1
     SG_VIS_CHANNEL(1)
@@ -235,12 +276,16 @@ void main() {
 #if SG_VIS_LIGHTS > 3
     SG_VIS_CHANNEL(3)
 #endif
-    // Where no sample lies on this surface, or the kept ones disagree (an edge sharper than the
-    // stage's blocks: a contact shadow, a hard shadow's edge), the refine pass recomputes the
-    // pixel at full resolution: depth 0 marks it for that pass's depth test, which skips whole
-    // blocks without one (the filters' code then costs nothing where it does not run).
-    gl_FragDepth =
-        receives && (weight == 0.0 || spread > SG_VIS_REFINE_SPREAD || sg_nearestSharp(sharp, weights)) ? 0.0 : 1.0;
+    // Where no sample lies on this surface, every light.
+    refine = weight == 0.0 ? 15u : refine;
+    refine &= (1u << SG_VIS_LIGHTS) - 1u;
+    // The refine pass recomputes those lights at full resolution: depth 0 marks the pixel for
+    // that pass's depth test, which skips whole blocks without one (the filters' code then costs
+    // nothing where it does not run), and the prior says which lights it runs.
+    gl_FragDepth = receives && refine != 0u ? 0.0 : 1.0;
     outVisibility = receives ? v : vec4(1.0);
+#ifdef SG_VIS_REFINE_PER_LIGHT
+    outPrior = sg_refinePrior(outVisibility, receives ? refine : 0u);
+#endif
 }
 #endif

@@ -14,11 +14,12 @@
 // - the samples (uDivisor d > 1): one pixel per d x d block, the visibility at the block's centre
 //   pixel, and that receiver's camera-relative position (w 1; 0 without geometry);
 // - the resolve (SG_MASK_RESOLVE, with SG_MASK_DIVISOR d): each pixel blends the four samples
-//   around it that lie on its own surface (within 1.5 blocks' footprint of its plane), and marks
-//   in depth the pixels with none or with disagreeing ones;
-// - the refine: the samples' program at full resolution (uDivisor 1), depth-tested so that only
-//   marked pixels run. One program of the lights' techniques serves every resolution: a mask's
-//   lights compile their techniques once.
+//   around it that lie on its own surface (within 1.5 blocks' footprint of its plane), marks
+//   in depth the pixels with none or with disagreeing ones, and writes the refine's prior (the
+//   lights to recompute there, sg_refinePrior);
+// - the refine: the samples' program at full resolution (uDivisor 1, uRefine 1), depth-tested so
+//   that only marked pixels run, and there only the lights the prior leaves. One program of the
+//   lights' techniques serves every resolution: a mask's lights compile their techniques once.
 // (Includes may not stand under a condition: each file is expanded once, where first named.)
 #include "shadow_visibility.glsl"
 #include "screen_resolve.glsl"
@@ -37,11 +38,24 @@ uniform int uZeroToOne;        // 1: window depth is NDC z (glClipControl ZERO_T
 uniform float uBackgroundDepth;
 
 layout(location = 0) out vec4 outMask;
-#ifndef SG_MASK_RESOLVE
+#ifdef SG_MASK_RESOLVE
+#ifdef SG_MASK_REFINE_PER_LIGHT
+layout(location = 1) out vec4 outPrior;  // the refine's (sg_refinePrior)
+#endif
+#else
 // The sample's receiver, camera-relative, w: 0 without geometry, else 1 + its code
 // (sg_stageCode: an integer below 2^24, exact in a float; at full resolution no buffer takes it).
 layout(location = 1) out vec4 outPosition;
 uniform int uDivisor;  // the blocks a sample stands for: 1 at full resolution
+#ifdef SG_MASK_REFINE_PER_LIGHT
+// 1: the refine after a resolve, which computes only the lights the resolve's prior leaves
+// (with two or more shadowed lights: with one it is every light).
+uniform int uRefine;
+layout(binding = SG_UNIT_MASK_STAGE) uniform sampler2D uRefinePrior;
+#define SG_MASK_ONLY_WHERE_LEFT(slot) for (int once = 0; once < int(sg_refinesLight(prior, slot)); ++once)
+#else
+#define SG_MASK_ONLY_WHERE_LEFT(slot)
+#endif
 #endif
 
 // Camera-relative position of pixel `p` at window depth `d`.
@@ -72,7 +86,7 @@ void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     float d = texelFetch(uSceneDepth, p, 0).r;
     vec4 mask = vec4(1.0);
-    bool marked = false;
+    uint refine = 0u;  // the lights the refine recomputes, a bit each
     if (d != uBackgroundDepth) {
         vec3 c = csAt(p, d);
         ivec2 qx, qy;
@@ -87,7 +101,7 @@ void main() {
         ivec2 base = sg_stageBase(p, SG_MASK_DIVISOR, t);
         vec2 octNormal = sg_octEncode(geoNormal);
         vec4 weights;
-        bvec4 sharp;
+        uvec4 sharp;
         vec4 samples[4];
         for (int k = 0; k < 4; ++k) {
             ivec2 q = clamp(base + sg_kStageQuad[k], ivec2(0), last);
@@ -101,24 +115,32 @@ void main() {
         float weight = weights.x + weights.y + weights.z + weights.w;
         vec4 w = weights / max(weight, 1e-30);
         bvec4 kept = greaterThan(weights, vec4(0.0));
-        float spread = 0.0;
+        refine = sg_nearestSharp(sharp, weights);
         for (int l = 0; l < SG_MASK_LIGHTS; ++l) {
             vec4 g = vec4(samples[0][l], samples[1][l], samples[2][l], samples[3][l]);
-            mask[l] = sg_blendKept(g, w, kept, spread);
+            mask[l] = sg_blendKept(g, w, kept, 1u << l, refine);
         }
-        marked = weight == 0.0 || spread > SG_VIS_REFINE_SPREAD || sg_nearestSharp(sharp, weights);
+        refine = weight == 0.0 ? 15u : refine;
+        refine &= (1u << SG_MASK_LIGHTS) - 1u;
     }
     // Depth 0 marks the pixel for the refine pass, whose depth test skips the blocks without one.
-    gl_FragDepth = marked ? 0.0 : 1.0;
+    gl_FragDepth = refine != 0u ? 0.0 : 1.0;
     outMask = mask;
+#ifdef SG_MASK_REFINE_PER_LIGHT
+    outPrior = sg_refinePrior(mask, refine);
+#endif
 }
 #else
-// Light `slot` of the mask, of group g (as lit.frag.glsl's SG_SHADE_LIGHT).
+// Light `slot` of the mask, of group g (as lit.frag.glsl's SG_SHADE_LIGHT), where the prior
+// leaves it (every light but in the refine), in a loop of one trip or none: a CPU rasteriser
+// skips it for a block of pixels where no pixel runs it. The samples note whether it reported a
+// feature narrower than their block.
 #define SG_MASK_LIGHT(g, slot)                                                                      \
-    {                                                                                               \
+    SG_MASK_ONLY_WHERE_LEFT(slot) {                                                                 \
         sg_GpuLight L = sg_slotLight(slot, SG_GROUP##g##_TYPE, SG_GROUP##g##_TECH, SG_GROUP##g##_KERNEL); \
         if (SG_GROUP##g##_TECH != SG_TECH_NONE)                                                     \
             mask[slot] = SG_GROUP##g##_VISIBILITY(slot, L, c, normal, geoNormal, curvature, viewDistance); \
+        sharpLights |= sg_stageLightSharp(slot);                                                    \
     }
 #define SG_MASK_ONE(g) \
     if (g < SG_PASS_GROUPS) SG_MASK_LIGHT(g, SG_GROUP##g##_FIRST)
@@ -132,7 +154,14 @@ void main() {
     // A sample stands for its block's centre pixel (the pixel itself at full resolution).
     ivec2 p = min(ivec2(gl_FragCoord.xy) * uDivisor + uDivisor / 2, textureSize(uSceneDepth, 0) - 1);
     float d = texelFetch(uSceneDepth, p, 0).r;
+    // The resolve's prior in the refine: its visibility, -1 for the lights to recompute; every
+    // light elsewhere.
+#ifdef SG_MASK_REFINE_PER_LIGHT
+    vec4 prior = uRefine != 0 ? texelFetch(uRefinePrior, p, 0) : vec4(-1.0);
+    vec4 mask = mix(prior, vec4(1.0), lessThan(prior, vec4(0.0)));
+#else
     vec4 mask = vec4(1.0);
+#endif
     vec4 position = vec4(0.0);
     if (d != uBackgroundDepth) {
         vec3 c = csAt(p, d);
@@ -156,6 +185,7 @@ void main() {
         // The block's footprint for the lights' reports (screen_resolve.glsl): a pixel's on the
         // surface is the longer step to its neighbours.
         sg_beginStageSample(max(length(dx), length(dy)), uDivisor);
+        uint sharpLights = 0u;
 #if SG_GROUP0_COUNT == 1
         SG_MASK_ONE(0)
 #else
@@ -176,9 +206,8 @@ void main() {
 #else
         SG_MASK_MANY(3)
 #endif
-        // Whether it holds a feature narrower than its block.
-        bool sharp = uDivisor > 1 && sg_stageSharp();
-        position.w = 1.0 + float(sg_stageCode(sg_octEncode(geoNormal), sharp));
+        // The lights with a feature narrower than its block.
+        position.w = 1.0 + float(sg_stageCode(sg_octEncode(geoNormal), uDivisor > 1 ? sharpLights : 0u));
     }
     outMask = mask;
     outPosition = position;

@@ -7,6 +7,7 @@
 #include <shadow/reference.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -194,6 +195,47 @@ TEST(ScreenVisibility, ManyLightsInTwoPassesKeepTheirOwnVisibility) {
     const Difference c = difference(b.images.color, a.images.color, 1e-4f, 0.01f);
     std::printf("[ measured ] colour: over 1 %% on %.3f %% of pixels\n", 100.0 * c.over);
     EXPECT_LT(c.over, 0.01);
+}
+
+// Four lights in one group at quarter resolution, each with its shadow edges in its own part of
+// the screen: the resolve sends each pixel's lights to the refine one by one (those whose samples
+// disagree or report a feature narrower than the blocks), and the refine recomputes only those,
+// keeping the resolve's value for the others. Every light's visibility stays within 0.25 of
+// forward on 99 % of pixels (measured 0-0.11 % over; with each light's disagreement sent to
+// the next light's refine 0.07-1.6 %, to none 1.6-2.3 %: its edges left blocky).
+TEST(ScreenVisibility, EachLightOfAGroupIsRefinedWhereItsOwnEdgesAre) {
+    test::glContext();
+    Scene scene;
+    test::addGround(scene, 6.0f);
+    for (int i = 0; i < 4; ++i) {
+        const double x = -1.5 + 1.0 * i;
+        test::addBox(scene, "post" + std::to_string(i), {x, 0.6, 0.2 * (i % 2)}, {0.08, 0.6, 0.08});
+    }
+    addCamera(scene, "camera", Camera{}, {0.0, 3.0, 4.5}, {0.0, 0.0, 0.3});
+    const std::array<ShadowTechnique, 4> techniques{ShadowTechnique::Pcss, ShadowTechnique::Hard, ShadowTechnique::Pcf,
+                                                    ShadowTechnique::Pcss};
+    for (int i = 0; i < 4; ++i) {
+        Shadow shadow = test::hardShadow(1024);
+        shadow.technique = techniques[static_cast<std::size_t>(i)];
+        Light spot = test::pointSizedLight(LightType::Spot, 1.0f);
+        spot.radius = 0.01f;
+        const double x = -1.5 + 1.0 * i;
+        addLight(scene, "spot " + std::to_string(i), spot, shadow, {x + 0.3, 2.5, -1.0},
+                 glm::normalize(glm::dvec3(-0.1, -1.0, 0.6)));
+    }
+    FrameRunner forward, screen;
+    const Rendered a = renderWith(scene, ScreenVisibility::Off, 320, 240, forward);
+    const Rendered b = renderWith(scene, ScreenVisibility::Quarter, 320, 240, screen);
+    ASSERT_EQ(b.images.visibility.size(), 4u);
+    for (std::size_t l = 0; l < 4; ++l) {
+        const Difference d = difference(b.images.visibility[l], a.images.visibility[l], 0.25f);
+        int dark = 0;
+        for (const float v : a.images.visibility[l].pixels) dark += v < 0.5f ? 1 : 0;
+        std::printf("[ measured ] light %zu (%s): %d dark pixels, over 0.25 on %.2f %% of pixels\n", l,
+                    techniqueName(techniques[l]), dark, 100.0 * d.over);
+        EXPECT_GT(dark, 200) << "light " << l;  // its shadows are on screen
+        EXPECT_LT(d.over, 0.01) << "light " << l;
+    }
 }
 
 /// A ground with every map (a metal/rough checker, a wavy normal map, occlusion, emission on a

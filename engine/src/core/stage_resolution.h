@@ -37,4 +37,13 @@ template <typename Techniques>
     return height >= kMinQuarterStageHeight ? 4 : 2;
 }
 
+/// Whether the refine after a resolve recomputes only the lights the resolve marked at a pixel,
+/// for a group of lights of `techniques` (as `stageDivisor` takes them): with two or more
+/// shadowed lights. With one, its guard and the resolve's prior cost the refine and the resolve
+/// 1-5 ms at 1280x720 and save nothing.
+template <typename Techniques>
+[[nodiscard]] constexpr bool refinesPerLight(Techniques techniques) {
+    return std::count_if(techniques.begin(), techniques.end(), [](int t) { return t != SG_TECH_NONE; }) >= 2;
+}
+
 }  // namespace shadow

@@ -39,6 +39,11 @@ LitVariant groupVariant(const LitVariant& pass, int first, int count) {
     return g;
 }
 
+/// `refinesPerLight` of a group's slots.
+bool refinesPerLight(const LitVariant& group) {
+    return shadow::refinesPerLight(std::span(group.technique).first(static_cast<std::size_t>(group.lights)));
+}
+
 }  // namespace
 
 int visibilityDivisor(ScreenVisibility setting, const LitVariant& variant, int firstSlot, int slots, int height) {
@@ -84,9 +89,10 @@ ScreenStage::ScreenStage() { empty_ = gpu::makeVertexArray("Screen/empty vertex 
 std::int64_t ScreenStage::bytesFor(int width, int height, bool materialTargets) {
     const std::int64_t pixels = std::int64_t{width} * height;
     // Full size: the surface and material targets (RGBA32UI each), two RGBA8 visibility layers,
-    // the refine marks (32F); the extra target RGBA32UI. Half and quarter size (each made on
-    // first use): two RGBA8 layers, the samples' depths and codes (R32UI) and the coverage (32F).
-    const std::int64_t full = 16 + 16 + 2 * 4 + 4 + (materialTargets ? 16 : 0);
+    // the refine marks (32F) and its prior (RGBA16F); the extra target RGBA32UI. Half and quarter
+    // size (each made on first use): two RGBA8 layers, the samples' depths and codes (R32UI) and
+    // the coverage (32F).
+    const std::int64_t full = 16 + 16 + 2 * 4 + 4 + 8 + (materialTargets ? 16 : 0);
     const std::int64_t reduced = 2 * 4 + 4 + 4;
     return pixels * full + (pixels / 4 + pixels / 16) * reduced;
 }
@@ -116,6 +122,7 @@ void ScreenStage::makeTargets(int width, int height) {
     material_ = gpu::makeScreenTarget("Main/Surfaces/material", GL_RGBA32UI, width, height);
     full_ = gpu::makeScreenTarget("Main/ScreenVisibility/full", GL_RGBA8, width, height, 2);
     refine_ = gpu::makeScreenTarget("Main/ScreenVisibility/refine", GL_DEPTH_COMPONENT32F, width, height);
+    prior_ = {};
     extra_ = {};
     const GLuint fb = surfaces_.get();
     gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, surface_.get(), 0);
@@ -126,6 +133,7 @@ void ScreenStage::ensureStageTarget(int divisor) {
     const auto i = static_cast<std::size_t>(divisorIndex(divisor));
     if (stage_[i]) return;
     const int w = reduced(width_, divisor), h = reduced(height_, divisor);
+    if (!prior_) prior_ = gpu::makeScreenTarget("Main/ScreenVisibility/prior", GL_RGBA16F, width_, height_);
     stage_[i] = gpu::makeScreenTarget("Main/ScreenVisibility/stage" + std::to_string(divisor), GL_RGBA8, w, h, 2);
     stageDepth_[i] =
         gpu::makeScreenTarget("Main/ScreenVisibility/stageDepth" + std::to_string(divisor), GL_R32UI, w, h);
@@ -186,16 +194,19 @@ void ScreenStage::beginSurfaces(bool materialTargets) {
     gl.ClearNamedFramebufferuiv(fb, GL_COLOR, 0, zero);
 }
 
-ScreenStage::Program& ScreenStage::program(const LitVariant& group, int firstSlot, int divisor, bool resolve,
-                                           bool contact, FrameStats& stats) {
-    const Key key{group, firstSlot, divisor, resolve, contact};
+ScreenStage::Program& ScreenStage::program(const LitVariant& group, int firstSlot, int divisor, Pass pass, bool contact,
+                                           FrameStats& stats) {
+    const Key key{group, firstSlot, divisor, pass, contact};
     auto it = programs_.find(key);
     if (it != programs_.end()) return it->second;
     std::vector<std::string> defines{"SG_SLOT_BASE " + std::to_string(firstSlot),
                                      "SG_VIS_DIVISOR " + std::to_string(divisor), "SG_READS_GBUFFER"};
+    const bool resolve = pass == Pass::Resolve;
     if (resolve) defines.emplace_back("SG_VIS_RESOLVE");
-    if (!resolve && divisor > 1) defines.emplace_back("SG_STAGE_FEATURES");
-    // The stage (at any resolution, and the refine after a resolve) runs depth-tested.
+    if (pass == Pass::Refine) defines.emplace_back("SG_VIS_REFINE");
+    if (pass == Pass::Resolve && refinesPerLight(group)) defines.emplace_back("SG_VIS_REFINE_PER_LIGHT");
+    if (pass == Pass::Stage && divisor > 1) defines.emplace_back("SG_STAGE_FEATURES");
+    // The stage (at any resolution) and the refine run depth-tested.
     if (!resolve) defines.emplace_back("SG_FULLSCREEN_FAR");
     if (contact) {
         defines.emplace_back("SG_VIS_CONTACT");
@@ -215,7 +226,7 @@ ScreenStage::Program& ScreenStage::program(const LitVariant& group, int firstSlo
     gpu::appendTechniqueDefines(techniques, defines);
     std::string label = variantLabel(group);  // "Main/Lit[...]"
     label = "Main/ScreenVisibility" + label.substr(label.find('[')) + (resolve ? "/resolve" : "") +
-            (contact ? "/contact" : "") + "/" + std::to_string(divisor);
+            (pass == Pass::Refine ? "/refine" : "") + (contact ? "/contact" : "") + "/" + std::to_string(divisor);
     Program p;
     p.program = gpu::buildProgram({label, "fullscreen.vert.glsl", "screen_visibility.frag.glsl", defines, techniques});
     ++stats.programsCompiled;
@@ -303,18 +314,32 @@ void ScreenStage::visibilityOfGroup(const Group& g, const ScreenRays& rays, Fram
         // Only where the surface pass drew (GREATER than its depth, at the far plane).
         gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, depthBuffer_, 0);
         gl.DepthFunc(GL_GREATER);
-        timed("stage", [&] { draw(program(g.variant, g.first, 1, false, g.contact, stats), g, 1, rays); });
+        timed("stage", [&] { draw(program(g.variant, g.first, 1, Pass::Stage, g.contact, stats), g, 1, rays); });
     } else {
-        // The resolve marks in depth the pixels it cannot upsample (0; 1 elsewhere); the
-        // full-resolution stage then runs where the depth test (GREATER than the mark, at the far
-        // plane) lets it.
+        // The resolve marks in depth the pixels it cannot upsample for every light (0; 1
+        // elsewhere) and writes the prior: its visibility, -1 for the lights to recompute. The
+        // refine then runs where the depth test (GREATER than the mark, at the far plane) lets it,
+        // and there computes only the lights the prior leaves.
+        // With one shadowed light the refine is the stage at full resolution, without a prior.
+        const bool perLight = refinesPerLight(g.variant);
         gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, refine_.get(), 0);
+        if (perLight) {
+            gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, prior_.get(), 0);
+            const std::array<GLenum, 2> both{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+            gl.NamedFramebufferDrawBuffers(fb, 2, both.data());
+        }
         gl.DepthMask(GL_TRUE);
         gl.DepthFunc(GL_ALWAYS);
-        timed("resolve", [&] { draw(program(g.variant, g.first, d, true, g.contact, stats), g, 1, rays); });
+        timed("resolve", [&] { draw(program(g.variant, g.first, d, Pass::Resolve, g.contact, stats), g, 1, rays); });
+        if (perLight) {
+            gl.NamedFramebufferDrawBuffers(fb, 1, &one);
+            gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, 0, 0);
+            gl.BindTextureUnit(SG_UNIT_SCREEN_VISIBILITY, prior_.get());
+        }
         gl.DepthMask(GL_FALSE);
         gl.DepthFunc(GL_GREATER);
-        timed("refine", [&] { draw(program(g.variant, g.first, 1, false, g.contact, stats), g, 1, rays); });
+        const Pass refine = perLight ? Pass::Refine : Pass::Stage;
+        timed("refine", [&] { draw(program(g.variant, g.first, 1, refine, g.contact, stats), g, 1, rays); });
     }
     gl.DepthFunc(GL_LESS);
     gl.Disable(GL_DEPTH_TEST);
@@ -337,7 +362,7 @@ void ScreenStage::reducedStage(const Group& g, const ScreenRays& rays, FrameStat
     gl.ClearNamedFramebufferuiv(fb, GL_COLOR, 1, none.data());
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_GREATER);
-    draw(program(g.variant, g.first, d, false, g.contact, stats), g, d, rays);
+    draw(program(g.variant, g.first, d, Pass::Stage, g.contact, stats), g, d, rays);
     gl.DepthFunc(GL_LESS);
     gl.Disable(GL_DEPTH_TEST);
     gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, 0, 0);

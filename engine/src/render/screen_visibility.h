@@ -96,10 +96,13 @@ private:
         GLint cameraForward = -1, pixelAngle = -1, stageLayer = -1, ray00 = -1, rayDx = -1, rayDy = -1;
         GLint contactLength = -1, clipFromCs = -1;
     };
-    /// Group slots' configuration, first slot, divisor, resolve, contact shadows.
-    using Key = std::tuple<LitVariant, int, int, bool, bool>;
-    Program& program(const LitVariant& group, int firstSlot, int divisor, bool resolve, bool contact,
-                     FrameStats& stats);
+    /// A group's draws: the stage (at its divisor, or at full resolution), the resolve of a
+    /// reduced stage, and the refine after it (the stage at full resolution for the lights the
+    /// resolve left).
+    enum class Pass { Stage, Resolve, Refine };
+    /// Group slots' configuration, first slot, divisor, pass, contact shadows.
+    using Key = std::tuple<LitVariant, int, int, Pass, bool>;
+    Program& program(const LitVariant& group, int firstSlot, int divisor, Pass pass, bool contact, FrameStats& stats);
     /// A group of up to four slots of a pass, as its draws need it.
     struct Group {
         LitVariant variant;  ///< the group's slots alone
@@ -130,6 +133,7 @@ private:
     gpu::Texture extra_;                      ///< RGBA32UI: emission and lighting normal (material targets)
     gpu::Texture full_;                       ///< RGBA8 array: slots 0-3, 4-7 of the pass
     gpu::Texture refine_;                     ///< depth 0 marks the pixels the refine pass recomputes
+    gpu::Texture prior_;                      ///< RGBA16F: the resolve's visibility, -1 where the refine recomputes
     std::array<gpu::Texture, 3> stage_;       ///< reduced-resolution arrays by divisor 2, 4 (index 1, 2)
     std::array<gpu::Texture, 3> stageDepth_;  ///< their samples' depths and codes (R32UI, screen_resolve.glsl)
     std::array<gpu::Texture, 3> coverage_;    ///< their depth buffers: 0 where a sample receives

@@ -29,7 +29,8 @@ namespace shadow {
 
 namespace {
 
-/// What a mask program is specialised for: the lights in use, the normal texture, the resolve's
+/// What a mask program is specialised for: the lights in use, the normal texture (for the
+/// resolve: whether it writes the refine's prior, `refinesPerLight`), the resolve's
 /// divisor (0x80 | divisor; 0 for the program of the lights' techniques, which serves every
 /// resolution), and per slot the light's type, technique and kernel.
 using MaskKey = std::array<std::uint8_t, 3 + 3 * SG_MAX_MASK_LIGHTS>;
@@ -45,6 +46,7 @@ struct MaskProgram {
     GLint zeroToOne = -1;
     GLint backgroundDepth = -1;
     GLint divisor = -1;  ///< the techniques' program: the blocks a sample stands for
+    GLint refine = -1;   ///< the techniques' program: 1 in the refine after a resolve
 };
 
 MaskKey maskKey(const ShadowShaderInputs& in, bool normals) {
@@ -67,17 +69,23 @@ void findMaskUniforms(MaskProgram& p) {
     p.zeroToOne = gl.GetUniformLocation(id, "uZeroToOne");
     p.backgroundDepth = gl.GetUniformLocation(id, "uBackgroundDepth");
     p.divisor = gl.GetUniformLocation(id, "uDivisor");
+    p.refine = gl.GetUniformLocation(id, "uRefine");
 }
 
-/// The resolve of a mask of `lights` lights computed at 1 / `divisor` resolution: no technique.
-MaskProgram buildResolve(int lights, int divisor) {
+/// `refinesPerLight` of the mask's lights.
+bool refinesPerLight(const ShadowShaderInputs& in) {
+    return shadow::refinesPerLight(std::span(in.technique).first(static_cast<std::size_t>(in.lights)));
+}
+
+/// The resolve of a mask of `lights` lights computed at 1 / `divisor` resolution: no technique;
+/// with `perLight` it writes the refine's prior.
+MaskProgram buildResolve(int lights, int divisor, bool perLight) {
+    std::vector<std::string> defines{"SG_MASK_LIGHTS " + std::to_string(lights), "SG_MASK_RESOLVE",
+                                     "SG_MASK_DIVISOR " + std::to_string(divisor)};
+    if (perLight) defines.emplace_back("SG_MASK_REFINE_PER_LIGHT");
     MaskProgram p;
     p.program = gpu::buildProgram(
-        {"Shadow/Mask/resolve" + std::to_string(divisor),
-         "fullscreen.vert.glsl",
-         "shadow_mask.frag.glsl",
-         {"SG_MASK_LIGHTS " + std::to_string(lights), "SG_MASK_RESOLVE", "SG_MASK_DIVISOR " + std::to_string(divisor)},
-         0});
+        {"Shadow/Mask/resolve" + std::to_string(divisor), "fullscreen.vert.glsl", "shadow_mask.frag.glsl", defines, 0});
     findMaskUniforms(p);
     return p;
 }
@@ -98,6 +106,7 @@ MaskProgram buildMask(const ShadowShaderInputs& in, bool normals) {
                                 defines);
     gpu::appendTechniqueDefines(in.techniques, defines);
     if (normals) defines.emplace_back("SG_MASK_NORMALS");
+    if (refinesPerLight(in)) defines.emplace_back("SG_MASK_REFINE_PER_LIGHT");
     MaskProgram p;
     p.program = gpu::buildProgram({"Shadow/Mask[" + label + (normals ? ",normals]" : "]"), "fullscreen.vert.glsl",
                                    "shadow_mask.frag.glsl", defines, in.techniques});
@@ -168,9 +177,12 @@ PixelRect maskBounds(const ShadowFrame& frame, std::span<const int> sceneLights,
     return bounds;
 }
 
-void setMaskUniforms(const MaskProgram& p, const ShadowMaskRequest& r, const glm::dmat4& projection, int divisor = 1) {
+/// `refine`: the techniques' program runs as the refine after a resolve (at `divisor` 1).
+void setMaskUniforms(const MaskProgram& p, const ShadowMaskRequest& r, const glm::dmat4& projection, int divisor = 1,
+                     bool refine = false) {
     const GLuint id = p.program.get();
     gl.ProgramUniform1i(id, p.divisor, divisor);
+    gl.ProgramUniform1i(id, p.refine, refine ? 1 : 0);
     const glm::dmat4 clipFromCs = cameraClipFromCs(r.camera, projection);
     const glm::vec3 forward = cameraForward(r.camera);
     gl.ProgramUniformMatrix4fv(id, p.csFromClip, 1, GL_FALSE, glm::value_ptr(glm::mat4(glm::inverse(clipFromCs))));
@@ -192,8 +204,9 @@ struct ShadowMask::Impl {
     gpu::Sampler point;            ///< nearest, no comparison: the game's textures read as values
     std::vector<Warning> pending;  ///< host errors the constructor found, for the next render
     /// Reduced resolution: the samples' visibility and positions and their framebuffer, and the
-    /// refine's marks at full resolution; made on first use, again when the sizes change.
-    gpu::Texture stageMask, stagePosition, marks;
+    /// refine's marks and prior (sg_refinePrior) at full resolution; made on first use, again
+    /// when the sizes change.
+    gpu::Texture stageMask, stagePosition, marks, prior;
     gpu::Framebuffer stageFramebuffer;
     int stageWidth = 0, stageHeight = 0, marksWidth = 0, marksHeight = 0;
 
@@ -248,6 +261,7 @@ void ShadowMask::Impl::ensureStage(int width, int height, int divisor) {
     }
     if (width != marksWidth || height != marksHeight) {
         marks = gpu::makeScreenTarget("Shadow/Mask/refine marks", GL_DEPTH_COMPONENT32F, width, height);
+        prior = gpu::makeScreenTarget("Shadow/Mask/refine prior", GL_RGBA16F, width, height);
         marksWidth = width;
         marksHeight = height;
     }
@@ -277,9 +291,16 @@ void ShadowMask::Impl::drawReduced(const ShadowShaderInputs& in, bool normals, i
     // The resolve into the target; depth 0 marks a pixel for the refine.
     MaskKey resolveKey{};
     resolveKey[0] = static_cast<std::uint8_t>(in.lights);
+    const bool perLight = refinesPerLight(in);
+    resolveKey[1] = perLight ? 1 : 0;
     resolveKey[2] = static_cast<std::uint8_t>(kResolveKey | divisor);
-    const MaskProgram& resolve = program(resolveKey, [&] { return buildResolve(in.lights, divisor); });
+    const MaskProgram& resolve = program(resolveKey, [&] { return buildResolve(in.lights, divisor, perLight); });
     gl.NamedFramebufferTexture(framebuffer.get(), GL_DEPTH_ATTACHMENT, marks.get(), 0);
+    if (perLight) {
+        gl.NamedFramebufferTexture(framebuffer.get(), GL_COLOR_ATTACHMENT1, prior.get(), 0);
+        const std::array<GLenum, 2> both{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        gl.NamedFramebufferDrawBuffers(framebuffer.get(), 2, both.data());
+    }
     gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer.get());
     gl.Viewport(0, 0, r.width, r.height);
     gl.Scissor(bounds.x0, bounds.y0, bounds.x1 - bounds.x0, bounds.y1 - bounds.y0);
@@ -295,6 +316,13 @@ void ShadowMask::Impl::drawReduced(const ShadowShaderInputs& in, bool normals, i
     setMaskUniforms(resolve, r, projection);
     gl.UseProgram(resolve.program.get());
     gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    if (perLight) {
+        // The refine reads the prior and writes the target alone.
+        const GLenum one = GL_COLOR_ATTACHMENT0;
+        gl.NamedFramebufferDrawBuffers(framebuffer.get(), 1, &one);
+        gl.NamedFramebufferTexture(framebuffer.get(), GL_COLOR_ATTACHMENT1, 0, 0);
+        gl.BindTextureUnit(SG_UNIT_MASK_STAGE, prior.get());
+    }
     // The refine's triangle lies at window depth 0.5: over the marks (0) only.
     gl.DepthFunc(GL_GREATER);
     gl.DepthMask(GL_FALSE);
@@ -355,7 +383,7 @@ void ShadowMask::render(const ShadowFrame& frame, const ShadowMaps& maps, std::s
         const int divisor = maskDivisor(r, in);
         if (divisor > 1) m.drawReduced(in, normals, divisor, r, projection, bounds);
         const MaskProgram& p = m.program(maskKey(in, normals), [&] { return buildMask(in, normals); });
-        setMaskUniforms(p, r, projection);
+        setMaskUniforms(p, r, projection, 1, divisor > 1);
         gl.Enable(GL_SCISSOR_TEST);
         gl.Scissor(bounds.x0, bounds.y0, bounds.x1 - bounds.x0, bounds.y1 - bounds.y0);
         gl.UseProgram(p.program.get());
