@@ -36,17 +36,17 @@ namespace shadow::render {
 /// Whether a frame of `passes` (lights of `frame`) runs the stage under `setting`: never when
 /// Off, always when it forces a resolution. For Auto, where the stage measured faster than the
 /// forward passes on llvmpipe (BENCHMARKS.md, screen-space visibility): a light with technique
-/// pcss or sdf (their filters are the dearest: at 1280x720 sdf 0.25-0.26 of forward's frame on
-/// the bunny spots, PCSS 0.89-1.05), or two or more lights that filter (any technique but hard:
-/// the sample scenes 0.49-0.93); and always when a light asks for contact shadows, which only
+/// pcss or sdf (their filters are the dearest: at 1280x720 sdf 0.27-0.28 of forward's frame on
+/// the bunny spots, PCSS 0.77-0.78), or two or more lights that filter (any technique but hard:
+/// the sample scenes 0.48-0.79); and always when a light asks for contact shadows, which only
 /// the stage draws.
 /// One PCF, VSM, VSSM or MSM light alone stays forward under `kMinQuarterStageHeight` rows: there
 /// its lookups cost about what the stage's surface and full-screen passes do (the stage forced at
-/// half resolution, bunny spots at 1280x720: 0.92-1.29 of forward's frame); from those rows the
-/// stage runs it at quarter resolution, measured 1.00-1.14 of forward (PCF; 0.77-0.91 before
-/// the feature reports, in a quieter run), 0.81-0.85 (VSSM) and 0.82-0.92 (MSM-soft), at an
-/// error against the truth equal or lower (README, "Screen-space visibility"). Hard shadows stay forward, and so does an image
-/// under `kMinStageHeight` rows, contact shadows aside.
+/// half resolution, bunny spots at 1280x720: 0.92-1.20 of forward's frame); from those rows the
+/// stage runs it at quarter resolution, measured 1.00-1.02 of forward (PCF; 0.77-0.91 before
+/// the feature reports), 0.93-0.94 (VSSM) and 0.78-0.80 (MSM-soft), at an error against the
+/// truth equal or lower (README, "Screen-space visibility"). Hard shadows stay forward, and so
+/// does an image under `kMinStageHeight` rows, contact shadows aside.
 [[nodiscard]] bool screenStagePays(ScreenVisibility setting, const ShadowFrame& frame,
                                    const std::vector<PassLights>& passes, int height);
 
