@@ -12,7 +12,7 @@
 //   parts), or with a light whose kept samples disagree (an edge sharper than the blocks) or
 //   report a feature narrower than them, is marked in depth for the refine pass.
 // - the refine: the stage at full resolution, depth-tested so that only marked pixels run. With
-//   two or more shadowed lights in the group (SG_VIS_REFINE, and SG_VIS_REFINE_PER_LIGHT in the
+//   three or more shadowed lights in the group (SG_VIS_REFINE, and SG_VIS_REFINE_PER_LIGHT in the
 //   resolve), the resolve also writes a prior (sg_refinePrior) and the refine recomputes only
 //   the lights it marks, keeping the resolve's value for the others.
 // Slots are specialised and grouped like the lit passes' (SG_VIS_LIGHTS, SG_PASS_GROUPS,
@@ -265,7 +265,8 @@ void main() {
     // blocks at the nearest kept sample, and those whose kept samples disagree.
     uint refine = sg_nearestSharp(sharp, weights);
     vec3 at = vec3(corner, float(uStageLayer));
-#define SG_VIS_CHANNEL(c) v[c] = sg_blendKept(textureGather(uStageVisibility, at, c), w, kept, 1u << c, refine);
+#define SG_VIS_CHANNEL(c) \
+    v[c] = sg_blendKept(textureGather(uStageVisibility, at, c), w, kept, 1u << c, refine);
     SG_VIS_CHANNEL(0)
 #if SG_VIS_LIGHTS > 1
     SG_VIS_CHANNEL(1)
@@ -276,9 +277,8 @@ void main() {
 #if SG_VIS_LIGHTS > 3
     SG_VIS_CHANNEL(3)
 #endif
-    // Where no sample lies on this surface, every light.
-    refine = weight == 0.0 ? 15u : refine;
-    refine &= (1u << SG_VIS_LIGHTS) - 1u;
+    // Every light at a geometric edge where the refine runs (sg_refinedLights).
+    refine = sg_refinedLights(refine, kept, SG_VIS_LIGHTS);
     // The refine pass recomputes those lights at full resolution: depth 0 marks the pixel for
     // that pass's depth test, which skips whole blocks without one (the filters' code then costs
     // nothing where it does not run), and the prior says which lights it runs.

@@ -49,7 +49,7 @@ layout(location = 1) out vec4 outPosition;
 uniform int uDivisor;  // the blocks a sample stands for: 1 at full resolution
 #ifdef SG_MASK_REFINE_PER_LIGHT
 // 1: the refine after a resolve, which computes only the lights the resolve's prior leaves
-// (with two or more shadowed lights: with one it is every light).
+// (with three or more shadowed lights, kMinPerLightRefineLights: with fewer it is every light).
 uniform int uRefine;
 layout(binding = SG_UNIT_MASK_STAGE) uniform sampler2D uRefinePrior;
 #define SG_MASK_ONLY_WHERE_LEFT(slot) for (int once = 0; once < int(sg_refinesLight(prior, slot)); ++once)
@@ -116,12 +116,11 @@ void main() {
         vec4 w = weights / max(weight, 1e-30);
         bvec4 kept = greaterThan(weights, vec4(0.0));
         refine = sg_nearestSharp(sharp, weights);
-        for (int l = 0; l < SG_MASK_LIGHTS; ++l) {
+            for (int l = 0; l < SG_MASK_LIGHTS; ++l) {
             vec4 g = vec4(samples[0][l], samples[1][l], samples[2][l], samples[3][l]);
             mask[l] = sg_blendKept(g, w, kept, 1u << l, refine);
         }
-        refine = weight == 0.0 ? 15u : refine;
-        refine &= (1u << SG_MASK_LIGHTS) - 1u;
+        refine = sg_refinedLights(refine, kept, SG_MASK_LIGHTS);
     }
     // Depth 0 marks the pixel for the refine pass, whose depth test skips the blocks without one.
     gl_FragDepth = refine != 0u ? 0.0 : 1.0;

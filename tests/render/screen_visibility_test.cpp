@@ -201,8 +201,8 @@ TEST(ScreenVisibility, ManyLightsInTwoPassesKeepTheirOwnVisibility) {
 // the screen: the resolve sends each pixel's lights to the refine one by one (those whose samples
 // disagree or report a feature narrower than the blocks), and the refine recomputes only those,
 // keeping the resolve's value for the others. Every light's visibility stays within 0.25 of
-// forward on 99 % of pixels (measured 0-0.11 % over; with each light's disagreement sent to
-// the next light's refine 0.07-1.6 %, to none 1.6-2.3 %: its edges left blocky).
+// forward on 99 % of pixels (measured 0-0.03 % over; with each light's disagreement sent to
+// the next light's refine 0.07-1.45 %, with no light marked 2.1-2.8 %: its edges left blocky).
 TEST(ScreenVisibility, EachLightOfAGroupIsRefinedWhereItsOwnEdgesAre) {
     test::glContext();
     Scene scene;

@@ -38,12 +38,17 @@ template <typename Techniques>
 }
 
 /// Whether the refine after a resolve recomputes only the lights the resolve marked at a pixel,
-/// for a group of lights of `techniques` (as `stageDivisor` takes them): with two or more
-/// shadowed lights. With one, its guard and the resolve's prior cost the refine and the resolve
-/// 1-5 ms at 1280x720 and save nothing.
+/// for a group of lights of `techniques` (as `stageDivisor` takes them): with three or more
+/// shadowed lights. With fewer, the lights' guards and the resolve's prior cost more than they
+/// save: at 1280x720, paired runs, the resolve +1.5-2.5 ms and the refine +1-2 ms on the
+/// two-light sample scenes `character` and `fence` (their frames +2-6 %), a refine 1-5 ms dearer
+/// with one light; with three and more a refine of a quarter less on `courtyard` (9 lights) and
+/// on builtin:default's `sdf`.
+inline constexpr int kMinPerLightRefineLights = 3;
 template <typename Techniques>
 [[nodiscard]] constexpr bool refinesPerLight(Techniques techniques) {
-    return std::count_if(techniques.begin(), techniques.end(), [](int t) { return t != SG_TECH_NONE; }) >= 2;
+    return std::count_if(techniques.begin(), techniques.end(), [](int t) { return t != SG_TECH_NONE; }) >=
+           kMinPerLightRefineLights;
 }
 
 }  // namespace shadow
