@@ -165,21 +165,28 @@ TEST(ScreenVisibility, ShadowsNarrowerThanTheBlocksAreRefined) {
     }
 }
 
-// Nine lights: two lit passes, each group of four with its own visibility layer; every light's
-// AOV is its own (the stage at full resolution equals forward).
-TEST(ScreenVisibility, ManyLightsInTwoPassesKeepTheirOwnVisibility) {
-    test::glContext();
+/// A box above the ground under nine point lights in a ring, PCSS and hard by turns (`mapSize`
+/// texels): two lit passes, groups of four, four and one.
+Scene nineLightScene(int mapSize) {
     Scene scene;
     test::addGround(scene, 6.0f);
     test::addBox(scene, "box", {0.0, 1.2, 0.0}, {0.5, 0.3, 0.5});
     addCamera(scene, "camera", Camera{}, {0.0, 5.5, 5.5}, {0.0, 0.0, 0.0});
     for (int i = 0; i < 9; ++i) {
         const double angle = 6.283185307179586 * i / 9;
-        Shadow shadow = test::hardShadow(256);
+        Shadow shadow = test::hardShadow(mapSize);
         shadow.technique = i % 2 == 0 ? ShadowTechnique::Pcss : ShadowTechnique::Hard;
         addLight(scene, "light " + std::to_string(i), test::pointSizedLight(LightType::Point), shadow,
                  {1.2 * std::cos(angle), 3.2, 1.2 * std::sin(angle)}, {0, -1, 0});
     }
+    return scene;
+}
+
+// Nine lights: two lit passes, each group of four with its own visibility layer; every light's
+// AOV is its own (the stage at full resolution equals forward).
+TEST(ScreenVisibility, ManyLightsInTwoPassesKeepTheirOwnVisibility) {
+    test::glContext();
+    Scene scene = nineLightScene(256);
     FrameRunner forward, screen;
     const Rendered a = renderWith(scene, ScreenVisibility::Off, 120, 90, forward);
     const Rendered b = renderWith(scene, ScreenVisibility::Full, 120, 90, screen);
@@ -235,6 +242,29 @@ TEST(ScreenVisibility, EachLightOfAGroupIsRefinedWhereItsOwnEdgesAre) {
                     techniqueName(techniques[l]), dark, 100.0 * d.over);
         EXPECT_GT(dark, 200) << "light " << l;  // its shadows are on screen
         EXPECT_LT(d.over, 0.01) << "light " << l;
+    }
+}
+
+// The same nine lights at quarter resolution: the groups of four refine light by light over
+// one prior (resolve and refine group after group), the group of one as a whole. Every light
+// within 0.25 of forward on 99.7 % of pixels (measured 0-0.06 % over; with each light's
+// disagreement sent to the next light's refine, the hard lights 0.49-1.02 %).
+TEST(ScreenVisibility, ManyLightsAtQuarterResolutionKeepTheirOwnVisibility) {
+    test::glContext();
+    Scene scene = nineLightScene(512);
+    FrameRunner forward, screen;
+    const Rendered a = renderWith(scene, ScreenVisibility::Off, 320, 240, forward);
+    const Rendered b = renderWith(scene, ScreenVisibility::Quarter, 320, 240, screen);
+    EXPECT_EQ(b.stats.mainPasses, 2);
+    ASSERT_EQ(b.images.visibility.size(), 9u);
+    for (std::size_t l = 0; l < 9; ++l) {
+        const Difference d = difference(b.images.visibility[l], a.images.visibility[l], 0.25f);
+        int dark = 0;
+        for (const float v : a.images.visibility[l].pixels) dark += v < 0.5f ? 1 : 0;
+        std::printf("[ measured ] light %zu: %d dark pixels, over 0.25 on %.2f %% of pixels\n", l, dark,
+                    100.0 * d.over);
+        EXPECT_GT(dark, 100) << "light " << l;
+        EXPECT_LT(d.over, 0.003) << "light " << l;
     }
 }
 
