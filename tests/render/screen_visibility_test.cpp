@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <vector>
 
@@ -191,6 +192,13 @@ TEST(ScreenVisibility, ManyLightsInTwoPassesKeepTheirOwnVisibility) {
     const Rendered a = renderWith(scene, ScreenVisibility::Off, 120, 90, forward);
     const Rendered b = renderWith(scene, ScreenVisibility::Full, 120, 90, screen);
     EXPECT_EQ(b.stats.mainPasses, 2);
+    // Triangles drawn: forward, the scene by each of the two lit passes; through the stage, by
+    // its surface pass alone (the lit passes are full-screen triangles).
+    std::int64_t sceneTriangles = 0;
+    scene.world.view<Mesh>().each(
+        [&](Entity, const Mesh& m) { sceneTriangles += static_cast<std::int64_t>(m.data->indices.size() / 3); });
+    EXPECT_EQ(a.stats.mainTriangles, 2 * sceneTriangles);
+    EXPECT_EQ(b.stats.mainTriangles, sceneTriangles);
     ASSERT_EQ(b.images.visibility.size(), 9u);
     double shadowed = 0.0;
     for (std::size_t l = 0; l < 9; ++l) {

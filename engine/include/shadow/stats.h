@@ -4,6 +4,7 @@
 #include <shadow/auto_technique.h>
 #include <shadow/warnings.h>
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -92,6 +93,8 @@ struct FrameStats {
     int shadowLayersCleared = 0;
     int shadowDrawCalls = 0;
     int mainDrawCalls = 0;
+    /// Triangles the main passes drew (every pass: a scene drawn by two lit passes counts twice).
+    std::int64_t mainTriangles = 0;
     int mainPasses = 0;
     /// Shader programs built this frame (compiled, or loaded from the program cache) by the shadow
     /// passes, the mask and the lit passes; 0 in steady state.

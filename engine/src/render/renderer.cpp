@@ -195,7 +195,8 @@ struct Renderer::Impl {
     /// texture and returns the program to draw it with (made current here when it changes), one
     /// built for `deform` (gpu::meshDeform).
     template <typename PerMesh>
-    void drawMeshes(const World& world, const CameraView& cam, const DAabb* reach, PerMesh&& perMesh, int& draws);
+    void drawMeshes(const World& world, const CameraView& cam, const DAabb* reach, PerMesh&& perMesh,
+                    FrameStats& stats);
     /// The depth pre-pass; `cutouts`: the scene has cut-out materials, whose holes it leaves out.
     void depthPrepass(const World& world, const CameraView& cam, const MainCamera& mc, bool cutouts, FrameStats& stats);
     void litPass(const World& world, const CameraView& cam, const MainCamera& mc, std::size_t index,
@@ -269,7 +270,7 @@ void Renderer::Impl::uploadPasses() {
 
 template <typename PerMesh>
 void Renderer::Impl::drawMeshes(const World& world, const CameraView& cam, const DAabb* reach, PerMesh&& perMesh,
-                                int& draws) {
+                                FrameStats& stats) {
     bool culling = false;
     gl.Disable(GL_CULL_FACE);
     GLuint current = 0;
@@ -311,7 +312,8 @@ void Renderer::Impl::drawMeshes(const World& world, const CameraView& cam, const
         const int indices =
             gpu::MeshCacheAccess::bindDeformed(meshes, mesh.data, program, uniforms->deform, skin, morph);
         gl.DrawElements(GL_TRIANGLES, indices, GL_UNSIGNED_INT, nullptr);
-        ++draws;
+        ++stats.mainDrawCalls;
+        stats.mainTriangles += indices / 3;
     });
     gl.Disable(GL_CULL_FACE);
 }
@@ -333,7 +335,7 @@ void Renderer::Impl::depthPrepass(const World& world, const CameraView& cam, con
             gpu::MeshCacheAccess::bindTexture(meshes, m.baseColorTexture, SG_UNIT_BASE_COLOR);
             return Choice{p.program.get(), &p.mesh};
         },
-        stats.mainDrawCalls);
+        stats);
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
@@ -418,7 +420,7 @@ void Renderer::Impl::surfacePass(const World& world, const CameraView& cam, cons
             render::bindMaterialTextures(meshes, m, m.usesMaps());
             return std::pair<GLuint, const render::MeshUniforms*>{id, &p.mesh};
         },
-        stats.mainDrawCalls);
+        stats);
 }
 
 void Renderer::Impl::screenVisibilityPass(const ShadowFrame& frame, const MainCamera& mc, std::size_t index,
@@ -509,7 +511,7 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
             render::bindMaterialTextures(meshes, m, withMaps);
             return std::pair<GLuint, const render::MeshUniforms*>{program, &p.mesh};
         },
-        stats.mainDrawCalls);
+        stats);
     gl.Disable(GL_BLEND);
     gl.Disable(GL_SCISSOR_TEST);
 }
