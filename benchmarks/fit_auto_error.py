@@ -228,28 +228,49 @@ def fit_lights(a):
 def lookup_costs(work):
     """The cost model's lit-pass defaults from auto_budget.py's fixed runs: per family, the lit pass's
     growth over the run without shadows per pixel a light reaches (median over the scenes), then
-    the per-tap cost from PCSS's two tap counts and each family's per-pixel rest."""
+    the per-tap cost from PCSS's two tap counts and each family's per-pixel rest; and the lit pass
+    without shadows as screen pixels x (perScreenPixel + shaded lights x perShadedPixel) +
+    triangles drawn x perLitTriangle, least squares over the scenes' runs without shadows."""
     growth = {}
+    base_rows = []
     for scene in sorted(os.listdir(work)):
         path = os.path.join(work, scene, "results.json")
         if not os.path.exists(path):
             continue
         r = json.load(open(path))
         pixels = sum(v["pixels"] for v in r["inputs"].values())
-        lit = lambda key: json.load(open(os.path.join(work, scene, r["runs"][key]["folder"], "stats.json")))[
-            "timingsMs"]["passes"]["Main/Lit"]["median"]
+        stats = lambda key: json.load(open(os.path.join(work, scene, r["runs"][key]["folder"], "stats.json")))
+        lit = lambda key: stats(key)["timingsMs"]["passes"]["Main/Lit"]["median"]
         base = lit("none")
         for name, (technique, _size, pcf, blocker) in r["fixed"].items():
             growth.setdefault((technique, pcf, blocker), []).append((lit(name) - base) / pixels * 1e6)
-        growth.setdefault(("shading",), []).append(base / pixels * 1e6)
+        none = stats("none")
+        screen = none["size"][0] * none["size"][1]
+        base_rows.append((scene, screen, len(none["lights"]), none["counters"].get("mainTriangles", 0), base))
     med = {k: statistics.median(v) for k, v in growth.items()}
     tap = (med[("pcss", 16, 16)] - med[("pcss", 8, 8)]) / 12.0
-    print(f"ns per pixel a light reaches (median over {len(growth[('shading',)])} scenes):")
+    print(f"ns per pixel a light reaches (median over {len(base_rows)} scenes):")
     for k, v in sorted(med.items()):
         print(f"  {' '.join(map(str, k))}: {v:.0f}")
     print(f"perTapMs = {tap * 1e-6:.3g}; perPixelMs = {{{(med[('hard', 1, 1)] - tap) * 1e-6:.3g}, "
-          f"{(med[('pcf', 16, 16)] - 16 * tap) * 1e-6:.3g}, {(med[('pcss', 8, 8)] - 12 * tap) * 1e-6:.3g}}}; "
-          f"perShadedPixelMs = {med[('shading',)] * 1e-6:.3g}")
+          f"{(med[('pcf', 16, 16)] - 16 * tap) * 1e-6:.3g}, {(med[('pcss', 8, 8)] - 12 * tap) * 1e-6:.3g}}}")
+    # The lit pass without shadows: normal equations of the three terms (ms).
+    cols = [lambda row: row[1], lambda row: row[1] * row[2], lambda row: row[3]]
+    n = [[sum(a(row) * b(row) for row in base_rows) for b in cols] for a in cols]
+    y = [sum(a(row) * row[4] for row in base_rows) for a in cols]
+    for k in range(3):
+        for i in range(k + 1, 3):
+            f = n[i][k] / n[k][k]
+            n[i] = [n[i][j] - f * n[k][j] for j in range(3)]
+            y[i] -= f * y[k]
+    x = [0.0] * 3
+    for k in reversed(range(3)):
+        x[k] = (y[k] - sum(n[k][j] * x[j] for j in range(k + 1, 3))) / n[k][k]
+    print(f"perScreenPixelMs = {x[0]:.3g}; perShadedPixelMs = {x[1]:.3g}; perLitTriangleMs = {x[2]:.3g}")
+    for scene, screen, lights, triangles, base in base_rows:
+        fitted = screen * (x[0] + lights * x[1]) + triangles * x[2]
+        print(f"  {scene}: lit pass without shadows {base:.2f} ms, fitted {fitted:.2f} "
+              f"({screen} pixels, {lights} lights, {triangles} triangles)")
 
 
 def settle_frames(work):

@@ -110,9 +110,10 @@ public:
     /// least-squares fit over the recent frames (`kAutoLitMemory`), so terms that run together
     /// are told apart as the mix of families changes from frame to frame.
     void observeLitPass(std::span<const double, kAutoLitTerms> predictedMs, double measuredMs);
-    /// Predicted lit-pass shading without lookups: `pixels` x `lights` x perShadedPixel, times the
-    /// shading term's scale.
-    [[nodiscard]] double shadingMs(double pixels, int lights) const;
+    /// Predicted lit pass without lookups, times the shading term's scale: the screen's `pixels`
+    /// (perScreenPixel each), each of its `lights` shaded lights' shading (perShadedPixel a pixel)
+    /// and the scene's `triangles` drawn by the lit passes (perLitTriangle each).
+    [[nodiscard]] double shadingMs(double pixels, int lights, double triangles) const;
     /// The lit-pass term of candidate `c`'s lookups.
     [[nodiscard]] static AutoLitTerm termOf(const AutoCandidate& c);
 
@@ -126,9 +127,18 @@ public:
     /// `bash benchmarks/run_auto_budget.sh`; one round, so within about 30 % from run to run:
     /// the calibration replaces them within the first frames).
     std::array<double, 3> perPixelMs{3.0e-5, 3.4e-5, 7.5e-5};
-    double perTapMs = 6.2e-6;          ///< one tap per pixel
-    double perShadedPixelMs = 4.0e-5;  ///< one light's shading of one pixel, lookups aside
-    double shadowScale = 1.0;          ///< measured / predicted shadow passes (calibrated)
+    double perTapMs = 6.2e-6;  ///< one tap per pixel
+    /// The lit pass without lookups (the shading term), llvmpipe's at 320x240 from the runs
+    /// without shadows of the same five scenes (a least-squares fit, the same command): what
+    /// the screen costs whatever the lights (raster, material), each shaded light's shading of a
+    /// pixel, and a triangle the lit passes draw. The scene's triangles count: builtin:bunny's
+    /// frame without shadows takes 3 times builtin:default's with as many lights. (A cost per
+    /// shaded light and pixel alone, 40 ns, over-predicted builtin:default's 2.4 ms four times
+    /// and left the lookups' scales the rest: auto went over its budget there.)
+    double perScreenPixelMs = 2.6e-5;
+    double perShadedPixelMs = 1.5e-6;
+    double perLitTriangleMs = 7.6e-5;
+    double shadowScale = 1.0;  ///< measured / predicted shadow passes (calibrated)
     /// Measured / predicted of each lit-pass term (`AutoLitTerm`), calibrated.
     std::array<double, kAutoLitTerms> litScale{1.0, 1.0, 1.0, 1.0};
 

@@ -1,6 +1,8 @@
 // The shadow planner's side of technique "auto" (auto_planning.h).
 #include "shadow/auto_planning.h"
 
+#include <shadow/components.h>
+#include <shadow/shared_constants.h>
 #include <shadow/stats.h>
 
 #include "core/camera.h"
@@ -147,7 +149,14 @@ void AutoPlanning::learn(const World& world, const CameraView& camera, const Sha
                                       [](const ShadowLightPlan& p) { return p.shaded && p.affectsView; });
     const AutoCostModel& costs = state_.costs();
     litPredictedMs_.fill(0.0);
-    litPredictedMs_[static_cast<std::size_t>(AutoLitTerm::Shading)] = costs.shadingMs(screen, static_cast<int>(shaded));
+    // The scene's triangles, drawn once per lit pass of up to SG_MAX_LIGHTS_PER_PASS lights.
+    double triangles = 0.0;
+    world.view<Mesh, WorldTransform>().each([&](Entity e, const Mesh&, const WorldTransform& wt) {
+        if (wt.finite) triangles += trianglesOf(world, e);
+    });
+    const auto litPasses = std::max<std::ptrdiff_t>(1, (shaded + SG_MAX_LIGHTS_PER_PASS - 1) / SG_MAX_LIGHTS_PER_PASS);
+    litPredictedMs_[static_cast<std::size_t>(AutoLitTerm::Shading)] =
+        costs.shadingMs(screen, static_cast<int>(shaded), triangles * static_cast<double>(litPasses));
     drawnNames_.clear();
     drawnIds_.clear();
     drawnPredictedMs_.clear();

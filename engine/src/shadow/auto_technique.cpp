@@ -141,9 +141,10 @@ double AutoCostModel::lookupMs(const AutoLightInput& in, const AutoCandidate& c)
     return litScale[term] * std::max(in.pixels, 0.0) * (perPixelMs[term - 1] + tapsOf(c) * perTapMs);
 }
 
-double AutoCostModel::shadingMs(double pixels, int lights) const {
-    return litScale[static_cast<std::size_t>(AutoLitTerm::Shading)] * std::max(pixels, 0.0) * std::max(lights, 0) *
-           perShadedPixelMs;
+double AutoCostModel::shadingMs(double pixels, int lights, double triangles) const {
+    const double unscaled = std::max(pixels, 0.0) * (perScreenPixelMs + std::max(lights, 0) * perShadedPixelMs) +
+                            std::max(triangles, 0.0) * perLitTriangleMs;
+    return litScale[static_cast<std::size_t>(AutoLitTerm::Shading)] * unscaled;
 }
 
 void AutoCostModel::observeShadowPass(double predictedMs, double measuredMs) {
