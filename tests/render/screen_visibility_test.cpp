@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "render/material_test_support.h"
@@ -29,6 +30,13 @@ Rendered renderWith(Scene& scene, ScreenVisibility setting, int width, int heigh
     options.height = height;
     options.screenVisibility = setting;
     return test::renderFrame(runner, scene, options);
+}
+
+/// `scene` forward and through the stage at `setting`, each through a runner of its own.
+std::pair<Rendered, Rendered> forwardAndStage(Scene& scene, ScreenVisibility setting, int width, int height) {
+    FrameRunner forward, screen;
+    Rendered a = renderWith(scene, ScreenVisibility::Off, width, height, forward);
+    return {std::move(a), renderWith(scene, setting, width, height, screen)};
 }
 
 Scene builtin(const char* name, ShadowTechnique technique) {
@@ -188,9 +196,7 @@ Scene nineLightScene(int mapSize) {
 TEST(ScreenVisibility, ManyLightsInTwoPassesKeepTheirOwnVisibility) {
     test::glContext();
     Scene scene = nineLightScene(256);
-    FrameRunner forward, screen;
-    const Rendered a = renderWith(scene, ScreenVisibility::Off, 120, 90, forward);
-    const Rendered b = renderWith(scene, ScreenVisibility::Full, 120, 90, screen);
+    const auto [a, b] = forwardAndStage(scene, ScreenVisibility::Full, 120, 90);
     EXPECT_EQ(b.stats.mainPasses, 2);
     // Triangles drawn: forward, the scene by each of the two lit passes; through the stage, by
     // its surface pass alone (the lit passes are full-screen triangles).
@@ -238,9 +244,7 @@ TEST(ScreenVisibility, EachLightOfAGroupIsRefinedWhereItsOwnEdgesAre) {
         addLight(scene, "spot " + std::to_string(i), spot, shadow, {x + 0.3, 2.5, -1.0},
                  glm::normalize(glm::dvec3(-0.1, -1.0, 0.6)));
     }
-    FrameRunner forward, screen;
-    const Rendered a = renderWith(scene, ScreenVisibility::Off, 320, 240, forward);
-    const Rendered b = renderWith(scene, ScreenVisibility::Quarter, 320, 240, screen);
+    const auto [a, b] = forwardAndStage(scene, ScreenVisibility::Quarter, 320, 240);
     ASSERT_EQ(b.images.visibility.size(), 4u);
     for (std::size_t l = 0; l < 4; ++l) {
         const Difference d = difference(b.images.visibility[l], a.images.visibility[l], 0.25f);
@@ -260,9 +264,7 @@ TEST(ScreenVisibility, EachLightOfAGroupIsRefinedWhereItsOwnEdgesAre) {
 TEST(ScreenVisibility, ManyLightsAtQuarterResolutionKeepTheirOwnVisibility) {
     test::glContext();
     Scene scene = nineLightScene(512);
-    FrameRunner forward, screen;
-    const Rendered a = renderWith(scene, ScreenVisibility::Off, 320, 240, forward);
-    const Rendered b = renderWith(scene, ScreenVisibility::Quarter, 320, 240, screen);
+    const auto [a, b] = forwardAndStage(scene, ScreenVisibility::Quarter, 320, 240);
     EXPECT_EQ(b.stats.mainPasses, 2);
     ASSERT_EQ(b.images.visibility.size(), 9u);
     for (std::size_t l = 0; l < 9; ++l) {
