@@ -320,7 +320,8 @@ void ScreenStage::visibilityOfGroup(const Group& g, const ScreenRays& rays, Fram
         // elsewhere) and writes the prior: its visibility, -1 for the lights to recompute. The
         // refine then runs where the depth test (GREATER than the mark, at the far plane) lets it,
         // and there computes only the lights the prior leaves.
-        // With one shadowed light the refine is the stage at full resolution, without a prior.
+        // With fewer than kMinPerLightRefineLights shadowed lights the refine is the stage at
+        // full resolution (every light), without a prior.
         const bool perLight = refinesPerLight(g.variant);
         gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, refine_.get(), 0);
         if (perLight) {
