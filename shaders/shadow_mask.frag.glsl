@@ -116,7 +116,7 @@ void main() {
         vec4 w = weights / max(weight, 1e-30);
         bvec4 kept = greaterThan(weights, vec4(0.0));
         refine = sg_nearestSharp(sharp, weights);
-            for (int l = 0; l < SG_MASK_LIGHTS; ++l) {
+        for (int l = 0; l < SG_MASK_LIGHTS; ++l) {
             vec4 g = vec4(samples[0][l], samples[1][l], samples[2][l], samples[3][l]);
             mask[l] = sg_blendKept(g, w, kept, 1u << l, refine);
         }
