@@ -1,8 +1,6 @@
 // The shadow planner's side of technique "auto" (auto_planning.h).
 #include "shadow/auto_planning.h"
 
-#include <shadow/components.h>
-#include <shadow/shared_constants.h>
 #include <shadow/stats.h>
 
 #include "core/camera.h"
@@ -149,14 +147,9 @@ void AutoPlanning::learn(const World& world, const CameraView& camera, const Sha
                                       [](const ShadowLightPlan& p) { return p.shaded && p.affectsView; });
     const AutoCostModel& costs = state_.costs();
     litPredictedMs_.fill(0.0);
-    // The scene's triangles, drawn once per lit pass of up to SG_MAX_LIGHTS_PER_PASS lights.
-    double triangles = 0.0;
-    world.view<Mesh, WorldTransform>().each([&](Entity e, const Mesh&, const WorldTransform& wt) {
-        if (wt.finite) triangles += trianglesOf(world, e);
-    });
-    const auto litPasses = std::max<std::ptrdiff_t>(1, (shaded + SG_MAX_LIGHTS_PER_PASS - 1) / SG_MAX_LIGHTS_PER_PASS);
-    litPredictedMs_[static_cast<std::size_t>(AutoLitTerm::Shading)] =
-        costs.shadingMs(screen, static_cast<int>(shaded), triangles * static_cast<double>(litPasses));
+    // The shading term waits for the frame's triangles, which the renderer counts (observe).
+    screenPixels_ = screen;
+    shadedLights_ = static_cast<int>(shaded);
     drawnNames_.clear();
     drawnIds_.clear();
     drawnPredictedMs_.clear();
@@ -204,6 +197,10 @@ void AutoPlanning::observe(const FrameStats& stats) {
         return;
     }
     ++learnedFrames_;
+    // The lit pass without lookups, from the triangles the main passes drew (each lit pass
+    // draws the scene; FrameStats::mainTriangles).
+    litPredictedMs_[static_cast<std::size_t>(AutoLitTerm::Shading)] =
+        state_.costs().shadingMs(screenPixels_, shadedLights_, static_cast<double>(stats.mainTriangles));
     state_.calibrate(drawnNames_, drawnIds_, drawnPredictedMs_, litPredictedMs_, stats);
 }
 

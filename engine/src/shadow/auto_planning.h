@@ -54,7 +54,9 @@ private:
     std::vector<std::string_view> drawnNames_;
     std::vector<std::uint64_t> drawnIds_;  ///< an auto light's entity bits, else 0
     std::vector<double> drawnPredictedMs_;
-    std::array<double, kAutoLitTerms> litPredictedMs_{};
+    std::array<double, kAutoLitTerms> litPredictedMs_{};  ///< the shading term's set by `observe`
+    double screenPixels_ = 0.0;                           ///< the frame's, for the shading term
+    int shadedLights_ = 0;
     // choose's working lists, kept for their storage.
     std::vector<std::uint64_t> ids_;
     std::vector<AutoLightInput> inputs_;
