@@ -12,11 +12,22 @@
 //
 // With SG_DEFERRED the pass is the screen-space visibility stage's last (RenderOptions::
 // screenVisibility): one full-screen triangle that reads each pixel's surface from the surface
-// pass's targets and each light's visibility from the stage (SG_READS_GBUFFER), no technique run.
+// pass's targets (SG_READS_GBUFFER) and each light's visibility from the stage. A group of four
+// slots (k = 0 for slots 0-3, 1 for 4-7) whose stage ran at a reduced resolution d, without
+// contact shadows, is resolved here (SG_LAYER<k>_RESOLVE d, sg_resolveStage); the others'
+// visibility is read from the stage's full-resolution target (SG_LAYER<k>_RESOLVE 0), written
+// by its passes. A light the resolve marks (SG_LAYER<k>_PER_LIGHT 0: every light of its group
+// where one is marked, as the stage's own refine) adds nothing here: the pass writes the marks
+// (a bit per slot, SG_OUT_MARKS), and with SG_LIT_CORRECTION the same program is the pass that
+// adds those lights, their technique run at full resolution, at the marked pixels alone
+// (depth-tested against the marks, render/screen_visibility.h): a CPU rasteriser then skips
+// whole blocks without one, where a loop here would run the technique under the mask of every
+// block an edge crosses (twice to four times the refine pass's time, measured on the bunny spot).
 #include "shadow_visibility.glsl"
 #include "shadow_surface.glsl"
 #include "lighting.glsl"
 #include "screen_gbuffer.glsl"
+#include "screen_resolve.glsl"
 #ifndef SG_DEFERRED
 #include "material.glsl"
 #endif
@@ -29,6 +40,31 @@
 layout(binding = SG_UNIT_GBUFFER_MATERIAL) uniform usampler2D sg_gbufferMaterial;
 // Slots 0-3 of the pass in layer 0, 4-7 in layer 1 (screen_visibility.frag.glsl).
 layout(binding = SG_UNIT_SCREEN_VISIBILITY) uniform sampler2DArray sg_screenVisibility;
+#ifndef SG_LAYER0_RESOLVE
+#define SG_LAYER0_RESOLVE 0
+#endif
+#ifndef SG_LAYER1_RESOLVE
+#define SG_LAYER1_RESOLVE 0
+#endif
+#ifndef SG_LAYER0_PER_LIGHT
+#define SG_LAYER0_PER_LIGHT 0
+#endif
+#ifndef SG_LAYER1_PER_LIGHT
+#define SG_LAYER1_PER_LIGHT 0
+#endif
+#define SG_LIT_RESOLVES (SG_LAYER0_RESOLVE > 1 || SG_LAYER1_RESOLVE > 1)
+#ifdef SG_LIT_CORRECTION
+// The marks the lit pass wrote (SG_OUT_MARKS): bit s, slot s's visibility to add.
+layout(binding = SG_UNIT_LIT_STAGE) uniform usampler2D sg_litMarks;
+#else
+// The groups resolved here: the stage at their divisor (one for both), its layers as the groups'.
+layout(binding = SG_UNIT_LIT_STAGE) uniform sampler2DArray sg_litStage;
+layout(binding = SG_UNIT_SCREEN_DEPTH) uniform usampler2DArray sg_litStageDepth;
+uniform float uPixelAngle;  // 2 tan(fov / 2) / height: a pixel's footprint per metre of depth
+#if SG_LIT_RESOLVES
+layout(location = SG_OUT_MARKS) out uint outMarks;
+#endif
+#endif
 #ifdef SG_GBUFFER_MATERIAL
 // A frame with normal maps or emission: the emitted radiance and the lighting normal.
 layout(binding = SG_UNIT_GBUFFER_EXTRA) uniform usampler2D sg_gbufferExtra;
@@ -88,6 +124,12 @@ vec3 debugColor = vec3(0.0);
 #define SG_DEBUG_CAPTURE(i, v)
 #endif
 
+// The program's slots are the pass's from this one on: 0, but for a correction of the pass's
+// second group of four (slots 4-7), which compiles that group alone.
+#ifndef SG_SLOT_BASE
+#define SG_SLOT_BASE 0
+#endif
+
 // Light `slot` of the pass, of group g: its type, technique and kernel are compile-time constants
 // (SG_GROUP<g>_*), SG_GROUP<g>_VISIBILITY its technique's function (shadow_techniques.glsl).
 #define SG_SHADE_LIGHT(g, slot)                                                                   \
@@ -105,7 +147,7 @@ vec3 debugColor = vec3(0.0);
 // Group g of the pass's slots, a light of its own: straight-line code, constant indices (sampler,
 // records). Folded away for g >= SG_PASS_GROUPS.
 #define SG_SHADE_ONE(g)                                                                           \
-    if (g < SG_PASS_GROUPS) SG_SHADE_LIGHT(g, SG_GROUP##g##_FIRST)
+    if (g < SG_PASS_GROUPS) SG_SHADE_LIGHT(g, SG_SLOT_BASE + SG_GROUP##g##_FIRST)
 
 // Group g of several lights alike: its code compiled once, in a loop over its slots
 // (sg_runtimeZero keeps the compiler from unrolling it), whose slot indexes the samplers
@@ -113,12 +155,38 @@ vec3 debugColor = vec3(0.0);
 #define SG_SHADE_MANY(g)                                                                          \
     if (g < SG_PASS_GROUPS) {                                                                     \
         const int slots[SG_GROUP##g##_COUNT] = SG_GROUP##g##_SLOTS;                               \
-        for (int k = 0; k < SG_GROUP##g##_COUNT + sg_runtimeZero(); ++k) SG_SHADE_LIGHT(g, slots[k]) \
+        for (int k = 0; k < SG_GROUP##g##_COUNT + sg_runtimeZero(); ++k) SG_SHADE_LIGHT(g, SG_SLOT_BASE + slots[k]) \
     }
 
 #ifdef SG_DEFERRED
+// Whether pass slot `slot` is marked for its visibility at full resolution (litMarks).
+#define SG_LIT_MARKED(slot) (((litMarks >> uint(slot)) & 1u) != 0u)
+#ifdef SG_LIT_CORRECTION
+// The correction adds a marked light's shading times its visibility, the others nothing. It
+// compiles one group of four of the pass (its slots from SG_SLOT_BASE on; straight-line, as the
+// stage's programs: a program of the pass's eight slots ran the technique of each marked pixel
+// at a third more time on `courtyard`, its slots grouped and its loops isolated) and runs where
+// that group is marked. With SG_LIT_CORRECTION_ALL (whole-group marks) every light of it is
+// marked where it runs: straight-line code; else a loop of one trip or none per light.
+#ifdef SG_LIT_CORRECTION_ALL
 #define SG_LIGHT_VISIBILITY(g, slot) \
-    if (SG_GROUP##g##_TECH != SG_TECH_NONE && receiveShadows) v = screenVisibility[(slot) / 4][(slot) % 4];
+    v = 0.0;                         \
+    if (SG_GROUP##g##_TECH != SG_TECH_NONE) v = SG_LIT_TECHNIQUE(g, slot);
+#else
+#define SG_LIGHT_VISIBILITY(g, slot)                                                       \
+    v = 0.0;                                                                               \
+    if (SG_GROUP##g##_TECH != SG_TECH_NONE)                                               \
+        for (int once = 0; once < int(SG_LIT_MARKED(slot)); ++once) v = SG_LIT_TECHNIQUE(g, slot);
+#endif
+#define SG_LIT_TECHNIQUE(g, slot) \
+    SG_GROUP##g##_VISIBILITY(slot, L, s.csPosition, shadowNormal, s.geoNormal, 0.0, viewDistance)
+#else
+// The stage's visibility (1 where the surface receives no shadow), 0 for a marked light, which
+// the correction adds.
+#define SG_LIGHT_VISIBILITY(g, slot)                                                          \
+    if (SG_GROUP##g##_TECH != SG_TECH_NONE)                                                  \
+        v = SG_LIT_MARKED(slot) ? 0.0 : receiveShadows ? screenVisibility[(slot) / 4][(slot) % 4] : 1.0;
+#endif
 #else
 #define SG_LIGHT_VISIBILITY(g, slot)                  \
     if (shadowWanted(SG_GROUP##g##_TECH, shading)) \
@@ -171,8 +239,32 @@ void main() {
     // Only pixels the surface pass drew run (depth-tested at the far plane): the background
     // keeps the targets' clear values, as forward leaves it.
     bool receiveShadows = sg_gbufferReceives(gSurface);
-    vec4 screenVisibility[2] = vec4[](texelFetch(sg_screenVisibility, ivec3(pixel, 0), 0),
-                                      SG_PASS_LIGHTS > 4 ? texelFetch(sg_screenVisibility, ivec3(pixel, 1), 0) : vec4(1.0));
+    // Per group of four slots: its visibility; the pass's marked slots (a bit each).
+    vec4 screenVisibility[2] = vec4[](vec4(1.0), vec4(1.0));
+    uint litMarks = 0u;
+#ifdef SG_LIT_CORRECTION
+    litMarks = texelFetch(sg_litMarks, pixel, 0).r;
+#else
+#if SG_LAYER0_RESOLVE > 1
+    uint refine0;
+    screenVisibility[0] = sg_resolveStage(pixel, gSurface, SG_LAYER0_RESOLVE, sg_litStage, sg_litStageDepth, 0,
+                                          min(SG_PASS_LIGHTS, 4), uPixelAngle, refine0);
+    litMarks = sg_groupMarks(refine0, min(SG_PASS_LIGHTS, 4), SG_LAYER0_PER_LIGHT != 0);
+#else
+    screenVisibility[0] = texelFetch(sg_screenVisibility, ivec3(pixel, 0), 0);
+#endif
+#if SG_LAYER1_RESOLVE > 1
+    uint refine1;
+    screenVisibility[1] = sg_resolveStage(pixel, gSurface, SG_LAYER1_RESOLVE, sg_litStage, sg_litStageDepth, 1,
+                                          SG_PASS_LIGHTS - 4, uPixelAngle, refine1);
+    litMarks |= sg_groupMarks(refine1, SG_PASS_LIGHTS - 4, SG_LAYER1_PER_LIGHT != 0) << 4u;
+#else
+    if (SG_PASS_LIGHTS > 4) screenVisibility[1] = texelFetch(sg_screenVisibility, ivec3(pixel, 1), 0);
+#endif
+#if SG_LIT_RESOLVES
+    outMarks = litMarks;
+#endif
+#endif
     vec3 vCsPosition = sg_gbufferPosition(pixel, gSurface);
     vec2 albedoRg = unpackHalf2x16(gMaterial.x), albedoB = unpackHalf2x16(gMaterial.y);
     vec2 specularRg = unpackHalf2x16(gMaterial.z), specularB = unpackHalf2x16(gMaterial.w);
@@ -182,6 +274,8 @@ void main() {
     s.geoNormal = sg_gbufferGeoNormal(gSurface);
     s.curvature = 0.0;  // shading does not read it
     s.normal = sg_gbufferNormal(gSurface);
+    // The lookups take the interpolated normal, as the stage's passes do (never the normal map's).
+    vec3 shadowNormal = s.normal;
     s.albedo = vec3(albedoRg, albedoB.x);
     s.specular = vec3(specularRg, specularB.x);
     s.shininess = albedoB.y;
@@ -229,7 +323,12 @@ void main() {
     vec3 color = vec3(0.0);
     for (int i = 0; i < uFirstPass; ++i) color = ambientShading(s, uAmbientSky, uAmbientGround, occlusion) + emission;
 #ifdef SG_WRITE_AOVS
+#ifdef SG_LIT_CORRECTION
+    // What the correction adds to each slot's visibility: 0 but for the lights it recomputes.
+    float visibility[SG_MAX_LIGHTS_PER_PASS] = float[](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+#else
     float visibility[SG_MAX_LIGHTS_PER_PASS] = float[](1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0);
+#endif
 #endif
 #if SG_GROUP0_COUNT == 1
     SG_SHADE_ONE(0)

@@ -134,4 +134,79 @@ vec4 sg_refinePrior(vec4 v, uint refine) {
 // Whether the refine recomputes light `channel`, of the resolve's `prior` (sg_refinePrior).
 bool sg_refinesLight(vec4 prior, int channel) { return prior[channel] < 0.0; }
 
+// The lights marked for their visibility at full resolution in a group of `lights` whose resolve
+// asks to recompute `refine` (a bit each): those lights, or with whole-group refines (`perLight`
+// false: fewer than kMinPerLightRefineLights shadowed lights, core/stage_resolution.h) every
+// light of the group where one is.
+uint sg_groupMarks(uint refine, int lights, bool perLight) {
+    uint every = (1u << uint(lights)) - 1u;
+    return perLight ? refine : (refine != 0u ? every : 0u);
+}
+
+#ifdef SG_READS_GBUFFER
+// The full-resolution pixel whose surface the sample `q` of a stage at divisor `d` holds.
+ivec2 sg_stageSource(ivec2 q, int d) { return min(q * d + d / 2, textureSize(sg_gbufferSurface, 0) - 1); }
+
+// The renderer's resolve (the upsample above) at full-resolution pixel `p`, whose surface texel
+// is `surface`: the blend of channels 0 to `lights` - 1 of layer `layer` of a stage at divisor
+// `d` (`stage` its visibility, clamped at the border; `stageDepth` its samples,
+// sg_packStageSample), `pixelAngle` a pixel's footprint per metre of depth. `refine` is set to
+// the lights (a bit each) to recompute at this pixel (sg_refinedLights). A surface that receives
+// no shadow reads 1 with none to recompute. One function for the stage's resolve pass
+// (screen_visibility.frag.glsl) and the deferred lit pass that resolves the stage itself
+// (lit.frag.glsl, SG_LAYER<k>_RESOLVE).
+vec4 sg_resolveStage(ivec2 p, uvec4 surface, int d, sampler2DArray stage, usampler2DArray stageDepth, int layer,
+                     int lights, float pixelAngle, out uint refine) {
+    vec3 position = sg_gbufferPosition(p, surface);
+    vec3 geoNormal = sg_gbufferGeoNormal(surface);
+    // How far off this pixel's plane a sample of the same surface may lie: a stage sample is up
+    // to 1.5 blocks away, and a curved surface leaves its tangent plane by about that much.
+    float footprint = max(sg_gbufferDepth(surface), 0.0) * pixelAngle;
+    float tolerance = 1.5 * float(d) * footprint;
+    float planeOffset = dot(position, geoNormal);
+    vec2 stageSize = vec2(textureSize(stageDepth, 0).xy);
+    // The four samples around p and p's place between them, their 2x2 gathered at the corner
+    // they share (texels (base + 1) / size).
+    vec2 t;
+    ivec2 base = sg_stageBase(p, d, t);
+    vec3 corner = vec3(vec2(base + 1) / stageSize, float(layer));
+    uvec4 samples = textureGather(stageDepth, corner, 0);
+    vec2 octNormal = sg_gbufferGeoOct(surface);  // as stored: no encode of the decoded normal
+    vec4 weights;
+    uvec4 sharp;
+    for (int k = 0; k < 4; ++k) {
+        // The sample's point from its depth along its pixel's ray; kept when on p's plane and
+        // facing as p's triangle does.
+        ivec2 src = sg_stageSource(clamp(base + sg_kStageQuad[k], ivec2(0), ivec2(stageSize) - 1), d);
+        vec3 ray = uRay00 + (float(src.x) + 0.5) * uRayDx + (float(src.y) + 0.5) * uRayDy;
+        float depth = sg_stageSampleDepth(samples[k]);
+        uint code = sg_stageSampleCode(samples[k]);
+        bool same = depth > 0.0 && abs(depth * dot(ray, geoNormal) - planeOffset) <= tolerance &&
+                    sg_stageCodeFaces(code, octNormal);
+        weights[k] = same ? max(sg_stageWeight(k, t), 1e-4) : 0.0;
+        sharp[k] = sg_stageCodeSharp(code);
+    }
+    float weight = weights.x + weights.y + weights.z + weights.w;
+    vec4 v = vec4(1.0);
+    vec4 w = weights / max(weight, 1e-30);
+    bvec4 kept = greaterThan(weights, vec4(0.0));
+    // The lights to recompute (a bit each): those with a feature narrower than the blocks at
+    // the nearest kept sample, and those whose kept samples disagree.
+    uint marked = sg_nearestSharp(sharp, weights);
+    // textureGather takes its channel as a constant: one line per channel, those past `lights`
+    // folded away.
+#define SG_RESOLVE_CHANNEL(c) \
+    if (c < lights) v[c] = sg_blendKept(textureGather(stage, corner, c), w, kept, 1u << c, marked);
+    SG_RESOLVE_CHANNEL(0)
+    SG_RESOLVE_CHANNEL(1)
+    SG_RESOLVE_CHANNEL(2)
+    SG_RESOLVE_CHANNEL(3)
+#undef SG_RESOLVE_CHANNEL
+    bool receives = sg_gbufferReceives(surface);
+    // Every light at a geometric edge where the refine runs (sg_refinedLights).
+    refine = receives ? sg_refinedLights(marked, kept, lights) : 0u;
+    return receives ? v : vec4(1.0);
+}
+#endif
+
 #endif

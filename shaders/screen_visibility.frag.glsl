@@ -5,9 +5,10 @@
 // Two programs per light configuration:
 // - the stage (SG_VIS_DIVISOR d): one pixel of the target per d x d block of the screen, the
 //   visibility at the block's centre pixel's surface; d = 1 is the visibility at full resolution.
-// - the resolve (SG_VIS_RESOLVE, with SG_VIS_DIVISOR d > 1): back to full resolution. Each pixel
-//   blends the four nearest samples of the stage with bilinear weights, keeping only samples that
-//   lie on its own surface (within 1.5 blocks' footprint of its triangle's plane), so a penumbra
+// - the resolve (SG_VIS_RESOLVE, with SG_VIS_DIVISOR d > 1), for a group the deferred lit pass
+//   does not resolve itself (contact shadows; render/screen_visibility.h): back to full
+//   resolution (sg_resolveStage, screen_resolve.glsl). Each pixel blends the four nearest
+//   samples of the stage with bilinear weights, keeping only samples that lie on its own surface (within 1.5 blocks' footprint of its triangle's plane), so a penumbra
 //   is never blurred across a geometric edge. A pixel with no such sample (silhouettes, thin
 //   parts), or with a light whose kept samples disagree (an edge sharper than the blocks) or
 //   report a feature narrower than them, is marked in depth for the refine pass.
@@ -38,8 +39,8 @@ uniform mat4 uClipFromCs;  // camera-relative world -> clip
 // The stage's visibility (a layer per group) and its samples' depths along the view, with
 // clamp-to-edge addressing for gathers.
 layout(binding = SG_UNIT_SCREEN_VISIBILITY) uniform sampler2DArray uStageVisibility;
-// Each sample's depth along the view and code (sg_packStageSample).
-layout(binding = SG_UNIT_SCREEN_DEPTH) uniform usampler2D uStageDepth;
+// Each sample's depth along the view and code (sg_packStageSample), a layer per group.
+layout(binding = SG_UNIT_SCREEN_DEPTH) uniform usampler2DArray uStageDepth;
 uniform int uStageLayer;
 layout(location = 0) out vec4 outVisibility;
 #ifdef SG_VIS_REFINE_PER_LIGHT
@@ -189,14 +190,9 @@ vec4 visibilityAt(ivec2 p, uvec4 surface) {
     return mask;
 }
 
-// The full-resolution pixel whose surface stage sample `q` holds.
-ivec2 stageSource(ivec2 q) {
-    return min(q * SG_VIS_DIVISOR + SG_VIS_DIVISOR / 2, textureSize(sg_gbufferSurface, 0) - 1);
-}
-
 #ifndef SG_VIS_RESOLVE
 void main() {
-    ivec2 src = stageSource(ivec2(gl_FragCoord.xy));
+    ivec2 src = sg_stageSource(ivec2(gl_FragCoord.xy), SG_VIS_DIVISOR);
     uvec4 surface = texelFetch(sg_gbufferSurface, src, 0);
     bool receives = sg_gbufferReceives(surface);
     // Depth-tested (SG_FULLSCREEN_FAR, GREATER) against the scene's depth at full resolution, or
@@ -226,66 +222,16 @@ void main() {
 #else
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    uvec4 surface = texelFetch(sg_gbufferSurface, p, 0);
-    bool receives = sg_gbufferReceives(surface);
-    vec3 position = sg_gbufferPosition(p, surface);
-    vec3 geoNormal = sg_gbufferGeoNormal(surface);
-    // How far off this pixel's plane a sample of the same surface may lie: a stage sample is up
-    // to 1.5 blocks away, and a curved surface leaves its tangent plane by about that much.
-    float footprint = max(sg_gbufferDepth(surface), 0.0) * uPixelAngle;
-    float tolerance = 1.5 * float(SG_VIS_DIVISOR) * footprint;
-    float planeOffset = dot(position, geoNormal);
-    vec2 stageSize = vec2(textureSize(uStageDepth, 0));
-    // The four samples around p and p's place between them (screen_resolve.glsl), their 2x2
-    // gathered at the corner they share (texels (base + 1) / size).
-    vec2 t;
-    ivec2 base = sg_stageBase(p, SG_VIS_DIVISOR, t);
-    vec2 corner = vec2(base + 1) / stageSize;
-    uvec4 samples = textureGather(uStageDepth, corner, 0);
-    vec2 octNormal = sg_gbufferGeoOct(surface);  // as stored: no encode of the decoded normal
-    vec4 weights;
-    uvec4 sharp;
-    for (int k = 0; k < 4; ++k) {
-        // The sample's point from its depth along its pixel's ray; kept when on p's plane and
-        // facing as p's triangle does.
-        ivec2 src = stageSource(clamp(base + sg_kStageQuad[k], ivec2(0), ivec2(stageSize) - 1));
-        vec3 ray = uRay00 + (float(src.x) + 0.5) * uRayDx + (float(src.y) + 0.5) * uRayDy;
-        float depth = sg_stageSampleDepth(samples[k]);
-        uint code = sg_stageSampleCode(samples[k]);
-        bool same = depth > 0.0 && abs(depth * dot(ray, geoNormal) - planeOffset) <= tolerance &&
-                    sg_stageCodeFaces(code, octNormal);
-        weights[k] = same ? max(sg_stageWeight(k, t), 1e-4) : 0.0;
-        sharp[k] = sg_stageCodeSharp(code);
-    }
-    float weight = weights.x + weights.y + weights.z + weights.w;
-    vec4 v = vec4(1.0);
-    vec4 w = weights / max(weight, 1e-30);
-    bvec4 kept = greaterThan(weights, vec4(0.0));
-    // The lights the refine recomputes (a bit each): those with a feature narrower than the
-    // blocks at the nearest kept sample, and those whose kept samples disagree.
-    uint refine = sg_nearestSharp(sharp, weights);
-    vec3 at = vec3(corner, float(uStageLayer));
-#define SG_VIS_CHANNEL(c) \
-    v[c] = sg_blendKept(textureGather(uStageVisibility, at, c), w, kept, 1u << c, refine);
-    SG_VIS_CHANNEL(0)
-#if SG_VIS_LIGHTS > 1
-    SG_VIS_CHANNEL(1)
-#endif
-#if SG_VIS_LIGHTS > 2
-    SG_VIS_CHANNEL(2)
-#endif
-#if SG_VIS_LIGHTS > 3
-    SG_VIS_CHANNEL(3)
-#endif
-    // Every light at a geometric edge where the refine runs (sg_refinedLights).
-    refine = sg_refinedLights(refine, kept, SG_VIS_LIGHTS);
-    // The refine pass recomputes those lights at full resolution: depth 0 marks the pixel for
-    // that pass's depth test, which skips whole blocks without one (the filters' code then costs
-    // nothing where it does not run), and the prior says which lights it runs.
-    gl_FragDepth = receives && refine != 0u ? 0.0 : 1.0;
-    outVisibility = receives ? v : vec4(1.0);
+    uint refine;
+    vec4 v = sg_resolveStage(p, texelFetch(sg_gbufferSurface, p, 0), SG_VIS_DIVISOR, uStageVisibility, uStageDepth,
+                             uStageLayer, SG_VIS_LIGHTS, uPixelAngle, refine);
+    // The refine pass recomputes the lights of `refine` at full resolution: depth 0 marks the
+    // pixel for that pass's depth test, which skips whole blocks without one (the filters' code
+    // then costs nothing where it does not run), and the prior says which lights it runs.
+    gl_FragDepth = refine != 0u ? 0.0 : 1.0;
+    outVisibility = v;
 #ifdef SG_VIS_REFINE_PER_LIGHT
-    outPrior = sg_refinePrior(outVisibility, receives ? refine : 0u);
+    outPrior = sg_refinePrior(v, refine);
 #endif
 }
 #endif

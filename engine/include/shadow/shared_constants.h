@@ -115,10 +115,14 @@
 #define SG_UNIT_SCREEN_VISIBILITY 31
 // With materials that have normal maps or emit (RenderOptions' frame holds one), the surface
 // pass also stores the lighting normal and the emitted radiance, which only the deferred lit
-// pass reads: it compiles no technique, so this takes a distance-field unit.
-#define SG_UNIT_GBUFFER_EXTRA 26
+// pass reads: it reads no material map, so this takes the emission map's unit.
+#define SG_UNIT_GBUFFER_EXTRA 30
 // The reduced-resolution stage's sample depths, read by its resolve.
 #define SG_UNIT_SCREEN_DEPTH 29
+// The reduced-resolution stage's visibility as the deferred lit pass reads it when it resolves
+// the stage itself (its own units: the pass also reads the full-resolution visibility of the
+// groups it does not resolve, and may refine with any technique, sdf's units included).
+#define SG_UNIT_LIT_STAGE 28
 
 // Unit the pyramid builder reads its source from.
 #define SG_UNIT_MINMAX_SOURCE 0
@@ -138,6 +142,9 @@
 #define SG_OUT_DEPTH 2
 #define SG_OUT_VISIBILITY0 3
 #define SG_OUT_VISIBILITY1 4
+// The deferred lit pass that resolves the stage itself: the slots it leaves to its correction
+// (shaders/lit.frag.glsl, a bit each, R8UI).
+#define SG_OUT_MARKS 5
 
 // Debug views of the main pass (--debug NAME).
 #define SG_DEBUG_NONE 0

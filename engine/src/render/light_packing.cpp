@@ -47,6 +47,19 @@ void addToPass(PassLights& pass, const ShadowLightPlan& plan, const PackingEntry
 
 }  // namespace
 
+LitVariant slotsVariant(const LitVariant& pass, int first, int count) {
+    LitVariant g;
+    g.lights = count;
+    for (int i = 0; i < count; ++i) {
+        const auto d = static_cast<std::size_t>(i);
+        const auto s = static_cast<std::size_t>(first) + static_cast<std::size_t>(i);
+        g.type[d] = pass.type[s];
+        g.technique[d] = pass.technique[s];
+        g.kernel[d] = pass.kernel[s];
+    }
+    return g;
+}
+
 void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const ScreenView& view,
                 std::vector<PassLights>& passes, std::vector<PackingEntry>& order) {
     const PixelRect whole{0, 0, view.width, view.height};

@@ -34,6 +34,15 @@ struct LitVariant {
     /// Forward, a frame that counts a slot's auto light's edges (`ShadowLightPlan::countEdges`):
     /// the counting program (SG_COUNT_EDGES; the hard lookup compiled in for the count).
     bool countEdges = false;
+    /// Deferred, per group of four slots (k: slots 4k to 4k + 3): the divisor of the stage the
+    /// lit pass resolves itself (SG_LAYER<k>_RESOLVE, `litResolveDivisors`), 0 where it reads the
+    /// visibility the stage's passes brought to full resolution.
+    std::array<std::uint8_t, 2> resolve{};
+    /// Deferred, resolving: the program of the pass's correction (SG_LIT_CORRECTION), which adds
+    /// the lights the lit pass marked, at the marked pixels.
+    bool correction = false;
+    /// A correction's first slot in its pass (SG_SLOT_BASE): it compiles one group of four.
+    std::uint8_t slotBase = 0;
 
     auto operator<=>(const LitVariant&) const = default;
 };
@@ -75,6 +84,10 @@ struct PassLights {
 /// it (both sides of an `if` run; BENCHMARKS.md, fragment costs). There is always at least one
 /// pass (it resolves depth and writes the ambient term and the AOVs). Reuses the capacity of
 /// `passes` and `order` (scratch): no allocation once they have grown.
+/// Slots `first` .. `first + count - 1` of a pass's variant as a variant of their own (their
+/// type, technique and kernel; nothing else set).
+[[nodiscard]] LitVariant slotsVariant(const LitVariant& pass, int first, int count);
+
 void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const ScreenView& view,
                 std::vector<PassLights>& passes, std::vector<PackingEntry>& order);
 

@@ -4,6 +4,7 @@
 
 #include "gl/mesh_cache_access.h"
 #include "gl/program.h"
+#include "core/stage_resolution.h"
 #include "gl/technique_glsl.h"
 
 #include <glm/gtc/type_ptr.hpp>
@@ -70,12 +71,26 @@ void setMaps(GLuint program, const MaterialUniforms& u, const Material& material
     gl.ProgramUniform1f(program, u.occlusionStrength, std::clamp(material.occlusionStrength, 0.0f, 1.0f));
 }
 
+/// Whether the group of four slots `layer` of a variant marks its lights one by one for the
+/// correction (`shadow::refinesPerLight`), or all of them where one is.
+bool marksPerLight(const LitVariant& v, int layer) {
+    const int first = 4 * layer;
+    const int count = std::clamp(v.lights - first, 0, 4);
+    return shadow::refinesPerLight(
+        std::span(v.technique).subspan(static_cast<std::size_t>(first), static_cast<std::size_t>(count)));
+}
+
+/// Whether a variant's program runs its lights' techniques: forward, or a deferred pass's
+/// correction.
+bool runsTechniques(const LitVariant& v) { return !v.deferred || v.correction; }
+
 LitProgram buildLit(const LitVariant& variant) {
     LitProgram p;
-    // The deferred variant reads its lights' visibility: it compiles no technique.
+    // The deferred variant reads its lights' visibility: it compiles no technique, unless it is
+    // the correction that recomputes the lights the lit pass marked.
     p.program = gpu::buildProgram({variantLabel(variant), variant.deferred ? "fullscreen.vert.glsl" : "lit.vert.glsl",
                                    "lit.frag.glsl", variantDefines(variant),
-                                   variant.deferred ? 0u : variantTechniques(variant)});
+                                   runsTechniques(variant) ? variantTechniques(variant) : 0u});
     const GLuint id = p.program.get();
     p.mesh = meshUniforms(id);
     p.material = materialUniforms(id);
@@ -86,6 +101,7 @@ LitProgram buildLit(const LitVariant& variant) {
     p.ray00 = gl.GetUniformLocation(id, "uRay00");
     p.rayDx = gl.GetUniformLocation(id, "uRayDx");
     p.rayDy = gl.GetUniformLocation(id, "uRayDy");
+    p.pixelAngle = gl.GetUniformLocation(id, "uPixelAngle");
     p.countSlots = gl.GetUniformLocation(id, "uCountSlots");
     p.countBase = gl.GetUniformLocation(id, "uCountBase");
     return p;
@@ -126,6 +142,13 @@ std::string variantLabel(const LitVariant& v) {
     }
     if (v.aovs) name += name.empty() ? "AOV" : ",AOV";
     if (v.deferred) name += name.empty() ? "deferred" : ",deferred";
+    for (std::size_t k = 0; k < v.resolve.size(); ++k) {
+        if (v.resolve[k] > 1) name += ",resolve" + std::to_string(k) + "/" + std::to_string(v.resolve[k]);
+    }
+    if (v.correction) {
+        name += ",correction";
+        if (v.slotBase > 0) name.append("@").append(std::to_string(v.slotBase));
+    }
     if (v.materialMaps) name += name.empty() ? "maps" : ",maps";
     if (v.countEdges) name += name.empty() ? "edges" : ",edges";
     if (v.debugView != SG_DEBUG_NONE) name += ",debug" + std::to_string(v.debugView);
@@ -153,10 +176,22 @@ std::vector<std::string> variantDefines(const LitVariant& v) {
     if (v.deferred) {
         defines.emplace_back("SG_DEFERRED");
         defines.emplace_back("SG_READS_GBUFFER");
-        defines.emplace_back("SG_FULLSCREEN_FAR");  // depth-tested: only the surfaces' pixels run
-    } else {
-        gpu::appendTechniqueDefines(variantTechniques(v), defines);
+        // Depth-tested: only the surfaces' pixels run (GREATER than the scene's depth, at the far
+        // plane); the correction's, only the marked ones (GREATER than their mark, 0).
+        if (!v.correction) defines.emplace_back("SG_FULLSCREEN_FAR");
+        for (std::size_t k = 0; k < v.resolve.size(); ++k) {
+            const std::string layer = "SG_LAYER" + std::to_string(k);
+            defines.push_back(layer + "_RESOLVE " + std::to_string(v.resolve[k]));
+            defines.push_back(layer + "_PER_LIGHT " + std::to_string(marksPerLight(v, static_cast<int>(k)) ? 1 : 0));
+        }
+        if (v.correction) {
+            defines.emplace_back("SG_LIT_CORRECTION");
+            defines.push_back("SG_SLOT_BASE " + std::to_string(v.slotBase));
+            // Whole-group marks: every light is marked where the correction runs.
+            if (!marksPerLight(v, 0)) defines.emplace_back("SG_LIT_CORRECTION_ALL");
+        }
     }
+    if (runsTechniques(v)) gpu::appendTechniqueDefines(variantTechniques(v), defines);
     if (v.materialMaps) defines.emplace_back(v.deferred ? "SG_GBUFFER_MATERIAL" : "SG_MATERIAL_MAPS");
     if (v.aovs) defines.emplace_back("SG_WRITE_AOVS");
     if (v.countEdges) defines.emplace_back("SG_COUNT_EDGES");
@@ -167,6 +202,18 @@ std::vector<std::string> variantDefines(const LitVariant& v) {
         defines.push_back("SG_DEBUG_SLOT " + std::to_string(v.debugSlot));
     }
     return defines;
+}
+
+LitVariant correctionVariant(const LitVariant& pass, int group) {
+    const int first = 4 * group;
+    LitVariant c = slotsVariant(pass, first, std::clamp(pass.lights - first, 0, 4));
+    c.aovs = pass.aovs;
+    c.deferred = true;
+    c.materialMaps = pass.materialMaps;
+    c.resolve = {pass.resolve[static_cast<std::size_t>(group)], 0};
+    c.correction = true;
+    c.slotBase = static_cast<std::uint8_t>(first);
+    return c;
 }
 
 LitProgram& LitProgramCache::get(const LitVariant& variant, int& compiled) {

@@ -44,6 +44,7 @@ struct LitProgram {
     MaterialUniforms material;
     GLint firstPass = -1, ambientSky = -1, ambientGround = -1, cameraForward = -1;
     GLint ray00 = -1, rayDx = -1, rayDy = -1;  ///< deferred: the pixels' rays (ScreenRays)
+    GLint pixelAngle = -1;                     ///< deferred, resolving the stage: ScreenRays::pixelAngle
     GLint countSlots = -1, countBase = -1;     ///< SG_COUNT_EDGES: the slots counted, their first counter
 };
 
@@ -63,6 +64,10 @@ unsigned variantTechniques(const LitVariant& variant);
 
 /// The `#define`s of a variant (see lit.frag.glsl).
 std::vector<std::string> variantDefines(const LitVariant& variant);
+
+/// The correction of group `group` (slots 4 `group` to 4 `group` + 3) of a deferred lit pass that
+/// resolves it (`pass`, LitVariant::resolve): that group's slots alone, from SG_SLOT_BASE on.
+[[nodiscard]] LitVariant correctionVariant(const LitVariant& pass, int group);
 
 /// Lit programs by variant, built on first use. Throws `GlError` when a variant does not build.
 class LitProgramCache {

@@ -89,26 +89,49 @@ GLuint RenderTargets::visibility(int pass, int slot) const {
     return visibility_[2 * static_cast<std::size_t>(pass) + static_cast<std::size_t>(slot / 4)].get();
 }
 
-void RenderTargets::bindPass(int pass) {
+void RenderTargets::bindPass(int pass, PassOutputs outputs) {
     const GLuint fb = framebuffer_.get();
-    std::array<GLenum, 5> buffers = {GL_COLOR_ATTACHMENT0 + SG_OUT_COLOR, GL_NONE, GL_NONE, GL_NONE, GL_NONE};
-    GLsizei count = 1;
     if (aovs_) {
         gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0 + SG_OUT_VISIBILITY0, visibility(pass, 0), 0);
         gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0 + SG_OUT_VISIBILITY1, visibility(pass, 4), 0);
-        // Position and depth are written once, by the first pass.
-        const GLenum position = pass == 0 ? GLenum{GL_COLOR_ATTACHMENT0 + SG_OUT_POSITION} : GLenum{GL_NONE};
-        const GLenum depth = pass == 0 ? GLenum{GL_COLOR_ATTACHMENT0 + SG_OUT_DEPTH} : GLenum{GL_NONE};
-        buffers = {GL_COLOR_ATTACHMENT0 + SG_OUT_COLOR, position, depth, GL_COLOR_ATTACHMENT0 + SG_OUT_VISIBILITY0,
-                   GL_COLOR_ATTACHMENT0 + SG_OUT_VISIBILITY1};
-        count = 5;
-        const float one[4] = {1.0f, 1.0f, 1.0f, 1.0f};
-        gl.NamedFramebufferDrawBuffers(fb, count, buffers.data());
-        gl.ClearNamedFramebufferfv(fb, GL_COLOR, 3, one);
-        gl.ClearNamedFramebufferfv(fb, GL_COLOR, 4, one);
-        return;
     }
-    gl.NamedFramebufferDrawBuffers(fb, count, buffers.data());
+    setOutputs(pass, outputs);
+    if (aovs_) {
+        const float one[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+        gl.ClearNamedFramebufferfv(fb, GL_COLOR, SG_OUT_VISIBILITY0, one);
+        gl.ClearNamedFramebufferfv(fb, GL_COLOR, SG_OUT_VISIBILITY1, one);
+    }
+}
+
+void RenderTargets::setOutputs(int pass, PassOutputs outputs) {
+    const auto at = [](int location) { return GLenum{GL_COLOR_ATTACHMENT0} + static_cast<GLenum>(location); };
+    std::array<GLenum, SG_OUT_MARKS + 1> buffers{};
+    buffers.fill(GL_NONE);
+    buffers[SG_OUT_COLOR] = at(SG_OUT_COLOR);
+    if (aovs_) {
+        // Position and depth are written once, by the first pass (never by a correction).
+        if (pass == 0 && outputs != PassOutputs::Correction) {
+            buffers[SG_OUT_POSITION] = at(SG_OUT_POSITION);
+            buffers[SG_OUT_DEPTH] = at(SG_OUT_DEPTH);
+        }
+        buffers[SG_OUT_VISIBILITY0] = at(SG_OUT_VISIBILITY0);
+        buffers[SG_OUT_VISIBILITY1] = at(SG_OUT_VISIBILITY1);
+    }
+    if (outputs == PassOutputs::LitMarks) buffers[SG_OUT_MARKS] = at(SG_OUT_MARKS);
+    // The count: up to the last buffer written.
+    GLsizei count = 1;
+    for (std::size_t i = 0; i < buffers.size(); ++i)
+        count = buffers[i] != GL_NONE ? static_cast<GLsizei>(i + 1) : count;
+    gl.NamedFramebufferDrawBuffers(framebuffer_.get(), count, buffers.data());
+}
+
+void RenderTargets::clearMarks() {
+    const std::array<GLuint, 4> none{0, 0, 0, 0};
+    gl.ClearNamedFramebufferuiv(framebuffer_.get(), GL_COLOR, SG_OUT_MARKS, none.data());
+}
+
+void RenderTargets::attachMarks(GLuint texture) {
+    gl.NamedFramebufferTexture(framebuffer_.get(), GL_COLOR_ATTACHMENT0 + SG_OUT_MARKS, texture, 0);
 }
 
 void RenderTargets::clear() {

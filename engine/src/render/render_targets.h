@@ -18,6 +18,13 @@ namespace shadow::render {
 [[nodiscard]] std::string renderSizeProblem(int width, int height, bool aovs, int passes, bool screenStage = false,
                                             bool materialTargets = false);
 
+/// What a main pass writes (`RenderTargets::bindPass`, `setOutputs`).
+enum class PassOutputs {
+    Lit,         ///< colour, and with AOVs position and distance (first pass) and visibility
+    LitMarks,    ///< those and the marks (`attachMarks`): a deferred lit pass that resolves the stage
+    Correction,  ///< colour and, with AOVs, visibility alone: what a lit pass's correction adds
+};
+
 class RenderTargets {
 public:
     /// GPU memory (bytes) of the targets for `width` x `height`: colour (RGBA32F) and depth
@@ -29,8 +36,16 @@ public:
     /// before allocating anything when it is beyond the context's limits or the memory cap
     /// (`checkRenderSize`), and when the framebuffer is incomplete.
     void ensure(int width, int height, bool aovs, int passes);
-    /// Attaches what main pass `pass` writes and sets its draw buffers.
-    void bindPass(int pass);
+    /// Attaches what main pass `pass` writes, sets its draw buffers (`setOutputs`) and, with
+    /// AOVs, sets its visibility to 1.
+    void bindPass(int pass, PassOutputs outputs = PassOutputs::Lit);
+    /// Sets the draw buffers of main pass `pass` (attached by `bindPass`) to `outputs`.
+    void setOutputs(int pass, PassOutputs outputs);
+    /// Attaches `texture` (R8UI, the targets' size; 0: none) as the marks a deferred lit pass
+    /// writes (SG_OUT_MARKS).
+    void attachMarks(GLuint texture);
+    /// Clears the marks (within the scissor, when on) of a pass bound with PassOutputs::LitMarks.
+    void clearMarks();
     /// Clears colour (0), depth (far), and the AOVs (position and depth 0, visibility 1).
     void clear();
 

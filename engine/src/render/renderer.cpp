@@ -138,6 +138,15 @@ MainCamera mainCamera(const CameraView& cam, int width, int height) {
     return m;
 }
 
+/// The pixels a deferred lit pass of `pass` shades: its lights' bounds, or with AOVs the screen
+/// (each light's visibility is written wherever there is geometry).
+PixelRect litBounds(const PassLights& pass, const RenderOptions& options) {
+    return options.aovs ? PixelRect{0, 0, options.width, options.height} : pass.bounds;
+}
+
+/// Whether a deferred lit pass resolves (part of) the stage itself, and has a correction.
+bool resolvesStage(const render::LitVariant& v) { return v.resolve[0] > 1 || v.resolve[1] > 1; }
+
 /// The uniforms a lit program takes per pass: the camera's direction, and for the first pass
 /// (which adds them) the ambient and the emission.
 void setPassUniforms(const render::LitProgram& p, const MainCamera& mc, std::size_t index,
@@ -147,6 +156,7 @@ void setPassUniforms(const render::LitProgram& p, const MainCamera& mc, std::siz
     gl.ProgramUniform3fv(id, p.ray00, 1, glm::value_ptr(mc.rays.ray00));
     gl.ProgramUniform3fv(id, p.rayDx, 1, glm::value_ptr(mc.rays.dx));
     gl.ProgramUniform3fv(id, p.rayDy, 1, glm::value_ptr(mc.rays.dy));
+    gl.ProgramUniform1f(id, p.pixelAngle, mc.rays.pixelAngle);
     gl.ProgramUniform1i(id, p.firstPass, index == 0 ? 1 : 0);
     gl.ProgramUniform3fv(id, p.ambientSky, 1, glm::value_ptr(glm::max(options.ambientSky, glm::vec3(0.0f))));
     gl.ProgramUniform3fv(id, p.ambientGround, 1, glm::value_ptr(glm::max(options.ambientGround, glm::vec3(0.0f))));
@@ -215,6 +225,10 @@ struct Renderer::Impl {
     void surfacePass(const World& world, const CameraView& cam, const MainCamera& mc, FrameStats& stats);
     /// Lit pass `index` of the stage: its lights' visibility over the screen, then their shading.
     void screenLitPass(const MainCamera& mc, std::size_t index, const RenderOptions& options);
+    /// The corrections of deferred lit pass `index` that resolved the stage itself, one per group
+    /// of four it resolved: the lights it marked added at the marked pixels (lit.frag.glsl,
+    /// SG_LIT_CORRECTION).
+    void screenCorrection(const MainCamera& mc, std::size_t index, const RenderOptions& options, FrameStats& stats);
     /// The stage's visibility of pass `index`'s lights.
     void screenVisibilityPass(const ShadowFrame& frame, const MainCamera& mc, std::size_t index, const ShadowMaps& maps,
                               const RenderOptions& options, FrameStats& stats, gpu::PassTimer* timer);
@@ -242,6 +256,8 @@ void Renderer::Impl::preparePrograms(const ShadowFrame& frame, const RenderOptio
         // Deferred: one program reads the surfaces whatever their materials; forward: a second
         // program for the materials with maps.
         v.materialMaps = deferred && materials.materialTargets;
+        v.resolve = deferred ? render::litResolveDivisors(options.screenVisibility, frame, pass, options.height)
+                             : std::array<std::uint8_t, 2>{};
         v.debugView = debugViewId(options.debugView);
         const auto* const slot = std::find(pass.sceneLight.begin(), pass.sceneLight.end(), options.debugLight);
         v.debugSlot = slot != pass.sceneLight.end() && v.debugView != SG_DEBUG_NONE
@@ -250,7 +266,16 @@ void Renderer::Impl::preparePrograms(const ShadowFrame& frame, const RenderOptio
         auto& chosen = passPrograms.emplace_back();
         chosen.fill(nullptr);
         chosen[0] = &programs.get(v, stats.programsCompiled);
-        if (deferred) continue;  // one full-screen program reads whatever surfaces were drawn
+        if (deferred) {
+            // One full-screen program reads whatever surfaces were drawn; one per group of four it
+            // resolved itself corrects it where it marked lights ([1 + group]).
+            for (std::size_t group = 0; group < v.resolve.size(); ++group) {
+                if (v.resolve[group] <= 1) continue;
+                chosen[1 + group] =
+                    &programs.get(render::correctionVariant(v, static_cast<int>(group)), stats.programsCompiled);
+            }
+            continue;
+        }
         for (std::size_t k = 0; k < chosen.size(); ++k) {
             render::LitVariant kind = v;
             kind.materialMaps = k >= gpu::kMeshDeforms;
@@ -362,11 +387,16 @@ void Renderer::Impl::renderScreenSpace(const World& world, const CameraView& cam
         gpu::ScopedPass timed(timer, "Main/Lit");
         screenLitPass(mc, 0, options);
     }
+    if (resolvesStage(passes[0].variant)) {
+        gpu::ScopedPass timed(timer, "Main/ScreenVisibility/refine");
+        screenCorrection(mc, 0, options, stats);
+    }
     if (passes.size() > 1) {
         gpu::ScopedPass timed(timer, "Main/LitMore");
         for (std::size_t pass = 1; pass < passes.size(); ++pass) {
             screenVisibilityPass(frame, mc, pass, maps, options, stats, nullptr);
             screenLitPass(mc, pass, options);
+            if (resolvesStage(passes[pass].variant)) screenCorrection(mc, pass, options, stats);
         }
     }
     prepassRan = false;
@@ -430,7 +460,7 @@ void Renderer::Impl::screenVisibilityPass(const ShadowFrame& frame, const MainCa
     lightBlocks.bind(SG_BINDING_LIGHTS, index);
     layerBlocks.bind(SG_BINDING_LAYERS, index);
     gpu::bindShadowResources(resources, maps, pass.sceneLight, ShadowBindingPoints{});
-    screen->computeVisibility(frame, pass, options.screenVisibility, mc.rays, stats, timer);
+    screen->computeVisibility(frame, pass, litBounds(pass, options), options.screenVisibility, mc.rays, stats, timer);
 }
 
 void Renderer::Impl::screenLitPass(const MainCamera& mc, std::size_t index, const RenderOptions& options) {
@@ -439,7 +469,11 @@ void Renderer::Impl::screenLitPass(const MainCamera& mc, std::size_t index, cons
     lightBlocks.bind(SG_BINDING_LIGHTS, index);
     gl.BindFramebuffer(GL_FRAMEBUFFER, targets.framebuffer());
     gl.Viewport(0, 0, options.width, options.height);
-    if (index == 0 || options.aovs) targets.bindPass(static_cast<int>(index));
+    const bool resolves = resolvesStage(pass.variant);
+    if (resolves) targets.attachMarks(screen->marks());
+    if (index == 0 || options.aovs || resolves) {
+        targets.bindPass(static_cast<int>(index), resolves ? render::PassOutputs::LitMarks : render::PassOutputs::Lit);
+    }
     screen->bindForLighting(materials.materialTargets);
     // Only the pixels the surface pass drew (GREATER than its depth, at the far plane): the
     // background keeps the targets' clear values, as forward leaves it.
@@ -450,11 +484,10 @@ void Renderer::Impl::screenLitPass(const MainCamera& mc, std::size_t index, cons
         gl.Enablei(GL_BLEND, 0);
         gl.BlendFunc(GL_ONE, GL_ONE);
     }
-    const bool scissored = !options.aovs && pass.bounds != PixelRect{0, 0, options.width, options.height};
-    if (scissored) {
-        gl.Enable(GL_SCISSOR_TEST);
-        gl.Scissor(pass.bounds.x0, pass.bounds.y0, pass.bounds.x1 - pass.bounds.x0, pass.bounds.y1 - pass.bounds.y0);
-    }
+    const PixelRect bounds = litBounds(pass, options);
+    gl.Enable(GL_SCISSOR_TEST);
+    gl.Scissor(bounds.x0, bounds.y0, bounds.x1 - bounds.x0, bounds.y1 - bounds.y0);
+    if (resolves) targets.clearMarks();
     const GLuint id = p.program.get();
     gl.UseProgram(id);
     setPassUniforms(p, mc, index, options);
@@ -462,6 +495,50 @@ void Renderer::Impl::screenLitPass(const MainCamera& mc, std::size_t index, cons
     gl.DrawArrays(GL_TRIANGLES, 0, 3);
     gl.Disable(GL_BLEND);
     gl.Disable(GL_SCISSOR_TEST);
+    if (resolves) {
+        // Draws no more into the marks: the correction reads them.
+        targets.setOutputs(static_cast<int>(index), render::PassOutputs::Lit);
+        targets.attachMarks(0);
+    }
+}
+
+void Renderer::Impl::screenCorrection(const MainCamera& mc, std::size_t index, const RenderOptions& options,
+                                      FrameStats& stats) {
+    const PassLights& pass = passes[index];
+    const PixelRect bounds = litBounds(pass, options);
+    const GLuint fb = targets.framebuffer();
+    for (std::size_t group = 0; group < pass.variant.resolve.size(); ++group) {
+        if (pass.variant.resolve[group] <= 1) continue;
+        screen->markCorrection(bounds, 15u << (4u * group), stats);
+        gl.BindFramebuffer(GL_FRAMEBUFFER, fb);
+        gl.Viewport(0, 0, options.width, options.height);
+        // Tested against the marks (GREATER than 0, at depth 0.5): only the marked pixels run.
+        gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, screen->correctionDepth(), 0);
+        targets.setOutputs(static_cast<int>(index), render::PassOutputs::Correction);
+        gl.Enable(GL_DEPTH_TEST);
+        gl.DepthFunc(GL_GREATER);
+        gl.DepthMask(GL_FALSE);
+        // It adds the marked lights' shading (and their visibility to the visibility AOVs).
+        gl.BlendFunc(GL_ONE, GL_ONE);
+        for (const int buffer : {SG_OUT_COLOR, SG_OUT_VISIBILITY0, SG_OUT_VISIBILITY1}) {
+            if (buffer == SG_OUT_COLOR || options.aovs) gl.Enablei(GL_BLEND, static_cast<GLuint>(buffer));
+        }
+        gl.Enable(GL_SCISSOR_TEST);
+        gl.Scissor(bounds.x0, bounds.y0, bounds.x1 - bounds.x0, bounds.y1 - bounds.y0);
+        const render::LitProgram& p = *passPrograms[index][1 + group];
+        const GLuint id = p.program.get();
+        gl.UseProgram(id);
+        setPassUniforms(p, mc, index, options);
+        gl.ProgramUniform1i(id, p.firstPass, 0);  // the lit pass added the ambient term
+        lightBlocks.bind(SG_BINDING_LIGHTS, index);
+        layerBlocks.bind(SG_BINDING_LAYERS, index);
+        gl.BindVertexArray(screen->emptyVertexArray());
+        gl.DrawArrays(GL_TRIANGLES, 0, 3);
+        gl.Disable(GL_BLEND);
+        gl.Disable(GL_SCISSOR_TEST);
+        gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, targets.depthBuffer(), 0);
+    }
+    targets.setOutputs(static_cast<int>(index), render::PassOutputs::Lit);
 }
 
 void Renderer::Impl::litPass(const World& world, const CameraView& cam, const MainCamera& mc, std::size_t index,
@@ -519,9 +596,9 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
 namespace {
 
 /// The texture units and uniform-buffer binding points the lit passes bind.
-/// The three sampler arrays' units, the distance-field technique's two (the stage's extra surface
-/// target shares the first), the base colour's, the other material maps' (the stage's surface
-/// targets and sample depths share them) and the stage's visibility.
+/// The three sampler arrays' units, the distance-field technique's two, the base colour's (the
+/// stage as the deferred lit pass resolves it shares it), the other material maps' (the stage's
+/// surface targets, its extra target and its sample depths share them) and the stage's visibility.
 constexpr std::size_t kLitUnitCount = SG_UNIT_SHADOW_MINMAX + SG_MAX_LIGHTS_PER_PASS + 8;
 constexpr std::array<GLint, kLitUnitCount> litTextureUnits() {
     std::array<GLint, kLitUnitCount> units{};
@@ -531,7 +608,7 @@ constexpr std::array<GLint, kLitUnitCount> litTextureUnits() {
                                       SG_UNIT_EMISSIVE,           SG_UNIT_SCREEN_VISIBILITY};
     static_assert(SG_UNIT_GBUFFER_SURFACE == SG_UNIT_METALLIC_ROUGHNESS &&
                   SG_UNIT_GBUFFER_MATERIAL == SG_UNIT_NORMAL_MAP && SG_UNIT_SCREEN_DEPTH == SG_UNIT_OCCLUSION &&
-                  SG_UNIT_GBUFFER_EXTRA == SG_UNIT_SDF_ATLAS);
+                  SG_UNIT_GBUFFER_EXTRA == SG_UNIT_EMISSIVE && SG_UNIT_LIT_STAGE == SG_UNIT_BASE_COLOR);
     std::copy(others.begin(), others.end(), units.end() - 8);
     return units;
 }

@@ -25,23 +25,18 @@ int divisorIndex(int divisor) { return divisor == 4 ? 2 : divisor == 2 ? 1 : 0; 
 /// Pixels of a target of 1/`divisor` the screen's size.
 int reduced(int size, int divisor) { return (size + divisor - 1) / divisor; }
 
-/// Slots `first` .. `first + count - 1` of a pass's variant as a variant of their own.
-LitVariant groupVariant(const LitVariant& pass, int first, int count) {
-    LitVariant g;
-    g.lights = count;
-    for (int i = 0; i < count; ++i) {
-        const auto d = static_cast<std::size_t>(i);
-        const auto s = static_cast<std::size_t>(first) + static_cast<std::size_t>(i);
-        g.type[d] = pass.type[s];
-        g.technique[d] = pass.technique[s];
-        g.kernel[d] = pass.kernel[s];
-    }
-    return g;
-}
-
 /// `refinesPerLight` of a group's slots.
 bool refinesPerLight(const LitVariant& group) {
     return shadow::refinesPerLight(std::span(group.technique).first(static_cast<std::size_t>(group.lights)));
+}
+
+/// Runs `body`, timed as Main/ScreenVisibility/`what` when `timer` is given (a fence around
+/// each draw on a CPU rasteriser).
+template <typename Body>
+void timed(gpu::PassTimer* timer, const char* what, Body&& body) {
+    if (timer == nullptr) return body();
+    gpu::ScopedPass scope(*timer, std::string("Main/ScreenVisibility/") + what);
+    body();
 }
 
 }  // namespace
@@ -57,6 +52,28 @@ int visibilityDivisor(ScreenVisibility setting, const LitVariant& variant, int f
     return stageDivisor(
         std::span(variant.technique).subspan(static_cast<std::size_t>(firstSlot), static_cast<std::size_t>(slots)),
         height);
+}
+
+std::array<std::uint8_t, 2> litResolveDivisors(ScreenVisibility setting, const ShadowFrame& frame,
+                                               const PassLights& pass, int height) {
+    std::array<std::uint8_t, 2> divisors{};
+    int shared = 0;
+    for (int first = 0; first < pass.variant.lights; first += 4) {
+        const int count = std::min(4, pass.variant.lights - first);
+        bool shadowed = false, contact = false;
+        for (int i = first; i < first + count; ++i) {
+            const auto slot = static_cast<std::size_t>(i);
+            shadowed = shadowed || pass.variant.technique[slot] != SG_TECH_NONE;
+            const int light = pass.sceneLight[slot];
+            contact =
+                contact || (light >= 0 && contactLengthUniform(frame.lights[static_cast<std::size_t>(light)]) != 0.0f);
+        }
+        const int d = visibilityDivisor(setting, pass.variant, first, count, height);
+        if (!shadowed || contact || d <= 1 || (shared != 0 && d != shared)) continue;
+        shared = d;
+        divisors[static_cast<std::size_t>(first / 4)] = static_cast<std::uint8_t>(d);
+    }
+    return divisors;
 }
 
 float contactLengthUniform(const ShadowLightPlan& light) {
@@ -90,10 +107,10 @@ std::int64_t ScreenStage::bytesFor(int width, int height, bool materialTargets) 
     const std::int64_t pixels = std::int64_t{width} * height;
     // Full size: the surface and material targets (RGBA32UI each), two RGBA8 visibility layers,
     // the refine marks (32F) and its prior (RGBA16F); the extra target RGBA32UI. Half and quarter
-    // size (each made on first use): two RGBA8 layers, the samples' depths and codes (R32UI) and
-    // the coverage (32F).
-    const std::int64_t full = 16 + 16 + 2 * 4 + 4 + 8 + (materialTargets ? 16 : 0);
-    const std::int64_t reduced = 2 * 4 + 4 + 4;
+    // size (each made on first use): two RGBA8 layers, two of the samples' depths and codes
+    // (R32UI) and the coverage (32F). The lit pass's marks (R8UI), full size.
+    const std::int64_t full = 16 + 16 + 2 * 4 + 4 + 8 + 1 + (materialTargets ? 16 : 0);
+    const std::int64_t reduced = 2 * 4 + 2 * 4 + 4;
     return pixels * full + (pixels / 4 + pixels / 16) * reduced;
 }
 
@@ -122,6 +139,7 @@ void ScreenStage::makeTargets(int width, int height) {
     material_ = gpu::makeScreenTarget("Main/Surfaces/material", GL_RGBA32UI, width, height);
     full_ = gpu::makeScreenTarget("Main/ScreenVisibility/full", GL_RGBA8, width, height, 2);
     refine_ = gpu::makeScreenTarget("Main/ScreenVisibility/refine", GL_DEPTH_COMPONENT32F, width, height);
+    marks_ = gpu::makeScreenTarget("Main/ScreenVisibility/marks", GL_R8UI, width, height);
     prior_ = {};
     extra_ = {};
     const GLuint fb = surfaces_.get();
@@ -136,7 +154,7 @@ void ScreenStage::ensureStageTarget(int divisor) {
     if (!prior_) prior_ = gpu::makeScreenTarget("Main/ScreenVisibility/prior", GL_RGBA16F, width_, height_);
     stage_[i] = gpu::makeScreenTarget("Main/ScreenVisibility/stage" + std::to_string(divisor), GL_RGBA8, w, h, 2);
     stageDepth_[i] =
-        gpu::makeScreenTarget("Main/ScreenVisibility/stageDepth" + std::to_string(divisor), GL_R32UI, w, h);
+        gpu::makeScreenTarget("Main/ScreenVisibility/stageDepth" + std::to_string(divisor), GL_R32UI, w, h, 2);
     coverage_[i] =
         gpu::makeScreenTarget("Main/ScreenVisibility/coverage" + std::to_string(divisor), GL_DEPTH_COMPONENT32F, w, h);
     // The resolve gathers 2x2 samples: clamped at the border, never filtered.
@@ -242,8 +260,9 @@ ScreenStage::Program& ScreenStage::program(const LitVariant& group, int firstSlo
     return programs_.emplace(key, std::move(p)).first->second;
 }
 
-void ScreenStage::computeVisibility(const ShadowFrame& frame, const PassLights& pass, ScreenVisibility setting,
-                                    const ScreenRays& rays, FrameStats& stats, gpu::PassTimer* timer) {
+void ScreenStage::computeVisibility(const ShadowFrame& frame, const PassLights& pass, const PixelRect& bounds,
+                                    ScreenVisibility setting, const ScreenRays& rays, FrameStats& stats,
+                                    gpu::PassTimer* timer) {
     gl.BindFramebuffer(GL_FRAMEBUFFER, visibility_.get());
     gl.Disable(GL_DEPTH_TEST);
     gl.Disable(GL_BLEND);
@@ -254,10 +273,11 @@ void ScreenStage::computeVisibility(const ShadowFrame& frame, const PassLights& 
         gl.BindSampler(unit, 0);
     }
     gl.Enable(GL_SCISSOR_TEST);
+    litDivisor_ = 0;
     for (int first = 0; first < pass.variant.lights; first += 4) {
         Group g;
         const int count = std::min(4, pass.variant.lights - first);
-        g.variant = groupVariant(pass.variant, first, count);
+        g.variant = slotsVariant(pass.variant, first, count);
         if (variantTechniques(g.variant) == (1u << SG_TECH_NONE)) continue;  // no shadowed light: read as lit
         g.first = first;
         g.layer = first / 4;
@@ -267,7 +287,15 @@ void ScreenStage::computeVisibility(const ShadowFrame& frame, const PassLights& 
             if (light >= 0) g.contactLength[i] = contactLengthUniform(frame.lights[static_cast<std::size_t>(light)]);
         }
         g.contact = g.contactLength != glm::vec4(0.0f);
-        g.bounds = pass.bounds;
+        g.bounds = bounds;
+        const int resolvedInLit = pass.variant.resolve[static_cast<std::size_t>(g.layer)];
+        if (resolvedInLit > 1) {
+            // The lit pass resolves it (litResolveDivisors): the stage alone.
+            g.divisor = resolvedInLit;
+            litDivisor_ = resolvedInLit;
+            timed(timer, "stage", [&] { reducedStage(g, rays, stats); });
+            continue;
+        }
         visibilityOfGroup(g, rays, stats, timer);
     }
     gl.Disable(GL_SCISSOR_TEST);
@@ -299,13 +327,7 @@ void ScreenStage::draw(Program& p, const Group& g, int divisor, const ScreenRays
 void ScreenStage::visibilityOfGroup(const Group& g, const ScreenRays& rays, FrameStats& stats, gpu::PassTimer* timer) {
     const GLuint fb = visibility_.get();
     const int d = g.divisor;
-    // Each draw timed on its own when asked (a fence around each on a CPU rasteriser).
-    auto timed = [&](const char* what, auto&& body) {
-        if (timer == nullptr) return body();
-        gpu::ScopedPass scope(*timer, std::string("Main/ScreenVisibility/") + what);
-        body();
-    };
-    if (d > 1) timed("stage", [&] { reducedStage(g, rays, stats); });
+    if (d > 1) timed(timer, "stage", [&] { reducedStage(g, rays, stats); });
     const GLenum one = GL_COLOR_ATTACHMENT0;
     gl.NamedFramebufferDrawBuffers(fb, 1, &one);
     gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, full_.get(), 0, g.layer);
@@ -314,7 +336,7 @@ void ScreenStage::visibilityOfGroup(const Group& g, const ScreenRays& rays, Fram
         // Only where the surface pass drew (GREATER than its depth, at the far plane).
         gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, depthBuffer_, 0);
         gl.DepthFunc(GL_GREATER);
-        timed("stage", [&] { draw(program(g.variant, g.first, 1, Pass::Stage, g.contact, stats), g, 1, rays); });
+        timed(timer, "stage", [&] { draw(program(g.variant, g.first, 1, Pass::Stage, g.contact, stats), g, 1, rays); });
     } else {
         // The resolve marks in depth the pixels it cannot upsample for every light (0; 1
         // elsewhere) and writes the prior: its visibility, -1 for the lights to recompute. The
@@ -331,7 +353,8 @@ void ScreenStage::visibilityOfGroup(const Group& g, const ScreenRays& rays, Fram
         }
         gl.DepthMask(GL_TRUE);
         gl.DepthFunc(GL_ALWAYS);
-        timed("resolve", [&] { draw(program(g.variant, g.first, d, Pass::Resolve, g.contact, stats), g, 1, rays); });
+        timed(timer, "resolve",
+              [&] { draw(program(g.variant, g.first, d, Pass::Resolve, g.contact, stats), g, 1, rays); });
         if (perLight) {
             gl.NamedFramebufferDrawBuffers(fb, 1, &one);
             gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, 0, 0);
@@ -340,7 +363,7 @@ void ScreenStage::visibilityOfGroup(const Group& g, const ScreenRays& rays, Fram
         gl.DepthMask(GL_FALSE);
         gl.DepthFunc(GL_GREATER);
         const Pass refine = perLight ? Pass::Refine : Pass::Stage;
-        timed("refine", [&] { draw(program(g.variant, g.first, 1, refine, g.contact, stats), g, 1, rays); });
+        timed(timer, "refine", [&] { draw(program(g.variant, g.first, 1, refine, g.contact, stats), g, 1, rays); });
     }
     gl.DepthFunc(GL_LESS);
     gl.Disable(GL_DEPTH_TEST);
@@ -355,7 +378,7 @@ void ScreenStage::reducedStage(const Group& g, const ScreenRays& rays, FrameStat
     const GLuint depth = stageDepth_[static_cast<std::size_t>(divisorIndex(d))].get();
     attachCoverage(d, stats);
     gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT0, stage, 0, g.layer);
-    gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, depth, 0);
+    gl.NamedFramebufferTextureLayer(fb, GL_COLOR_ATTACHMENT1, depth, 0, g.layer);
     const std::array<GLenum, 2> both{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     gl.NamedFramebufferDrawBuffers(fb, 2, both.data());
     // Samples the depth test skips read as off every surface in the resolve (depth 0).
@@ -383,6 +406,45 @@ void ScreenStage::bindForLighting(bool materialTargets) const {
     for (const GLuint unit : {SG_UNIT_GBUFFER_SURFACE, SG_UNIT_GBUFFER_MATERIAL, SG_UNIT_SCREEN_VISIBILITY}) {
         gl.BindSampler(unit, 0);
     }
+    if (litDivisor_ > 1) {
+        const auto i = static_cast<std::size_t>(divisorIndex(litDivisor_));
+        gl.BindTextureUnit(SG_UNIT_LIT_STAGE, stage_[i].get());
+        gl.BindTextureUnit(SG_UNIT_SCREEN_DEPTH, stageDepth_[i].get());
+        gl.BindSampler(SG_UNIT_LIT_STAGE, 0);
+        gl.BindSampler(SG_UNIT_SCREEN_DEPTH, 0);
+    }
+}
+
+void ScreenStage::markCorrection(const PixelRect& bounds, unsigned slotBits, FrameStats& stats) {
+    if (!marksProgram_) {
+        marksProgram_ = gpu::buildProgram({"Main/ScreenVisibility/marks",
+                                           "fullscreen.vert.glsl",
+                                           "screen_coverage.frag.glsl",
+                                           {"SG_COVERAGE_MARKS"}});
+        marksBits_ = gl.GetUniformLocation(marksProgram_.get(), "uMarkBits");
+        ++stats.programsCompiled;
+    }
+    const GLuint fb = visibility_.get();
+    gl.BindFramebuffer(GL_FRAMEBUFFER, fb);
+    gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, refine_.get(), 0);
+    const GLenum none = GL_NONE;
+    gl.NamedFramebufferDrawBuffers(fb, 1, &none);
+    gl.Viewport(0, 0, width_, height_);
+    gl.Enable(GL_SCISSOR_TEST);
+    gl.Scissor(bounds.x0, bounds.y0, bounds.x1 - bounds.x0, bounds.y1 - bounds.y0);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_ALWAYS);
+    gl.DepthMask(GL_TRUE);
+    gl.BindTextureUnit(SG_UNIT_LIT_STAGE, marks_.get());
+    gl.BindSampler(SG_UNIT_LIT_STAGE, 0);
+    gl.ProgramUniform1i(marksProgram_.get(), marksBits_, static_cast<GLint>(slotBits));
+    gl.UseProgram(marksProgram_.get());
+    gl.BindVertexArray(empty_.get());
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    gl.DepthMask(GL_FALSE);
+    gl.DepthFunc(GL_LESS);
+    gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, 0, 0);
+    gl.Disable(GL_SCISSOR_TEST);
 }
 
 }  // namespace shadow::render

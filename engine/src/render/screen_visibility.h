@@ -5,6 +5,14 @@
 // (shaders/screen_visibility.frag.glsl), then the pass's lights shaded by one full-screen
 // triangle that reads both (lit.frag.glsl with SG_DEFERRED).
 //
+// Bringing a reduced stage back to full resolution: the lit pass does it itself for the groups
+// it can (`litResolveDivisors`): it blends the stage's samples (sg_resolveStage) and marks the
+// lights whose pixels the blend cannot serve; a mark pass turns the marks into depth, and the
+// pass's correction (the lit program with SG_LIT_CORRECTION) adds those lights, their technique
+// run at full resolution, at the marked pixels alone. The other groups (contact shadows, a
+// second divisor) keep passes of their own: the resolve writes the full-resolution visibility
+// and marks, the refine recomputes the marked pixels, the lit pass reads the result.
+//
 // Why: a soft shadow's penumbra is low-frequency, yet the forward lit pass pays its filter at
 // every fragment of the scene, at a CPU rasteriser's scene rate (small triangles shade partly
 // covered blocks: twice a full-screen pass's cost per pixel, BENCHMARKS.md fragment costs).
@@ -50,6 +58,17 @@ namespace shadow::render {
 [[nodiscard]] bool screenStagePays(ScreenVisibility setting, const ShadowFrame& frame,
                                    const std::vector<PassLights>& passes, int height);
 
+/// Per group of four slots of `pass` (k: slots 4k to 4k + 3), the divisor at which the deferred
+/// lit pass resolves the stage itself (LitVariant::resolve): the group's `visibilityDivisor` when
+/// above 1 and no light of the group has contact shadows (whose march the stage's refine pass
+/// draws), 0 where the stage's own passes bring the group to full resolution (its stage at full
+/// resolution, a contact march, a group without a shadowed light). The lit pass reads one reduced
+/// stage: a second group at another divisor than the first is left to the stage's passes.
+/// Why: the resolve as a pass of its own cost 13.9 ms of the bunny spot's 64 ms PCF frame at
+/// 1280x720, a full-screen pass's floor (5.7 ms) of it spent writing what the lit pass then read.
+[[nodiscard]] std::array<std::uint8_t, 2> litResolveDivisors(ScreenVisibility setting, const ShadowFrame& frame,
+                                                             const PassLights& pass, int height);
+
 /// The contact march's length of `light` as the stage's shader takes it: metres (> 0), -1 for
 /// the automatic length, 0 without contact shadows or technique.
 [[nodiscard]] float contactLengthUniform(const ShadowLightPlan& light);
@@ -78,15 +97,28 @@ public:
     /// material targets too when `materialTargets`.
     void beginSurfaces(bool materialTargets);
     /// Runs the visibility of pass `pass` (whose records and shadow resources are bound) into the
-    /// full-resolution visibility array, group by group; leaves the stage's framebuffer bound.
+    /// full-resolution visibility array, group by group, within `bounds` (full-resolution pixels:
+    /// the pass's lights' reach, or the screen where the lit pass writes every light's visibility
+    /// AOV); leaves the stage's framebuffer bound. A group the lit pass resolves itself
+    /// (LitVariant::resolve) gets its reduced-resolution stage alone.
     /// Contact shadows for the lights of `frame` that ask for them (`Shadow::contactShadows`).
     /// With `timer`, each kind of pass is timed on its own: Main/ScreenVisibility/stage, /resolve
     /// (the upsample) and /refine.
-    void computeVisibility(const ShadowFrame& frame, const PassLights& pass, ScreenVisibility setting,
-                           const ScreenRays& rays, FrameStats& stats, gpu::PassTimer* timer);
-    /// Binds the surface targets (with the material targets when `materialTargets`) and the
-    /// full-resolution visibility for the deferred lit pass.
+    void computeVisibility(const ShadowFrame& frame, const PassLights& pass, const PixelRect& bounds,
+                           ScreenVisibility setting, const ScreenRays& rays, FrameStats& stats, gpu::PassTimer* timer);
+    /// Binds the surface targets (with the material targets when `materialTargets`), the
+    /// full-resolution visibility and, for a pass that resolves the stage itself
+    /// (LitVariant::resolve), the stage of the last `computeVisibility`, for the deferred lit pass.
     void bindForLighting(bool materialTargets) const;
+    /// The marks target a deferred lit pass that resolves the stage writes (R8UI, SG_OUT_MARKS).
+    [[nodiscard]] GLuint marks() const { return marks_.get(); }
+    /// Prepares a correction of a deferred lit pass that resolved the stage: the pixels where it
+    /// marked one of the slots of `slotBits` (within `bounds`) as depth 0 in `correctionDepth`,
+    /// the rest 1, and the marks bound for the correction to read (SG_UNIT_LIT_STAGE). Leaves the
+    /// stage's framebuffer bound.
+    void markCorrection(const PixelRect& bounds, unsigned slotBits, FrameStats& stats);
+    /// The depth buffer `markCorrection` fills, against which the correction is tested.
+    [[nodiscard]] GLuint correctionDepth() const { return refine_.get(); }
     /// An empty vertex array for full-screen triangles.
     [[nodiscard]] GLuint emptyVertexArray() const { return empty_.get(); }
 
@@ -111,7 +143,7 @@ private:
         int divisor = 1;
         glm::vec4 contactLength{0.0f};  ///< per channel, `contactLengthUniform`
         bool contact = false;
-        PixelRect bounds;  ///< the pass's, in full-resolution pixels
+        PixelRect bounds;  ///< where its visibility is wanted, in full-resolution pixels
     };
     /// The group's visibility at full resolution: the stage, or at a reduced resolution the
     /// stage, the resolve and the refine.
@@ -139,6 +171,10 @@ private:
     std::array<gpu::Texture, 3> coverage_;    ///< their depth buffers: 0 where a sample receives
     std::array<gpu::Program, 3> coveragePrograms_;
     unsigned coverageDrawn_ = 0;  ///< bit per divisor index: its coverage is this frame's
+    int litDivisor_ = 0;          ///< the last computeVisibility's stage the lit pass resolves, 0 none
+    gpu::Texture marks_;          ///< R8UI: the deferred lit pass's marks (SG_OUT_MARKS)
+    gpu::Program marksProgram_;   ///< their depth for the correction (screen_coverage.frag.glsl)
+    GLint marksBits_ = -1;        ///< its uMarkBits
     gpu::VertexArray empty_;
     std::map<Key, Program> programs_;
 };
