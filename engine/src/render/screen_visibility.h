@@ -44,16 +44,16 @@ namespace shadow::render {
 /// Whether a frame of `passes` (lights of `frame`) runs the stage under `setting`: never when
 /// Off, always when it forces a resolution. For Auto, where the stage measured faster than the
 /// forward passes on llvmpipe (BENCHMARKS.md, screen-space visibility): a light with technique
-/// pcss or sdf (their filters are the dearest: at 1280x720 sdf 0.27 of forward's frame on
-/// the bunny spots, PCSS 0.77-0.81), or two or more lights that filter (any technique but hard:
-/// the sample scenes 0.51-0.85); and always when a light asks for contact shadows, which only
+/// pcss or sdf (their filters are the dearest: at 1280x720 sdf 0.25 of forward's frame on
+/// the bunny spots, PCSS 0.68-0.70), or two or more lights that filter (any technique but hard:
+/// the sample scenes 0.49-0.80); and always when a light asks for contact shadows, which only
 /// the stage draws.
 /// One PCF, VSM, VSSM or MSM light alone stays forward under `kMinQuarterStageHeight` rows: there
 /// its lookups cost about what the stage's surface and full-screen passes do (the stage forced at
-/// half resolution, bunny spots at 1280x720: 0.92-1.19 of forward's frame); from those rows the
-/// stage runs it at quarter resolution, measured 1.00-1.01 of forward (PCF; 0.77-0.91 before
-/// the feature reports), 0.92-0.94 (VSSM) and 0.78-0.81 (MSM-soft), at an error against the
-/// truth equal or lower (README, "Screen-space visibility"). Hard shadows stay forward, and so
+/// half resolution, bunny spots at 1280x720: 0.86-1.05 of forward's frame); from those rows the
+/// stage runs it at quarter resolution, measured 0.88-0.89 of forward (PCF), 0.90-0.93 (VSSM)
+/// and 0.73-0.75 (MSM-soft), at an error against the truth equal or lower (README,
+/// "Screen-space visibility"). Hard shadows stay forward, and so
 /// does an image under `kMinStageHeight` rows, contact shadows aside.
 [[nodiscard]] bool screenStagePays(ScreenVisibility setting, const ShadowFrame& frame,
                                    const std::vector<PassLights>& passes, int height);
