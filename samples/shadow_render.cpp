@@ -205,10 +205,11 @@ int run(const Options& o) {
         return fail(kExitBadInput, "--debug-light " + std::to_string(o.debugLight) + ": the scene has " +
                                        std::to_string(scene.lights.size()) + " lights");
     }
-    scene.world.view<Shadow>().each([&](Entity, Shadow& s) { overrideShadow(s, o, technique, depthMode); });
     Result<Entity> chosen =
         samples::chooseCameraAndRig(scene, o.camera, o.time, o.rig, static_cast<double>(size->first) / size->second);
     if (!chosen) return fail(kExitBadInput, chosen.error().message);
+    // After the rig: its sun is a shadowed light like the file's own.
+    scene.world.view<Shadow>().each([&](Entity, Shadow& s) { overrideShadow(s, o, technique, depthMode); });
     const Entity camera = *chosen;
     samples::printSceneWarnings("shadow_render", scene);  // the default rig's notice among them
     const std::size_t loadWarnings = scene.warnings.size();

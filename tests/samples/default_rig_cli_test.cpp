@@ -60,6 +60,26 @@ bool rayMeetsBox(const glm::dvec3& p, const glm::dvec3& towardsLight, const glm:
     return enter <= leave;
 }
 
+// The command line's overrides reach the rig's sun as they reach a file's own lights: before,
+// they were applied before the rig was added, and its sun kept PCSS at its defaults whatever
+// --technique said.
+TEST(DefaultRigCli, TheCommandLinesShadowOverridesReachTheRigsSun) {
+    test::TempDir tmp("default_rig_cli");
+    const fs::path file = writeCube(tmp.path() / "cube.gltf", false);
+    const std::string out = tmp / "out";
+    const test::ProcessRun render =
+        run(tmp, "shadow_render",
+            test::shellQuoted(file.string()) + " --size 64x48 --aov color --technique hard --map-size 256 --out " +
+                test::shellQuoted(out));
+    ASSERT_EQ(render.exitCode, 0) << render.output;
+    const nlohmann::json stats = readJson(out + "/stats.json");
+    ASSERT_FALSE(stats.is_discarded());
+    ASSERT_EQ(stats["lights"].size(), 1u);
+    EXPECT_EQ(stats["lights"][0]["node"], "default sun");
+    EXPECT_EQ(stats["lights"][0]["technique"], "hard");
+    EXPECT_EQ(stats["lights"][0]["shadow"]["mapSize"], 256);
+}
+
 // The ground's shadow against the cube's projection along the sun: a ground pixel whose ray
 // towards the sun meets the cube shrunk by kEdge is in the umbra, one whose ray misses the cube
 // grown by kEdge is lit; the band between (the penumbra of the 0.02 rad sun, at most 2.6 cm wide
