@@ -27,6 +27,15 @@ test::ProcessRun run(const test::TempDir& tmp, const std::string& program, const
     return test::runProgram(std::string(SHADOW_BIN_DIR "/") + program, args, tmp / (program + ".log"));
 }
 
+/// shadow_render on a cube written to `name` in `tmp` (with a lamp of its own when `withLight`),
+/// with `args`, into `tmp`/out.
+test::ProcessRun renderCube(const test::TempDir& tmp, const std::string& args, const char* name = "cube.gltf",
+                            bool withLight = false) {
+    const fs::path file = writeCube(tmp.path() / name, withLight);
+    return run(tmp, "shadow_render",
+               test::shellQuoted(file.string()) + " " + args + " --out " + test::shellQuoted(tmp / "out"));
+}
+
 nlohmann::json readJson(const std::string& path) {
     std::ifstream in(path);
     return nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
@@ -65,12 +74,8 @@ bool rayMeetsBox(const glm::dvec3& p, const glm::dvec3& towardsLight, const glm:
 // --technique said.
 TEST(DefaultRigCli, TheCommandLinesShadowOverridesReachTheRigsSun) {
     test::TempDir tmp("default_rig_cli");
-    const fs::path file = writeCube(tmp.path() / "cube.gltf", false);
     const std::string out = tmp / "out";
-    const test::ProcessRun render =
-        run(tmp, "shadow_render",
-            test::shellQuoted(file.string()) + " --size 64x48 --aov color --technique hard --map-size 256 --out " +
-                test::shellQuoted(out));
+    const test::ProcessRun render = renderCube(tmp, "--size 64x48 --aov color --technique hard --map-size 256");
     ASSERT_EQ(render.exitCode, 0) << render.output;
     const nlohmann::json stats = readJson(out + "/stats.json");
     ASSERT_FALSE(stats.is_discarded());
@@ -89,12 +94,8 @@ TEST(DefaultRigCli, TheCommandLinesShadowOverridesReachTheRigsSun) {
 // with the ground above or below the cube's base (no ground pixels at the rig's height).
 TEST(DefaultRigCli, FileWithoutLightsCastsTheCubesShadowWhereGeometrySays) {
     test::TempDir tmp("default_rig_cli");
-    const fs::path file = writeCube(tmp.path() / "cube.gltf", false);
     const std::string out = tmp / "out";
-    const test::ProcessRun render =
-        run(tmp, "shadow_render",
-            test::shellQuoted(file.string()) + " --size 160x120 --aov color,visibility,position --out " +
-                test::shellQuoted(out));
+    const test::ProcessRun render = renderCube(tmp, "--size 160x120 --aov color,visibility,position");
     ASSERT_EQ(render.exitCode, 0) << render.output;
 
     // Said once on stderr and in stats.json; the rig's sun is light 0.
@@ -108,7 +109,7 @@ TEST(DefaultRigCli, FileWithoutLightsCastsTheCubesShadowWhereGeometrySays) {
     EXPECT_EQ(stats["lights"][0]["technique"], "pcss");
 
     // The rig the program added, rebuilt here by the same library call.
-    Result<Scene> scene = loadScene(file.string());
+    Result<Scene> scene = loadScene(tmp / "cube.gltf");
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const DefaultRig rig = addDefaultRig(*scene, std::nullopt);
     const ImageF position = readExr(out + "/position.exr", {"R", "G", "B", "A"}).value();
@@ -146,11 +147,8 @@ TEST(DefaultRigCli, FileWithoutLightsCastsTheCubesShadowWhereGeometrySays) {
 // ambient term alone is not what lights the cube.
 TEST(DefaultRigCli, NoDefaultLightsKeepsTheFileUnlit) {
     test::TempDir tmp("default_rig_cli");
-    const fs::path file = writeCube(tmp.path() / "cube.gltf", false);
     const std::string out = tmp / "out";
-    const test::ProcessRun render =
-        run(tmp, "shadow_render",
-            test::shellQuoted(file.string()) + " --no-default-lights --size 64x48 --out " + test::shellQuoted(out));
+    const test::ProcessRun render = renderCube(tmp, "--no-default-lights --size 64x48");
     ASSERT_EQ(render.exitCode, 0) << render.output;
     EXPECT_EQ(render.output.find("default rig"), std::string::npos) << render.output;
     const nlohmann::json stats = readJson(out + "/stats.json");
@@ -169,11 +167,8 @@ TEST(DefaultRigCli, NoDefaultLightsKeepsTheFileUnlit) {
 // Fails when a file's own light is joined by the rig's (two lights, a DefaultRigAdded warning).
 TEST(DefaultRigCli, FileWithLightsGetsNoRig) {
     test::TempDir tmp("default_rig_cli");
-    const fs::path file = writeCube(tmp.path() / "lamp.gltf", true);
     const std::string out = tmp / "out";
-    const test::ProcessRun render =
-        run(tmp, "shadow_render",
-            test::shellQuoted(file.string()) + " --size 64x48 --aov color,position --out " + test::shellQuoted(out));
+    const test::ProcessRun render = renderCube(tmp, "--size 64x48 --aov color,position", "lamp.gltf", true);
     ASSERT_EQ(render.exitCode, 0) << render.output;
     const nlohmann::json stats = readJson(out + "/stats.json");
     ASSERT_EQ(stats["lights"].size(), 1u);
@@ -191,12 +186,8 @@ TEST(DefaultRigCli, FileWithLightsGetsNoRig) {
 // Fails when --no-ground leaves the ground in (pixels below the cube's base).
 TEST(DefaultRigCli, NoGroundLeavesTheSunAlone) {
     test::TempDir tmp("default_rig_cli");
-    const fs::path file = writeCube(tmp.path() / "cube.gltf", false);
     const std::string out = tmp / "out";
-    const test::ProcessRun render =
-        run(tmp, "shadow_render",
-            test::shellQuoted(file.string()) + " --no-ground --size 64x48 --aov color,position --out " +
-                test::shellQuoted(out));
+    const test::ProcessRun render = renderCube(tmp, "--no-ground --size 64x48 --aov color,position");
     ASSERT_EQ(render.exitCode, 0) << render.output;
     const nlohmann::json stats = readJson(out + "/stats.json");
     EXPECT_EQ(stats["lights"].size(), 1u);
