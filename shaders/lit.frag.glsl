@@ -231,6 +231,21 @@ uint sg_mixed(float v) { return uint(v > SG_VISIBILITY_CLASS_EPSILON && v < 1.0 
 #define SG_COUNT_EDGES_OF(g, slot, v, shading)
 #endif
 
+#if defined(SG_DEFERRED) && !defined(SG_LIT_CORRECTION)
+// The visibility of group `layer` (slots 4 layer to 4 layer + 3, `lights` of them) at `pixel`,
+// whose surface texel is `surface`: resolved here from the stage at divisor `resolve` (> 1), its
+// marked lights added to `marks` (sg_groupMarks, a bit per slot); else (0) read from the stage's
+// full-resolution target. The arguments are constants: the compiler keeps one branch.
+vec4 litGroupVisibility(ivec2 pixel, uvec4 surface, int layer, int resolve, int lights, bool perLight,
+                        inout uint marks) {
+    if (resolve <= 1) return texelFetch(sg_screenVisibility, ivec3(pixel, layer), 0);
+    uint refine;
+    vec4 v = sg_resolveStage(pixel, surface, resolve, sg_litStage, sg_litStageDepth, layer, lights, uPixelAngle, refine);
+    marks |= sg_groupMarks(refine, lights, perLight) << uint(4 * layer);
+    return v;
+}
+#endif
+
 void main() {
 #ifdef SG_DEFERRED
     ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -245,22 +260,11 @@ void main() {
 #ifdef SG_LIT_CORRECTION
     litMarks = texelFetch(sg_litMarks, pixel, 0).r;
 #else
-#if SG_LAYER0_RESOLVE > 1
-    uint refine0;
-    screenVisibility[0] = sg_resolveStage(pixel, gSurface, SG_LAYER0_RESOLVE, sg_litStage, sg_litStageDepth, 0,
-                                          min(SG_PASS_LIGHTS, 4), uPixelAngle, refine0);
-    litMarks = sg_groupMarks(refine0, min(SG_PASS_LIGHTS, 4), SG_LAYER0_PER_LIGHT != 0);
-#else
-    screenVisibility[0] = texelFetch(sg_screenVisibility, ivec3(pixel, 0), 0);
-#endif
-#if SG_LAYER1_RESOLVE > 1
-    uint refine1;
-    screenVisibility[1] = sg_resolveStage(pixel, gSurface, SG_LAYER1_RESOLVE, sg_litStage, sg_litStageDepth, 1,
-                                          SG_PASS_LIGHTS - 4, uPixelAngle, refine1);
-    litMarks |= sg_groupMarks(refine1, SG_PASS_LIGHTS - 4, SG_LAYER1_PER_LIGHT != 0) << 4u;
-#else
-    if (SG_PASS_LIGHTS > 4) screenVisibility[1] = texelFetch(sg_screenVisibility, ivec3(pixel, 1), 0);
-#endif
+    screenVisibility[0] = litGroupVisibility(pixel, gSurface, 0, SG_LAYER0_RESOLVE, min(SG_PASS_LIGHTS, 4),
+                                             SG_LAYER0_PER_LIGHT != 0, litMarks);
+    if (SG_PASS_LIGHTS > 4)
+        screenVisibility[1] = litGroupVisibility(pixel, gSurface, 1, SG_LAYER1_RESOLVE, max(SG_PASS_LIGHTS - 4, 1),
+                                                 SG_LAYER1_PER_LIGHT != 0, litMarks);
 #if SG_LIT_RESOLVES
     outMarks = litMarks;
 #endif

@@ -1,12 +1,14 @@
 #include "render/light_packing.h"
 
 #include "core/light_records.h"
+#include "core/stage_resolution.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <span>
 
 namespace shadow::render {
 namespace {
@@ -58,6 +60,11 @@ LitVariant slotsVariant(const LitVariant& pass, int first, int count) {
         g.kernel[d] = pass.kernel[s];
     }
     return g;
+}
+
+bool refinesPerLight(const LitVariant& pass, int first, int count) {
+    return shadow::refinesPerLight(
+        std::span(pass.technique).subspan(static_cast<std::size_t>(first), static_cast<std::size_t>(count)));
 }
 
 void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const ScreenView& view,

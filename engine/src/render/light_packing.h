@@ -84,11 +84,15 @@ struct PassLights {
 /// it (both sides of an `if` run; BENCHMARKS.md, fragment costs). There is always at least one
 /// pass (it resolves depth and writes the ambient term and the AOVs). Reuses the capacity of
 /// `passes` and `order` (scratch): no allocation once they have grown.
+void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const ScreenView& view,
+                std::vector<PassLights>& passes, std::vector<PackingEntry>& order);
+
 /// Slots `first` .. `first + count - 1` of a pass's variant as a variant of their own (their
 /// type, technique and kernel; nothing else set).
 [[nodiscard]] LitVariant slotsVariant(const LitVariant& pass, int first, int count);
 
-void packLights(const ShadowFrame& frame, const glm::dvec3& wsCamera, const ScreenView& view,
-                std::vector<PassLights>& passes, std::vector<PackingEntry>& order);
+/// `shadow::refinesPerLight` (core/stage_resolution.h) of slots `first` .. `first + count - 1`
+/// of a pass's variant: whether that group's marked pixels are recomputed light by light.
+[[nodiscard]] bool refinesPerLight(const LitVariant& pass, int first, int count);
 
 }  // namespace shadow::render

@@ -4,7 +4,6 @@
 
 #include "gl/mesh_cache_access.h"
 #include "gl/program.h"
-#include "core/stage_resolution.h"
 #include "gl/technique_glsl.h"
 
 #include <glm/gtc/type_ptr.hpp>
@@ -72,12 +71,10 @@ void setMaps(GLuint program, const MaterialUniforms& u, const Material& material
 }
 
 /// Whether the group of four slots `layer` of a variant marks its lights one by one for the
-/// correction (`shadow::refinesPerLight`), or all of them where one is.
+/// correction (`refinesPerLight`), or all of them where one is.
 bool marksPerLight(const LitVariant& v, int layer) {
     const int first = 4 * layer;
-    const int count = std::clamp(v.lights - first, 0, 4);
-    return shadow::refinesPerLight(
-        std::span(v.technique).subspan(static_cast<std::size_t>(first), static_cast<std::size_t>(count)));
+    return refinesPerLight(v, first, std::clamp(v.lights - first, 0, 4));
 }
 
 /// Whether a variant's program runs its lights' techniques: forward, or a deferred pass's
@@ -180,6 +177,7 @@ std::vector<std::string> variantDefines(const LitVariant& v) {
         // plane); the correction's, only the marked ones (GREATER than their mark, 0).
         if (!v.correction) defines.emplace_back("SG_FULLSCREEN_FAR");
         for (std::size_t k = 0; k < v.resolve.size(); ++k) {
+            if (v.resolve[k] <= 1) continue;  // read from the stage's full-resolution target
             const std::string layer = "SG_LAYER" + std::to_string(k);
             defines.push_back(layer + "_RESOLVE " + std::to_string(v.resolve[k]));
             defines.push_back(layer + "_PER_LIGHT " + std::to_string(marksPerLight(v, static_cast<int>(k)) ? 1 : 0));
@@ -210,7 +208,6 @@ LitVariant correctionVariant(const LitVariant& pass, int group) {
     c.aovs = pass.aovs;
     c.deferred = true;
     c.materialMaps = pass.materialMaps;
-    c.resolve = {pass.resolve[static_cast<std::size_t>(group)], 0};
     c.correction = true;
     c.slotBase = static_cast<std::uint8_t>(first);
     return c;

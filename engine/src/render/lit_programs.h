@@ -66,7 +66,8 @@ unsigned variantTechniques(const LitVariant& variant);
 std::vector<std::string> variantDefines(const LitVariant& variant);
 
 /// The correction of group `group` (slots 4 `group` to 4 `group` + 3) of a deferred lit pass that
-/// resolves it (`pass`, LitVariant::resolve): that group's slots alone, from SG_SLOT_BASE on.
+/// resolves it (`pass`, LitVariant::resolve): that group's slots alone, from SG_SLOT_BASE on (it
+/// reads the lit pass's marks, not the stage: no divisor).
 [[nodiscard]] LitVariant correctionVariant(const LitVariant& pass, int group);
 
 /// Lit programs by variant, built on first use. Throws `GlError` when a variant does not build.

@@ -144,6 +144,12 @@ PixelRect litBounds(const PassLights& pass, const RenderOptions& options) {
     return options.aovs ? PixelRect{0, 0, options.width, options.height} : pass.bounds;
 }
 
+/// Turns the scissor test on, to `b`.
+void scissorTo(const PixelRect& b) {
+    gl.Enable(GL_SCISSOR_TEST);
+    gl.Scissor(b.x0, b.y0, b.x1 - b.x0, b.y1 - b.y0);
+}
+
 /// Whether a deferred lit pass resolves (part of) the stage itself, and has a correction.
 bool resolvesStage(const render::LitVariant& v) { return v.resolve[0] > 1 || v.resolve[1] > 1; }
 
@@ -474,7 +480,7 @@ void Renderer::Impl::screenLitPass(const MainCamera& mc, std::size_t index, cons
     if (index == 0 || options.aovs || resolves) {
         targets.bindPass(static_cast<int>(index), resolves ? render::PassOutputs::LitMarks : render::PassOutputs::Lit);
     }
-    screen->bindForLighting(materials.materialTargets);
+    screen->bindForLighting(materials.materialTargets, pass.variant);
     // Only the pixels the surface pass drew (GREATER than its depth, at the far plane): the
     // background keeps the targets' clear values, as forward leaves it.
     gl.Enable(GL_DEPTH_TEST);
@@ -484,9 +490,7 @@ void Renderer::Impl::screenLitPass(const MainCamera& mc, std::size_t index, cons
         gl.Enablei(GL_BLEND, 0);
         gl.BlendFunc(GL_ONE, GL_ONE);
     }
-    const PixelRect bounds = litBounds(pass, options);
-    gl.Enable(GL_SCISSOR_TEST);
-    gl.Scissor(bounds.x0, bounds.y0, bounds.x1 - bounds.x0, bounds.y1 - bounds.y0);
+    scissorTo(litBounds(pass, options));
     if (resolves) targets.clearMarks();
     const GLuint id = p.program.get();
     gl.UseProgram(id);
@@ -507,6 +511,15 @@ void Renderer::Impl::screenCorrection(const MainCamera& mc, std::size_t index, c
     const PassLights& pass = passes[index];
     const PixelRect bounds = litBounds(pass, options);
     const GLuint fb = targets.framebuffer();
+    targets.setOutputs(static_cast<int>(index), render::PassOutputs::Correction);
+    lightBlocks.bind(SG_BINDING_LIGHTS, index);
+    layerBlocks.bind(SG_BINDING_LAYERS, index);
+    // It adds the marked lights' shading (and their visibility to the visibility AOVs); the mark
+    // passes between its draws write depth alone.
+    gl.BlendFunc(GL_ONE, GL_ONE);
+    for (const int buffer : {SG_OUT_COLOR, SG_OUT_VISIBILITY0, SG_OUT_VISIBILITY1}) {
+        if (buffer == SG_OUT_COLOR || options.aovs) gl.Enablei(GL_BLEND, static_cast<GLuint>(buffer));
+    }
     for (std::size_t group = 0; group < pass.variant.resolve.size(); ++group) {
         if (pass.variant.resolve[group] <= 1) continue;
         screen->markCorrection(bounds, 15u << (4u * group), stats);
@@ -514,30 +527,21 @@ void Renderer::Impl::screenCorrection(const MainCamera& mc, std::size_t index, c
         gl.Viewport(0, 0, options.width, options.height);
         // Tested against the marks (GREATER than 0, at depth 0.5): only the marked pixels run.
         gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, screen->correctionDepth(), 0);
-        targets.setOutputs(static_cast<int>(index), render::PassOutputs::Correction);
         gl.Enable(GL_DEPTH_TEST);
         gl.DepthFunc(GL_GREATER);
         gl.DepthMask(GL_FALSE);
-        // It adds the marked lights' shading (and their visibility to the visibility AOVs).
-        gl.BlendFunc(GL_ONE, GL_ONE);
-        for (const int buffer : {SG_OUT_COLOR, SG_OUT_VISIBILITY0, SG_OUT_VISIBILITY1}) {
-            if (buffer == SG_OUT_COLOR || options.aovs) gl.Enablei(GL_BLEND, static_cast<GLuint>(buffer));
-        }
-        gl.Enable(GL_SCISSOR_TEST);
-        gl.Scissor(bounds.x0, bounds.y0, bounds.x1 - bounds.x0, bounds.y1 - bounds.y0);
+        scissorTo(bounds);
         const render::LitProgram& p = *passPrograms[index][1 + group];
         const GLuint id = p.program.get();
         gl.UseProgram(id);
         setPassUniforms(p, mc, index, options);
         gl.ProgramUniform1i(id, p.firstPass, 0);  // the lit pass added the ambient term
-        lightBlocks.bind(SG_BINDING_LIGHTS, index);
-        layerBlocks.bind(SG_BINDING_LAYERS, index);
         gl.BindVertexArray(screen->emptyVertexArray());
         gl.DrawArrays(GL_TRIANGLES, 0, 3);
-        gl.Disable(GL_BLEND);
         gl.Disable(GL_SCISSOR_TEST);
         gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, targets.depthBuffer(), 0);
     }
+    gl.Disable(GL_BLEND);
     targets.setOutputs(static_cast<int>(index), render::PassOutputs::Lit);
 }
 
@@ -562,11 +566,9 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
     }
     // A pass lights only its lights' screen bounds. With AOVs every pass covers the screen, so
     // that each light's visibility is written wherever there is geometry.
-    const bool scissored = !options.aovs && pass.bounds != PixelRect{0, 0, options.width, options.height};
-    if (scissored) {
-        gl.Enable(GL_SCISSOR_TEST);
-        gl.Scissor(pass.bounds.x0, pass.bounds.y0, pass.bounds.x1 - pass.bounds.x0, pass.bounds.y1 - pass.bounds.y0);
-    }
+    const PixelRect bounds = litBounds(pass, options);
+    const bool scissored = bounds != PixelRect{0, 0, options.width, options.height};
+    if (scissored) scissorTo(bounds);
     const int counted = edgeCounts.slots(index);
     for (const render::LitProgram* program : chosen) {
         if (program == nullptr) continue;

@@ -25,10 +25,8 @@ int divisorIndex(int divisor) { return divisor == 4 ? 2 : divisor == 2 ? 1 : 0; 
 /// Pixels of a target of 1/`divisor` the screen's size.
 int reduced(int size, int divisor) { return (size + divisor - 1) / divisor; }
 
-/// `refinesPerLight` of a group's slots.
-bool refinesPerLight(const LitVariant& group) {
-    return shadow::refinesPerLight(std::span(group.technique).first(static_cast<std::size_t>(group.lights)));
-}
+/// `refinesPerLight` of a group's slots (a variant of the group alone).
+bool refinesPerLight(const LitVariant& group) { return refinesPerLight(group, 0, group.lights); }
 
 /// Runs `body`, timed as Main/ScreenVisibility/`what` when `timer` is given (a fence around
 /// each draw on a CPU rasteriser).
@@ -273,7 +271,6 @@ void ScreenStage::computeVisibility(const ShadowFrame& frame, const PassLights& 
         gl.BindSampler(unit, 0);
     }
     gl.Enable(GL_SCISSOR_TEST);
-    litDivisor_ = 0;
     for (int first = 0; first < pass.variant.lights; first += 4) {
         Group g;
         const int count = std::min(4, pass.variant.lights - first);
@@ -288,11 +285,8 @@ void ScreenStage::computeVisibility(const ShadowFrame& frame, const PassLights& 
         }
         g.contact = g.contactLength != glm::vec4(0.0f);
         g.bounds = bounds;
-        const int resolvedInLit = pass.variant.resolve[static_cast<std::size_t>(g.layer)];
-        if (resolvedInLit > 1) {
-            // The lit pass resolves it (litResolveDivisors): the stage alone.
-            g.divisor = resolvedInLit;
-            litDivisor_ = resolvedInLit;
+        if (pass.variant.resolve[static_cast<std::size_t>(g.layer)] > 1) {
+            // The lit pass resolves it (litResolveDivisors, at this divisor): the stage alone.
             timed(timer, "stage", [&] { reducedStage(g, rays, stats); });
             continue;
         }
@@ -395,7 +389,7 @@ void ScreenStage::reducedStage(const Group& g, const ScreenRays& rays, FrameStat
     gl.BindTextureUnit(SG_UNIT_SCREEN_DEPTH, depth);
 }
 
-void ScreenStage::bindForLighting(bool materialTargets) const {
+void ScreenStage::bindForLighting(bool materialTargets, const LitVariant& pass) const {
     if (materialTargets) {
         gl.BindTextureUnit(SG_UNIT_GBUFFER_EXTRA, extra_.get());
         gl.BindSampler(SG_UNIT_GBUFFER_EXTRA, 0);
@@ -406,8 +400,10 @@ void ScreenStage::bindForLighting(bool materialTargets) const {
     for (const GLuint unit : {SG_UNIT_GBUFFER_SURFACE, SG_UNIT_GBUFFER_MATERIAL, SG_UNIT_SCREEN_VISIBILITY}) {
         gl.BindSampler(unit, 0);
     }
-    if (litDivisor_ > 1) {
-        const auto i = static_cast<std::size_t>(divisorIndex(litDivisor_));
+    // The groups the pass resolves itself share one divisor (litResolveDivisors).
+    const int resolved = std::max(pass.resolve[0], pass.resolve[1]);
+    if (resolved > 1) {
+        const auto i = static_cast<std::size_t>(divisorIndex(resolved));
         gl.BindTextureUnit(SG_UNIT_LIT_STAGE, stage_[i].get());
         gl.BindTextureUnit(SG_UNIT_SCREEN_DEPTH, stageDepth_[i].get());
         gl.BindSampler(SG_UNIT_LIT_STAGE, 0);

@@ -107,9 +107,9 @@ public:
     void computeVisibility(const ShadowFrame& frame, const PassLights& pass, const PixelRect& bounds,
                            ScreenVisibility setting, const ScreenRays& rays, FrameStats& stats, gpu::PassTimer* timer);
     /// Binds the surface targets (with the material targets when `materialTargets`), the
-    /// full-resolution visibility and, for a pass that resolves the stage itself
-    /// (LitVariant::resolve), the stage of the last `computeVisibility`, for the deferred lit pass.
-    void bindForLighting(bool materialTargets) const;
+    /// full-resolution visibility and, for a pass that resolves the stage itself (`pass`'s
+    /// LitVariant::resolve), the stage its `computeVisibility` drew, for the deferred lit pass.
+    void bindForLighting(bool materialTargets, const LitVariant& pass) const;
     /// The marks target a deferred lit pass that resolves the stage writes (R8UI, SG_OUT_MARKS).
     [[nodiscard]] GLuint marks() const { return marks_.get(); }
     /// Prepares a correction of a deferred lit pass that resolved the stage: the pixels where it
@@ -171,7 +171,6 @@ private:
     std::array<gpu::Texture, 3> coverage_;    ///< their depth buffers: 0 where a sample receives
     std::array<gpu::Program, 3> coveragePrograms_;
     unsigned coverageDrawn_ = 0;  ///< bit per divisor index: its coverage is this frame's
-    int litDivisor_ = 0;          ///< the last computeVisibility's stage the lit pass resolves, 0 none
     gpu::Texture marks_;          ///< R8UI: the deferred lit pass's marks (SG_OUT_MARKS)
     gpu::Program marksProgram_;   ///< their depth for the correction (screen_coverage.frag.glsl)
     GLint marksBits_ = -1;        ///< its uMarkBits
