@@ -6,7 +6,7 @@
 sg_ReceiverPolicy sg_hardPolicy() { return sg_planePolicy(); }
 
 float sg_hardVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
-    return sg_compareTap(slot, L, r, sg_lateralTap(L, r, vec2(0.0)));
+    return sg_compareTap(slot, L, r, sg_receiverTap(r));
 }
 
 #endif

@@ -12,7 +12,7 @@
 sg_ReceiverPolicy sg_msmPolicy() { return sg_planePolicy(); }
 
 float sg_msmVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
-    sg_Tap center = sg_lateralTap(L, r, vec2(0.0));
+    sg_Tap center = sg_receiverTap(r);
     if (sg_outsideMap(center)) return 1.0;
     vec4 b = sg_texelMoments(slot, L, center.uv, center.layer);
     return 1.0 - sg_msmShadowFraction(b, sg_msmReference(r, center, r.texelMetres));

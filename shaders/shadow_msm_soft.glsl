@@ -29,7 +29,7 @@ vec4 sg_quadrantMoments(int slot, sg_GpuLight L, sg_Receiver r, sg_Tap center, f
 }
 
 float sg_msmSoftVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
-    sg_Tap center = sg_lateralTap(L, r, vec2(0.0));
+    sg_Tap center = sg_receiverTap(r);
     if (sg_outsideMap(center)) return 1.0;
     float maxRadius = L.maxFilterTexels * r.texelMetres;
     float dReceiver = center.depth;

@@ -22,7 +22,7 @@ const int sg_kPcfMinTaps = 6;
 // PCF of the light's own radius (sg_pcfRadius).
 float sg_pcfVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
     float radius = sg_pcfRadius(L, r);
-    sg_Tap center = sg_lateralTap(L, r, vec2(0.0));
+    sg_Tap center = sg_receiverTap(r);
     float known = sg_regionVisibility(slot, L, r, center, radius);
     float radiusTexels = radius / r.texelMetres;
     int minTaps = radiusTexels >= 0.5 ? min(sg_kPcfMinTaps, L.pcfSamples) : 1;

@@ -15,7 +15,7 @@
 float sg_pcssFilter(int slot, sg_GpuLight L, sg_Receiver receiver) {
     sg_Receiver r = sg_emitterShaped(L, receiver);
     float maxRadius = L.maxFilterTexels * r.texelMetres;
-    sg_Tap center = sg_lateralTap(L, r, vec2(0.0));
+    sg_Tap center = sg_receiverTap(r);
     float dReceiver = center.depth;
     float size = max(L.emitterSize, 0.0);
     bool pointEmitter = size <= 0.0 || maxRadius <= 0.0;  // a hard shadow: one tap at the receiver

@@ -16,7 +16,7 @@ sg_ReceiverPolicy sg_pcssTextbookPolicy() { return sg_ReceiverPolicy(1.0, 1.0, 0
 // taps, no per-tap layer choice, no early-outs), with the same physical search region,
 // penumbra formula, bias and clamp as sg_pcssVisibility.
 float sg_pcssTextbookVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
-    sg_Tap center = sg_lateralTap(L, r, vec2(0.0));
+    sg_Tap center = sg_receiverTap(r);
     sg_GpuShadowLayer S = sg_layers[L.firstLayer + center.layer];
     vec3 ls = (S.lightFromCs * vec4(r.csPosition, 1.0)).xyz;
     float uvPerMetre = 0.5 * S.clipFromLight[0][0] / (L.type == SG_LIGHT_DIRECTIONAL ? 1.0 : max(-ls.z, 1e-6));

@@ -90,8 +90,7 @@ struct sg_Receiver {
     vec2 refPerTexel;
     float reachBias;      // m of bias per m of a tap's reach from the receiver (sg_ReceiverPolicy)
     vec2 texelTan;    // perspective layers: change of a ray's lateral/axial ratio per texel
-    vec3 geoStep1;  // two texel-sized steps across that plane (m), for the other cube faces
-    vec3 geoStep2;
+    vec3 csPlane;   // the normal of the plane the taps lie on (sg_tapPlaneNormal), for the other cube faces
     bool orthographic;
 };
 
@@ -164,32 +163,27 @@ float sg_planeLinearDepth(vec3 ls, bool orthographic) {
     return orthographic ? -ls.z : 1.0 / max(-ls.z, 1e-30);
 }
 
-// The change per texel step (s, t) of `layer` of sg_planeLinearDepth over the plane through
-// `csPoint` spanned by the steps `a` and `b` (m): three points of the plane projected, exact for
-// a plane. Zero where the plane holds the light ray (no depth to compare across it).
-vec2 sg_planeDepthPerTexel(sg_GpuLight L, int layer, vec3 csPoint, vec3 a, vec3 b) {
-    sg_GpuShadowLayer S = sg_layers[L.firstLayer + layer];
-    vec3 ls0 = (S.lightFromCs * vec4(csPoint, 1.0)).xyz;
-    mat3 linear = mat3(S.lightFromCs);
-    vec3 lsA = ls0 + linear * a, lsB = ls0 + linear * b;
-    vec4 c0 = S.clipFromLight * vec4(ls0, 1.0), cA = S.clipFromLight * vec4(lsA, 1.0), cB = S.clipFromLight * vec4(lsB, 1.0);
-    vec2 st0 = c0.xy / c0.w;
-    mat2 J = mat2(cA.xy / cA.w - st0, cB.xy / cB.w - st0) * (0.5 * float(L.mapSize));  // texels per step
-    bool ortho = L.type == SG_LIGHT_DIRECTIONAL;
-    float q0 = sg_planeLinearDepth(ls0, ortho);
-    vec2 dq = vec2(sg_planeLinearDepth(lsA, ortho) - q0, sg_planeLinearDepth(lsB, ortho) - q0);
-    if (!(abs(determinant(J)) > 1e-12)) return vec2(0.0);
-    return dq * inverse(J);
+// The normal of the plane the taps lie on: the unit plane normal `plane` with its component along
+// the light ray held to at least that of a plane sg_kMaxPlaneSlope steep (sign kept), so that the
+// taps' stretch stays finite at grazing light. The taps' tangents slide along the ray onto this
+// plane (sg_makeReceiver), and its depth per texel (sg_planeDepthPerTexel) is theirs.
+vec3 sg_tapPlaneNormal(vec3 plane, vec3 toLight) {
+    float nDotL = dot(plane, toLight);
+    float along = sign(nDotL) * max(abs(nDotL), 1.0 / sqrt(1.0 + sg_kMaxPlaneSlope * sg_kMaxPlaneSlope));
+    if (along == 0.0) along = 1.0;
+    return plane + toLight * (along - nDotL);
 }
 
-// Two steps of one texel footprint across the plane with unit normal `plane`, perpendicular to
-// the light ray before being slid along it onto the plane (steepness clamped as for the taps).
-void sg_planeSteps(vec3 plane, vec3 toLight, vec3 t1, vec3 t2, float texel, out vec3 a, out vec3 b) {
-    float nDotL = dot(plane, toLight);
-    float denom = sign(nDotL) * max(abs(nDotL), 1.0 / sqrt(1.0 + sg_kMaxPlaneSlope * sg_kMaxPlaneSlope));
-    if (denom == 0.0) denom = 1.0;
-    a = (t1 - toLight * (dot(plane, t1) / denom)) * texel;
-    b = (t2 - toLight * (dot(plane, t2) / denom)) * texel;
+// The change per texel step (s, t) of a layer of sg_planeLinearDepth over the plane with normal
+// `lsNormal` through `ls` (both in the layer's light space), `texelTan` the layer's texel size
+// (sg_Receiver::texelTan). In closed form, exact for a plane: where it meets the ray of map
+// position (u, v) (lateral metres per axial metre), n.(u w, v w, -w) = n.p gives
+// 1/w = (n.x u + n.y v - n.z) / n.p, affine in the texels; an orthographic layer's depth -z is
+// (n.x x + n.y y - n.p) / n.z, affine in them too. Zero where the plane holds the light ray.
+vec2 sg_planeDepthPerTexel(vec3 ls, vec3 lsNormal, vec2 texelTan, bool orthographic) {
+    float across = orthographic ? lsNormal.z : dot(lsNormal, ls);
+    if (!(abs(across) > 0.0) || (!orthographic && !(ls.z < 0.0))) return vec2(0.0);
+    return lsNormal.xy * texelTan / across;
 }
 
 // The receiver for `layer` of a directional light's cascades, or, with layer < 0, for the
@@ -232,14 +226,13 @@ sg_Receiver sg_makeReceiver(sg_GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 
     // with depths no triangle has, which darkens whole facets of the lit side
     // (tests/shadow/terminator_test.cpp: PCF's RMSE against the truth 0.034 -> 0.012 on a
     // 360-triangle sphere under a sun, 0.053 -> 0.013 under a spot).
+    // Beyond sg_kMaxPlaneSlope the plane is treated as that steep (sg_tapPlaneNormal).
     vec3 planeNormal = dot(geoNormal, wsNormal) < 0.0 ? -geoNormal : geoNormal;
-    float nDotL = dot(planeNormal, r.toLight);
-    // Keep the stretch finite at grazing light: beyond sg_kMaxPlaneSlope the plane is treated as that steep.
-    float denom = sign(nDotL) * max(abs(nDotL), 1.0 / sqrt(1.0 + sg_kMaxPlaneSlope * sg_kMaxPlaneSlope));
-    if (denom == 0.0) denom = 1.0;
-    r.csTangent1 = t1 - r.toLight * (dot(planeNormal, t1) / denom);
-    r.csTangent2 = t2 - r.toLight * (dot(planeNormal, t2) / denom);
-    r.depthSlope = length(vec2(dot(planeNormal, t1), dot(planeNormal, t2))) / abs(denom);
+    r.csPlane = sg_tapPlaneNormal(planeNormal, r.toLight);
+    float along = dot(r.csPlane, r.toLight);
+    r.csTangent1 = t1 - r.toLight * (dot(r.csPlane, t1) / along);
+    r.csTangent2 = t2 - r.toLight * (dot(r.csPlane, t2) / along);
+    r.depthSlope = length(vec2(dot(r.csPlane, t1), dot(r.csPlane, t2))) / abs(along);
 
     sg_GpuShadowLayer S = sg_layers[L.firstLayer + r.layer];
     mat3 linear = mat3(S.lightFromCs);
@@ -256,8 +249,7 @@ sg_Receiver sg_makeReceiver(sg_GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 
     r.texelPerAxial = 2.0 / (S.clipFromLight[0][0] * L.mapSize);
     // Every perspective layer of a light has the same symmetric projection (spot, cube faces).
     r.texelTan = 2.0 / (vec2(S.clipFromLight[0][0], S.clipFromLight[1][1]) * float(L.mapSize));
-    sg_planeSteps(geoNormal, r.toLight, t1, t2, r.texelMetres, r.geoStep1, r.geoStep2);
-    r.refPerTexel = sg_planeDepthPerTexel(L, r.layer, r.csPosition, r.geoStep1, r.geoStep2);
+    r.refPerTexel = sg_planeDepthPerTexel(ls, linear * r.csPlane, r.texelTan, r.orthographic);
     return r;
 }
 
@@ -266,6 +258,20 @@ sg_Receiver sg_makeReceiver(sg_GpuLight L, vec3 csPosition, vec3 wsNormal, vec3 
 // footprints (0 when set), at most `maxFilterTexels` texels.
 float sg_pcfRadius(sg_GpuLight L, sg_Receiver r) {
     return min(max(L.pcfRadius, L.pcfRadiusTexels * r.texelMetres), L.maxFilterTexels * r.texelMetres);
+}
+
+// The tap at the receiver itself: sg_receiverTap(r) without a lateral tap's
+// arithmetic (it lies in the receiver's cached layer, at its own texel's footprint).
+sg_Tap sg_receiverTap(sg_Receiver r) {
+    sg_Tap t;
+    t.layer = r.layer;
+    t.uv = r.clipPosition.xy / max(r.clipPosition.w, 1e-20) * 0.5 + 0.5;
+    t.depth = sg_lightSpaceDepth(r.lsPosition, r.orthographic);
+    t.axial = max(-r.lsPosition.z, 1e-30);
+    t.rayTan = r.lsPosition.xy / t.axial;
+    t.reach = 0.0;
+    t.refPerTexel = r.refPerTexel;
+    return t;
 }
 
 // The tap at lateral offset `offset` (m) from the receiver, on its tangent plane.
@@ -302,7 +308,9 @@ sg_Tap sg_lateralTap(sg_GpuLight L, sg_Receiver r, vec2 offset) {
         p += r.offsetPerTexel * max(sg_texelMetresAt(L, layer, p) - r.texelMetres, 0.0);
         t = sg_projectTap(L, layer, p);
         t.reach = length(offset);
-        t.refPerTexel = sg_planeDepthPerTexel(L, layer, p, r.geoStep1, r.geoStep2);
+        sg_GpuShadowLayer S = sg_layers[L.firstLayer + layer];
+        t.refPerTexel = sg_planeDepthPerTexel((S.lightFromCs * vec4(p, 1.0)).xyz, mat3(S.lightFromCs) * r.csPlane,
+                                              r.texelTan, false);
     }
     return t;
 }

@@ -10,7 +10,7 @@
 sg_ReceiverPolicy sg_vsmPolicy() { return sg_planePolicy(); }
 
 float sg_vsmVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
-    sg_Tap center = sg_lateralTap(L, r, vec2(0.0));
+    sg_Tap center = sg_receiverTap(r);
     if (sg_outsideMap(center)) return 1.0;
     // PCF's disk of pcfRadius at the receiver, at most maxFilterTexels.
     // Chebyshev's bound as it is (no plane share, sg_chebyshevUpperBound): over PCF's few texels the

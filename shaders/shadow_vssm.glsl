@@ -10,7 +10,7 @@
 sg_ReceiverPolicy sg_vssmPolicy() { return sg_planePolicy(); }
 
 float sg_vssmVisibility(int slot, sg_GpuLight L, sg_Receiver r) {
-    sg_Tap center = sg_lateralTap(L, r, vec2(0.0));
+    sg_Tap center = sg_receiverTap(r);
     // A layer without casters has no table (its moment scale 0): lit.
     if (sg_outsideMap(center) || sg_summedMomentScale(L, center) == 0.0) return 1.0;
     float maxRadius = L.maxFilterTexels * r.texelMetres;
