@@ -45,8 +45,15 @@ struct ShadowMapGpu {
     /// (ShadowLayerPlan::chainFirstLevel, chainLastLevel).
     std::vector<int> chainFirstLevel;
     std::vector<int> chainLastLevel;
-    /// Per layer: the texels its casters may have drawn when last drawn (casterTexels).
+    /// Per layer: the texels its casters may have drawn when last drawn (casterTexels), for its
+    /// min/max pyramid; the whole layer for the other chains.
     std::vector<PixelRect> drawnTexels;
+    /// Per layer: the texels that may hold a depth other than the far depth (its casters' and
+    /// backgrounds' since it was last cleared; the whole layer when allocated). Every texel
+    /// outside holds the far depth, so a redraw clears these alone: a spot map's caster covers
+    /// a small part of it, and a full clear of a 2048^2 layer cost a quarter of the bunny's
+    /// shadow pass on llvmpipe.
+    std::vector<PixelRect> writtenTexels;
     /// Made this frame (a new light, or a new map size or layer count): its texture name changed.
     bool allocatedThisFrame = true;
 };
@@ -137,6 +144,7 @@ std::unique_ptr<ShadowMapGpu> allocate(const ShadowLightPlan& plan) {
     map->layers = static_cast<int>(plan.layers.size());
     map->depthScales.assign(plan.layers.size(), 1.0f);
     map->drawnTexels.assign(plan.layers.size(), PixelRect{0, 0, map->mapSize, map->mapSize});
+    map->writtenTexels = map->drawnTexels;
     map->array = gpu::makeTexture(label + "/array", GL_TEXTURE_2D_ARRAY);
     gl.TextureStorage3D(map->array.get(), 1, GL_DEPTH_COMPONENT32F, map->mapSize, map->mapSize, map->layers);
     gl.TextureParameteri(map->array.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -250,9 +258,10 @@ struct ShadowMaps::Impl {
     const DepthProgram& backgroundProgram(bool cutout, unsigned deform);
     /// Fills the texels of layer `k` of `plan`'s map that hold no caster with the farthest of its
     /// backgrounds (ShadowLayerPlan::backgrounds), within a lookup's reach of `casterTexels`,
-    /// those its casters can have drawn; called with the layer drawn and bound.
-    void drawBackgrounds(const World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k,
-                         const PixelRect& casterTexels, LightShadowStats& ls);
+    /// those its casters can have drawn; called with the layer drawn and bound. Returns the
+    /// texels it may have written.
+    PixelRect drawBackgrounds(const World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k,
+                              const PixelRect& casterTexels, LightShadowStats& ls);
     /// Brings the filter chain of every layer of `plan` whose map changed up to date.
     void updateChains(const ShadowLightPlan& plan, LightShadowStats& ls);
 };
@@ -498,6 +507,21 @@ int drawCasters(const World& world, MeshCache& meshes, const ShadowLayerPlan& la
     return drawn;
 }
 
+/// Attaches layer `k` of `map` to its framebuffer and clears it to the far depth where it may
+/// hold anything else (writtenTexels, none after).
+void attachAndClear(ShadowMapGpu& map, std::size_t k) {
+    const GLuint framebuffer = map.framebuffer.get();
+    gl.NamedFramebufferTextureLayer(framebuffer, GL_DEPTH_ATTACHMENT, map.array.get(), 0, static_cast<GLint>(k));
+    PixelRect& written = map.writtenTexels[k];
+    if (written.empty()) return;
+    const float far = 1.0f;
+    gl.Enable(GL_SCISSOR_TEST);
+    gl.Scissor(written.x0, written.y0, written.x1 - written.x0, written.y1 - written.y0);
+    gl.ClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &far);
+    gl.Disable(GL_SCISSOR_TEST);
+    written = {};
+}
+
 }  // namespace
 
 void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const ShadowLightPlan& plan, std::size_t k,
@@ -505,11 +529,9 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
     const ShadowLayerPlan& layer = plan.layers[k];
     ShadowMapGpu& map = *maps[static_cast<std::size_t>(plan.sceneIndex)].second;
     map.depthScales[k] = layer.depthScale;
-    const float far = 1.0f;
     if (layer.casters.empty()) {
-        // Nothing casts into this layer: clear it to the far depth, draw nothing.
-        gl.ClearTexSubImage(map.array.get(), 0, 0, 0, static_cast<GLint>(k), map.mapSize, map.mapSize, 1,
-                            GL_DEPTH_COMPONENT, GL_FLOAT, &far);
+        // Nothing casts into this layer: the far depth, nothing drawn.
+        attachAndClear(map, k);
         ++ls.layersCleared;
         map.drawnTexels[k] = {};
         return;
@@ -524,6 +546,7 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
         // pass's own program (see uFirstPass in shadow_depth.frag.glsl).
         scratch.reserve(map.mapSize);
         gl.BindFramebuffer(GL_FRAMEBUFFER, scratch.framebuffer.get());
+        const float far = 1.0f;
         gl.ClearNamedFramebufferfv(scratch.framebuffer.get(), GL_DEPTH, 0, &far);
         const DepthProgram& program = this->program(mode, false);
         program.use(layer, true);
@@ -531,10 +554,8 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
         firstPass.mapSize = map.mapSize;
         ls.castersDrawn += drawCasters(world, meshes, layer, layer.casters, program, programFor, true, firstPass);
     }
-    const GLuint framebuffer = map.framebuffer.get();
-    gl.NamedFramebufferTextureLayer(framebuffer, GL_DEPTH_ATTACHMENT, map.array.get(), 0, static_cast<GLint>(k));
-    gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-    gl.ClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &far);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, map.framebuffer.get());
+    attachAndClear(map, k);
     if (mode != DepthMode::Nearest) {
         gl.BindSampler(SG_UNIT_MINMAX_SOURCE, 0);  // the texture's own nearest filtering, no comparison
         gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, scratch.texture.get());
@@ -545,18 +566,20 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
     CasterPass pass;
     pass.cullSolids = mode == DepthMode::Nearest;
     const bool minMax = map.chain && map.chain->kind == FilterChainKind::MinMax;
-    pass.gatherTexels = minMax || !layer.backgrounds.empty();
+    pass.gatherTexels = true;  // what the next redraw clears (writtenTexels)
     pass.mapSize = map.mapSize;
     ls.castersDrawn += drawCasters(world, meshes, layer, layer.casters, program, programFor, false, pass);
     ls.castersCulled += pass.culled;
     map.drawnTexels[k] = minMax ? pass.texels : PixelRect{0, 0, map.mapSize, map.mapSize};
+    PixelRect& written = map.writtenTexels[k];
+    written = pass.texels;
     if (mode != DepthMode::Nearest) gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
-    if (!layer.backgrounds.empty()) drawBackgrounds(world, meshes, plan, k, pass.texels, ls);
+    if (!layer.backgrounds.empty()) written = unite(written, drawBackgrounds(world, meshes, plan, k, pass.texels, ls));
     ++ls.layersDrawn;
 }
 
-void ShadowMaps::Impl::drawBackgrounds(const World& world, MeshCache& meshes, const ShadowLightPlan& plan,
-                                       std::size_t k, const PixelRect& casterTexels, LightShadowStats& ls) {
+PixelRect ShadowMaps::Impl::drawBackgrounds(const World& world, MeshCache& meshes, const ShadowLightPlan& plan,
+                                            std::size_t k, const PixelRect& casterTexels, LightShadowStats& ls) {
     const ShadowLayerPlan& layer = plan.layers[k];
     ShadowMapGpu& map = *maps[static_cast<std::size_t>(plan.sceneIndex)].second;
     // Only a region that holds a caster texel reads anything but lit, and a receiver reads one
@@ -564,7 +587,7 @@ void ShadowMaps::Impl::drawBackgrounds(const World& world, MeshCache& meshes, co
     // of the level above the radius and its bilinear neighbour, under 4 radii. Beyond twice
     // that, and an edge texel, the layer may keep the far depth.
     const int reach = 8 * static_cast<int>(std::ceil(std::max(plan.maxFilterTexels, 1.0f))) + 2;
-    if (casterTexels.empty()) return;
+    if (casterTexels.empty()) return {};
     const PixelRect near = grownWithin(casterTexels, reach, map.mapSize, map.mapSize);
     gl.Enable(GL_SCISSOR_TEST);
     gl.Scissor(near.x0, near.y0, near.x1 - near.x0, near.y1 - near.y0);
@@ -605,6 +628,7 @@ void ShadowMaps::Impl::drawBackgrounds(const World& world, MeshCache& meshes, co
     gl.Disable(GL_SCISSOR_TEST);
     gl.DepthFunc(GL_LESS);
     gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
+    return copied;
 }
 
 void CasterDrawContext::setWorldFromLocal(const glm::dmat4& worldFromLocal) const {
