@@ -82,8 +82,8 @@ in vec2 vTexcoord1;
 // targets; a cut-out's holes never reach this pass (the depth pre-pass leaves them out,
 // depth_prepass.frag.glsl).
 uniform int uReceiveShadows;
-// The first pass adds the hemisphere ambient (lighting.glsl) and the emission; the others none.
-uniform int uFirstPass;
+// With SG_LIT_AMBIENT (the first pass) the hemisphere ambient (lighting.glsl) and the emission
+// are added; the other passes add their lights alone.
 uniform vec3 uAmbientSky, uAmbientGround;
 uniform vec3 uCameraForward;  // unit, world space
 
@@ -325,7 +325,9 @@ void main() {
     bool countsHere = all(equal(ivec2(gl_FragCoord.xy) & 1, ivec2(0)));
 #endif
     vec3 color = vec3(0.0);
-    for (int i = 0; i < uFirstPass; ++i) color = ambientShading(s, uAmbientSky, uAmbientGround, occlusion) + emission;
+#ifdef SG_LIT_AMBIENT
+    color = ambientShading(s, uAmbientSky, uAmbientGround, occlusion) + emission;
+#endif
 #ifdef SG_WRITE_AOVS
 #ifdef SG_LIT_CORRECTION
     // What the correction adds to each slot's visibility: 0 but for the lights it recomputes.

