@@ -6,7 +6,8 @@
 // the material is its uniforms and the base-colour texture, read by every pixel and selected
 // where there is one: straight-line code, where a loop of 0 or 1 trips on the uniform, which a
 // CPU rasteriser skips when no pixel enters it, cost the bunny spot's lit pass more than the
-// fetch it saved (1920x1080 on llvmpipe: 3 ms of 34). With it, glTF's
+// fetch it saved (1920x1080 on llvmpipe: 3 ms of 34). A frame none of whose materials has a
+// base-colour texture compiles no fetch (SG_BASE_COLOR_TEXTURE undefined). With it, glTF's
 // parameters per pixel: metallic and roughness from the metallic-roughness map (B, G), the normal
 // map in the tangent frame of MikkTSpace, occlusion (R) and emission, each map read through its
 // own texture-coordinate set and KHR_texture_transform, each in a loop of its own.
@@ -88,7 +89,11 @@ vec3 sg_mappedNormal(MaterialInput m) {
 // Takes derivatives (texture lookups): call it in uniform control flow.
 MaterialSample sg_material(MaterialInput m) {
     MaterialSample s;
+#ifdef SG_BASE_COLOR_TEXTURE
     vec3 base = uTextured != 0 ? texture(uBaseColor, m.uv0).rgb : vec3(1.0);
+#else
+    vec3 base = vec3(1.0);  // no material of the frame has a base-colour texture
+#endif
     s.normal = m.normal;
     s.occlusion = 1.0;
     s.emission = uEmissive;

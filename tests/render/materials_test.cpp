@@ -244,5 +244,56 @@ TEST(Materials, DoubleSidedShadesTheBackFaceAndSingleSidedCullsIt) {
     }
 }
 
+/// Two planes side by side under the sun and the ambient; the left one's base colour is
+/// `leftTexture` when set, else `left`; the right one's `right`, untextured.
+Scene twoPlanes(const glm::vec3& left, const std::shared_ptr<const Texture>& leftTexture, const glm::vec3& right) {
+    Material a = test::gltfMaterial(left, 0.0f, 0.7f);
+    a.baseColorTexture = leftTexture;
+    // The scene of test::materialScene with its plane halved and a second one beside it.
+    Scene scene =
+        test::materialScene(test::makeTexturedPlane(0.5f), test::gltfMaterial(right, 0.0f, 0.7f), kToLight, kLux);
+    scene.world.view<Mesh, Transform>().each([](Entity, Mesh&, Transform& t) { t.translation = {0.55, 0.0, 0.0}; });
+    addMeshInstance(scene.world, "left", test::makeTexturedPlane(0.5f), test::placed({-0.55, 0.0, 0.0}), a);
+    return scene;
+}
+
+// A frame whose materials have no base-colour texture compiles no fetch (SG_BASE_COLOR_TEXTURE,
+// LitVariant::textured); one that has one fetches it for the textured material alone. A plane
+// whose texture is one sRGB grey shades as an untextured plane of that colour, beside an
+// untextured plane whose own colour the texture must not tint, forward and through the stage.
+TEST(Materials, ABaseColourTextureTintsItsOwnMaterialAlone) {
+    const int byte = 90;
+    const auto grey = static_cast<float>(test::srgbToLinear(byte));
+    const auto texture = test::makeTexture("grey", 8, [&](float, float) { return glm::u8vec4(byte, byte, byte, 255); });
+    const glm::vec3 right(0.3f, 0.6f, 0.2f);
+    for (const ScreenVisibility where : {ScreenVisibility::Off, ScreenVisibility::Full}) {
+        Scene textured = twoPlanes(glm::vec3(1.0f), texture, right);
+        Scene reference = twoPlanes(glm::vec3(grey), nullptr, right);
+        const FrameImages a = test::renderMaterialScene(textured, kWidth, kHeight, glm::vec3(0.2f), where);
+        const FrameImages b = test::renderMaterialScene(reference, kWidth, kHeight, glm::vec3(0.2f), where);
+        int pixels[2] = {0, 0}, off[2] = {0, 0};
+        for (int y = 0; y < kHeight; ++y) {
+            for (int x = 0; x < kWidth; ++x) {
+                if (!test::isGroundPixel(b, x, y)) continue;
+                const int side = test::positionAt(b, x, y).x < 0.0 ? 0 : 1;
+                ++pixels[side];
+                for (int c = 0; c < 3; ++c) {
+                    const double want = b.color.at(x, y, c);
+                    // 1 %: llvmpipe decodes sRGB texels by a fit (0.5 % off here).
+                    if (std::abs(a.color.at(x, y, c) - want) > 0.01 * want + 1e-4) {
+                        ++off[side];
+                        break;
+                    }
+                }
+            }
+        }
+        const char* path = where == ScreenVisibility::Off ? "forward" : "staged";
+        EXPECT_GT(pixels[0], kWidth * kHeight / 20) << path;
+        EXPECT_GT(pixels[1], kWidth * kHeight / 20) << path;
+        EXPECT_EQ(off[0], 0) << path << ": the textured plane, of " << pixels[0];
+        EXPECT_EQ(off[1], 0) << path << ": the untextured plane, of " << pixels[1];
+    }
+}
+
 }  // namespace
 }  // namespace shadow::materials_test

@@ -100,13 +100,12 @@ TEST_P(PartialClear, ARedrawnLayerHoldsWhatAFreshMapHolds) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Lights, PartialClear,
-    ::testing::Values(Case{LightType::Spot, ShadowTechnique::Hard, "SpotHard"},
-                      Case{LightType::Point, ShadowTechnique::Pcf, "PointPcf"},
-                      Case{LightType::Directional, ShadowTechnique::Pcss, "SunPcss"},
-                      Case{LightType::Spot, ShadowTechnique::Vsm, "SpotVsmWithBackgrounds"}),
-    [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
+INSTANTIATE_TEST_SUITE_P(Lights, PartialClear,
+                         ::testing::Values(Case{LightType::Spot, ShadowTechnique::Hard, "SpotHard"},
+                                           Case{LightType::Point, ShadowTechnique::Pcf, "PointPcf"},
+                                           Case{LightType::Directional, ShadowTechnique::Pcss, "SunPcss"},
+                                           Case{LightType::Spot, ShadowTechnique::Vsm, "SpotVsmWithBackgrounds"}),
+                         [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
 
 }  // namespace
 }  // namespace shadow::partial_clear_test

@@ -148,6 +148,7 @@ std::string variantLabel(const LitVariant& v) {
     if (v.materialMaps) name += name.empty() ? "maps" : ",maps";
     if (v.countEdges) name += name.empty() ? "edges" : ",edges";
     if (!v.ambient && !v.correction) name += name.empty() ? "added" : ",added";
+    if (!v.textured && !v.deferred) name += name.empty() ? "untextured" : ",untextured";
     if (v.debugView != SG_DEBUG_NONE) name += ",debug" + std::to_string(v.debugView);
     return "Main/Lit[" + name + "]" + gpu::deformLabel(v.deform);
 }
@@ -194,6 +195,7 @@ std::vector<std::string> variantDefines(const LitVariant& v) {
     if (v.aovs) defines.emplace_back("SG_WRITE_AOVS");
     if (v.countEdges) defines.emplace_back("SG_COUNT_EDGES");
     if (v.ambient) defines.emplace_back("SG_LIT_AMBIENT");
+    if (v.textured && !v.deferred) defines.emplace_back("SG_BASE_COLOR_TEXTURE");
     gpu::appendDeformDefines(v.deform, defines);
     if (v.debugView != SG_DEBUG_NONE) {
         defines.emplace_back("SG_DEBUG_VIEWS");
@@ -253,6 +255,10 @@ SurfaceProgram buildSurfaceProgram(unsigned bits) {
     if ((bits & kSurfaceMaterialTargets) != 0) {
         label += "/material";
         defines.emplace_back("SG_GBUFFER_MATERIAL");
+    }
+    if ((bits & kSurfaceTextured) != 0) {
+        label += "/textured";
+        defines.emplace_back("SG_BASE_COLOR_TEXTURE");
     }
     label += gpu::deformLabel(bits / kSurfaceDeformUnit);
     gpu::appendDeformDefines(bits / kSurfaceDeformUnit, defines);

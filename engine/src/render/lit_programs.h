@@ -99,11 +99,12 @@ enum SurfaceProgramBits : unsigned {
     kSurfaceAlphaTested = 1u,      ///< SG_ALPHA_TESTED: a cut-out material
     kSurfaceMaps = 2u,             ///< SG_MATERIAL_MAPS: a material with maps
     kSurfaceMaterialTargets = 4u,  ///< SG_GBUFFER_MATERIAL: the frame stores lighting normal and emission
+    kSurfaceTextured = 8u,         ///< SG_BASE_COLOR_TEXTURE: a material of the frame has a base-colour texture
     /// The bits above: the meshes' deformation (gpu::MeshDeformBits) times this.
-    kSurfaceDeformUnit = 8u,
+    kSurfaceDeformUnit = 16u,
 };
 /// Surface programs by their bits: the size of a table of them.
-inline constexpr std::size_t kSurfacePrograms = 8 * gpu::kMeshDeforms;
+inline constexpr std::size_t kSurfacePrograms = kSurfaceDeformUnit * gpu::kMeshDeforms;
 
 SurfaceProgram buildSurfaceProgram(unsigned bits);
 

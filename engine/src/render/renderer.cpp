@@ -99,8 +99,9 @@ void preparePrepasses(Programs& programs, bool cutouts, unsigned deforms, const 
 
 /// What the frame's materials need of the programs and targets.
 struct FrameMaterials {
-    bool cutouts = false;  ///< a cut-out material (its holes need an alpha test)
-    bool maps = false;     ///< a material with maps (the maps variant)
+    bool cutouts = false;   ///< a cut-out material (its holes need an alpha test)
+    bool maps = false;      ///< a material with maps (the maps variant)
+    bool textured = false;  ///< a material with a base-colour texture (SG_BASE_COLOR_TEXTURE)
     /// A normal map or emission: the stage's surfaces store the lighting normal and emission.
     bool materialTargets = false;
     /// The meshes' deformations (gpu::meshDeform), bit 1 << deform each: the programs' variants.
@@ -113,6 +114,7 @@ FrameMaterials frameMaterials(const World& world) {
         f.deforms |= 1u << gpu::meshDeform(world.tryGet<Skin>(e), world.tryGet<Morph>(e));
         f.cutouts = f.cutouts || m.cutout();
         f.maps = f.maps || m.usesMaps();
+        f.textured = f.textured || m.baseColorTexture != nullptr;
         f.materialTargets =
             f.materialTargets || m.normalMap.texture != nullptr || m.emits() || m.emissiveMap.texture != nullptr;
     });
@@ -254,6 +256,7 @@ void Renderer::Impl::preparePrograms(const ShadowFrame& frame, const RenderOptio
         // on, measured by bash benchmarks/run_auto_budget.sh).
         v.countEdges = false;
         v.ambient = &pass == &passes.front();
+        v.textured = !deferred && materials.textured;
         for (std::size_t slot = 0; slot < pass.sceneLight.size() && !deferred; ++slot) {
             const ShadowLightPlan* plan = render::slotPlan(frame, pass, slot);
             v.countEdges = v.countEdges || (plan != nullptr && plan->countEdges);
@@ -307,7 +310,9 @@ void Renderer::Impl::drawMeshes(const World& world, const CameraView& cam, const
     world.view<Mesh, WorldTransform, Material>().each([&](Entity e, const Mesh& mesh, const WorldTransform& wt,
                                                           const Material& m) {
         if (!wt.finite || mesh.data == nullptr || mesh.data->indices.empty()) return;
-        if (const char* only = getenv("ONLY"); only && mesh.data->indices.size() > 10000 ? only[0] == 'g' : (only && only[0] == 'b')) return;
+        if (const char* only = getenv("ONLY");
+            only && mesh.data->indices.size() > 10000 ? only[0] == 'g' : (only && only[0] == 'b'))
+            return;
         if (const char* only = getenv("ONLY"); only && only[0] == 'n') return;
         if (reach != nullptr) {
             const WorldBounds* b = world.tryGet<WorldBounds>(e);
@@ -434,7 +439,8 @@ void Renderer::Impl::surfacePass(const World& world, const CameraView& cam, cons
     screen->beginSurfaces(materials.materialTargets);
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LESS);
-    const unsigned frameBits = materials.materialTargets ? render::kSurfaceMaterialTargets : 0u;
+    const unsigned frameBits = (materials.materialTargets ? render::kSurfaceMaterialTargets : 0u) |
+                               (materials.textured ? render::kSurfaceTextured : 0u);
     drawMeshes(
         world, cam, nullptr,
         [this, &mc, &stats, frameBits](const Mesh& mesh, const Material& m, unsigned deform) {
