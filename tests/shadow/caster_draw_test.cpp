@@ -16,43 +16,13 @@
 #include <vector>
 
 #include "render/render_test_support.h"
+#include "shadow/game_mesh_test_support.h"
 
 namespace shadow::caster_draw_test {
 namespace {
 
 const glm::dvec3 kBoxAt{0.2, 0.6, -0.1};
 const glm::dvec3 kSecondBoxAt{-0.9, 0.4, 0.5};
-
-/// The game's own copy of a mesh: a vertex buffer of positions, an element buffer, a VAO.
-struct GameMesh {
-    GLuint vertices = 0, indices = 0, vertexArray = 0;
-    int indexCount = 0;
-    Aabb bounds;
-
-    explicit GameMesh(const MeshData& mesh) {
-        gl.CreateBuffers(1, &vertices);
-        gl.NamedBufferStorage(vertices, static_cast<GLsizeiptr>(mesh.positions.size() * sizeof(glm::vec3)),
-                              mesh.positions.data(), 0);
-        gl.CreateBuffers(1, &indices);
-        gl.NamedBufferStorage(indices, static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
-                              mesh.indices.data(), 0);
-        gl.CreateVertexArrays(1, &vertexArray);
-        gl.VertexArrayVertexBuffer(vertexArray, 0, vertices, 0, sizeof(glm::vec3));
-        gl.VertexArrayElementBuffer(vertexArray, indices);
-        gl.EnableVertexArrayAttrib(vertexArray, 0);
-        gl.VertexArrayAttribFormat(vertexArray, 0, 3, GL_FLOAT, GL_FALSE, 0);
-        gl.VertexArrayAttribBinding(vertexArray, 0, 0);
-        indexCount = static_cast<int>(mesh.indices.size());
-        bounds = mesh.bounds;
-    }
-    ~GameMesh() {
-        gl.DeleteVertexArrays(1, &vertexArray);
-        gl.DeleteBuffers(1, &vertices);
-        gl.DeleteBuffers(1, &indices);
-    }
-    GameMesh(const GameMesh&) = delete;
-    GameMesh& operator=(const GameMesh&) = delete;
-};
 
 std::shared_ptr<const MeshData> boxMesh() { return makeBoxMesh(glm::vec3(0.4f, 0.3f, 0.4f)); }
 
@@ -96,7 +66,7 @@ TEST(CasterDraw, TheGamesVertexArrayCastsTheSameShadowAsTheMirroredMesh) {
     Shadows reference;
     reference.frame(mirrored);
 
-    GameMesh game(*box);
+    test::GameMesh game(*box);
     Scene own = baseScene();
     ShadowCasterDraw draw;
     draw.localBounds = game.bounds;
@@ -116,7 +86,7 @@ TEST(CasterDraw, ASolidGameCasterIsDrawnFrontFacesOnlyWithTheSameDepths) {
     // Two game boxes, one mirrored by its transform (its winding flips), marked solid or not,
     // and a callback marked solid (called with culling off: what it draws is its own business).
     test::glContext();
-    GameMesh game(*boxMesh());
+    test::GameMesh game(*boxMesh());
     const auto render = [&game](bool solid, FrameStats& stats) {
         Scene scene = baseScene();
         ShadowCasterDraw draw;
@@ -171,7 +141,7 @@ TEST(CasterDraw, ADrawCallbackDrawsItsOwnInstances) {
     reference.frame(mirrored);
 
     // One caster entity at the origin whose callback draws two instances of the game's mesh.
-    GameMesh game(*box);
+    test::GameMesh game(*box);
     Scene own = baseScene();
     ShadowCasterDraw draw;
     draw.localBounds.extend(glm::vec3(kBoxAt) + game.bounds.min);
@@ -210,7 +180,7 @@ TEST(CasterDraw, ADrawCallbackDrawsItsOwnInstances) {
 TEST(CasterDraw, AMomentChainHoldsTheDepthsACallbackDrew) {
     test::glContext();
     const std::shared_ptr<const MeshData> box = boxMesh();
-    GameMesh game(*box);
+    test::GameMesh game(*box);
     Scene own = baseScene();
     own.world.get<Shadow>(own.lights[0]).technique = ShadowTechnique::Vsm;
     ShadowCasterDraw draw;

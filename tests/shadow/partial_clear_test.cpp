@@ -2,17 +2,20 @@
 // was last cleared (ShadowMapGpu::writtenTexels, shadow_maps.cpp): a caster that moves, leaves
 // the light's view or stops casting leaves no depth behind. The reference is a fresh renderer
 // (its maps allocated and cleared whole) drawing the same scene once: every layer must hold the
-// same depths to the bit.
+// same depths to the bit. A game's caster that draws beyond the bounds it gave is held to them.
+#include <shadow/caster_draw.h>
 #include <shadow/frame_runner.h>
 #include <shadow/scene.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <string>
 #include <vector>
 
 #include "render/render_test_support.h"
+#include "shadow/game_mesh_test_support.h"
 
 namespace shadow::partial_clear_test {
 namespace {
@@ -97,6 +100,45 @@ TEST_P(PartialClear, ARedrawnLayerHoldsWhatAFreshMapHolds) {
             EXPECT_GT(differing(drawn, previous), 0) << "frame " << f << " drew what frame " << f - 1 << " did";
         }
         previous = drawn;
+    }
+}
+
+/// A ground that only receives, a spot light, and a game's box (its own vertex array) at `at`
+/// whose bounds say half its size: it draws beyond them.
+Scene gameBoxScene(const test::GameMesh& box, const glm::dvec3& at) {
+    Scene scene;
+    const Entity ground = test::addGround(scene, 4.0f);
+    scene.world.get<Mesh>(ground).castShadows = false;
+    ShadowCasterDraw draw;
+    draw.localBounds = Aabb{box.bounds.min * 0.5f, box.bounds.max * 0.5f};
+    draw.vertexArray = GlVertexArray{box.vertexArray};
+    draw.indexCount = box.indexCount;
+    const Entity e = scene.world.create();
+    scene.world.emplace<Transform>(e, test::placed(at));
+    scene.world.emplace<ShadowCasterDraw>(e, std::move(draw));
+    addLight(scene, "light", test::pointSizedLight(LightType::Spot, 1.1f), test::hardShadow(kMapSize), {0.3, 3.0, 0.4},
+             glm::normalize(glm::dvec3(-0.3, -3.0, -0.4)));
+    addCamera(scene, "camera", Camera{}, {0.0, 4.0, 6.0}, {0.0, 0.5, 0.0});
+    return scene;
+}
+
+TEST(PartialClear, AGameCasterBeyondItsBoundsLeavesNoDepthBehind) {
+    test::glContext();
+    const test::GameMesh box(*makeBoxMesh(glm::vec3(0.6f, 0.3f, 0.6f)));
+    const std::vector<glm::dvec3> at{{0.8, 0.4, 0.0}, {-0.7, 0.4, -0.8}, {0.1, 0.4, 0.9}};
+    Scene scene = gameBoxScene(box, at.front());
+    FrameRunner runner;
+    for (std::size_t f = 0; f < at.size(); ++f) {
+        scene.world.view<ShadowCasterDraw, Transform>().each(
+            [&](Entity, ShadowCasterDraw&, Transform& t) { t.translation = at[f]; });
+        test::renderFrame(runner, scene, 48, 32, static_cast<double>(f));
+        Scene same = gameBoxScene(box, at[f]);
+        FrameRunner fresh;
+        test::renderFrame(fresh, same, 48, 32, static_cast<double>(f));
+        const std::vector<std::vector<float>> drawn = layers(runner);
+        EXPECT_EQ(differing(drawn, layers(fresh)), 0) << "frame " << f;
+        const auto [nearest, farthest] = std::minmax_element(drawn.at(0).begin(), drawn.at(0).end());
+        EXPECT_LT(*nearest, *farthest) << "frame " << f << ": the box casts into the layer";
     }
 }
 
