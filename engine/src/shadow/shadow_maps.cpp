@@ -425,7 +425,7 @@ struct CasterPass {
     /// bounds are the game's word, is scissored to its own texels, so that one that draws
     /// beyond them (which the planner culls it by) leaves no depth a redraw would not clear;
     /// a mesh's bounds are the module's own, and its draws are not (a scissor per draw cost
-    /// `courtyard`'s 251 caster draws 1.5 % of the shadow pass).
+    /// `courtyard`'s 251 caster draws 2-4 ms of a 137 ms shadow pass in 3 paired runs).
     bool gatherTexels = false;
     PixelRect within{0, 0, std::numeric_limits<int>::max(), std::numeric_limits<int>::max()};
     int mapSize = 0;
