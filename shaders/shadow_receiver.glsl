@@ -84,9 +84,9 @@ struct sg_Receiver {
     float depthScale;
     float texelPerAxial;  // perspective: texel footprint per metre of axial distance
     float depthSlope;     // |change of a tap's depth| per lateral metre along the tangent plane
-    // The receiver's geometric plane (its triangle's) in the receiver's layer: the change of
-    // sg_planeLinearDepth per texel step in s and t, so that each of the 2x2 texels a tap compares
-    // is compared with the plane's depth at that texel's own centre.
+    // The receiver's geometric plane (its triangle's) in the receiver's layer: the change of its
+    // linear depth (sg_planeDepthPerTexel) per texel step in s and t, so that each of the 2x2
+    // texels a tap compares is compared with the plane's depth at that texel's own centre.
     vec2 refPerTexel;
     float reachBias;      // m of bias per m of a tap's reach from the receiver (sg_ReceiverPolicy)
     vec2 texelTan;    // perspective layers: change of a ray's lateral/axial ratio per texel
@@ -102,7 +102,7 @@ struct sg_Tap {
     float reach;  // lateral distance (m) from the receiver
     float axial;  // distance (m) along the layer's axis (perspective layers)
     vec2 rayTan;  // perspective layers: the tap's ray, lateral metres per axial metre
-    vec2 refPerTexel;  // change of the receiver plane's sg_planeLinearDepth per texel step
+    vec2 refPerTexel;  // change of the receiver plane's linear depth per texel step
 };
 
 // Cube face (+X,-X,+Y,-Y,+Z,-Z) containing the direction `d`.
@@ -155,14 +155,6 @@ float sg_texelMetresAt(sg_GpuLight L, int layer, vec3 csPoint) {
     return scale * max(axial, 0.0);
 }
 
-// The quantity that changes linearly across the map's texels on a plane: the depth itself for
-// orthographic layers, the inverse of the axial distance for perspective ones (1/z is affine in
-// screen coordinates; the depth is not, and at grazing light a linear extrapolation of it over
-// one texel errs by more than the bias).
-float sg_planeLinearDepth(vec3 ls, bool orthographic) {
-    return orthographic ? -ls.z : 1.0 / max(-ls.z, 1e-30);
-}
-
 // The normal of the plane the taps lie on: the unit plane normal `plane` with its component along
 // the light ray held to at least that of a plane sg_kMaxPlaneSlope steep (sign kept), so that the
 // taps' stretch stays finite at grazing light. The taps' tangents slide along the ray onto this
@@ -174,12 +166,15 @@ vec3 sg_tapPlaneNormal(vec3 plane, vec3 toLight) {
     return plane + toLight * (along - nDotL);
 }
 
-// The change per texel step (s, t) of a layer of sg_planeLinearDepth over the plane with normal
+// The change per texel step (s, t) of a layer of the plane's linear depth (the quantity affine in
+// the map's texels on a plane: the depth of an orthographic layer, the inverse of the axial
+// distance of a perspective one; the depth itself is not, and at grazing light a linear
+// extrapolation of it over one texel errs by more than the bias), for the plane with normal
 // `lsNormal` through `ls` (both in the layer's light space), `texelTan` the layer's texel size
 // (sg_Receiver::texelTan). In closed form, exact for a plane: where it meets the ray of map
 // position (u, v) (lateral metres per axial metre), n.(u w, v w, -w) = n.p gives
-// 1/w = (n.x u + n.y v - n.z) / n.p, affine in the texels; an orthographic layer's depth -z is
-// (n.x x + n.y y - n.p) / n.z, affine in them too. Zero where the plane holds the light ray.
+// 1/w = (n.x u + n.y v - n.z) / n.p; an orthographic layer's depth -z is
+// (n.x x + n.y y - n.p) / n.z. Zero where the plane holds the light ray.
 vec2 sg_planeDepthPerTexel(vec3 ls, vec3 lsNormal, vec2 texelTan, bool orthographic) {
     float across = orthographic ? lsNormal.z : dot(lsNormal, ls);
     if (!(abs(across) > 0.0) || (!orthographic && !(ls.z < 0.0))) return vec2(0.0);

@@ -27,18 +27,30 @@ test::ProcessRun run(const test::TempDir& tmp, const std::string& program, const
     return test::runProgram(std::string(SHADOW_BIN_DIR "/") + program, args, tmp / (program + ".log"));
 }
 
-/// shadow_render on a cube written to `name` in `tmp` (with a lamp of its own when `withLight`),
-/// with `args`, into `tmp`/out.
-test::ProcessRun renderCube(const test::TempDir& tmp, const std::string& args, const char* name = "cube.gltf",
-                            bool withLight = false) {
-    const fs::path file = writeCube(tmp.path() / name, withLight);
-    return run(tmp, "shadow_render",
-               test::shellQuoted(file.string()) + " " + args + " --out " + test::shellQuoted(tmp / "out"));
-}
-
 nlohmann::json readJson(const std::string& path) {
     std::ifstream in(path);
     return nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+}
+
+/// A run of shadow_render on a cube: the process, its output folder and its stats.json (a
+/// discarded value when it wrote none).
+struct CubeRender {
+    test::ProcessRun process;
+    std::string out;
+    nlohmann::json stats;
+};
+
+/// shadow_render on a cube written to `name` in `tmp` (with a lamp of its own when `withLight`),
+/// with `args`, into `tmp`/out.
+CubeRender renderCube(const test::TempDir& tmp, const std::string& args, const char* name = "cube.gltf",
+                      bool withLight = false) {
+    const fs::path file = writeCube(tmp.path() / name, withLight);
+    CubeRender r;
+    r.out = tmp / "out";
+    r.process =
+        run(tmp, "shadow_render", test::shellQuoted(file.string()) + " " + args + " --out " + test::shellQuoted(r.out));
+    r.stats = readJson(r.out + "/stats.json");
+    return r;
 }
 
 int countCode(const nlohmann::json& warnings, const std::string& code) {
@@ -74,10 +86,9 @@ bool rayMeetsBox(const glm::dvec3& p, const glm::dvec3& towardsLight, const glm:
 // --technique said.
 TEST(DefaultRigCli, TheCommandLinesShadowOverridesReachTheRigsSun) {
     test::TempDir tmp("default_rig_cli");
-    const std::string out = tmp / "out";
-    const test::ProcessRun render = renderCube(tmp, "--size 64x48 --aov color --technique hard --map-size 256");
-    ASSERT_EQ(render.exitCode, 0) << render.output;
-    const nlohmann::json stats = readJson(out + "/stats.json");
+    const CubeRender render = renderCube(tmp, "--size 64x48 --aov color --technique hard --map-size 256");
+    ASSERT_EQ(render.process.exitCode, 0) << render.process.output;
+    const nlohmann::json& stats = render.stats;
     ASSERT_FALSE(stats.is_discarded());
     ASSERT_EQ(stats["lights"].size(), 1u);
     EXPECT_EQ(stats["lights"][0]["node"], "default sun");
@@ -94,13 +105,12 @@ TEST(DefaultRigCli, TheCommandLinesShadowOverridesReachTheRigsSun) {
 // with the ground above or below the cube's base (no ground pixels at the rig's height).
 TEST(DefaultRigCli, FileWithoutLightsCastsTheCubesShadowWhereGeometrySays) {
     test::TempDir tmp("default_rig_cli");
-    const std::string out = tmp / "out";
-    const test::ProcessRun render = renderCube(tmp, "--size 160x120 --aov color,visibility,position");
-    ASSERT_EQ(render.exitCode, 0) << render.output;
+    const CubeRender render = renderCube(tmp, "--size 160x120 --aov color,visibility,position");
+    ASSERT_EQ(render.process.exitCode, 0) << render.process.output;
 
     // Said once on stderr and in stats.json; the rig's sun is light 0.
-    EXPECT_EQ(countOf(render.output, "no lights; added the default rig"), 1u) << render.output;
-    const nlohmann::json stats = readJson(out + "/stats.json");
+    EXPECT_EQ(countOf(render.process.output, "no lights; added the default rig"), 1u) << render.process.output;
+    const nlohmann::json& stats = render.stats;
     ASSERT_FALSE(stats.is_discarded());
     EXPECT_EQ(countCode(stats["warnings"], "DefaultRigAdded"), 1) << stats["warnings"].dump(2);
     ASSERT_EQ(stats["lights"].size(), 1u);
@@ -112,8 +122,8 @@ TEST(DefaultRigCli, FileWithoutLightsCastsTheCubesShadowWhereGeometrySays) {
     Result<Scene> scene = loadScene(tmp / "cube.gltf");
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const DefaultRig rig = addDefaultRig(*scene, std::nullopt);
-    const ImageF position = readExr(out + "/position.exr", {"R", "G", "B", "A"}).value();
-    const ImageF visibility = readExr(out + "/visibility_0.exr", {"Y"}).value();
+    const ImageF position = readExr(render.out + "/position.exr", {"R", "G", "B", "A"}).value();
+    const ImageF visibility = readExr(render.out + "/visibility_0.exr", {"Y"}).value();
     constexpr double kEdge = 0.05;  // m: the excluded band on each side of the projected edge
     const glm::dvec3 towardsSun = -rig.sunDirection;
     int ground = 0, umbra = 0, lit = 0, umbraWrong = 0, litWrong = 0;
@@ -147,17 +157,16 @@ TEST(DefaultRigCli, FileWithoutLightsCastsTheCubesShadowWhereGeometrySays) {
 // ambient term alone is not what lights the cube.
 TEST(DefaultRigCli, NoDefaultLightsKeepsTheFileUnlit) {
     test::TempDir tmp("default_rig_cli");
-    const std::string out = tmp / "out";
-    const test::ProcessRun render = renderCube(tmp, "--no-default-lights --size 64x48");
-    ASSERT_EQ(render.exitCode, 0) << render.output;
-    EXPECT_EQ(render.output.find("default rig"), std::string::npos) << render.output;
-    const nlohmann::json stats = readJson(out + "/stats.json");
+    const CubeRender render = renderCube(tmp, "--no-default-lights --size 64x48");
+    ASSERT_EQ(render.process.exitCode, 0) << render.process.output;
+    EXPECT_EQ(render.process.output.find("default rig"), std::string::npos) << render.process.output;
+    const nlohmann::json& stats = render.stats;
     EXPECT_EQ(stats["lights"].size(), 0u);
     EXPECT_EQ(countCode(stats["warnings"], "DefaultRigAdded"), 0);
-    EXPECT_FALSE(fs::exists(fs::path(out) / "visibility_0.exr"));
+    EXPECT_FALSE(fs::exists(fs::path(render.out) / "visibility_0.exr"));
     // Ambient only: the hemispheres' radiance (0.03 each) times the diffuse and the specular
     // directional albedo together, which stay under 1 (0.8 diffuse for the default material).
-    const ImageF color = readExr(out + "/color.exr", {"R", "G", "B"}).value();
+    const ImageF color = readExr(render.out + "/color.exr", {"R", "G", "B"}).value();
     float brightest = 0.0f;
     for (const float c : color.pixels) brightest = std::max(brightest, c);
     EXPECT_GT(brightest, 0.0f) << "the cube is in view";
@@ -167,15 +176,14 @@ TEST(DefaultRigCli, NoDefaultLightsKeepsTheFileUnlit) {
 // Fails when a file's own light is joined by the rig's (two lights, a DefaultRigAdded warning).
 TEST(DefaultRigCli, FileWithLightsGetsNoRig) {
     test::TempDir tmp("default_rig_cli");
-    const std::string out = tmp / "out";
-    const test::ProcessRun render = renderCube(tmp, "--size 64x48 --aov color,position", "lamp.gltf", true);
-    ASSERT_EQ(render.exitCode, 0) << render.output;
-    const nlohmann::json stats = readJson(out + "/stats.json");
+    const CubeRender render = renderCube(tmp, "--size 64x48 --aov color,position", "lamp.gltf", true);
+    ASSERT_EQ(render.process.exitCode, 0) << render.process.output;
+    const nlohmann::json& stats = render.stats;
     ASSERT_EQ(stats["lights"].size(), 1u);
     EXPECT_EQ(stats["lights"][0]["node"], "lamp");
     EXPECT_EQ(countCode(stats["warnings"], "DefaultRigAdded"), 0);
     // No ground: every covered pixel is on the cube.
-    const ImageF position = readExr(out + "/position.exr", {"R", "G", "B", "A"}).value();
+    const ImageF position = readExr(render.out + "/position.exr", {"R", "G", "B", "A"}).value();
     for (std::size_t i = 0; i < position.pixels.size(); i += 4) {
         if (position.pixels[i + 3] > 0.5f) {
             ASSERT_GE(position.pixels[i + 1], -1e-4f) << "a pixel below the cube";
@@ -186,12 +194,11 @@ TEST(DefaultRigCli, FileWithLightsGetsNoRig) {
 // Fails when --no-ground leaves the ground in (pixels below the cube's base).
 TEST(DefaultRigCli, NoGroundLeavesTheSunAlone) {
     test::TempDir tmp("default_rig_cli");
-    const std::string out = tmp / "out";
-    const test::ProcessRun render = renderCube(tmp, "--no-ground --size 64x48 --aov color,position");
-    ASSERT_EQ(render.exitCode, 0) << render.output;
-    const nlohmann::json stats = readJson(out + "/stats.json");
+    const CubeRender render = renderCube(tmp, "--no-ground --size 64x48 --aov color,position");
+    ASSERT_EQ(render.process.exitCode, 0) << render.process.output;
+    const nlohmann::json& stats = render.stats;
     EXPECT_EQ(stats["lights"].size(), 1u);
-    const ImageF position = readExr(out + "/position.exr", {"R", "G", "B", "A"}).value();
+    const ImageF position = readExr(render.out + "/position.exr", {"R", "G", "B", "A"}).value();
     int covered = 0;
     for (std::size_t i = 0; i < position.pixels.size(); i += 4) {
         if (position.pixels[i + 3] < 0.5f) continue;

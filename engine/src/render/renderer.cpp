@@ -310,10 +310,6 @@ void Renderer::Impl::drawMeshes(const World& world, const CameraView& cam, const
     world.view<Mesh, WorldTransform, Material>().each([&](Entity e, const Mesh& mesh, const WorldTransform& wt,
                                                           const Material& m) {
         if (!wt.finite || mesh.data == nullptr || mesh.data->indices.empty()) return;
-        if (const char* only = getenv("ONLY");
-            only && mesh.data->indices.size() > 10000 ? only[0] == 'g' : (only && only[0] == 'b'))
-            return;
-        if (const char* only = getenv("ONLY"); only && only[0] == 'n') return;
         if (reach != nullptr) {
             const WorldBounds* b = world.tryGet<WorldBounds>(e);
             if (b != nullptr && !b->box.empty() &&

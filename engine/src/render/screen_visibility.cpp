@@ -25,9 +25,6 @@ int divisorIndex(int divisor) { return divisor == 4 ? 2 : divisor == 2 ? 1 : 0; 
 /// Pixels of a target of 1/`divisor` the screen's size.
 int reduced(int size, int divisor) { return (size + divisor - 1) / divisor; }
 
-/// `refinesPerLight` of a group's slots (a variant of the group alone).
-bool refinesPerLight(const LitVariant& group) { return refinesPerLight(group, 0, group.lights); }
-
 /// Runs `body`, timed as Main/ScreenVisibility/`what` when `timer` is given (a fence around
 /// each draw on a CPU rasteriser).
 template <typename Body>
@@ -220,7 +217,8 @@ ScreenStage::Program& ScreenStage::program(const LitVariant& group, int firstSlo
     const bool resolve = pass == Pass::Resolve;
     if (resolve) defines.emplace_back("SG_VIS_RESOLVE");
     if (pass == Pass::Refine) defines.emplace_back("SG_VIS_REFINE");
-    if (pass == Pass::Resolve && refinesPerLight(group)) defines.emplace_back("SG_VIS_REFINE_PER_LIGHT");
+    if (pass == Pass::Resolve && refinesPerLight(group, 0, group.lights))
+        defines.emplace_back("SG_VIS_REFINE_PER_LIGHT");
     if (pass == Pass::Stage && divisor > 1) defines.emplace_back("SG_STAGE_FEATURES");
     // The stage (at any resolution) and the refine run depth-tested.
     if (!resolve) defines.emplace_back("SG_FULLSCREEN_FAR");
@@ -338,7 +336,7 @@ void ScreenStage::visibilityOfGroup(const Group& g, const ScreenRays& rays, Fram
         // and there computes only the lights the prior leaves.
         // With fewer than kMinPerLightRefineLights shadowed lights the refine is the stage at
         // full resolution (every light), without a prior.
-        const bool perLight = refinesPerLight(g.variant);
+        const bool perLight = refinesPerLight(g.variant, 0, g.variant.lights);
         gl.NamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, refine_.get(), 0);
         if (perLight) {
             gl.NamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, prior_.get(), 0);

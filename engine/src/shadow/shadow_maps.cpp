@@ -46,14 +46,12 @@ struct ShadowMapGpu {
     /// (ShadowLayerPlan::chainFirstLevel, chainLastLevel).
     std::vector<int> chainFirstLevel;
     std::vector<int> chainLastLevel;
-    /// Per layer: the texels its casters may have drawn when last drawn (casterTexels), for its
-    /// min/max pyramid; the whole layer for the other chains.
-    std::vector<PixelRect> drawnTexels;
     /// Per layer: the texels that may hold a depth other than the far depth (its casters' and
     /// backgrounds' since it was last cleared; the whole layer when allocated). Every texel
-    /// outside holds the far depth, so a redraw clears these alone: a spot map's caster covers
+    /// outside holds the far depth, so a redraw clears these alone (a spot map's caster covers
     /// a small part of it, and a full clear of a 2048^2 layer cost a quarter of the bunny's
-    /// shadow pass on llvmpipe.
+    /// shadow pass on llvmpipe), and a min/max pyramid reads these alone (a layer with a
+    /// pyramid has no backgrounds: its casters' texels).
     std::vector<PixelRect> writtenTexels;
     /// Made this frame (a new light, or a new map size or layer count): its texture name changed.
     bool allocatedThisFrame = true;
@@ -144,8 +142,7 @@ std::unique_ptr<ShadowMapGpu> allocate(const ShadowLightPlan& plan) {
     map->mapSize = plan.mapSize;
     map->layers = static_cast<int>(plan.layers.size());
     map->depthScales.assign(plan.layers.size(), 1.0f);
-    map->drawnTexels.assign(plan.layers.size(), PixelRect{0, 0, map->mapSize, map->mapSize});
-    map->writtenTexels = map->drawnTexels;
+    map->writtenTexels.assign(plan.layers.size(), PixelRect{0, 0, map->mapSize, map->mapSize});
     map->array = gpu::makeTexture(label + "/array", GL_TEXTURE_2D_ARRAY);
     gl.TextureStorage3D(map->array.get(), 1, GL_DEPTH_COMPONENT32F, map->mapSize, map->mapSize, map->layers);
     gl.TextureParameteri(map->array.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -326,8 +323,11 @@ void ShadowMaps::Impl::updateChains(const ShadowLightPlan& plan, LightShadowStat
         } else {
             formatPassName(passName, plan, map.chain->kind == FilterChainKind::MinMax ? "minmax" : "moments", k);
             const gpu::ScopedPass pass(timer, passName);
-            ls.pyramidTexelsRead += chains.build(map.array.get(), *map.chain, map.mapSize, static_cast<int>(k),
-                                                 plan.layers[k].momentScale, firstLevel, lastLevel, map.drawnTexels[k]);
+            ls.pyramidTexelsRead +=
+                chains.build(map.array.get(), *map.chain, map.mapSize, static_cast<int>(k), plan.layers[k].momentScale,
+                             firstLevel, lastLevel,
+                             map.chain->kind == FilterChainKind::MinMax ? map.writtenTexels[k]
+                                                                        : PixelRect{0, 0, map.mapSize, map.mapSize});
         }
         map.chainCurrent[k] = true;
         map.chainFirstLevel[k] = firstLevel;
@@ -546,7 +546,6 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
         // Nothing casts into this layer: the far depth, nothing drawn.
         attachAndClear(map, k);
         ++ls.layersCleared;
-        map.drawnTexels[k] = {};
         return;
     }
     gl.Viewport(0, 0, map.mapSize, map.mapSize);
@@ -578,14 +577,12 @@ void ShadowMaps::Impl::drawLayer(const World& world, MeshCache& meshes, const Sh
     // The second-depth modes need the far side of every caster: only a nearest layer culls.
     CasterPass pass;
     pass.cullSolids = mode == DepthMode::Nearest;
-    const bool minMax = map.chain && map.chain->kind == FilterChainKind::MinMax;
     pass.gatherTexels = true;  // what the next redraw clears (writtenTexels)
     pass.mapSize = map.mapSize;
     gl.Enable(GL_SCISSOR_TEST);
     ls.castersDrawn += drawCasters(world, meshes, layer, layer.casters, program, programFor, false, pass);
     gl.Disable(GL_SCISSOR_TEST);
     ls.castersCulled += pass.culled;
-    map.drawnTexels[k] = minMax ? pass.texels : PixelRect{0, 0, map.mapSize, map.mapSize};
     PixelRect& written = map.writtenTexels[k];
     written = pass.texels;
     if (mode != DepthMode::Nearest) gl.BindTextureUnit(SG_UNIT_MINMAX_SOURCE, 0);
